@@ -1,0 +1,151 @@
+#include "ros/robot_ros.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <sensor_msgs/JointState.h>
+
+#include <cmath>
+
+namespace unexmin {
+namespace ros_layer {
+namespace {
+
+std::uint64_t every(double physics_rate, double rate)
+{
+  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
+}
+
+}  // namespace
+
+RobotRos::RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
+                   double physics_rate)
+    : robot_(robot)
+{
+  const std::string ns = "/" + robot.name() + "/";
+  for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
+    const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
+    subs_.push_back(command_nh.subscribe<std_msgs::Float64>(
+        base + "input", 10, [this, i](const std_msgs::Float64::ConstPtr& m) { onThrusterInput(i, m); },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+    thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", 10));
+  }
+  subs_.push_back(command_nh.subscribe(ns + "pendulum", 10, &RobotRos::onPendulum, this, ros::TransportHints().tcpNoDelay()));
+  subs_.push_back(command_nh.subscribe(ns + "vbs", 10, &RobotRos::onVbs, this, ros::TransportHints().tcpNoDelay()));
+  odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", 50);
+  joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", 50);
+  odom_every_ = every(physics_rate, rates.odom);
+  joint_every_ = every(physics_rate, rates.joint_states);
+  thrust_every_ = every(physics_rate, rates.thrust);
+  joint_names_ = robot.description().movableJoints();
+}
+
+bool RobotRos::finite(const std::string& topic, double value) const
+{
+  if (std::isfinite(value)) return true;
+  ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected non-finite command " << value);
+  return false;
+}
+
+void RobotRos::onThrusterInput(std::size_t i, const std_msgs::Float64::ConstPtr& msg)
+{
+  const std::string topic = "thrusters/" + std::to_string(i) + "/input";
+  if (!finite(topic, msg->data)) return;
+  auto& th = robot_.thruster(i);
+  if (!th.setCommand(msg->data, now_))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected command " << msg->data
+                                      << ", expected [" << th.params().min_command << ", "
+                                      << th.params().max_command << "]");
+}
+
+void RobotRos::onPendulum(const std_msgs::Float64::ConstPtr& msg)
+{
+  if (!finite("pendulum", msg->data)) return;
+  if (!robot_.hasPendulum()) {
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/pendulum: this robot has no pendulum");
+    return;
+  }
+  const auto& p = robot_.pendulum().params();
+  if (!robot_.pendulum().setTarget(msg->data))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/pendulum: rejected angle " << msg->data
+                                      << " rad, expected [" << p.min_angle << ", " << p.max_angle << "]");
+}
+
+void RobotRos::onVbs(const std_msgs::Float64::ConstPtr& msg)
+{
+  if (!finite("vbs", msg->data)) return;
+  const auto& p = robot_.vbs().params();
+  if (!robot_.vbs().setMass(msg->data))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/vbs: rejected ballast mass " << msg->data
+                                      << " kg, expected [" << p.min_mass << ", " << p.max_mass << "]");
+}
+
+void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf)
+{
+  now_ = stamp.toSec();
+  const bool odom_due = odom_every_ && step % odom_every_ == 0;
+  if (odom_due) {
+    const sim::RobotState s = robot_.state();
+    const Eigen::Quaterniond q(s.pose.linear());
+    const std::string child = robot_.description().base_link;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = "world";
+    t.child_frame_id = child;
+    t.transform.translation.x = s.pose.translation().x();
+    t.transform.translation.y = s.pose.translation().y();
+    t.transform.translation.z = s.pose.translation().z();
+    t.transform.rotation.x = q.x();
+    t.transform.rotation.y = q.y();
+    t.transform.rotation.z = q.z();
+    t.transform.rotation.w = q.w();
+    tf.sendTransform(t);
+    if (odom_pub_.getNumSubscribers() > 0) {
+      nav_msgs::Odometry o;
+      o.header = t.header;
+      o.child_frame_id = child;
+      o.pose.pose.position.x = t.transform.translation.x;
+      o.pose.pose.position.y = t.transform.translation.y;
+      o.pose.pose.position.z = t.transform.translation.z;
+      o.pose.pose.orientation = t.transform.rotation;
+      // REP-105: twist in the child (body) frame.
+      const Eigen::Matrix3d Rt = s.pose.linear().transpose();
+      const Eigen::Vector3d v = Rt * s.linear_velocity, w = Rt * s.angular_velocity;
+      o.twist.twist.linear.x = v.x();
+      o.twist.twist.linear.y = v.y();
+      o.twist.twist.linear.z = v.z();
+      o.twist.twist.angular.x = w.x();
+      o.twist.twist.angular.y = w.y();
+      o.twist.twist.angular.z = w.z();
+      odom_pub_.publish(o);
+    }
+  }
+  if (thrust_every_ && step % thrust_every_ == 0) {
+    for (std::size_t i = 0; i < thrust_pubs_.size(); ++i) {
+      if (thrust_pubs_[i].getNumSubscribers() == 0) continue;
+      std_msgs::Float64 m;
+      m.data = robot_.thruster(i).thrust();
+      thrust_pubs_[i].publish(m);
+    }
+  }
+  if (joint_every_ && step % joint_every_ == 0 && joint_pub_.getNumSubscribers() > 0) {
+    sensor_msgs::JointState js;
+    js.header.stamp = stamp;
+    const auto& d = robot_.description();
+    for (const auto& name : joint_names_) {
+      double position = 0.0, velocity = 0.0;
+      for (std::size_t i = 0; i < d.thruster_joints.size(); ++i)
+        if (d.thruster_joints[i] == name) position = robot_.propellerAngle(i);
+      if (name == d.pendulum_joint && robot_.hasPendulum()) {
+        position = robot_.pendulum().angle();
+        velocity = robot_.pendulum().velocity();
+      }
+      js.name.push_back(name);
+      js.position.push_back(position);
+      js.velocity.push_back(velocity);
+    }
+    joint_pub_.publish(js);
+  }
+}
+
+}  // namespace ros_layer
+}  // namespace unexmin

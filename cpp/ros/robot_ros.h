@@ -1,0 +1,53 @@
+// ROS plumbing of one robot: command subscribers (guarded), state publishers, tf.
+#pragma once
+
+#include "sim/robot.h"
+
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace ros_layer {
+
+struct PublishRates
+{
+  double odom = 50.0;         ///< nav_msgs/Odometry and tf [Hz of sim time]
+  double joint_states = 50.0; ///< sensor_msgs/JointState [Hz of sim time]
+  double thrust = 50.0;       ///< achieved thrust per thruster [Hz of sim time]
+};
+
+class RobotRos
+{
+public:
+  /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
+  RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
+           double physics_rate);
+
+  /// Publishes whatever is due at this physics step.
+  void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf);
+
+private:
+  void onThrusterInput(std::size_t i, const std_msgs::Float64::ConstPtr& msg);
+  void onPendulum(const std_msgs::Float64::ConstPtr& msg);
+  void onVbs(const std_msgs::Float64::ConstPtr& msg);
+  /// Shared edge check: rejects (warns, returns false) a non-finite command.
+  bool finite(const std::string& topic, double value) const;
+
+  sim::Robot& robot_;
+  double now_ = 0.0;  ///< sim time of the last publish call [s]
+  std::vector<ros::Subscriber> subs_;
+  std::vector<ros::Publisher> thrust_pubs_;
+  ros::Publisher odom_pub_;
+  ros::Publisher joint_pub_;
+  std::uint64_t odom_every_ = 1;
+  std::uint64_t joint_every_ = 1;
+  std::uint64_t thrust_every_ = 1;
+  std::vector<std::string> joint_names_;
+};
+
+}  // namespace ros_layer
+}  // namespace unexmin

@@ -1,0 +1,17 @@
+// The UNEXMIN simulator process (like gzserver): see docs/simulator_node.md.
+#include "ros/simulator_ros.h"
+
+#include <stdexcept>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "simulator");
+  try {
+    unexmin::ros_layer::SimulatorRos sim(ros::NodeHandle(), ros::NodeHandle("~"));
+    sim.spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL_STREAM("unexmin simulator cannot start: " << e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,49 @@
+// The simulator's view of a robot description (URDF, expanded from xacro): joint tree for the
+// actuator poses plus the <unexmin> element with the hydrodynamic, thruster, pendulum and VBS
+// parameters. See docs/robot_description.md for the schema.
+#pragma once
+
+#include "hydro/fossen_model.h"
+#include "hydro/pendulum.h"
+#include "hydro/thruster.h"
+
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sim {
+
+struct JointInfo
+{
+  std::string name;
+  std::string type;    ///< URDF joint type (fixed, continuous, revolute, ...).
+  std::string parent;  ///< Parent link.
+  std::string child;   ///< Child link.
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< Child frame in parent frame.
+  Eigen::Vector3d axis{1, 0, 0};                             ///< In the joint frame.
+};
+
+struct RobotDescription
+{
+  std::string source;      ///< File or parameter it came from (for messages).
+  std::string name;        ///< <robot name="...">
+  std::string base_link;   ///< Link carrying the hydrodynamics (the rigid body).
+  hydro::HydroParams hydro;
+  std::vector<hydro::ThrusterParams> thrusters;  ///< Sorted by id 0..n-1.
+  std::vector<std::string> thruster_joints;      ///< Same order as `thrusters`.
+  hydro::PendulumParams pendulum;
+  std::string pendulum_joint;                    ///< Empty when the robot has no pendulum.
+  hydro::VbsParams vbs;
+  std::vector<JointInfo> joints;
+
+  /// Pose of `link` in the base link's frame, through fixed joint origins (moving joints at zero).
+  Eigen::Isometry3d linkPose(const std::string& link) const;
+  /// Movable (non-fixed) joints, in document order.
+  std::vector<std::string> movableJoints() const;
+};
+
+/// Parses URDF XML; throws ConfigError("<source>: <problem>") naming the element and attribute.
+RobotDescription parseRobotDescription(const std::string& xml, const std::string& source);
+
+}  // namespace sim
+}  // namespace unexmin

@@ -1,0 +1,61 @@
+// World file (YAML): environment, static meshes and robot spawn poses. See docs/worlds.md.
+#pragma once
+
+#include "hydro/current.h"
+
+#include <Eigen/Geometry>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sim {
+
+/// A malformed world or robot file. The message names the file and the problem.
+class ConfigError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct MeshEntry
+{
+  std::string name;
+  std::string file;                         ///< Absolute path (resolved against the world file).
+  Eigen::Vector3d scale{1, 1, 1};
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< Mesh frame in the world frame.
+  bool collision = true;
+  bool visual = true;
+};
+
+struct RobotSpawn
+{
+  std::string name;         ///< Robot namespace, e.g. "UX_1".
+  std::string description;  ///< Robot description file name in the package's urdf/ folder.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< base_link in the world frame.
+};
+
+struct WorldConfig
+{
+  std::string file;                       ///< Where it was loaded from.
+  std::string name;
+  double gravity = 9.81;                  ///< [m/s^2], along world -z.
+  double water_density = 1000.0;          ///< [kg/m^3]
+  double surface_z = 0.0;                 ///< World z of the free surface [m].
+  double atmospheric_pressure = 101325.0; ///< [Pa]
+  std::string visibility = "none";        ///< none|low|medium|high
+  Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};
+  hydro::CurrentParams current;
+  std::vector<MeshEntry> meshes;
+  std::vector<RobotSpawn> robots;
+};
+
+/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect.
+WorldConfig loadWorldConfig(const std::string& path);
+
+/// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+
+}  // namespace sim
+}  // namespace unexmin

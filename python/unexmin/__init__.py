@@ -1,0 +1,16 @@
+"""UNEXMIN UX-1 simulator: Python tools and the scripting API.
+
+``from unexmin import Simulation`` gives the "pybind-style" API over ROS 1 (see docs/python_api.md).
+Submodules that need no ROS (allocation maths, bag analysis) import without a running master.
+"""
+
+__all__ = ["Simulation"]
+
+
+def __getattr__(name):
+    # Lazy so that ``import unexmin.<pure module>`` does not pull in rospy.
+    if name == "Simulation":
+        from unexmin.simulation import Simulation
+
+        return Simulation
+    raise AttributeError(name)

@@ -1,0 +1,193 @@
+"""Script the simulator from Python as if it were bound in-process, through ROS 1.
+
+    from unexmin import Simulation
+    sim = Simulation.launch("tank", robots=1, seed=3)   # or Simulation() to join a running one
+    ux = sim.robot("UX_1")
+    ux.thrusts([10, 0, -10, 0, 10, 0, -10, 0])
+    sim.run_for(5.0)          # deterministic: commands sent before the call apply from the next step
+    print(sim.time, ux.odom().pose.pose.position)
+
+See docs/python_api.md.
+"""
+
+import math
+import threading
+
+import rospy
+from geometry_msgs.msg import Wrench
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Float64
+from std_srvs.srv import Empty
+
+from unexmin.launcher import WorldProcess, wait_for
+from unexmin.srv import Reset, Step
+
+
+def _finite(name, value):
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return value
+
+
+class Robot:
+    """Handle on one simulated robot's topics (names relative to /<name>/)."""
+
+    def __init__(self, sim, name, thrusters=8):
+        self.sim = sim
+        self.name = name
+        ns = f"/{name}/"
+        # queue_size=None: publish() writes synchronously, so a command is on the wire before the
+        # next /sim/step request and applies from the next physics step.
+        self._thr = [rospy.Publisher(f"{ns}thrusters/{i}/input", Float64, queue_size=None) for i in range(thrusters)]
+        self._pendulum = rospy.Publisher(f"{ns}pendulum", Float64, queue_size=None)
+        self._vbs = rospy.Publisher(f"{ns}vbs", Float64, queue_size=None)
+        self._wrench = rospy.Publisher(f"{ns}force_moments", Wrench, queue_size=None)
+        self._latest = {}
+        self._cond = threading.Condition()
+        self._subs = {}
+        self.subscribe("odom", Odometry)
+        wait_for(lambda: all(p.get_num_connections() > 0 for p in self._thr + [self._pendulum, self._vbs]),
+                 sim.timeout, f"the simulator to subscribe to {name}'s command topics")
+
+    def subscribe(self, topic, msg_class):
+        if topic not in self._subs:
+            self._subs[topic] = rospy.Subscriber(f"/{self.name}/{topic}", msg_class, self._store, topic,
+                                                 queue_size=50, tcp_nodelay=True)
+        return self._subs[topic]
+
+    def _store(self, msg, topic):
+        with self._cond:
+            self._latest[topic] = msg
+            self._cond.notify_all()
+
+    def thrusts(self, values):
+        """Command every thruster (command unit of each thruster, [N] by default)."""
+        values = list(values)
+        if len(values) != len(self._thr):
+            raise ValueError(f"thrusts needs {len(self._thr)} values, got {len(values)}")
+        for i, (pub, v) in enumerate(zip(self._thr, values)):
+            pub.publish(Float64(_finite(f"thrust[{i}]", v)))
+
+    def wrench(self, X=0.0, Y=0.0, Z=0.0, K=0.0, M=0.0, N=0.0):
+        """Desired body wrench [N, N m] on force_moments (needs the thruster allocator running)."""
+        w = Wrench()
+        w.force.x, w.force.y, w.force.z = (_finite(n, v) for n, v in (("X", X), ("Y", Y), ("Z", Z)))
+        w.torque.x, w.torque.y, w.torque.z = (_finite(n, v) for n, v in (("K", K), ("M", M), ("N", N)))
+        self._wrench.publish(w)
+
+    def pendulum(self, angle):
+        """Pendulum target angle [rad]."""
+        self._pendulum.publish(Float64(_finite("pendulum", angle)))
+
+    def vbs(self, mass):
+        """Ballast mass [kg]."""
+        self._vbs.publish(Float64(_finite("vbs", mass)))
+
+    def latest(self, topic, msg_class=None, min_stamp=None, timeout=None):
+        """Latest message on /<robot>/<topic>; waits for the first one (or one stamped >= min_stamp [s])."""
+        if topic not in self._subs:
+            if msg_class is None:
+                raise ValueError(f"latest('{topic}') needs its message class the first time")
+            self.subscribe(topic, msg_class)
+        timeout = self.sim.timeout if timeout is None else timeout
+
+        def ready():
+            msg = self._latest.get(topic)
+            if msg is None:
+                return False
+            stamp = getattr(getattr(msg, "header", None), "stamp", None)
+            return min_stamp is None or stamp is None or stamp.to_sec() >= min_stamp - 1e-9
+
+        with self._cond:
+            if not self._cond.wait_for(ready, timeout):
+                raise TimeoutError(f"no message on /{self.name}/{topic} within {timeout} s")
+            return self._latest[topic]
+
+    def odom(self, timeout=None):
+        """Ground-truth odometry at (or within one odometry period before) the current sim time."""
+        return self.latest("odom", min_stamp=self.sim.time - self.sim.odom_period, timeout=timeout)
+
+
+class Simulation:
+    """Client of a running simulator (its ROS master is ROS_MASTER_URI)."""
+
+    def __init__(self, node_name="unexmin_script", timeout=30.0, world=None):
+        self.timeout = timeout
+        self._world = world
+        if not rospy.core.is_initialized():
+            rospy.init_node(node_name, anonymous=True, disable_signals=True)
+        for srv in ("/sim/step", "/sim/pause", "/sim/unpause", "/sim/reset", "/sim/reset_seed"):
+            rospy.wait_for_service(srv, timeout)
+        self._step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
+        self._pause = rospy.ServiceProxy("/sim/pause", Empty)
+        self._unpause = rospy.ServiceProxy("/sim/unpause", Empty)
+        self._reset = rospy.ServiceProxy("/sim/reset", Empty)
+        self._reset_seed = rospy.ServiceProxy("/sim/reset_seed", Reset)
+        self.physics_rate = float(rospy.get_param("/simulator/physics_rate", 500.0))
+        self.odom_period = 1.0 / float(rospy.get_param("/simulator/odom_rate", 50.0))
+        self._time = 0.0
+        self._clock = rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=1)
+        self._robots = {}
+
+    @classmethod
+    def launch(cls, world="tank", robots=1, seed=0, log_dir=None, timeout=60.0, **kwargs):
+        """Start a headless lockstep world (paused) on a private master and connect to it."""
+        proc = WorldProcess(world=world, robots=robots, seed=seed, realtime=False, paused=True, log_dir=log_dir)
+        try:
+            return cls(timeout=timeout, world=proc, **kwargs)
+        except Exception:
+            proc.close()
+            raise
+
+    def _on_clock(self, msg):
+        self._time = max(self._time, msg.clock.to_sec())
+
+    @property
+    def time(self):
+        """Simulation time [s] after the last step (or as last seen on /clock)."""
+        return self._time
+
+    def robot(self, name):
+        if name not in self._robots:
+            self._robots[name] = Robot(self, name)
+        return self._robots[name]
+
+    def pause(self):
+        self._pause()
+
+    def unpause(self):
+        self._unpause()
+
+    def step(self, n=1):
+        """Advance exactly n physics steps (pause first); returns the sim time [s]."""
+        if int(n) != n or n < 0:
+            raise ValueError(f"step needs a non-negative whole number of steps, got {n!r}")
+        res = self._step(duration=0.0, steps=int(n))
+        self._time = res.time
+        return self._time
+
+    def run_for(self, seconds):
+        """Advance by `seconds` of sim time, rounded to whole physics steps; returns the sim time [s]."""
+        seconds = _finite("seconds", seconds)
+        if seconds < 0:
+            raise ValueError(f"run_for needs seconds >= 0, got {seconds}")
+        return self.step(round(seconds * self.physics_rate))
+
+    def reset(self, seed=None):
+        """Everything back to t = 0 (robots at spawn, actuators zero); a new seed if given."""
+        if seed is None:
+            self._reset()
+        else:
+            self._reset_seed(seed=int(seed))
+        self._time = 0.0
+        for r in self._robots.values():
+            with r._cond:
+                r._latest.clear()
+
+    def close(self):
+        """Stop the world this object launched (if any)."""
+        if self._world is not None:
+            self._world.close()
+            self._world = None

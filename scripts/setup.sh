@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# One-stop set-up for a fresh Debian 12 machine: Debian's ROS 1 and C++ libraries, a Python venv
+# (from /usr/bin/python3, with system site packages so rospy is visible) and the catkin workspace
+# built outside the repository. Idempotent: a second run on a set-up machine takes seconds.
+#
+# Environment:
+#   UNEXMIN_WS    catkin workspace folder   (default: <repo>/../<repo-name>_ws)
+#   UNEXMIN_VENV  Python venv folder        (default: $UNEXMIN_WS/venv)
+set -euo pipefail
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+ws=${UNEXMIN_WS:-$(dirname "$repo")/$(basename "$repo")_ws}
+venv=${UNEXMIN_VENV:-$ws/venv}
+
+apt_packages=(
+  # ROS 1 from Debian
+  ros-core-dev rosbash python3-rostest python3-rosbag ros-robot-state-publisher tf2-tools
+  libtf2-ros-dev python3-tf2-ros liburdf-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
+  libvisualization-msgs-dev python3-sensor-msgs python3-geometry-msgs python3-nav-msgs
+  libstd-srvs-dev python3-std-srvs librosbag-dev
+  # C++ core
+  libbullet-dev libeigen3-dev liboctomap-dev libpcl-dev libpcl-conversions-dev libembree-dev
+  libassimp-dev octomap-tools libyaml-cpp-dev libbenchmark-dev libtinyxml2-dev liburdfdom-dev
+  # tests, viewer, Python
+  libgtest-dev googletest rviz xvfb xauth x11-apps imagemagick tmux python3-venv
+  build-essential cmake
+)
+pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
+  trimesh==4.5.3 opensimplex==0.4.5.1 tqdm==4.67.1)
+
+missing=()
+for p in "${apt_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "[setup] installing ${#missing[@]} Debian packages: ${missing[*]}"
+  sudo_cmd=""; [ "$(id -u)" -ne 0 ] && sudo_cmd=sudo
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+stamp="$venv/.unexmin-pip-$(printf '%s\n' "${pip_packages[@]}" | md5sum | cut -c1-12)"
+if [ ! -f "$stamp" ]; then
+  echo "[setup] creating venv $venv"
+  [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv --system-site-packages "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check "${pip_packages[@]}"
+  rm -f "$venv"/.unexmin-pip-*; touch "$stamp"
+fi
+
+mkdir -p "$ws/src"
+ln -sfn "$repo" "$ws/src/unexmin"
+for m in "$repo"/msgs/*/; do
+  ln -sfn "${m%/}" "$ws/src/$(basename "$m")"
+done
+# Remove links to msg packages that no longer exist.
+for l in "$ws"/src/*; do
+  [ -L "$l" ] && [ ! -e "$l" ] && rm -f "$l"
+done
+
+echo "[setup] building workspace $ws"
+(
+  set +u
+  source /opt/ros/*/setup.bash 2>/dev/null || true
+  cd "$ws"
+  export PATH="$venv/bin:$PATH"
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2 >"$ws/build.log" 2>&1 \
+    || { tail -n 60 "$ws/build.log"; echo "[setup] build failed, full log: $ws/build.log" >&2; exit 1; }
+)
+echo "[setup] ready: source $repo/scripts/env.sh"
