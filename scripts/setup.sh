@@ -22,7 +22,7 @@ apt_packages=(
   libbullet-dev libeigen3-dev liboctomap-dev libpcl-dev libpcl-conversions-dev libembree-dev
   libassimp-dev octomap-tools libyaml-cpp-dev libbenchmark-dev libtinyxml2-dev liburdfdom-dev
   # tests, viewer, Python
-  libgtest-dev googletest rviz xvfb xauth x11-apps imagemagick tmux python3-venv
+  libgtest-dev googletest rviz xvfb xauth x11-apps imagemagick tmux python3-venv python3-numpy python3-yaml
   build-essential cmake
 )
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
@@ -43,7 +43,7 @@ stamp="$venv/.unexmin-pip-$(printf '%s\n' "${pip_packages[@]}" | md5sum | cut -c
 if [ ! -f "$stamp" ]; then
   echo "[setup] creating venv $venv"
   [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv --system-site-packages "$venv"
-  "$venv/bin/pip" install -q --disable-pip-version-check "${pip_packages[@]}"
+  "$venv/bin/pip" install -q --disable-pip-version-check "${pip_packages[@]}" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   rm -f "$venv"/.unexmin-pip-*; touch "$stamp"
 fi
 

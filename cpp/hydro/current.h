@@ -5,6 +5,7 @@
 
 #include "hydro/types.h"
 
+#include <cstdint>
 #include <random>
 
 namespace unexmin {

@@ -15,22 +15,30 @@ std::uint64_t every(double physics_rate, double rate)
   return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
 }
 
+using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
+
+/// Command subscriber whose callback sees the publisher's name (to count applied commands).
+ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
+                                 const boost::function<void(const Float64Event&)>& callback)
+{
+  return nh.subscribe<std_msgs::Float64, const Float64Event&>(topic, 10, callback, ros::VoidConstPtr(),
+                                                               ros::TransportHints().tcpNoDelay());
+}
+
 }  // namespace
 
 RobotRos::RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
-                   double physics_rate)
-    : robot_(robot)
+                   double physics_rate, std::map<std::string, std::uint64_t>& received)
+    : robot_(robot), received_(received)
 {
   const std::string ns = "/" + robot.name() + "/";
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
     const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
-    subs_.push_back(command_nh.subscribe<std_msgs::Float64>(
-        base + "input", 10, [this, i](const std_msgs::Float64::ConstPtr& m) { onThrusterInput(i, m); },
-        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+    subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
     thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", 10));
   }
-  subs_.push_back(command_nh.subscribe(ns + "pendulum", 10, &RobotRos::onPendulum, this, ros::TransportHints().tcpNoDelay()));
-  subs_.push_back(command_nh.subscribe(ns + "vbs", 10, &RobotRos::onVbs, this, ros::TransportHints().tcpNoDelay()));
+  subs_.push_back(subscribeCommand(command_nh, ns + "pendulum", [this](const Float64Event& e) { onPendulum(e); }));
+  subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", 50);
   joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", 50);
   odom_every_ = every(physics_rate, rates.odom);
@@ -46,8 +54,10 @@ bool RobotRos::finite(const std::string& topic, double value) const
   return false;
 }
 
-void RobotRos::onThrusterInput(std::size_t i, const std_msgs::Float64::ConstPtr& msg)
+void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
 {
+  ++received_[event.getPublisherName()];
+  const auto& msg = event.getConstMessage();
   const std::string topic = "thrusters/" + std::to_string(i) + "/input";
   if (!finite(topic, msg->data)) return;
   auto& th = robot_.thruster(i);
@@ -57,8 +67,10 @@ void RobotRos::onThrusterInput(std::size_t i, const std_msgs::Float64::ConstPtr&
                                       << th.params().max_command << "]");
 }
 
-void RobotRos::onPendulum(const std_msgs::Float64::ConstPtr& msg)
+void RobotRos::onPendulum(const Float64Event& event)
 {
+  ++received_[event.getPublisherName()];
+  const auto& msg = event.getConstMessage();
   if (!finite("pendulum", msg->data)) return;
   if (!robot_.hasPendulum()) {
     ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/pendulum: this robot has no pendulum");
@@ -70,8 +82,10 @@ void RobotRos::onPendulum(const std_msgs::Float64::ConstPtr& msg)
                                       << " rad, expected [" << p.min_angle << ", " << p.max_angle << "]");
 }
 
-void RobotRos::onVbs(const std_msgs::Float64::ConstPtr& msg)
+void RobotRos::onVbs(const Float64Event& event)
 {
+  ++received_[event.getPublisherName()];
+  const auto& msg = event.getConstMessage();
   if (!finite("vbs", msg->data)) return;
   const auto& p = robot_.vbs().params();
   if (!robot_.vbs().setMass(msg->data))
@@ -79,10 +93,16 @@ void RobotRos::onVbs(const std_msgs::Float64::ConstPtr& msg)
                                       << " kg, expected [" << p.min_mass << ", " << p.max_mass << "]");
 }
 
-void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf)
+void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all)
 {
   now_ = stamp.toSec();
-  const bool odom_due = odom_every_ && step % odom_every_ == 0;
+  // A stream is published when its schedule says so or when `all` asks, once per step at most.
+  auto due = [&](std::uint64_t every, std::uint64_t& last) {
+    if (!every || last == step || !(all || step % every == 0)) return false;
+    last = step;
+    return true;
+  };
+  const bool odom_due = due(odom_every_, last_odom_);
   if (odom_due) {
     const sim::RobotState s = robot_.state();
     const Eigen::Quaterniond q(s.pose.linear());
@@ -119,7 +139,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
       odom_pub_.publish(o);
     }
   }
-  if (thrust_every_ && step % thrust_every_ == 0) {
+  if (due(thrust_every_, last_thrust_)) {
     for (std::size_t i = 0; i < thrust_pubs_.size(); ++i) {
       if (thrust_pubs_[i].getNumSubscribers() == 0) continue;
       std_msgs::Float64 m;
@@ -127,7 +147,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
       thrust_pubs_[i].publish(m);
     }
   }
-  if (joint_every_ && step % joint_every_ == 0 && joint_pub_.getNumSubscribers() > 0) {
+  if (due(joint_every_, last_joint_) && joint_pub_.getNumSubscribers() > 0) {
     sensor_msgs::JointState js;
     js.header.stamp = stamp;
     const auto& d = robot_.description();

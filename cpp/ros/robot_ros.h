@@ -7,6 +7,7 @@
 #include <std_msgs/Float64.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,20 +25,26 @@ class RobotRos
 {
 public:
   /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
+  /// `received` counts the command messages applied, per publishing node (shared by all robots).
   RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
-           double physics_rate);
+           double physics_rate, std::map<std::string, std::uint64_t>& received);
 
-  /// Publishes whatever is due at this physics step.
-  void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf);
+  /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
+  void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all = false);
+
+  /// Forget what was published (the world was reset to step 0).
+  void restart() { last_odom_ = last_joint_ = last_thrust_ = UINT64_MAX; }
 
 private:
-  void onThrusterInput(std::size_t i, const std_msgs::Float64::ConstPtr& msg);
-  void onPendulum(const std_msgs::Float64::ConstPtr& msg);
-  void onVbs(const std_msgs::Float64::ConstPtr& msg);
+  using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
+  void onThrusterInput(std::size_t i, const Float64Event& event);
+  void onPendulum(const Float64Event& event);
+  void onVbs(const Float64Event& event);
   /// Shared edge check: rejects (warns, returns false) a non-finite command.
   bool finite(const std::string& topic, double value) const;
 
   sim::Robot& robot_;
+  std::map<std::string, std::uint64_t>& received_;
   double now_ = 0.0;  ///< sim time of the last publish call [s]
   std::vector<ros::Subscriber> subs_;
   std::vector<ros::Publisher> thrust_pubs_;
@@ -46,6 +53,10 @@ private:
   std::uint64_t odom_every_ = 1;
   std::uint64_t joint_every_ = 1;
   std::uint64_t thrust_every_ = 1;
+  // Step of the last publication of each stream (none yet: max).
+  std::uint64_t last_odom_ = UINT64_MAX;
+  std::uint64_t last_joint_ = UINT64_MAX;
+  std::uint64_t last_thrust_ = UINT64_MAX;
   std::vector<std::string> joint_names_;
 };
 

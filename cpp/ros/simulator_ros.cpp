@@ -47,7 +47,8 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
                                         static_cast<std::uint64_t>(seed_));
 
   for (std::size_t i = 0; i < world_->robotCount(); ++i)
-    robots_.push_back(std::make_unique<RobotRos>(world_->robot(i), command_nh_, nh_, rates_, physics_rate_));
+    robots_.push_back(
+        std::make_unique<RobotRos>(world_->robot(i), command_nh_, nh_, rates_, physics_rate_, received_));
 
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   current_pub_ = nh_.advertise<geometry_msgs::Vector3Stamped>("/current", 10);
@@ -98,6 +99,13 @@ void SimulatorRos::publishClock()
   clock_pub_.publish(c);
 }
 
+void SimulatorRos::publishNow()
+{
+  publishClock();
+  const ros::Time stamp(world_->time());
+  for (auto& r : robots_) r->publish(world_->stepCount(), stamp, tf_, true);
+}
+
 void SimulatorRos::stepOnce()
 {
   world_->step();
@@ -123,7 +131,7 @@ void SimulatorRos::advance(std::uint64_t steps)
     command_queue_.callAvailable();
     stepOnce();
   }
-  publishClock();
+  publishNow();
 }
 
 bool SimulatorRos::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
@@ -146,7 +154,8 @@ bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&
   world_->reset(world_->seed());
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = 0.0;
-  publishClock();
+  for (auto& r : robots_) r->restart();
+  publishNow();
   return true;
 }
 
@@ -159,7 +168,8 @@ bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Res
   world_->reset(static_cast<std::uint64_t>(req.seed));
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = 0.0;
-  publishClock();
+  for (auto& r : robots_) r->restart();
+  publishNow();
   res.time = world_->time();
   return true;
 }
@@ -173,6 +183,14 @@ bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& 
       return false;
     }
     steps = static_cast<std::uint64_t>(std::llround(req.duration * physics_rate_));
+  }
+  if (!req.client.empty() && req.commands > 0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (received_[req.client] < req.commands && ros::WallTime::now() < deadline && ros::ok())
+      command_queue_.callAvailable(ros::WallDuration(0.001));
+    if (received_[req.client] < req.commands)
+      ROS_WARN_STREAM("/sim/step: only " << received_[req.client] << " of the " << req.commands
+                                         << " commands from " << req.client << " arrived within 5 s; stepping anyway");
   }
   advance(steps);
   res.time = world_->time();

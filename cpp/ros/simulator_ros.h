@@ -32,6 +32,8 @@ private:
   void advance(std::uint64_t steps);
   void stepOnce();
   void publishClock();
+  /// /clock and every robot's state now (end of a /sim/step, after a reset).
+  void publishNow();
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -56,6 +58,7 @@ private:
 
   std::unique_ptr<sim::World> world_;
   std::vector<std::unique_ptr<RobotRos>> robots_;
+  std::map<std::string, std::uint64_t> received_;  ///< command messages applied, per publishing node
   tf2_ros::TransformBroadcaster tf_;
   ros::Publisher clock_pub_;
   ros::Publisher current_pub_;

@@ -12,6 +12,7 @@ See docs/python_api.md.
 
 import math
 import threading
+import warnings
 
 import rospy
 from geometry_msgs.msg import Wrench
@@ -31,6 +32,14 @@ def _finite(name, value):
     return value
 
 
+def sync_publisher(topic, msg_class):
+    """A publisher whose publish() writes synchronously (queue_size=None), so a command is on the
+    wire before the next /sim/step request and applies from the next physics step."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SyntaxWarning)  # rospy's advice to set queue_size
+        return rospy.Publisher(topic, msg_class, queue_size=None)
+
+
 class Robot:
     """Handle on one simulated robot's topics (names relative to /<name>/)."""
 
@@ -38,12 +47,13 @@ class Robot:
         self.sim = sim
         self.name = name
         ns = f"/{name}/"
-        # queue_size=None: publish() writes synchronously, so a command is on the wire before the
-        # next /sim/step request and applies from the next physics step.
-        self._thr = [rospy.Publisher(f"{ns}thrusters/{i}/input", Float64, queue_size=None) for i in range(thrusters)]
-        self._pendulum = rospy.Publisher(f"{ns}pendulum", Float64, queue_size=None)
-        self._vbs = rospy.Publisher(f"{ns}vbs", Float64, queue_size=None)
-        self._wrench = rospy.Publisher(f"{ns}force_moments", Wrench, queue_size=None)
+        self._thr = [sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(thrusters)]
+        self._pendulum = sync_publisher(f"{ns}pendulum", Float64)
+        self._vbs = sync_publisher(f"{ns}vbs", Float64)
+        self._wrench = sync_publisher(f"{ns}force_moments", Wrench)
+        # Commands held by this script: re-sent before every chunk of stepping so that the
+        # simulator's command watchdog (a safety feature for live nodes) does not zero them.
+        self._held = {}
         self._latest = {}
         self._cond = threading.Condition()
         self._subs = {}
@@ -67,23 +77,37 @@ class Robot:
         values = list(values)
         if len(values) != len(self._thr):
             raise ValueError(f"thrusts needs {len(self._thr)} values, got {len(values)}")
-        for i, (pub, v) in enumerate(zip(self._thr, values)):
-            pub.publish(Float64(_finite(f"thrust[{i}]", v)))
+        msgs = [Float64(_finite(f"thrust[{i}]", v)) for i, v in enumerate(values)]
+        for pub, msg in zip(self._thr, msgs):
+            self._send(pub, msg)
 
     def wrench(self, X=0.0, Y=0.0, Z=0.0, K=0.0, M=0.0, N=0.0):
         """Desired body wrench [N, N m] on force_moments (needs the thruster allocator running)."""
         w = Wrench()
         w.force.x, w.force.y, w.force.z = (_finite(n, v) for n, v in (("X", X), ("Y", Y), ("Z", Z)))
         w.torque.x, w.torque.y, w.torque.z = (_finite(n, v) for n, v in (("K", K), ("M", M), ("N", N)))
-        self._wrench.publish(w)
+        self._send(self._wrench, w)
 
     def pendulum(self, angle):
         """Pendulum target angle [rad]."""
-        self._pendulum.publish(Float64(_finite("pendulum", angle)))
+        self._send(self._pendulum, Float64(_finite("pendulum", angle)))
 
     def vbs(self, mass):
         """Ballast mass [kg]."""
-        self._vbs.publish(Float64(_finite("vbs", mass)))
+        self._send(self._vbs, Float64(_finite("vbs", mass)))
+
+    def _send(self, pub, msg):
+        self._held[pub.resolved_name] = (pub, msg)
+        self._publish(pub, msg)
+
+    def _publish(self, pub, msg):
+        pub.publish(msg)
+        if pub is not self._wrench:  # force_moments goes to the allocator, not the simulator
+            self.sim.note_published(1)
+
+    def _resend(self):
+        for pub, msg in self._held.values():
+            self._publish(pub, msg)
 
     def latest(self, topic, msg_class=None, min_stamp=None, timeout=None):
         """Latest message on /<robot>/<topic>; waits for the first one (or one stamped >= min_stamp [s])."""
@@ -106,8 +130,8 @@ class Robot:
             return self._latest[topic]
 
     def odom(self, timeout=None):
-        """Ground-truth odometry at (or within one odometry period before) the current sim time."""
-        return self.latest("odom", min_stamp=self.sim.time - self.sim.odom_period, timeout=timeout)
+        """Ground-truth odometry at the current sim time (the simulator publishes it after every step call)."""
+        return self.latest("odom", min_stamp=self.sim.time, timeout=timeout)
 
 
 class Simulation:
@@ -126,8 +150,10 @@ class Simulation:
         self._reset = rospy.ServiceProxy("/sim/reset", Empty)
         self._reset_seed = rospy.ServiceProxy("/sim/reset_seed", Reset)
         self.physics_rate = float(rospy.get_param("/simulator/physics_rate", 500.0))
-        self.odom_period = 1.0 / float(rospy.get_param("/simulator/odom_rate", 50.0))
+        # Held commands are re-sent every 0.5 s of sim time (the shortest watchdog shipped is 1 s).
+        self._hold_steps = max(1, int(round(0.5 * self.physics_rate)))
         self._time = 0.0
+        self._commands_sent = 0  # command messages published to the simulator by this node
         self._clock = rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=1)
         self._robots = {}
 
@@ -154,6 +180,11 @@ class Simulation:
             self._robots[name] = Robot(self, name)
         return self._robots[name]
 
+    def note_published(self, n):
+        """Count `n` command messages this node sent to the simulator on publishers of its own
+        (the Robot handles count theirs): the next step waits until they are applied."""
+        self._commands_sent += int(n)
+
     def pause(self):
         self._pause()
 
@@ -164,9 +195,16 @@ class Simulation:
         """Advance exactly n physics steps (pause first); returns the sim time [s]."""
         if int(n) != n or n < 0:
             raise ValueError(f"step needs a non-negative whole number of steps, got {n!r}")
-        res = self._step(duration=0.0, steps=int(n))
-        self._time = res.time
-        return self._time
+        n = int(n)
+        while True:
+            chunk = min(n, self._hold_steps)
+            res = self._step(duration=0.0, steps=chunk, client=rospy.get_name(), commands=self._commands_sent)
+            self._time = res.time
+            n -= chunk
+            if n <= 0:
+                return self._time
+            for r in self._robots.values():
+                r._resend()
 
     def run_for(self, seconds):
         """Advance by `seconds` of sim time, rounded to whole physics steps; returns the sim time [s]."""
@@ -183,6 +221,7 @@ class Simulation:
             self._reset_seed(seed=int(seed))
         self._time = 0.0
         for r in self._robots.values():
+            r._held.clear()
             with r._cond:
                 r._latest.clear()
 

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Every test: gtest (C++ core), rostest (whole system through a real roscore) and pytest (Python
+# tools). Sets the machine up first. Exits non-zero on any failure; the last line is the summary.
+set -euo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bash "$repo/scripts/setup.sh"
+# shellcheck disable=SC1091
+source "$repo/scripts/env.sh"
+
+tmp=$(mktemp -d)
+export ROS_HOME="$tmp/ros_home" ROS_LOG_DIR="$tmp/ros_log"
+results="$UNEXMIN_WS/build/test_results"
+rm -rf "$results"
+mkdir -p "$results/unexmin"
+
+cd "$UNEXMIN_WS"
+echo "[test] building tests"
+catkin_make -j2 tests >"$tmp/build_tests.log" 2>&1 || { tail -n 60 "$tmp/build_tests.log"; exit 1; }
+echo "[test] gtest + rostest (catkin_make run_tests)"
+# run_tests exits 0 even when a test fails: the verdict comes from catkin_test_results below.
+catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true
+grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/run_tests.log" | grep -v "^\[       OK \]" || true
+echo "[test] pytest"
+set +e
+(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider --junitxml="$results/unexmin/pytest-unexmin.xml")
+pytest_rc=$?
+set -e
+if [ "$pytest_rc" -ne 0 ] && [ "$pytest_rc" -ne 1 ]; then
+  echo "[test] pytest could not run (exit $pytest_rc)" >&2
+fi
+
+echo "[test] results"
+set +e
+catkin_test_results --verbose "$results" >"$tmp/results.txt" 2>&1
+results_rc=$?
+set -e
+grep -vE "^(Skipping|$)" "$tmp/results.txt" | tail -n 40
+python "$repo/scripts/summarize_junit.py" "$results"
+summary_rc=$?
+[ "$results_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$summary_rc" -eq 0 ]
