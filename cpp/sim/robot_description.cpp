@@ -266,6 +266,41 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
   } else {
     d.vbs.min_mass = d.vbs.max_mass = 0.0;
   }
+
+  for (const auto* e = ext->FirstChildElement("sensor"); e; e = e->NextSiblingElement("sensor")) {
+    SensorSpec sp;
+    sp.name = e->Attribute("name") ? e->Attribute("name") : "";
+    const std::string sw = "<sensor name='" + sp.name + "'>";
+    if (sp.name.empty()) p.fail("a <sensor> has no 'name'");
+    for (const auto& other : d.sensors)
+      if (other.name == sp.name) p.fail(sw + ": the name is used twice");
+    sp.type = e->Attribute("type") ? e->Attribute("type") : "";
+    if (sp.type.empty()) p.fail(sw + " has no 'type'");
+    sp.link = e->Attribute("link") ? e->Attribute("link") : "";
+    if (!links.count(sp.link)) p.fail(sw + "@link '" + sp.link + "' is not a link of the robot");
+    sp.pose = d.linkPose(sp.link);
+    sp.rate = p.attr(e, "rate", sw);
+    if (!(sp.rate > 0.0)) p.fail(sw + "@rate = " + std::to_string(sp.rate) + " must be > 0 [Hz]");
+    for (const auto* q = e->FirstChildElement("param"); q; q = q->NextSiblingElement("param")) {
+      const char* key = q->Attribute("name");
+      const char* value = q->Attribute("value");
+      if (!key || !value) p.fail(sw + "/param needs 'name' and 'value'");
+      std::istringstream in(value);
+      std::string tok;
+      bool numeric = true;
+      std::vector<double> numbers;
+      while (in >> tok) {
+        char* end = nullptr;
+        const double v = std::strtod(tok.c_str(), &end);
+        if (end == tok.c_str() || *end != '\0') numeric = false;
+        else if (!std::isfinite(v)) p.fail(sw + "/param[" + key + "]: '" + tok + "' is not finite");
+        numbers.push_back(v);
+      }
+      if (numeric && !numbers.empty()) sp.params[key] = numbers;
+      else sp.text[key] = value;
+    }
+    d.sensors.push_back(sp);
+  }
   return d;
 }
 

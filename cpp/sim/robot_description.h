@@ -7,6 +7,7 @@
 #include "hydro/pendulum.h"
 #include "hydro/thruster.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,22 @@ struct JointInfo
   Eigen::Vector3d axis{1, 0, 0};                             ///< In the joint frame.
 };
 
+/// A sensor as written in the robot description:
+///   <sensor name="imu" type="imu" link="UX_1/imu_link" rate="500">
+///     <param name="gyro_noise_density" value="1.2e-5"/>  <param name="model" value="kvh_1775"/>
+///   </sensor>
+/// The sensor factory of each type checks its parameters.
+struct SensorSpec
+{
+  std::string name;   ///< Unique within the robot; also the topic base name.
+  std::string type;   ///< Family name, e.g. "imu", "dvl", "pressure".
+  std::string link;   ///< URDF link of the sensor frame (frame_id of its messages).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< link in the base link frame
+  double rate = 0.0;  ///< Update rate [Hz of sim time] > 0.
+  hydro::ParamMap params;                     ///< numeric parameters
+  std::map<std::string, std::string> text;    ///< non-numeric parameters (model names, ...)
+};
+
 struct RobotDescription
 {
   std::string source;      ///< File or parameter it came from (for messages).
@@ -35,6 +52,7 @@ struct RobotDescription
   std::string pendulum_joint;                    ///< Empty when the robot has no pendulum.
   hydro::VbsParams vbs;
   std::vector<JointInfo> joints;
+  std::vector<SensorSpec> sensors;
 
   /// Pose of `link` in the base link's frame, through fixed joint origins (moving joints at zero).
   Eigen::Isometry3d linkPose(const std::string& link) const;
