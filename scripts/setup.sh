@@ -16,7 +16,7 @@ apt_packages=(
   # ROS 1 from Debian
   ros-core-dev rosbash python3-rostest python3-rosbag ros-robot-state-publisher tf2-tools
   libtf2-ros-dev python3-tf2-ros liburdf-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
-  libvisualization-msgs-dev python3-sensor-msgs python3-geometry-msgs python3-nav-msgs
+  libvisualization-msgs-dev python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-visualization-msgs
   libstd-srvs-dev python3-std-srvs librosbag-dev
   # C++ core
   libbullet-dev libeigen3-dev liboctomap-dev libpcl-dev libpcl-conversions-dev libembree-dev
@@ -26,7 +26,7 @@ apt_packages=(
   build-essential cmake
 )
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
-  trimesh==4.5.3 opensimplex==0.4.5.1 tqdm==4.67.1)
+  trimesh==4.5.3 opensimplex==0.4.5.1 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3)
 
 missing=()
 for p in "${apt_packages[@]}"; do
@@ -46,6 +46,11 @@ if [ ! -f "$stamp" ]; then
   "$venv/bin/pip" install -q --disable-pip-version-check "${pip_packages[@]}" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   rm -f "$venv"/.unexmin-pip-*; touch "$stamp"
 fi
+
+# The flooded mine's meshes (docs/mine_world.md): generated here (about 15 s), not committed; skipped
+# when worlds/meshes/mine/ already holds the output of this seed and generator version.
+PYTHONPATH="$repo/python" "$venv/bin/python" -m unexmin.mine_generator --seed 7 --quiet \
+  --out "$repo/worlds/meshes/mine" | sed 's/^/[setup] /'
 
 mkdir -p "$ws/src"
 ln -sfn "$repo" "$ws/src/unexmin"

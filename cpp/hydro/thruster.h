@@ -119,6 +119,8 @@ public:
   /// Set the command (command unit) at sim time `t` [s]. Returns false, leaving the command as it was,
   /// when it is not finite or outside [min_command, max_command].
   bool setCommand(double command, double t);
+  /// Keep the current command alive at sim time `t` [s] (the watchdog counts from here).
+  void holdCommand(double t) { command_time_ = t; }
 
   /// Advance to sim time `t` by `dt` [s]; returns the achieved thrust [N].
   double update(double t, double dt);

@@ -3,6 +3,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
 
@@ -27,7 +28,7 @@ ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-RobotRos::RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
+RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
                    double physics_rate, std::map<std::string, std::uint64_t>& received)
     : robot_(robot), received_(received)
 {
@@ -41,10 +42,12 @@ RobotRos::RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHand
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", 50);
   joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", 50);
+  tf_probe_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
   odom_every_ = every(physics_rate, rates.odom);
   joint_every_ = every(physics_rate, rates.joint_states);
   thrust_every_ = every(physics_rate, rates.thrust);
   joint_names_ = robot.description().movableJoints();
+  sensors_ = std::make_unique<SensorsRos>(world, robot, nh);  // [sensors]
 }
 
 bool RobotRos::finite(const std::string& topic, double value) const
@@ -93,50 +96,59 @@ void RobotRos::onVbs(const Float64Event& event)
                                       << " kg, expected [" << p.min_mass << ", " << p.max_mass << "]");
 }
 
+nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const
+{
+  const sim::RobotState s = robot_.state();
+  const Eigen::Quaterniond q(s.pose.linear());
+  nav_msgs::Odometry o;
+  o.header.stamp = stamp;
+  o.header.frame_id = "world";
+  o.child_frame_id = robot_.description().base_link;
+  o.pose.pose.position.x = s.pose.translation().x();
+  o.pose.pose.position.y = s.pose.translation().y();
+  o.pose.pose.position.z = s.pose.translation().z();
+  o.pose.pose.orientation.x = q.x();
+  o.pose.pose.orientation.y = q.y();
+  o.pose.pose.orientation.z = q.z();
+  o.pose.pose.orientation.w = q.w();
+  // REP-105: twist in the child (body) frame.
+  const Eigen::Matrix3d Rt = s.pose.linear().transpose();
+  const Eigen::Vector3d v = Rt * s.linear_velocity, w = Rt * s.angular_velocity;
+  o.twist.twist.linear.x = v.x();
+  o.twist.twist.linear.y = v.y();
+  o.twist.twist.linear.z = v.z();
+  o.twist.twist.angular.x = w.x();
+  o.twist.twist.angular.y = w.y();
+  o.twist.twist.angular.z = w.z();
+  return o;
+}
+
 void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all)
 {
   now_ = stamp.toSec();
+  sensors_->publish(step);  // [sensors] samples due at this step (nothing extra when `all`)
   // A stream is published when its schedule says so or when `all` asks, once per step at most.
   auto due = [&](std::uint64_t every, std::uint64_t& last) {
     if (!every || last == step || !(all || step % every == 0)) return false;
     last = step;
     return true;
   };
-  const bool odom_due = due(odom_every_, last_odom_);
-  if (odom_due) {
-    const sim::RobotState s = robot_.state();
-    const Eigen::Quaterniond q(s.pose.linear());
-    const std::string child = robot_.description().base_link;
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = "world";
-    t.child_frame_id = child;
-    t.transform.translation.x = s.pose.translation().x();
-    t.transform.translation.y = s.pose.translation().y();
-    t.transform.translation.z = s.pose.translation().z();
-    t.transform.rotation.x = q.x();
-    t.transform.rotation.y = q.y();
-    t.transform.rotation.z = q.z();
-    t.transform.rotation.w = q.w();
-    tf.sendTransform(t);
-    if (odom_pub_.getNumSubscribers() > 0) {
-      nav_msgs::Odometry o;
-      o.header = t.header;
-      o.child_frame_id = child;
-      o.pose.pose.position.x = t.transform.translation.x;
-      o.pose.pose.position.y = t.transform.translation.y;
-      o.pose.pose.position.z = t.transform.translation.z;
-      o.pose.pose.orientation = t.transform.rotation;
-      // REP-105: twist in the child (body) frame.
-      const Eigen::Matrix3d Rt = s.pose.linear().transpose();
-      const Eigen::Vector3d v = Rt * s.linear_velocity, w = Rt * s.angular_velocity;
-      o.twist.twist.linear.x = v.x();
-      o.twist.twist.linear.y = v.y();
-      o.twist.twist.linear.z = v.z();
-      o.twist.twist.angular.x = w.x();
-      o.twist.twist.angular.y = w.y();
-      o.twist.twist.angular.z = w.z();
-      odom_pub_.publish(o);
+  if (due(odom_every_, last_odom_)) {
+    const bool tf_wanted = tf_probe_.getNumSubscribers() > 0;
+    const bool odom_wanted = odom_pub_.getNumSubscribers() > 0;
+    if (tf_wanted || odom_wanted) {
+      const nav_msgs::Odometry o = odometry(stamp);
+      if (tf_wanted) {
+        geometry_msgs::TransformStamped t;
+        t.header = o.header;
+        t.child_frame_id = o.child_frame_id;
+        t.transform.translation.x = o.pose.pose.position.x;
+        t.transform.translation.y = o.pose.pose.position.y;
+        t.transform.translation.z = o.pose.pose.position.z;
+        t.transform.rotation = o.pose.pose.orientation;
+        tf.sendTransform(t);
+      }
+      if (odom_wanted) odom_pub_.publish(o);
     }
   }
   if (due(thrust_every_, last_thrust_)) {
@@ -147,7 +159,9 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
       thrust_pubs_[i].publish(m);
     }
   }
-  if (due(joint_every_, last_joint_) && joint_pub_.getNumSubscribers() > 0) {
+  const bool joint_wall_ok = all || (wall_now_ - last_joint_wall_).toSec() >= min_wall_period_;
+  if (joint_wall_ok && due(joint_every_, last_joint_) && joint_pub_.getNumSubscribers() > 0) {
+    last_joint_wall_ = wall_now_;
     sensor_msgs::JointState js;
     js.header.stamp = stamp;
     const auto& d = robot_.description();

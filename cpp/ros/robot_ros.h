@@ -1,8 +1,11 @@
 // ROS plumbing of one robot: command subscribers (guarded), state publishers, tf.
 #pragma once
 
+#include "ros/sensors_ros.h"  // [sensors]
 #include "sim/robot.h"
+#include "sim/world.h"  // [sensors]
 
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -26,14 +29,30 @@ class RobotRos
 public:
   /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
-  RobotRos(sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
+  /// [sensors] `world` (the robot's) runs the robot's navigation sensors (SensorsRos).
+  RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
            double physics_rate, std::map<std::string, std::uint64_t>& received);
 
   /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
   void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all = false);
 
+  /// Ground truth of the base link: pose in `world`, twist in the body frame (REP-105).
+  nav_msgs::Odometry odometry(const ros::Time& stamp) const;
+
+  /// Whether streams for viewers (joint_states) may go out now: in lockstep they are limited
+  /// to a wall-clock rate, as nothing that consumes them needs more (see docs/simulator_node.md).
+  void setWallGate(const ros::WallTime& now, double min_period)
+  {
+    wall_now_ = now;
+    min_wall_period_ = min_period;
+  }
+
   /// Forget what was published (the world was reset to step 0).
-  void restart() { last_odom_ = last_joint_ = last_thrust_ = UINT64_MAX; }
+  void restart()
+  {
+    last_odom_ = last_joint_ = last_thrust_ = UINT64_MAX;
+    sensors_->restart();  // [sensors]
+  }
 
 private:
   using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
@@ -50,6 +69,10 @@ private:
   std::vector<ros::Publisher> thrust_pubs_;
   ros::Publisher odom_pub_;
   ros::Publisher joint_pub_;
+  ros::Publisher tf_probe_;  ///< same topic as the broadcaster: tells whether anyone listens to /tf
+  ros::WallTime wall_now_;
+  double min_wall_period_ = 0.0;   ///< [s] of wall time between viewer-stream messages (0: none)
+  ros::WallTime last_joint_wall_;
   std::uint64_t odom_every_ = 1;
   std::uint64_t joint_every_ = 1;
   std::uint64_t thrust_every_ = 1;
@@ -58,6 +81,7 @@ private:
   std::uint64_t last_joint_ = UINT64_MAX;
   std::uint64_t last_thrust_ = UINT64_MAX;
   std::vector<std::string> joint_names_;
+  std::unique_ptr<SensorsRos> sensors_;  // [sensors] IMU, DVL, pressure
 };
 
 }  // namespace ros_layer

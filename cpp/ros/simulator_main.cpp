@@ -6,8 +6,11 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "simulator");
+  // Outlives `sim`: when the last NodeHandle goes, roscpp shuts rosconsole down and the start-up
+  // error below would not be printed.
+  ros::NodeHandle nh;
   try {
-    unexmin::ros_layer::SimulatorRos sim(ros::NodeHandle(), ros::NodeHandle("~"));
+    unexmin::ros_layer::SimulatorRos sim(nh, ros::NodeHandle("~"));
     sim.spin();
   } catch (const std::exception& e) {
     ROS_FATAL_STREAM("unexmin simulator cannot start: " << e.what());

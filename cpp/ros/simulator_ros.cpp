@@ -48,7 +48,7 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
 
   for (std::size_t i = 0; i < world_->robotCount(); ++i)
     robots_.push_back(
-        std::make_unique<RobotRos>(world_->robot(i), command_nh_, nh_, rates_, physics_rate_, received_));
+        std::make_unique<RobotRos>(*world_, world_->robot(i), command_nh_, nh_, rates_, physics_rate_, received_));
 
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   current_pub_ = nh_.advertise<geometry_msgs::Vector3Stamped>("/current", 10);
@@ -87,6 +87,9 @@ void SimulatorRos::loadParams()
   };
   rate("clock_rate", clock_rate_, 100.0);
   rate("current_rate", current_rate_, 10.0);
+  pnh_.param("max_wall_rate", max_wall_rate_, 100.0);
+  if (!(max_wall_rate_ > 0.0) || !std::isfinite(max_wall_rate_))
+    badParam("max_wall_rate", std::to_string(max_wall_rate_), "> 0 Hz");
   rate("odom_rate", rates_.odom, 50.0);
   rate("joint_state_rate", rates_.joint_states, 50.0);
   rate("thrust_rate", rates_.thrust, 50.0);
@@ -111,8 +114,18 @@ void SimulatorRos::stepOnce()
   world_->step();
   const std::uint64_t n = world_->stepCount();
   const ros::Time stamp(world_->time());
-  if (clock_every_ && n % clock_every_ == 0) publishClock();
-  for (auto& r : robots_) r->publish(n, stamp, tf_);
+  // In real time the sim-time schedules are also wall-time rates. In lockstep, /clock and the
+  // viewer streams would otherwise go out RTF times faster and cost more than the physics.
+  const double min_wall_period = realtime_ ? 0.0 : 1.0 / max_wall_rate_;
+  const ros::WallTime wall_now = realtime_ ? ros::WallTime() : ros::WallTime::now();
+  if (clock_every_ && n % clock_every_ == 0 && (wall_now - last_wall_publish_).toSec() >= min_wall_period) {
+    publishClock();
+    last_wall_publish_ = wall_now;
+  }
+  for (auto& r : robots_) {
+    r->setWallGate(wall_now, min_wall_period);
+    r->publish(n, stamp, tf_);
+  }
   if (current_every_ && n % current_every_ == 0 && current_pub_.getNumSubscribers() > 0) {
     geometry_msgs::Vector3Stamped m;
     m.header.stamp = stamp;
@@ -125,10 +138,14 @@ void SimulatorRos::stepOnce()
   }
 }
 
-void SimulatorRos::advance(std::uint64_t steps)
+void SimulatorRos::advance(std::uint64_t steps, bool hold)
 {
   for (std::uint64_t i = 0; i < steps && ros::ok(); ++i) {
     command_queue_.callAvailable();
+    if (hold)
+      for (std::size_t r = 0; r < world_->robotCount(); ++r)
+        for (std::size_t k = 0; k < world_->robot(r).thrusterCount(); ++k)
+          world_->robot(r).thruster(k).holdCommand(world_->time());
     stepOnce();
   }
   publishNow();
@@ -192,9 +209,11 @@ bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& 
       ROS_WARN_STREAM("/sim/step: only " << received_[req.client] << " of the " << req.commands
                                          << " commands from " << req.client << " arrived within 5 s; stepping anyway");
   }
-  advance(steps);
+  advance(steps, req.hold);
   res.time = world_->time();
   res.step = world_->stepCount();
+  const ros::Time stamp(world_->time());
+  for (const auto& r : robots_) res.odometry.push_back(r->odometry(stamp));
   return true;
 }
 

@@ -29,7 +29,7 @@ public:
 
 private:
   void loadParams();
-  void advance(std::uint64_t steps);
+  void advance(std::uint64_t steps, bool hold = false);
   void stepOnce();
   void publishClock();
   /// /clock and every robot's state now (end of a /sim/step, after a reset).
@@ -53,6 +53,8 @@ private:
   double physics_rate_ = 500.0;
   double clock_rate_ = 100.0;
   double current_rate_ = 10.0;
+  double max_wall_rate_ = 100.0;  ///< lockstep cap on /clock and joint_states [Hz of wall time]
+  ros::WallTime last_wall_publish_;
   bool paused_ = false;
   PublishRates rates_;
 

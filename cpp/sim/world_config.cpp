@@ -148,6 +148,8 @@ WorldConfig loadWorldConfig(const std::string& path)
     w.visibility_colour = r.vec3(vis, "colour", "visibility.", w.visibility_colour);
   }
 
+  w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+
   hydro::GaussMarkovParams zero;
   hydro::GaussMarkovParams h_angle;
   h_angle.min = -M_PI;

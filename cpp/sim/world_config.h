@@ -46,6 +46,9 @@ struct WorldConfig
   double atmospheric_pressure = 101325.0; ///< [Pa]
   std::string visibility = "none";        ///< none|low|medium|high
   Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};
+  /// Earth magnetic field, world frame (ENU) [mG]; default: about the UNEXMIN Kaatiala site
+  /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.
+  Eigen::Vector3d magnetic_field{24.0, 134.0, -508.0};
   hydro::CurrentParams current;
   std::vector<MeshEntry> meshes;
   std::vector<RobotSpawn> robots;

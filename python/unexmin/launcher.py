@@ -47,7 +47,8 @@ class WorldProcess:
             f"robots:={robots}", f"seed:={seed}", f"realtime:={str(realtime).lower()}",
             f"paused:={str(paused).lower()}", *extra_args,
         ]
-        log = open(os.path.join(log_dir, "roslaunch.log"), "w") if log_dir else subprocess.DEVNULL
+        self.log_path = os.path.join(log_dir, "roslaunch.log") if log_dir else None
+        log = open(self.log_path, "w") if log_dir else subprocess.DEVNULL
         self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         self._log = log
 

@@ -16,7 +16,6 @@ import warnings
 
 import rospy
 from geometry_msgs.msg import Wrench
-from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
@@ -51,13 +50,9 @@ class Robot:
         self._pendulum = sync_publisher(f"{ns}pendulum", Float64)
         self._vbs = sync_publisher(f"{ns}vbs", Float64)
         self._wrench = sync_publisher(f"{ns}force_moments", Wrench)
-        # Commands held by this script: re-sent before every chunk of stepping so that the
-        # simulator's command watchdog (a safety feature for live nodes) does not zero them.
-        self._held = {}
         self._latest = {}
         self._cond = threading.Condition()
         self._subs = {}
-        self.subscribe("odom", Odometry)
         wait_for(lambda: all(p.get_num_connections() > 0 for p in self._thr + [self._pendulum, self._vbs]),
                  sim.timeout, f"the simulator to subscribe to {name}'s command topics")
 
@@ -97,17 +92,9 @@ class Robot:
         self._send(self._vbs, Float64(_finite("vbs", mass)))
 
     def _send(self, pub, msg):
-        self._held[pub.resolved_name] = (pub, msg)
-        self._publish(pub, msg)
-
-    def _publish(self, pub, msg):
         pub.publish(msg)
         if pub is not self._wrench:  # force_moments goes to the allocator, not the simulator
             self.sim.note_published(1)
-
-    def _resend(self):
-        for pub, msg in self._held.values():
-            self._publish(pub, msg)
 
     def latest(self, topic, msg_class=None, min_stamp=None, timeout=None):
         """Latest message on /<robot>/<topic>; waits for the first one (or one stamped >= min_stamp [s])."""
@@ -129,9 +116,16 @@ class Robot:
                 raise TimeoutError(f"no message on /{self.name}/{topic} within {timeout} s")
             return self._latest[topic]
 
-    def odom(self, timeout=None):
-        """Ground-truth odometry at the current sim time (the simulator publishes it after every step call)."""
-        return self.latest("odom", min_stamp=self.sim.time, timeout=timeout)
+    def odom(self):
+        """Ground-truth odometry (nav_msgs/Odometry, as on /<robot>/odom) at the current sim time.
+
+        It comes back with every step call, so reading it costs no stream at RTF x 50 Hz."""
+        if self.name not in self.sim._odometry:
+            self.sim.step(0)
+        try:
+            return self.sim._odometry[self.name]
+        except KeyError:
+            raise KeyError(f"the simulator has no robot named '{self.name}'") from None
 
 
 class Simulation:
@@ -142,18 +136,32 @@ class Simulation:
         self._world = world
         if not rospy.core.is_initialized():
             rospy.init_node(node_name, anonymous=True, disable_signals=True)
-        for srv in ("/sim/step", "/sim/pause", "/sim/unpause", "/sim/reset", "/sim/reset_seed"):
-            rospy.wait_for_service(srv, timeout)
+        services = ("/sim/step", "/sim/pause", "/sim/unpause", "/sim/reset", "/sim/reset_seed")
+        if world is None:
+            for srv in services:
+                rospy.wait_for_service(srv, timeout)
+        else:  # fail fast if the world we launched dies (a bad world file, a crash)
+            def up():
+                if not world.alive():
+                    raise RuntimeError(f"the simulator world exited (code {world.proc.returncode}) before it "
+                                       f"offered /sim/step: see {world.log_path or 'the roslaunch output'}")
+                try:
+                    for srv in services:
+                        rospy.wait_for_service(srv, 0.2)
+                    return True
+                except rospy.ROSException:
+                    return False
+
+            wait_for(up, timeout, "the simulator's /sim services")
         self._step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         self._pause = rospy.ServiceProxy("/sim/pause", Empty)
         self._unpause = rospy.ServiceProxy("/sim/unpause", Empty)
         self._reset = rospy.ServiceProxy("/sim/reset", Empty)
         self._reset_seed = rospy.ServiceProxy("/sim/reset_seed", Reset)
         self.physics_rate = float(rospy.get_param("/simulator/physics_rate", 500.0))
-        # Held commands are re-sent every 0.5 s of sim time (the shortest watchdog shipped is 1 s).
-        self._hold_steps = max(1, int(round(0.5 * self.physics_rate)))
         self._time = 0.0
         self._commands_sent = 0  # command messages published to the simulator by this node
+        self._odometry = {}  # robot name -> Odometry at self._time
         self._clock = rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=1)
         self._robots = {}
 
@@ -195,16 +203,13 @@ class Simulation:
         """Advance exactly n physics steps (pause first); returns the sim time [s]."""
         if int(n) != n or n < 0:
             raise ValueError(f"step needs a non-negative whole number of steps, got {n!r}")
-        n = int(n)
-        while True:
-            chunk = min(n, self._hold_steps)
-            res = self._step(duration=0.0, steps=chunk, client=rospy.get_name(), commands=self._commands_sent)
-            self._time = res.time
-            n -= chunk
-            if n <= 0:
-                return self._time
-            for r in self._robots.values():
-                r._resend()
+        # hold: this script is in control, so the simulator's command watchdog (a safety net for
+        # live nodes that die) does not zero its commands while it steps.
+        res = self._step(duration=0.0, steps=int(n), client=rospy.get_name(), commands=self._commands_sent,
+                         hold=True)
+        self._time = res.time
+        self._odometry = {o.child_frame_id.split("/")[0]: o for o in res.odometry}
+        return self._time
 
     def run_for(self, seconds):
         """Advance by `seconds` of sim time, rounded to whole physics steps; returns the sim time [s]."""
@@ -220,8 +225,8 @@ class Simulation:
         else:
             self._reset_seed(seed=int(seed))
         self._time = 0.0
+        self._odometry = {}
         for r in self._robots.values():
-            r._held.clear()
             with r._cond:
                 r._latest.clear()
 

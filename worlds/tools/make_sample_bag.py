@@ -46,9 +46,9 @@ COMMAND_PERIOD = 0.1                                  # [s] MotorCommand period 
 
 # (start [s], end [s], wrench [X Y Z K M N] in force_moments units: the teleop's "speeds")
 MISSION = (
-    (2.0, 10.0, (6.0, 0, 0, 0, 0, 0)),      # I: forward
-    (14.0, 17.0, (0, 0, 0, 0, 0, 1.5)),     # D: +yaw
-    (17.0, 18.5, (0, 0, 0, 0, 0, -1.5)),    # A: brake the turn
+    (2.0, 7.0, (6.0, 0, 0, 0, 0, 0)),       # I: forward
+    (11.0, 14.0, (0, 0, 0, 0, 0, 1.5)),     # D: +yaw
+    (14.0, 16.5, (0, 0, 0, 0, 0, -1.5)),    # A: brake the turn
     (21.0, 27.0, (0, 6.0, 0, 0, 0, 0)),     # J: left
     (31.0, 35.0, (0, 0, -3.0, 0, 0, 0)),    # S: down
 )
@@ -186,7 +186,8 @@ def record(out, nominal=False, duration=DURATION, seed=0):
         sim.close()
     print(f"{out}: {count} messages, {duration:.0f} s; robot went from "
           f"({traj[0, 1]:.2f}, {traj[0, 2]:.2f}, {traj[0, 3]:.2f}) to ({traj[-1, 1]:.2f}, {traj[-1, 2]:.2f}, "
-          f"{traj[-1, 3]:.2f}) m, roll/pitch at start {math.degrees(traj[0, 4]):.1f}/{math.degrees(traj[0, 5]):.1f} deg")
+          f"{traj[-1, 3]:.2f}) m, roll/pitch at start "
+          f"{math.degrees(traj[0, 4]):.1f}/{math.degrees(traj[0, 5]):.1f} deg")
     return count
 
 

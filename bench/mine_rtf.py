@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Mine world benchmark: real-time factor with 1, 2 and 3 robots, memory of the simulator, and the
+time from launch to the first odometry message (docs/benchmarks.md, "Mine world").
+
+    source scripts/env.sh && python bench/mine_rtf.py [--sim-seconds 120] [--seed 0]
+
+For each robot count, in a fresh process with its own ROS master:
+  * launches `mine_world.launch robots:=N` as a user does (real time, running), every robot's
+    odometry subscribed from the start; first message: wall time from starting roslaunch to the
+    first /UX_k/odom of every robot, split into master up, simulator ready (/sim/step offered: world
+    and meshes loaded) and first odom; then unsubscribes (a benchmark client would load the cores);
+  * pauses it and steps it as fast as it goes through /sim/step, in 0.5 s chunks between which
+    each robot's thrust pattern is re-sent (UX_1 surges into the shaft wall, UX_2 sinks down the
+    shaft, UX_3 turns): contacts with the 1.3M-triangle mesh are part of the load;
+  * RTF: --sim-seconds of sim time divided by the wall time it took;
+  * the simulator's CPU use over that span and its resident memory (VmRSS now, VmHWM peak);
+  * the topics the simulator publishes under /UX_1 (which sensors existed when the figure was taken).
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from xmlrpc.client import ServerProxy
+
+PATTERNS = {  # thrust per thruster [N], thesis allocation columns (eq. 5.12) scaled
+    "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],      # surge
+    "UX_2": [0.0, 10.0, 0.0, 10.0, 0.0, -10.0, 0.0, 10.0],       # heave down (-Z column)
+    "UX_3": [-5.0, 0.0, 5.0, 0.0, 5.0, 0.0, -5.0, 0.0],          # yaw
+}
+
+
+def proc_status(pid):
+    out = {}
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            if key in ("VmRSS", "VmHWM"):
+                out[key] = int(value.split()[0]) / 1024.0
+    return out
+
+
+def cpu_seconds(pid):
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def measure(robots, sim_seconds, seed, timeout):
+    t_launch = time.monotonic()
+    from unexmin.launcher import WorldProcess, wait_for
+    # As a user starts it (real time, running), to time the first message.
+    world = WorldProcess(world="mine", robots=robots, seed=seed, realtime=True, paused=False)
+    try:
+        import rosgraph
+        import rospy
+        from nav_msgs.msg import Odometry
+        from std_msgs.msg import Float64
+        from std_srvs.srv import Empty
+
+        from unexmin.simulation import sync_publisher
+        from unexmin.srv import Step
+
+        rospy.init_node("mine_bench", anonymous=True, disable_signals=True)
+        t_master = time.monotonic()
+        names = [f"UX_{i + 1}" for i in range(robots)]
+        first = {}
+        subs = [rospy.Subscriber(f"/{n}/odom", Odometry, lambda m, n=n: first.setdefault(n, time.monotonic()),
+                                 queue_size=1, tcp_nodelay=True) for n in names]
+        rospy.wait_for_service("/sim/step", timeout)
+        t_ready = time.monotonic()
+        wait_for(lambda: len(first) == robots, timeout, "the first odometry of every robot")
+        t_odom = max(first.values())
+        for sub in subs:  # the benchmark is no odometry client: it would load the two cores
+            sub.unregister()
+        rospy.ServiceProxy("/sim/pause", Empty)()
+        pubs = {n: [sync_publisher(f"/{n}/thrusters/{i}/input", Float64) for i in range(8)] for n in names}
+        wait_for(lambda: all(p.get_num_connections() > 0 for ps in pubs.values() for p in ps), timeout,
+                 "the simulator to subscribe to the thrusters")
+        master = rosgraph.Master(rospy.get_name())
+        pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
+        step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
+        chunk = 0.5  # [s] of sim time between command refreshes (thruster watchdog: 1 s)
+        sim0 = step(duration=0.0, steps=1, client="", commands=0).time
+        wall0, cpu0 = time.monotonic(), cpu_seconds(pid)
+        sim1 = sim0
+        while sim1 - sim0 < sim_seconds - 1e-9:
+            for n, ps in pubs.items():
+                for p, v in zip(ps, PATTERNS[n]):
+                    p.publish(Float64(v))
+            sim1 = step(duration=chunk, steps=0, client="", commands=0).time
+        wall1, cpu1 = time.monotonic(), cpu_seconds(pid)
+        mem = proc_status(pid)
+        publishers = master.getSystemState()[0]
+        topics = sorted(t for t, nodes in publishers if t.startswith("/UX_1/") and "/simulator" in nodes)
+        return {"robots": robots, "master_s": t_master - t_launch, "ready_s": t_ready - t_launch,
+                "first_odom_s": t_odom - t_launch, "rtf": (sim1 - sim0) / (wall1 - wall0),
+                "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
+                "peak_rss_mb": mem["VmHWM"], "sim_seconds": sim1 - sim0, "topics": topics}
+    finally:
+        world.close()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sim-seconds", type=float, default=120.0, help="sim seconds per RTF measurement")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--timeout", type=float, default=120.0, help="wall seconds allowed for each wait")
+    ap.add_argument("--robots", type=int, choices=(1, 2, 3), help="measure this count only (JSON out)")
+    args = ap.parse_args()
+    if args.robots:
+        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout)))
+        return 0
+    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
+    print(f"mine world, physics 500 Hz, stepped as fast as it goes, {args.sim_seconds:.0f} s of sim time per count; "
+          f"nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}")
+    print(f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
+          f"{'ready s':>8} {'1st odom s':>11}")
+    topics = None
+    for robots in (1, 2, 3):
+        proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
+                               "--sim-seconds", str(args.sim_seconds), "--timeout", str(args.timeout)],
+                              capture_output=True, text=True)
+        if proc.returncode != 0:
+            print(proc.stderr[-3000:], file=sys.stderr)
+            return 1
+        r = json.loads(proc.stdout.strip().splitlines()[-1])
+        topics = topics or r["topics"]
+        print(f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
+              f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}", flush=True)
+    print("simulator topics under /UX_1: " + " ".join(t[len("/UX_1/"):] for t in topics))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,43 @@
+#include "sensors/sensor_suite.h"
+
+namespace unexmin {
+namespace sensors {
+
+SensorSuite::SensorSuite(const sim::World& world, const sim::Robot& robot, std::shared_ptr<const RayCaster> rays,
+                         const SensorFactory& factory)
+    : world_(world), robot_(robot), rays_(std::move(rays))
+{
+  const SensorSetup setup{robot.name(), robot.description(), world.dt()};
+  for (const auto& spec : robot.description().sensors) {
+    if (!factory.has(spec.type)) {
+      skipped_.push_back(spec.name);
+      continue;
+    }
+    sensors_.push_back(factory.create(spec, setup));
+  }
+  fresh_.assign(sensors_.size(), 0);
+  reset(world.seed());
+}
+
+void SensorSuite::reset(std::uint64_t seed)
+{
+  for (auto& s : sensors_) s->reset(seed);
+  fresh_.assign(sensors_.size(), 0);
+}
+
+void SensorSuite::update()
+{
+  const sim::RobotState state = robot_.state();
+  const SensorContext ctx{world_, robot_, state, rays_.get()};
+  for (std::size_t i = 0; i < sensors_.size(); ++i) fresh_[i] = sensors_[i]->update(ctx) ? 1 : 0;
+}
+
+Sensor* SensorSuite::find(const std::string& name)
+{
+  for (auto& s : sensors_)
+    if (s->name() == name) return s.get();
+  return nullptr;
+}
+
+}  // namespace sensors
+}  // namespace unexmin

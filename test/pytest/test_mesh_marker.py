@@ -1,0 +1,167 @@
+"""The mesh marker (python/unexmin/mesh_marker.py, nodes/mesh_marker, launch/mesh_marker.launch).
+
+Geometry against closed forms (rotation conventions, a cube's and the tank's water surface: the
+tank's interior is 6 m x 4 m, docs/worlds.md), then the real node through roslaunch on a private
+master: the latched MarkerArray it publishes is the one build_markers makes.
+
+Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_mesh_marker.py
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+
+from unexmin import mesh_marker as mm
+
+REPO = Path(__file__).resolve().parents[2]
+WORLDS = REPO / "worlds"
+
+
+def polygon_area(xy):
+    return 0.5 * abs(np.dot(xy[:, 0], np.roll(xy[:, 1], -1)) - np.dot(np.roll(xy[:, 0], -1), xy[:, 1]))
+
+
+def triangles_area(tris):
+    return 0.5 * np.abs(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])[:, 2]).sum()
+
+
+def quat_matrix(q):
+    x, y, z, w = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def test_rpy_matrix_is_rz_ry_rx_and_the_quaternion_agrees():
+    rng = np.random.default_rng(4)
+    for rpy in rng.uniform(-math.pi, math.pi, (20, 3)):
+        r, p, y = rpy
+        rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
+        ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
+        rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
+        np.testing.assert_allclose(mm.rpy_matrix(rpy), rz @ ry @ rx, atol=1e-12)
+        q = mm.rpy_quaternion(rpy)
+        assert np.linalg.norm(q) == pytest.approx(1.0)
+        np.testing.assert_allclose(quat_matrix(q), rz @ ry @ rx, atol=1e-12)
+    np.testing.assert_allclose(mm.rpy_quaternion((0, 0, math.pi / 2)), (0, 0, math.sqrt(0.5), math.sqrt(0.5)))
+
+
+def test_read_mesh_gives_the_same_triangles_from_stl_and_ply(tmp_path):
+    box = trimesh.creation.box(extents=(2.0, 3.0, 4.0))
+    box.export(tmp_path / "b.stl")
+    box.export(tmp_path / "b.ply")
+    tri_sets = []
+    for name in ("b.stl", "b.ply"):
+        v, t = mm.read_mesh(tmp_path / name)
+        tri_sets.append(sorted(tuple(map(tuple, np.round(v[tri], 6))) for tri in t))
+    assert tri_sets[0] == tri_sets[1] and len(tri_sets[0]) == 12
+    (tmp_path / "a.stl").write_text("solid x\nendsolid x\n")
+    with pytest.raises(mm.MeshFormatError, match="not a binary STL"):
+        mm.read_mesh(tmp_path / "a.stl")
+
+
+def test_cube_section_is_one_square_loop_whose_faces_point_out():
+    box = trimesh.creation.box(extents=(2.0, 2.0, 2.0))
+    loops = mm.plane_loops(np.asarray(box.vertices), np.asarray(box.faces), 0.25)
+    assert len(loops) == 1
+    points, normals = loops[0]
+    assert polygon_area(points[:, :2]) == pytest.approx(4.0)
+    np.testing.assert_allclose(points[:, 2], 0.25)
+    assert not mm.faces_inwards(points, normals)              # a solid: no water inside
+    inverted = np.asarray(box.faces)[:, ::-1]                 # a 2 m cube of water
+    points, normals = mm.plane_loops(np.asarray(box.vertices), inverted, 0.25)[0]
+    assert mm.faces_inwards(points, normals)
+    assert mm.plane_loops(np.asarray(box.vertices), np.asarray(box.faces), 1.5) == []
+
+
+def test_ear_clipping_covers_a_non_convex_polygon_exactly():
+    l_shape = np.array([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]], float)
+    for poly in (l_shape, l_shape[::-1]):
+        tris = mm.triangulate(poly)
+        assert len(tris) == len(poly) - 2
+        pts = poly[tris]
+        signed = 0.5 * np.cross(pts[:, 1] - pts[:, 0], pts[:, 2] - pts[:, 0])
+        assert (signed > 0).all()
+        assert signed.sum() == pytest.approx(3.0)
+
+
+def test_tank_markers_and_its_six_by_four_metre_water_surface():
+    world = mm.load_world(WORLDS / "tank.world")
+    tris = mm.water_surface(world)
+    assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)      # interior 6 m x 4 m
+    np.testing.assert_allclose(tris[..., 2], 0.0, atol=1e-9)
+    np.testing.assert_allclose(tris[..., 0].min(), -3.0, atol=1e-6)
+    np.testing.assert_allclose(tris[..., 1].max(), 2.0, atol=1e-6)
+    array = mm.build_markers(world)
+    meshes = [m for m in array.markers if m.ns == "world_meshes"]
+    assert [Path(m.mesh_resource[len("file://"):]) for m in meshes] == [WORLDS / "meshes/tank.stl",
+                                                                       WORLDS / "meshes/anchor.stl"]
+    assert all(m.type == m.MESH_RESOURCE and m.header.frame_id == "world" for m in meshes)
+    assert meshes[1].pose.position.z == pytest.approx(-1.8)
+    assert (meshes[1].scale.x, meshes[1].scale.y, meshes[1].scale.z) == (1.0, 1.0, 1.0)
+    water = [m for m in array.markers if m.ns == "water_surface"]
+    assert len(water) == 1 and len(water[0].points) == 3 * len(tris) and water[0].color.a < 1.0
+
+
+def test_mine_water_surface_is_the_entry_shaft_section():
+    man = json.loads((WORLDS / "meshes/mine/mine.json").read_text())
+    world = mm.load_world(WORLDS / "mine.world")
+    assert [m["name"] for m in world["meshes"] if m["visual"]] == ["mine_visual"]
+    tris = mm.water_surface(world)
+    half, noise = man["preset"]["shaft_half"], man["wall_noise_max"]
+    # inside the 6 m rounded-square shaft whose walls move by at most the noise amplitude
+    assert np.abs(tris[..., :2] - man["shaft_xy"]).max() <= half * 2 ** 0.5 + noise
+    assert (2 * (half - noise)) ** 2 * 0.8 <= triangles_area(tris) <= (2 * (half + noise)) ** 2
+
+
+CLIENT = textwrap.dedent("""
+    import json, sys, threading
+    import rospy
+    from visualization_msgs.msg import MarkerArray
+    rospy.init_node("mesh_marker_test_client", disable_signals=True)
+    got, cond = [], threading.Condition()
+    def cb(msg):
+        with cond:
+            got.append(msg)
+            cond.notify_all()
+    rospy.Subscriber("/world_meshes", MarkerArray, cb)
+    with cond:
+        ok = cond.wait_for(lambda: got, 60)
+    if not ok:
+        sys.exit("no MarkerArray on /world_meshes within 60 s")
+    m = got[0]
+    print(json.dumps([[k.ns, k.id, k.type, k.header.frame_id, k.mesh_resource, len(k.points),
+                       [k.pose.position.x, k.pose.position.y, k.pose.position.z]] for k in m.markers]))
+""")
+
+
+def test_node_publishes_the_markers_latched(tmp_path):
+    if not shutil.which("roslaunch"):
+        pytest.skip("roslaunch not installed")
+    from unexmin.launcher import free_port
+
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
+               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
+    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch",
+                               f"world:={WORLDS / 'tank.world'}"], env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        # The client subscribes whenever it is ready: it only gets the message because it is latched.
+        res = subprocess.run([sys.executable, "-c", CLIENT], env=env, capture_output=True, text=True, timeout=90)
+        assert res.returncode == 0, res.stderr
+        got = json.loads(res.stdout.strip().splitlines()[-1])
+    finally:
+        os.killpg(launch.pid, 2)
+        launch.wait(20)
+    expected = mm.build_markers(mm.load_world(WORLDS / "tank.world"))
+    assert got == [[k.ns, k.id, k.type, k.header.frame_id, k.mesh_resource, len(k.points),
+                    [k.pose.position.x, k.pose.position.y, k.pose.position.z]] for k in expected.markers]

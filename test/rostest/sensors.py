@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""rostest: the navigation sensors and translators through ROS (test/rostest/sensors.test)."""
+
+import math
+import threading
+import unittest
+
+import rospy
+import rostest
+from dvl_nortek.msg import DvlBottomWaterTrack
+from geometry_msgs.msg import TwistWithCovarianceStamped
+from kvh_1775.msg import ImuRawKvh
+from sensor_msgs.msg import FluidPressure, Imu, MagneticField, Range
+
+from unexmin import Simulation
+from unexmin.launcher import wait_for
+from unexmin.msg import Dvl, ImuRaw
+
+NS = "/UX_1/"
+TOPICS = {
+    "imu": Imu, "imu/mag": MagneticField, "kvh/raw": ImuRaw, "kvh/imu_raw": ImuRawKvh,
+    "kvh/imu_raw_translated": ImuRawKvh, "pressure": FluidPressure, "dvl": Dvl,
+    "dvl_sonar0": Range, "dvl_sonar1": Range, "dvl_sonar2": Range, "dvl_sonar3": Range,
+    "dvl_twist": TwistWithCovarianceStamped, "dvl_water_track": DvlBottomWaterTrack,
+}
+TYPE_NAMES = {t: c._type for t, c in TOPICS.items()}
+SECONDS = 2.0          # [s] of sim time per record
+G = 9.81               # [m/s^2] tank.world gravity
+SPAWN_Z = -1.0         # [m] UX_1 in tank.world
+FLOOR_Z = -3.0         # [m]
+HULL_R = 0.3           # [m]
+
+
+class Recorder:
+    """Every message of every topic, with big queues (a /sim/step burst is 500 messages a second)."""
+
+    def __init__(self):
+        self.lock = threading.Condition()
+        self.msgs = {t: [] for t in TOPICS}
+        self.subs = [rospy.Subscriber(NS + t, c, self.on, t, queue_size=10000, tcp_nodelay=True)
+                     for t, c in TOPICS.items()]
+
+    def on(self, msg, topic):
+        with self.lock:
+            self.msgs[topic].append(msg)
+            self.lock.notify_all()
+
+    def clear(self):
+        with self.lock:
+            for v in self.msgs.values():
+                v.clear()
+
+    def wait_until(self, topic, stamp, timeout=30.0):
+        """Block until `topic` has a message stamped >= stamp [s]."""
+        def ready():
+            m = self.msgs[topic]
+            return m and m[-1].header.stamp.to_sec() >= stamp - 1e-9
+        with self.lock:
+            if not self.lock.wait_for(ready, timeout):
+                raise AssertionError(f"{NS}{topic}: no message stamped {stamp} s within {timeout} s "
+                                     f"({len(self.msgs[topic])} received)")
+            return list(self.msgs[topic])
+
+
+class Sensors(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.sim = Simulation(node_name="sensors_test", timeout=60.0)
+        cls.ux = cls.sim.robot("UX_1")
+        cls.rec = Recorder()
+        wait_for(lambda: all(s.get_num_connections() > 0 for s in cls.rec.subs), 30.0,
+                 "every sensor topic to connect")
+
+    def record(self):
+        """Reset to t = 0 (seed 1), step SECONDS of sim time, return every message of the record.
+
+        Every sensor samples at exactly t = SECONDS (2 s is a multiple of 1/500, 1/10 and 1/8 s), and a
+        topic's messages arrive in order: once each topic has its t = SECONDS message, the record is
+        complete and nothing of it can arrive after the next record's clear()."""
+        self.sim.reset(seed=1)
+        self.rec.clear()
+        self.sim.run_for(SECONDS)
+        return {t: self.rec.wait_until(t, SECONDS) for t in TOPICS}
+
+    def test_type_names(self):
+        published = dict(rospy.get_published_topics())
+        for topic, name in TYPE_NAMES.items():
+            self.assertEqual(published.get(NS + topic), name, topic)
+        self.assertEqual(published[NS + "kvh/imu_raw"], "kvh_1775/ImuRawKvh")
+        self.assertEqual(published[NS + "dvl_water_track"], "dvl_nortek/DvlBottomWaterTrack")
+
+    def test_rates_in_simulation_time(self):
+        got = self.record()
+        for topic, rate in (("imu", 500), ("kvh/imu_raw", 500), ("kvh/imu_raw_translated", 500), ("kvh/raw", 500),
+                            ("pressure", 10), ("dvl", 8), ("dvl_water_track", 8), ("dvl_sonar2", 8)):
+            stamps = [m.header.stamp.to_sec() for m in got[topic]]
+            self.assertEqual(len(stamps), round(rate * SECONDS), topic)
+            # Sample k at the first 2 ms physics step at or after k / rate.
+            for k, t in enumerate(stamps, start=1):
+                self.assertGreaterEqual(t, k / rate - 1e-9, topic)
+                self.assertLess(t, k / rate + 0.002 - 1e-9, topic)
+
+    def test_kvh_translator_matches_the_simulators_own_message(self):
+        got = self.record()
+        direct = {m.header.stamp.to_nsec(): m for m in got["kvh/imu_raw"]}
+        translated = got["kvh/imu_raw_translated"]
+        self.assertEqual(len(translated), 1000)
+        for t in translated:
+            d = direct[t.header.stamp.to_nsec()]
+            for f in ("accelerometer", "gyroscope", "magnetometer"):
+                a, b = getattr(d, f), getattr(t, f)
+                for ax in "xyz":
+                    self.assertAlmostEqual(getattr(a, ax), getattr(b, ax), delta=1e-9 * max(1.0, abs(getattr(a, ax))))
+            self.assertAlmostEqual(d.pressure, t.pressure, delta=1e-12)
+            self.assertEqual((d.temperature_imu, d.temperature_pressure), (t.temperature_imu, t.temperature_pressure))
+
+    def test_readings_at_rest_in_the_tank(self):
+        got = self.record()
+        # IMU: gravity up within 3 sigma of the mean of 1000 samples (+ turn-on bias of 1 mg).
+        acc = [m.linear_acceleration.z for m in got["imu"]]
+        sigma = math.sqrt(got["imu"][-1].linear_acceleration_covariance[8])
+        self.assertAlmostEqual(sum(acc) / len(acc), G, delta=3.0 * math.hypot(sigma / math.sqrt(len(acc)), 9.8e-3))
+        # KVH message: pressure in bar at 1 m depth: 1.01325 + 1000 * 9.81 * 1.0 / 1e5.
+        kvh = got["kvh/imu_raw"][-1]
+        self.assertAlmostEqual(kvh.pressure, 1.01325 + 0.0981, delta=0.005)
+        # DVL at rest 1.7 m above the floor: vertical ranges 1.7 m, velocity 0 within 3 fom.
+        altitude = SPAWN_Z - HULL_R - FLOOR_Z
+        for track in got["dvl_water_track"]:
+            for i in range(4):
+                self.assertAlmostEqual(track.range[i], altitude, delta=0.05)
+            for k in range(4):
+                self.assertLess(abs(track.velocity_xyzz[k]), 3.0 * track.fom_xyzz[k] + 1e-3)
+            self.assertAlmostEqual(track.pressure, (101325.0 + 1000 * G * (-SPAWN_Z + HULL_R)) / 1e4, delta=0.05)
+        for r in got["dvl_sonar0"]:
+            self.assertAlmostEqual(r.range, altitude / math.cos(math.radians(25.0)), delta=0.05)
+        self.assertEqual(len(got["dvl_twist"]), round(8 * SECONDS))
+        # Pressure sensor (rear, el -45 deg on the hull): 1 m + 0.3 sin 45 deg deep.
+        depth = -SPAWN_Z + HULL_R * math.sin(math.radians(45.0))
+        for p in got["pressure"]:
+            self.assertAlmostEqual(p.fluid_pressure, 101325.0 + 1000 * G * depth, delta=5 * math.sqrt(p.variance))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("unexmin", "sensors", Sensors)
