@@ -1,25 +1,30 @@
 #!/usr/bin/env python3
-"""Real-time factor with UX_1's navigation sensors, their translators and a rosbag record of them.
+"""Real-time factor with UX_1's navigation sensors, their translators and a record of all their topics.
 
-    source scripts/env.sh && python bench/sensors_rtf.py [--window 10] [--pace 0 100 50 25]
+    source scripts/env.sh && python bench/sensors_rtf.py [--window 10] [--pace 0 100 50 25 10] [--verbose]
+    source scripts/env.sh && python bench/sensors_rtf.py --core     # the models alone, no ROS
 
-Scenarios (tank, 1 robot, physics 500 Hz; IMU 500 Hz, pressure 10 Hz, DVL 8 Hz), each run free
-(lockstep as fast as possible after /sim/unpause, --pace 0) and paced at real-time factors (the
-simulator's realtime_factor), because a free-running simulator outruns any subscriber:
-  idle      sensors simulated, nobody subscribed (the models' own cost)
-  bag       DVL translator (rospy) + the simulator's own kvh/imu_raw + rosbag record of all 11 sensor
-            topics (imu, imu/mag, kvh/imu_raw, pressure, dvl, dvl_sonar0..3, dvl_twist, dvl_water_track)
-  rospy-kvh as bag, but kvh/imu_raw built by the rospy KVH translator (kvh_translator:=true) from
-            kvh/raw, which is then recorded too (12 topics)
-  bag-kvh   as bag, recording only the real robot's two topics (kvh/imu_raw, dvl_water_track)
-For each: RTF = sim time advanced / wall time over --window s, the CPU used by the simulator, the
-translators and the recorder, and per topic the fraction of the messages due in the window that reached
-the bag (1.00 = kept up). Each run has its own ROS master.
+Tank, 1 robot, physics 500 Hz; IMU 500 Hz (imu, imu/mag, kvh/imu_raw), pressure 10 Hz, DVL 8 Hz (dvl,
+dvl_sonar0..3, dvl_twist) and the DVL translator's dvl_water_track: 11 topics. Every run has its own
+ROS master (bench/sensors_bench.launch) and runs --window s of wall time after /sim/unpause, either
+free (lockstep as fast as possible, --pace 0) or paced at a real-time factor (the simulator's
+realtime_factor): a free-running simulator outruns any subscriber, so what matters is the fastest
+pace at which the consumers still get everything. Sinks:
+  none          nothing but the DVL translator subscribed (the sensors' own cost)
+  cpp-sink      bench/topic_counter.cpp (built here with g++): a C++ subscriber with deep queues
+                (100000) on the 11 topics; what any consumer that keeps up receives
+  rosbag        `rosbag record` of the 11 topics (its subscriber queues are fixed at 100 messages)
+  rospy-kvh     the rospy KVH translator builds kvh/imu_raw from kvh/raw (kvh_translator:=true);
+                cpp-sink on the 11 topics + kvh/raw
+Reported: RTF = sim time advanced / wall time; delivered = the smallest fraction, over the 500 Hz
+topics | over the 8-10 Hz topics, of the messages stamped inside the window that reached the sink
+(1.00 = kept up); CPU of each process over the window.
 """
 
 import argparse
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -31,14 +36,26 @@ from xmlrpc.client import ServerProxy
 import rosgraph
 
 HERE = Path(__file__).resolve().parent
-RATES = {"/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/raw": 500, "/UX_1/kvh/imu_raw": 500,
+RATES = {"/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/imu_raw": 500, "/UX_1/kvh/raw": 500,
          "/UX_1/pressure": 10, "/UX_1/dvl": 8, "/UX_1/dvl_sonar0": 8, "/UX_1/dvl_sonar1": 8,
          "/UX_1/dvl_sonar2": 8, "/UX_1/dvl_sonar3": 8, "/UX_1/dvl_twist": 8, "/UX_1/dvl_water_track": 8}
-ALL_BUT_RAW = [t for t in RATES if t != "/UX_1/kvh/raw"]  # kvh/raw exists only for the rospy translator
-SCENARIOS = {"idle": dict(bag=False, kvh_translator=False),
-             "bag": dict(bag=True, kvh_translator=False, topics=ALL_BUT_RAW),
-             "rospy-kvh": dict(bag=True, kvh_translator=True, topics=list(RATES)),
-             "bag-kvh": dict(bag=True, kvh_translator=False, topics=["/UX_1/kvh/imu_raw", "/UX_1/dvl_water_track"])}
+ELEVEN = [t for t in RATES if t != "/UX_1/kvh/raw"]  # kvh/raw is advertised only for the rospy translator
+SINKS = {"none": dict(sink=None, kvh_translator=False, topics=[]),
+         "cpp-sink": dict(sink="counter", kvh_translator=False, topics=ELEVEN),
+         "rosbag": dict(sink="rosbag", kvh_translator=False, topics=ELEVEN),
+         "rospy-kvh": dict(sink="counter", kvh_translator=True, topics=list(RATES))}
+COUNTER_QUEUE = 100000
+
+
+def build_counter(workdir):
+    """Compile bench/topic_counter.cpp against the system's roscpp (no catkin target needed)."""
+    exe = Path(workdir) / "topic_counter"
+    cxx = shutil.which("g++")
+    if not cxx:
+        raise RuntimeError("g++ not found: the cpp-sink runs need it")
+    subprocess.run([cxx, "-O2", "-std=c++17", str(HERE / "topic_counter.cpp"), "-o", str(exe), "-lroscpp",
+                    "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-ltopic_tools"], check=True)
+    return exe
 
 
 def cpu_seconds(pid):
@@ -50,43 +67,48 @@ def cpu_seconds(pid):
 
 def node_pids(caller, names):
     master = rosgraph.Master(caller)
-    out = {}
-    for n in names:
-        try:
-            out[n] = ServerProxy(master.lookupNode(n)).getPid(caller)[2]
-        except Exception:  # noqa: BLE001 - the node is not part of this scenario
-            pass
-    return out
+    return {n: ServerProxy(master.lookupNode(n)).getPid(caller)[2] for n in names}
 
 
-def measure(name, pace, window, workdir):
+def measure(sink_name, pace, window, workdir):
     from unexmin import Simulation
     from unexmin.launcher import free_port, wait_for
 
-    cfg = SCENARIOS[name]
+    cfg = SINKS[sink_name]
+    topics = cfg["topics"]
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-    bag = str(Path(workdir) / f"{name}.bag")
+    bag = Path(workdir) / f"{sink_name}.bag"
     args = ["roslaunch", "--port", str(port), str(HERE / "sensors_bench.launch"), f"pace:={pace}",
-            f"kvh_translator:={str(cfg['kvh_translator']).lower()}", f"bag:={bag if cfg['bag'] else ''}"]
-    topics = cfg.get("topics", list(RATES))
-    if "topics" in cfg:
-        args.append("topics:=" + " ".join(topics))
-    log = open(Path(workdir) / f"{name}.log", "w")
+            f"kvh_translator:={str(cfg['kvh_translator']).lower()}",
+            f"bag:={bag if cfg['sink'] == 'rosbag' else ''}", "topics:=" + " ".join(topics)]
+    log = open(Path(workdir) / f"{sink_name}.log", "w")
     proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    counter = None
+    window_file = Path(workdir) / "window"
     try:
         sim = Simulation(node_name="sensors_bench", timeout=60.0)
+        import rospy
+
+        for topic in ("/UX_1/dvl_water_track", "/UX_1/kvh/imu_raw"):
+            wait_for(lambda: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
         nodes = ["/simulator", "/UX_1/dvl_translator"] + (["/UX_1/kvh_translator"] if cfg["kvh_translator"] else [])
-        if cfg["bag"]:
-            import rospy
+        sink_node = None
+        if cfg["sink"] == "counter":
+            counter = subprocess.Popen([str(build_counter(workdir)), str(window_file), str(COUNTER_QUEUE)] + topics,
+                                       stdout=subprocess.PIPE, text=True)
+            sink_node = lambda subs: any(s.startswith("/topic_counter") for s in subs)  # noqa: E731
+        elif cfg["sink"] == "rosbag":
             nodes.append("/bag_record")
-            for topic in ("/UX_1/dvl_water_track", "/UX_1/kvh/imu_raw"):
-                wait_for(lambda: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
-            # rosbag record subscribes to every topic once they exist: wait for its 12 subscriptions.
+            sink_node = lambda subs: "/bag_record" in subs  # noqa: E731
+        if sink_node:
             master = rosgraph.Master("/sensors_bench")
-            wait_for(lambda: sum("/bag_record" in subs for t, subs in master.getSystemState()[1]
-                                 if t in topics) == len(topics), 30.0, "rosbag record to subscribe")
+            wait_for(lambda: sum(sink_node(subs) for t, subs in master.getSystemState()[1] if t in topics)
+                     == len(topics), 30.0, "the sink to subscribe to every topic")
+            time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sensors_bench", nodes)
+        if counter:
+            pids["topic_counter"] = counter.pid
         cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
         sim_t0 = sim.time
         sim.unpause()
@@ -95,16 +117,23 @@ def measure(name, pace, window, workdir):
         sim.pause()
         wall = time.perf_counter() - t0
         sim_t1 = sim.time
-        cpu = {n: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
-        result = {"scenario": name, "pace": pace, "rtf": (sim_t1 - sim_t0) / wall, "sim_seconds": sim_t1 - sim_t0,
-                  "cpu": cpu, "delivered": {}}
-        if cfg["bag"]:
-            time.sleep(3.0)  # let the translators and the recorder drain their queues (benchmark only)
+        cpu = {n.split("/")[-1]: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+        result = {"sink": sink_name, "pace": pace, "rtf": (sim_t1 - sim_t0) / wall, "cpu": cpu, "delivered": {}}
+        time.sleep(3.0)  # let the translators and the sink drain their queues (benchmark only)
+        if counter:
+            window_file.write_text(f"{sim_t0} {sim_t1}\n")
+            counter.send_signal(signal.SIGINT)
+            out = counter.communicate(timeout=30)[0]
+            counts = dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+            result["delivered"] = {t: counts.get(t, 0) / max(1, round(RATES[t] * (sim_t1 - sim_t0))) for t in topics}
+        if cfg["sink"] == "rosbag":
             os.killpg(proc.pid, signal.SIGINT)
             proc.wait(30)
             result["delivered"] = count_bag(bag, sim_t0, sim_t1, topics)
         return result
     finally:
+        if counter and counter.poll() is None:
+            counter.kill()
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGINT)
             try:
@@ -115,7 +144,7 @@ def measure(name, pace, window, workdir):
 
 
 def count_bag(path, t0, t1, topics):
-    """Fraction of the messages due in (t0, t1] of sim time that the bag holds, per topic."""
+    """Fraction of the messages stamped in (t0, t1] of sim time that the bag holds, per topic."""
     from rosbags.highlevel import AnyReader
 
     counts = {t: 0 for t in topics}
@@ -123,42 +152,62 @@ def count_bag(path, t0, t1, topics):
         for conn, _, raw in reader.messages(connections=[c for c in reader.connections if c.topic in counts]):
             stamp = reader.deserialize(raw, conn.msgtype).header.stamp
             s = stamp.sec + 1e-9 * stamp.nanosec
-            if t0 < s <= t1 + 1e-9:
+            if t0 + 1e-9 < s <= t1 + 1e-9:
                 counts[conn.topic] += 1
     return {t: counts[t] / max(1, round(RATES[t] * (t1 - t0))) for t in topics}
 
 
+def core_cost():
+    """Build and run bench/sensors_core_cost.cpp against the workspace's core libraries."""
+    repo, ws = HERE.parent, Path(os.environ.get("UNEXMIN_WS", HERE.parent.parent / "main_ws"))
+    with tempfile.TemporaryDirectory() as tmp:
+        exe, urdf = Path(tmp) / "sensors_core_cost", Path(tmp) / "ux1.urdf"
+        xacro = shutil.which("xacro") or str(Path(sys.executable).parent / "xacro")
+        urdf.write_text(subprocess.run([xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"],
+                                       capture_output=True, text=True, check=True).stdout)
+        lib = ws / "devel" / "lib"
+        subprocess.run(["g++", "-O2", "-std=c++17", str(HERE / "sensors_core_cost.cpp"), "-o", str(exe),
+                        f"-I{repo / 'cpp'}", "-I/usr/include/eigen3", "-I/usr/include/bullet", f"-L{lib}",
+                        f"-Wl,-rpath,{lib}", "-lunexmin_sensors", "-lunexmin_sim", "-lunexmin_hydro",
+                        "-lBulletDynamics", "-lBulletCollision", "-lLinearMath"], check=True)
+        subprocess.run([str(exe), str(urdf), str(repo / "worlds" / "tank.world")], check=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--window", type=float, default=10.0, help="wall seconds of running per run")
-    parser.add_argument("--pace", type=float, nargs="+", default=[0, 100, 50, 25],
+    parser.add_argument("--window", type=float, default=10.0, help="wall seconds per run")
+    parser.add_argument("--pace", type=float, nargs="+", default=[0, 100, 50, 25, 10],
                         help="real-time factors to pace at (0 = free-running lockstep)")
-    parser.add_argument("--scenarios", nargs="+", choices=list(SCENARIOS), default=list(SCENARIOS))
-    parser.add_argument("--one", nargs=2, metavar=("SCENARIO", "PACE"), help=argparse.SUPPRESS)
+    parser.add_argument("--sinks", nargs="+", choices=list(SINKS), default=list(SINKS))
     parser.add_argument("--verbose", action="store_true", help="print every topic's delivered fraction")
+    parser.add_argument("--core", action="store_true", help="only the models' cost in the core, without ROS")
+    parser.add_argument("--one", nargs=2, metavar=("SINK", "PACE"), help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.core:
+        core_cost()
+        return
     if args.one:
         with tempfile.TemporaryDirectory() as tmp:
             os.environ.setdefault("ROS_LOG_DIR", tmp)
             print(json.dumps(measure(args.one[0], float(args.one[1]), args.window, tmp)))
         return
-    print(f"tank, 1 robot, physics 500 Hz, {args.window:.0f} s of wall time per run; delivered = the smallest "
-          "fraction of the messages due that reached the bag, over the 500 Hz topics | the 8-10 Hz topics")
-    print(f"{'scenario':>9} {'pace':>5} {'RTF':>6} {'delivered':>11}  CPU")
-    for name in args.scenarios:
-        for pace in (args.pace if SCENARIOS[name]["bag"] else [0]):
+    print(f"tank, 1 robot, physics 500 Hz, {args.window:.0f} s of wall time per run")
+    print(f"{'sink':>9} {'pace':>5} {'RTF':>6} {'delivered':>10}  CPU (share of one core)")
+    for name in args.sinks:
+        for pace in (args.pace if SINKS[name]["sink"] else [0]):
             out = subprocess.run([sys.executable, __file__, "--one", name, str(pace), "--window", str(args.window)],
                                  capture_output=True, text=True)
             if out.returncode != 0:
                 print(f"{name} pace {pace}: failed\n{out.stderr[-2000:]}", flush=True)
                 continue
             r = json.loads(out.stdout.strip().splitlines()[-1])
-            cpu = ", ".join(f"{n.split('/')[-1]} {100 * c:.0f} %" for n, c in r["cpu"].items())
             d = r["delivered"]
-            fast = min((f for t, f in d.items() if RATES[t] == 500), default=float("nan"))
-            slow = min((f for t, f in d.items() if RATES[t] < 500), default=float("nan"))
+            fast = min((f for t, f in d.items() if RATES[t] == 500), default=None)
+            slow = min((f for t, f in d.items() if RATES[t] < 500), default=None)
+            delivered = "-" if fast is None else f"{fast:.2f}|{slow:.2f}"
+            cpu = ", ".join(f"{n} {100 * c:.0f} %" for n, c in r["cpu"].items())
             pace_txt = "free" if pace == 0 else f"{pace:.0f}"
-            print(f"{name:>9} {pace_txt:>5} {r['rtf']:6.1f} {fast:5.2f}|{slow:4.2f}  {cpu}", flush=True)
+            print(f"{name:>9} {pace_txt:>5} {r['rtf']:6.1f} {delivered:>10}  {cpu}", flush=True)
             if args.verbose:
                 for topic, frac in d.items():
                     print(f"{'':>12}{topic:<26} {frac:5.2f}")

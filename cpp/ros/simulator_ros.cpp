@@ -77,6 +77,10 @@ void SimulatorRos::loadParams()
   pnh_.param("seed", seed_, 0);
   if (seed_ < 0) badParam("seed", std::to_string(seed_), "a non-negative integer");
   pnh_.param("paused", paused_, false);
+  std::string mode;
+  nh_.param<std::string>("/sim/mode", mode, "operational");
+  if (mode != "operational" && mode != "visual")
+    throw std::invalid_argument("parameter /sim/mode = '" + mode + "': expected operational|visual");
   pnh_.param("physics_rate", physics_rate_, 500.0);
   if (!(physics_rate_ >= 100.0 && physics_rate_ <= 20000.0))
     badParam("physics_rate", std::to_string(physics_rate_), "[100, 20000] Hz");

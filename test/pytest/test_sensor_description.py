@@ -8,6 +8,7 @@ import math
 import shutil
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -82,3 +83,52 @@ def test_dvl_beam_frames_point_along_the_model_beams():
         x = rpy_matrix(*rpy)[:, 0]
         c = c0 + i * math.pi / 2
         assert x == pytest.approx([math.sin(a) * math.cos(c), math.sin(a) * math.sin(c), math.cos(a)], abs=1e-9)
+
+
+def test_malformed_sensor_parameter_stops_the_simulator_naming_sensor_and_parameter(tmp_path):
+    """End to end: an overrides file puts the DVL beams at 95 deg; the simulator node must refuse to start
+    and say which sensor and which parameter (through a real master, no launch file)."""
+    import os
+    import socket
+
+    node = None
+    for ws in (os.environ.get("UNEXMIN_WS"), str(REPO.parent / (REPO.name + "_ws"))):
+        if ws and (Path(ws) / "devel/lib/unexmin/simulator_node").exists():
+            node = Path(ws) / "devel/lib/unexmin/simulator_node"
+            break
+    if node is None or not shutil.which("rosmaster"):
+        pytest.skip("simulator_node not built or no rosmaster")
+    overrides = tmp_path / "bad_dvl.xacro"
+    overrides.write_text('<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                         '  <xacro:property name="dvl_beam_angle" value="${radians(95.0)}"/>\n</robot>\n')
+    exe = Path(sys.executable).parent / "xacro"
+    exe = str(exe) if exe.exists() else shutil.which("xacro")
+    urdf = subprocess.run([exe, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1", f"overrides:={overrides}"],
+                          capture_output=True, text=True, check=True).stdout
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_LOG_DIR=str(tmp_path / "log"),
+               ROS_HOME=str(tmp_path / "home"))
+    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    try:
+        from xmlrpc.client import ServerProxy
+
+        proxy = ServerProxy(env["ROS_MASTER_URI"])
+        deadline = time.monotonic() + 20.0
+        while True:  # wait for the master to answer (condition with a timeout)
+            try:
+                proxy.setParam("/test", "/UX_1/robot_description", urdf)
+                break
+            except OSError:
+                assert time.monotonic() < deadline, "rosmaster did not start within 20 s"
+                time.sleep(0.05)
+        proc = subprocess.run([str(node), f"_world_file:={REPO / 'worlds' / 'tank.world'}", "_paused:=true"],
+                              env=env, capture_output=True, text=True, timeout=60)
+    finally:
+        master.terminate()
+        master.wait(10)
+    assert proc.returncode != 0
+    out = proc.stdout + proc.stderr
+    assert "sensor 'dvl'" in out and "'beam_angle'" in out, out
