@@ -1,5 +1,6 @@
 // Ray-casting throughput: our caster (Embree and Bullet back ends, 1 and 2 threads) against raw Embree on
-// the same rays, the same scene and in the same run, on a generated rough tunnel of about 1M triangles.
+// the same rays, the same scene and in the same run, on a generated rough tunnel of about 1M triangles;
+// on the watertight (robust) Embree scene we use by default and on Embree's default scene.
 // Coherent rays are M3-like sensor fans, incoherent rays start anywhere in the tunnel in any direction.
 // Not a test: results go to docs/benchmarks.md ("Ray casting"). Usage: ray_caster_bench [repetitions]
 #include "sonar/bullet_ray_caster.h"
@@ -215,6 +216,9 @@ int main(int argc, char** argv)
     for (double x : {50.0, 100.0, 150.0}) s.push_back({centreLine(x), 0.3});
   };
   EmbreeRayCaster embree_robots({&tunnel}, three_robots, RayCasterOptions{1});
+  // The same triangles in Embree's default (non-robust) mode: faster, not watertight.
+  EmbreeRayCaster plain1({&tunnel}, nullptr, RayCasterOptions{1, false});
+  EmbreeRayCaster plain2({&tunnel}, nullptr, RayCasterOptions{2, false});
 
   t0 = std::chrono::steady_clock::now();
   btTriangleIndexVertexArray array(static_cast<int>(tunnel.triangleCount()), const_cast<int*>(tunnel.indices.data()),
@@ -236,85 +240,123 @@ int main(int argc, char** argv)
   sets.push_back({"coherent (M3 fans)", coherentRays(rng)});
   sets.push_back({"incoherent", incoherentRays(rng, sets[0].rays.size())});
 
-  std::printf("\n%-20s %-32s %7s %9s %8s %12s %6s\n", "rays", "method", "threads", "Mrays/s", "vs raw",
-              "max|dr| [m]", "hit!=");
+  std::printf("\n  %-36s %7s %9s %8s %12s %6s\n", "method", "threads", "Mrays/s", "vs raw", "max|dr| [m]",
+              "hit!=");
   for (const Set& set : sets) {
     const std::vector<Ray>& rays = set.rays;
     const std::size_t n = rays.size();
-    std::vector<RawHit> raw(n), reference(n);
-    RTCScene scene = embree1.scene();
-    rawSingle(scene, rays.data(), reference.data(), n);
+    std::vector<RawHit> reference(n);
+    rawSingle(embree1.scene(), rays.data(), reference.data(), n);
     // As sensors call it: one call per fan of 1024 rays (one M3 ping), where waking the worker costs most.
     const auto per_fan = [&](const RayCaster& rc, std::vector<Hit>& h) {
       for (std::size_t a = 0; a < n; a += 1024) rc.cast(&rays[a], &h[a], std::min<std::size_t>(1024, n - a));
+    };
+    const auto raw1 = [&](RTCScene scene, int threads, std::vector<RawHit>& out) {
+      split(n, threads, [&](std::size_t a, std::size_t b) { rawSingle(scene, &rays[a], &out[a], b - a); });
+    };
+    const auto raw16 = [&](RTCScene scene, int threads, std::vector<RawHit>& out) {
+      split(n, threads, [&](std::size_t a, std::size_t b) {
+        const std::size_t a16 = a / 16 * 16;  // packets stay whole
+        rawPacket16(scene, &rays[a16], &out[a16], (b == n ? n : b / 16 * 16) - a16);
+      });
+    };
+    struct Out
+    {
+      std::vector<Hit> hits;
+      std::vector<RawHit> raw;
     };
     struct Case
     {
       const char* method;
       int threads;
-      bool raw, bullet, check;  // raw Embree (the reference); slow Bullet (fewer runs); compare its ranges
-      std::function<void(std::vector<Hit>&)> run;
+      int scene;  // 0 = watertight (robust) Embree scene, 1 = Embree's default scene
+      bool raw;   // raw Embree: the reference of its scene and thread count
+      bool slow;     // Bullet: fewer runs
+      bool compare;  // same surfaces as the reference (not so with robots in the way)
+      std::function<void(Out&)> run;
     };
-    std::vector<Case> cases = {
-        {"raw Embree rtcIntersect1 loop", 1, true, false, false,
-         [&](std::vector<Hit>&) { rawSingle(scene, rays.data(), raw.data(), n); }},
-        {"raw Embree rtcIntersect16", 1, true, false, false,
-         [&](std::vector<Hit>&) { rawPacket16(scene, rays.data(), raw.data(), n); }},
-        {"raw Embree rtcIntersect1 loop", 2, true, false, false,
-         [&](std::vector<Hit>&) {
-           split(n, 2, [&](std::size_t a, std::size_t b) { rawSingle(scene, &rays[a], &raw[a], b - a); });
-         }},
-        {"raw Embree rtcIntersect16", 2, true, false, false,
-         [&](std::vector<Hit>&) {
-           split(n, 2, [&](std::size_t a, std::size_t b) {
-             const std::size_t a16 = a / 16 * 16;  // packets stay whole
-             rawPacket16(scene, &rays[a16], &raw[a16], (b == n ? n : b / 16 * 16) - a16);
-           });
-         }},
-        {"ours, embree", 1, false, false, true, [&](std::vector<Hit>& h) { embree1.cast(rays, h); }},
-        {"ours, embree", 2, false, false, true, [&](std::vector<Hit>& h) { embree2.cast(rays, h); }},
-        {"ours, embree, 1024-ray calls", 1, false, false, true, [&](std::vector<Hit>& h) { per_fan(embree1, h); }},
-        {"ours, embree, 1024-ray calls", 2, false, false, true, [&](std::vector<Hit>& h) { per_fan(embree2, h); }},
-        {"ours, embree + 3 robot spheres", 1, false, false, false,
-         [&](std::vector<Hit>& h) { embree_robots.cast(rays, h); }},
-        {"ours, bullet", 1, false, true, true, [&](std::vector<Hit>& h) { bullet1.cast(rays, h); }},
-        {"ours, bullet", 2, false, true, true, [&](std::vector<Hit>& h) { bullet2.cast(rays, h); }},
-    };
+    RTCScene robust = embree1.scene(), fast = plain1.scene();
+    std::vector<Case> cases;
+    for (int threads : {1, 2}) {
+      cases.push_back({"raw Embree rtcIntersect1 loop", threads, 0, true, false, true,
+                       [&, threads](Out& o) { raw1(robust, threads, o.raw); }});
+      cases.push_back({"raw Embree rtcIntersect16", threads, 0, true, false, true,
+                       [&, threads](Out& o) { raw16(robust, threads, o.raw); }});
+    }
+    cases.push_back({"ours, embree", 1, 0, false, false, true, [&](Out& o) { embree1.cast(rays, o.hits); }});
+    cases.push_back({"ours, embree", 2, 0, false, false, true, [&](Out& o) { embree2.cast(rays, o.hits); }});
+    cases.push_back({"ours, embree, 1024-ray calls", 1, 0, false, false, true,
+                     [&](Out& o) { per_fan(embree1, o.hits); }});
+    cases.push_back({"ours, embree, 1024-ray calls", 2, 0, false, false, true,
+                     [&](Out& o) { per_fan(embree2, o.hits); }});
+    cases.push_back({"ours, embree + 3 robot spheres", 1, 0, false, false, false,
+                     [&](Out& o) { embree_robots.cast(rays, o.hits); }});
+    cases.push_back({"ours, bullet", 1, 0, false, true, true, [&](Out& o) { bullet1.cast(rays, o.hits); }});
+    cases.push_back({"ours, bullet", 2, 0, false, true, true, [&](Out& o) { bullet2.cast(rays, o.hits); }});
+    for (int threads : {1, 2}) {
+      cases.push_back({"raw Embree rtcIntersect1 loop", threads, 1, true, false, true,
+                       [&, threads](Out& o) { raw1(fast, threads, o.raw); }});
+      cases.push_back({"raw Embree rtcIntersect16", threads, 1, true, false, true,
+                       [&, threads](Out& o) { raw16(fast, threads, o.raw); }});
+    }
+    cases.push_back({"ours, embree, watertight=false", 1, 1, false, false, true,
+                     [&](Out& o) { plain1.cast(rays, o.hits); }});
+    cases.push_back({"ours, embree, watertight=false", 2, 1, false, false, true,
+                     [&](Out& o) { plain2.cast(rays, o.hits); }});
+
     // Round robin, best of the runs: a load spike from another process hits every method alike.
     std::vector<double> seconds(cases.size(), 1e300);
-    std::vector<std::vector<Hit>> hits(cases.size(), std::vector<Hit>(n));
+    std::vector<Out> out(cases.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (cases[k].raw)
+        out[k].raw.resize(n);
+      else
+        out[k].hits.resize(n);
+    }
     for (int r = 0; r < reps; ++r)
       for (std::size_t k = 0; k < cases.size(); ++k) {
-        if (cases[k].bullet && r >= std::max(1, reps / 2)) continue;
-        seconds[k] = std::min(seconds[k], best(1, [&] { cases[k].run(hits[k]); }));
+        if (cases[k].slow && r >= std::max(1, reps / 2)) continue;
+        seconds[k] = std::min(seconds[k], best(1, [&] { cases[k].run(out[k]); }));
       }
-    double raw_best[3] = {0, 0, 0};  // by thread count
+    double raw_best[2][3] = {};  // [scene][threads]
     for (std::size_t k = 0; k < cases.size(); ++k)
-      if (cases[k].raw) raw_best[cases[k].threads] = std::max(raw_best[cases[k].threads], n / seconds[k] / 1e6);
-    for (std::size_t k = 0; k < cases.size(); ++k) {
-      const Case& c = cases[k];
-      const double mrays = n / seconds[k] / 1e6;
-      std::printf("%-20s %-32s %7d %9.2f %7.2fx", set.name, c.method, c.threads, mrays, mrays / raw_best[c.threads]);
-      if (!c.check) {
-        std::printf(" %12s %6s\n", "-", "-");
-        continue;
+      if (cases[k].raw) {
+        double& b = raw_best[cases[k].scene][cases[k].threads];
+        b = std::max(b, n / seconds[k] / 1e6);
       }
-      // Ranges against the raw rtcIntersect1 loop: largest difference and hit/miss disagreements.
-      double max_diff = 0.0;
-      std::size_t disagree = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool raw_hit = reference[i].geom != RTC_INVALID_GEOMETRY_ID;
-        if (raw_hit != hits[k][i].hit())
-          ++disagree;
-        else if (raw_hit)
-          max_diff = std::max(max_diff, std::abs(double(reference[i].t) - hits[k][i].range));
+    for (int scene : {0, 1}) {
+      std::printf("%s, %s\n", set.name,
+                  scene == 0 ? "watertight (robust) Embree scene: our default"
+                             : "Embree's default scene (not watertight)");
+      for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Case& c = cases[k];
+        if (c.scene != scene) continue;
+        // Ranges against the raw rtcIntersect1 loop on the watertight scene.
+        double max_diff = 0.0;
+        std::size_t disagree = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          const bool ref_hit = reference[i].geom != RTC_INVALID_GEOMETRY_ID;
+          const bool hit = c.raw ? out[k].raw[i].geom != RTC_INVALID_GEOMETRY_ID : out[k].hits[i].hit();
+          const double t = c.raw ? out[k].raw[i].t : out[k].hits[i].range;
+          if (ref_hit != hit)
+            ++disagree;
+          else if (hit)
+            max_diff = std::max(max_diff, std::abs(double(reference[i].t) - t));
+        }
+        const double mrays = n / seconds[k] / 1e6;
+        std::printf("  %-36s %7d %9.2f %7.2fx", c.method, c.threads, mrays, mrays / raw_best[scene][c.threads]);
+        if (c.compare)
+          std::printf(" %12.1e %6zu\n", max_diff, disagree);
+        else
+          std::printf(" %12s %6s\n", "-", "-");
       }
-      std::printf(" %12.1e %6zu\n", max_diff, disagree);
     }
     std::printf("\n");
   }
-  std::printf("%zu rays per set, %.0f m max range. vs raw: rays/s over the faster of the raw rtcIntersect1 loop and "
-              "rtcIntersect16 at the same thread count; best of %d round-robin runs (bullet: %d). max|dr|, hit!=: ranges against "
-              "the raw rtcIntersect1 loop.\n", sets[0].rays.size(), double(kMaxRange), reps, std::max(1, reps / 2));
+  std::printf("%zu rays per set, %.0f m max range. vs raw: rays/s over the faster of the raw rtcIntersect1 loop\n"
+              "and rtcIntersect16 on the same scene at the same thread count. Best of %d round-robin runs\n"
+              "(bullet: %d).\n"
+              "max|dr|, hit!=: largest range difference and hit/miss disagreements against the raw rtcIntersect1 loop\n"
+              "on the watertight scene.\n", sets[0].rays.size(), double(kMaxRange), reps, std::max(1, reps / 2));
   return 0;
 }

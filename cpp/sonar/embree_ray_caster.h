@@ -1,5 +1,5 @@
-// Ray caster on Intel Embree 3: the static meshes in one robust (watertight) BVH scene, the robots as
-// analytic spheres. The default back end ("embree").
+// Ray caster on Intel Embree 3: the static meshes in one BVH scene (robust, watertight by default), the
+// robots as analytic spheres. The default back end ("embree").
 #pragma once
 
 #include "sim/mesh.h"
@@ -41,7 +41,7 @@ protected:
   void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const override;
 
 private:
-  void build(const std::vector<const sim::TriangleMesh*>& meshes);
+  void build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight);
   void check(const char* what) const;
 
   RTCDevice device_ = nullptr;

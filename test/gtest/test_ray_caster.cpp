@@ -391,6 +391,34 @@ TEST_P(RayCasterBackend, RaysAimedAtSharedEdgesOfAClosedMeshNeverEscape)
   EXPECT_EQ(escaped, 0) << "rays slipped between triangles sharing an edge";
 }
 
+TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks)
+{
+  // The same edge-aimed rays as above: Embree's default triangle test lets some through, the robust one none.
+  const Eigen::Vector3d c(0.2, 0.1, -0.4);
+  auto world = makeWorld({{"sphere", icosphere(c, 3.0, 4)}});
+  const sim::TriangleMesh& mesh = world->meshes()[0];
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 20000; ++i) {
+    const std::size_t t = static_cast<std::size_t>(u01(rng) * mesh.triangleCount()) % mesh.triangleCount();
+    const Eigen::Vector3d a = mesh.vertices[mesh.indices[3 * t + i % 3]].cast<double>();
+    const Eigen::Vector3d b = mesh.vertices[mesh.indices[3 * t + (i + 1) % 3]].cast<double>();
+    const Eigen::Vector3d p = c + 2.0 * std::cbrt(u01(rng)) * randomUnit(rng);
+    rays.push_back(makeRay(p, a + (0.01 + 0.98 * u01(rng)) * (b - a) - p, 10.0));
+  }
+  int escaped[2] = {0, 0};
+  for (bool watertight : {false, true}) {
+    sonar::RayCasterOptions options;
+    options.watertight = watertight;
+    std::vector<Hit> hits;
+    sonar::makeRayCaster("embree", *world, options)->cast(rays, hits);
+    for (const Hit& h : hits) escaped[watertight] += h.hit() ? 0 : 1;
+  }
+  EXPECT_GT(escaped[0], 20) << "Embree's default test should leak at edges (else this test proves nothing)";
+  EXPECT_EQ(escaped[1], 0);
+}
+
 TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
 {
   const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
