@@ -2,16 +2,18 @@
 """Mine world benchmark: real-time factor with 1, 2 and 3 robots, memory of the simulator, and the
 time from launch to the first odometry message (docs/benchmarks.md, "Mine world").
 
-    source scripts/env.sh && python bench/mine_rtf.py [--sim-seconds 120] [--seed 0]
+    source scripts/env.sh && python bench/mine_rtf.py [--sim-seconds 120] [--seed 0] [--repeat 3] [--world mine|tank]
 
-For each robot count, in a fresh process with its own ROS master:
-  * launches `mine_world.launch robots:=N` as a user does (real time, running), every robot's
+For each robot count, --repeat times (the summary gives medians), in a fresh process with its own
+ROS master:
+  * launches `mine_world.launch robots:=N realtime:=false` (lockstep, running), every robot's
     odometry subscribed from the start; first message: wall time from starting roslaunch to the
     first /UX_k/odom of every robot, split into master up, simulator ready (/sim/step offered: world
     and meshes loaded) and first odom; then unsubscribes (a benchmark client would load the cores);
-  * pauses it and steps it as fast as it goes through /sim/step, in 0.5 s chunks between which
-    each robot's thrust pattern is re-sent (UX_1 surges into the shaft wall, UX_2 sinks down the
-    shaft, UX_3 turns): contacts with the 1.3M-triangle mesh are part of the load;
+  * pauses it and steps it as fast as it goes through /sim/step, in 10 s chunks (`hold`: commands
+    do not time out) before each of which every robot's thrust pattern is re-sent (UX_1 surges into
+    the shaft wall, UX_2 sinks down the shaft, UX_3 turns): contacts with the 1.13M-triangle mesh are
+    part of the load;
   * RTF: --sim-seconds of sim time divided by the wall time it took;
   * the simulator's CPU use over that span and its resident memory (VmRSS now, VmHWM peak);
   * the topics the simulator publishes under /UX_1 (which sensors existed when the figure was taken).
@@ -24,6 +26,8 @@ import subprocess
 import sys
 import time
 from xmlrpc.client import ServerProxy
+
+import numpy as np
 
 PATTERNS = {  # thrust per thruster [N], thesis allocation columns (eq. 5.12) scaled
     "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],      # surge
@@ -48,11 +52,12 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def measure(robots, sim_seconds, seed, timeout):
+def measure(robots, sim_seconds, seed, timeout, world_name="mine"):
     t_launch = time.monotonic()
     from unexmin.launcher import WorldProcess, wait_for
-    # As a user starts it (real time, running), to time the first message.
-    world = WorldProcess(world="mine", robots=robots, seed=seed, realtime=True, paused=False)
+    # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
+    # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
+    world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False)
     try:
         import rosgraph
         import rospy
@@ -82,15 +87,15 @@ def measure(robots, sim_seconds, seed, timeout):
         master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
         step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
-        chunk = 0.5  # [s] of sim time between command refreshes (thruster watchdog: 1 s)
-        sim0 = step(duration=0.0, steps=1, client="", commands=0).time
+        chunk = 10.0  # [s] of sim time per call; `hold` keeps the commands past the 1 s watchdog
+        sim0 = step(duration=0.0, steps=1, client="", commands=0, hold=True).time
         wall0, cpu0 = time.monotonic(), cpu_seconds(pid)
         sim1 = sim0
         while sim1 - sim0 < sim_seconds - 1e-9:
             for n, ps in pubs.items():
                 for p, v in zip(ps, PATTERNS[n]):
                     p.publish(Float64(v))
-            sim1 = step(duration=chunk, steps=0, client="", commands=0).time
+            sim1 = step(duration=chunk, steps=0, client="", commands=0, hold=True).time
         wall1, cpu1 = time.monotonic(), cpu_seconds(pid)
         mem = proc_status(pid)
         publishers = master.getSystemState()[0]
@@ -107,31 +112,44 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sim-seconds", type=float, default=120.0, help="sim seconds per RTF measurement")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--repeat", type=int, default=3, help="runs per robot count (the summary takes medians)")
     ap.add_argument("--timeout", type=float, default=120.0, help="wall seconds allowed for each wait")
     ap.add_argument("--robots", type=int, choices=(1, 2, 3), help="measure this count only (JSON out)")
+    ap.add_argument("--world", choices=("mine", "tank"), default="mine", help="tank: the same, for comparison")
     args = ap.parse_args()
     if args.robots:
-        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout)))
+        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world)))
         return 0
     cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
-    print(f"mine world, physics 500 Hz, stepped as fast as it goes, {args.sim_seconds:.0f} s of sim time per count; "
-          f"nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}")
-    print(f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
-          f"{'ready s':>8} {'1st odom s':>11}")
-    topics = None
+    print(f"{args.world} world, physics 500 Hz, stepped as fast as it goes, {args.sim_seconds:.0f} s of sim time "
+          f"per run, {args.repeat} runs per count; nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; "
+          f"load average before: {os.getloadavg()[0]:.2f}")
+    header = (f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
+              f"{'ready s':>8} {'1st odom s':>11}")
+    print(header)
+    topics, summary = None, []
     for robots in (1, 2, 3):
-        proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
-                               "--sim-seconds", str(args.sim_seconds), "--timeout", str(args.timeout)],
-                              capture_output=True, text=True)
-        if proc.returncode != 0:
-            print(proc.stderr[-3000:], file=sys.stderr)
-            return 1
-        r = json.loads(proc.stdout.strip().splitlines()[-1])
-        topics = topics or r["topics"]
-        print(f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
-              f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}", flush=True)
+        runs = []
+        for _ in range(args.repeat):
+            proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
+                                   "--world", args.world, "--sim-seconds", str(args.sim_seconds),
+                                   "--timeout", str(args.timeout)], capture_output=True, text=True)
+            if proc.returncode != 0:
+                print(proc.stderr[-3000:], file=sys.stderr)
+                return 1
+            runs.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+            print(row(robots, runs[-1]), flush=True)
+        topics = topics or runs[0]["topics"]
+        summary.append(row(robots, {k: float(np.median([r[k] for r in runs])) for k in runs[0] if k != "topics"}))
+    print(f"median of {args.repeat} runs (load average after: {os.getloadavg()[0]:.2f})\n{header}")
+    print("\n".join(summary))
     print("simulator topics under /UX_1: " + " ".join(t[len("/UX_1/"):] for t in topics))
     return 0
+
+
+def row(robots, r):
+    return (f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
+            f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}")
 
 
 if __name__ == "__main__":

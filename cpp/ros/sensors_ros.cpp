@@ -2,10 +2,10 @@
 
 #include "ros/dvl_publisher.h"
 #include "ros/imu_publisher.h"
+#include "ros/m3_publisher.h"    // [sonar]
+#include "ros/msis_publisher.h"  // [sonar]
 #include "ros/pressure_publisher.h"
-#include "sensors/bullet_ray_caster.h"
-
-#include <btBulletDynamicsCommon.h>
+#include "sonar/sensor_rays.h"   // [sonar]
 
 #include <functional>
 #include <map>
@@ -41,6 +41,14 @@ const std::map<std::string, PublisherCreator>& publisherFamilies()
        [](sensors::Sensor& s, PublisherArgs& a) -> std::unique_ptr<SensorPublisher> {
          return std::make_unique<PressurePublisher>(dynamic_cast<sensors::PressureSensor&>(s), a.nh, a.ns);
        }},
+      {"msis",  // [sonar]
+       [](sensors::Sensor& s, PublisherArgs& a) -> std::unique_ptr<SensorPublisher> {
+         return std::make_unique<MsisPublisher>(dynamic_cast<sonar::MsisSensor&>(s), a.nh, a.ns);
+       }},
+      {"m3",  // [sonar]
+       [](sensors::Sensor& s, PublisherArgs& a) -> std::unique_ptr<SensorPublisher> {
+         return std::make_unique<M3Publisher>(dynamic_cast<sonar::M3Sensor&>(s), a.nh, a.ns);
+       }},
   };
   return families;
 }
@@ -49,7 +57,8 @@ const std::map<std::string, PublisherCreator>& publisherFamilies()
 
 SensorsRos::SensorsRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& nh) : world_(world)
 {
-  auto rays = std::make_shared<sensors::BulletRayCaster>(world.physics(), robot.body());
+  // [sonar] Every ray sensor (DVL, MSIS, M3) casts through the world's shared Embree caster (docs/sonars.md).
+  auto rays = sonar::SensorRays::forRobot(world, robot, "embree");
   suite_ = std::make_unique<sensors::SensorSuite>(world, robot, rays);
   PublisherArgs args{nh, "/" + robot.name() + "/", true, false};
   nh.param(args.ns + "kvh_from_simulator", args.kvh_direct, true);
@@ -74,6 +83,18 @@ void SensorsRos::publish(std::uint64_t step)
   suite_->update();
   for (std::size_t i = 0; i < publishers_.size(); ++i)
     if (suite_->fresh(i) && publishers_[i]) publishers_[i]->publish();
+}
+
+bool SensorsRos::jointState(const std::string& joint, double& position, double& velocity) const  // [sonar]
+{
+  for (std::size_t i = 0; i < suite_->size(); ++i) {
+    const auto* msis = dynamic_cast<const sonar::MsisSensor*>(&suite_->sensor(i));
+    if (!msis || msis->joint() != joint) continue;
+    position = msis->headAngle();
+    velocity = 0.0;  // a stepper: at rest between steps
+    return true;
+  }
+  return false;
 }
 
 void SensorsRos::restart()

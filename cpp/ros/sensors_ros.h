@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace unexmin {
@@ -34,6 +35,9 @@ public:
   /// Call after every physics step with the world's step count; a repeated call for the same step
   /// (end of a /sim/step, after a reset) does nothing.
   void publish(std::uint64_t step);
+  /// [sonar] Position [rad] and velocity [rad/s] of a joint a sensor moves (the MSIS head); false when no
+  /// sensor moves `joint`.
+  bool jointState(const std::string& joint, double& position, double& velocity) const;
   /// The world was reset (new seed, step 0): sensors back to turn-on.
   void restart();
 

@@ -3,6 +3,8 @@
 #include "sensors/dvl_sensor.h"
 #include "sensors/imu_sensor.h"
 #include "sensors/pressure_sensor.h"
+#include "sonar/m3_sensor.h"    // [sonar]
+#include "sonar/msis_sensor.h"  // [sonar]
 
 namespace unexmin {
 namespace sensors {
@@ -21,6 +23,8 @@ SensorFactory::SensorFactory()
   add("imu", creator<ImuSensor>());
   add("dvl", creator<DvlSensor>());
   add("pressure", creator<PressureSensor>());
+  add("msis", creator<sonar::MsisSensor>());  // [sonar] cpp/sonar/msis_sensor.h
+  add("m3", creator<sonar::M3Sensor>());      // [sonar] cpp/sonar/m3_sensor.h
 }
 
 void SensorFactory::add(const std::string& type, Creator creator) { creators_[type] = std::move(creator); }

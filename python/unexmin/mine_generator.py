@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-GENERATOR_VERSION = 1
+GENERATOR_VERSION = 2
 
 
 @dataclass(frozen=True)
@@ -57,7 +57,7 @@ PRESETS = {
     # Kaatiala (thesis 6.3): max depth 353 m, max length 620 m, max width 30 m.
     "full": Preset("full", length=620.0, half_width=15.0, levels=9, first_level_z=-22.0, level_spacing=41.0,
                    collar_z=6.0, surface_z=0.0, shaft_half=3.0, min_drift_length=360.0, ramp_gradient=1 / 7,
-                   chambers=5, raises=2, edge=0.42, visual_edge=1.3, min_triangles=1_000_000),
+                   chambers=5, raises=2, edge=0.47, visual_edge=1.3, min_triangles=1_000_000),
     # Same construction, two levels, coarse: for tests (a few seconds).
     "small": Preset("small", length=120.0, half_width=15.0, levels=2, first_level_z=-22.0, level_spacing=12.0,
                     collar_z=6.0, surface_z=0.0, shaft_half=3.0, min_drift_length=110.0, ramp_gradient=1 / 7,
@@ -457,7 +457,8 @@ def report(man):
     c, v = man["collision"], man["visual"]
     size = np.subtract(c["bbox_max"], c["bbox_min"])
     return "\n".join([
-        f"mine '{man['preset']['name']}' seed {man['seed']} (generator v{man['generator_version']}), {man['seconds']} s",
+        f"mine '{man['preset']['name']}' seed {man['seed']} (generator v{man['generator_version']}), "
+        f"{man['seconds']} s",
         f"  collision: {c['triangles']:,} triangles, {c['bytes'] / 1e6:.1f} MB, {c['file']}",
         f"  visual:    {v['triangles']:,} triangles, {v['bytes'] / 1e6:.1f} MB, {v['file']}",
         f"  bounding box: min {c['bbox_min']} max {c['bbox_max']} m "

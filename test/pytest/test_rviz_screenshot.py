@@ -13,7 +13,6 @@ import os
 import shutil
 import signal
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
@@ -91,14 +90,26 @@ def test_shipped_config_shows_the_mine_and_three_robots(xvfb, tmp_path):
     try:
         master = rosgraph.Master("/rviz_screenshot_test", master_uri=env["ROS_MASTER_URI"])
 
-        def ready():
-            try:
-                return (master.lookupService("/sim/step") and subscribed(master, "/world_meshes", "/rviz")
-                        and subscribed(master, "/tf", "/rviz") and master.lookupNode("/mesh_marker"))
-            except (OSError, rosgraph.MasterError):
-                return False
+        missing = ["the master"]
 
-        wait_for(lambda: launch.poll() is not None or ready(), 90, "the simulator, the mesh marker and rviz")
+        def ready():
+            checks = {"the simulator (/sim/step)": lambda: master.lookupService("/sim/step"),
+                      "the mesh marker node (/mesh_marker)": lambda: master.lookupNode("/mesh_marker"),
+                      "rviz subscribed to /world_meshes": lambda: subscribed(master, "/world_meshes", "/rviz"),
+                      "rviz subscribed to /tf": lambda: subscribed(master, "/tf", "/rviz")}
+            missing[:] = []
+            for what, check in checks.items():
+                try:
+                    if not check():
+                        missing.append(what)
+                except (OSError, rosgraph.MasterError):
+                    missing.append(what)
+            return not missing
+
+        try:
+            wait_for(lambda: launch.poll() is not None or ready(), 90, "the simulator, the mesh marker and rviz")
+        except TimeoutError:
+            pytest.fail(f"after 90 s still missing: {', '.join(missing)} (log: {tmp_path / 'roslaunch.log'})")
         assert launch.poll() is None, f"roslaunch exited: see {tmp_path / 'roslaunch.log'}"
         shot = tmp_path / "shot.png"
 
