@@ -11,18 +11,12 @@ namespace hydro {
 
 namespace {
 
-std::string num(double x)
-{
-  std::ostringstream s;
-  s << std::setprecision(12) << x;
-  return s.str();
-}
 
 void validateChannel(const GaussMarkovParams& p, const std::string& channel, const std::string& unit)
 {
   const std::string prefix = "current." + channel + ".";
   const auto fail = [&prefix](const std::string& field, double value, const std::string& expected) {
-    throw std::invalid_argument("parameter '" + prefix + field + "' = " + num(value) + " " + expected);
+    throw std::invalid_argument("parameter '" + prefix + field + "' = " + formatNumber(value) + " " + expected);
   };
   const std::pair<const char*, double> fields[] = {
       {"mean", p.mean}, {"min", p.min}, {"max", p.max}, {"noise", p.noise}, {"mu", p.mu}};
@@ -35,11 +29,11 @@ void validateChannel(const GaussMarkovParams& p, const std::string& channel, con
   }
   if (p.min > p.max)
   {
-    fail("min", p.min, "must be <= '" + prefix + "max' = " + num(p.max) + " " + unit);
+    fail("min", p.min, "must be <= '" + prefix + "max' = " + formatNumber(p.max) + " " + unit);
   }
   if (p.mean < p.min || p.mean > p.max)
   {
-    fail("mean", p.mean, "must be within [" + num(p.min) + ", " + num(p.max) + "] " + unit);
+    fail("mean", p.mean, "must be within [" + formatNumber(p.min) + ", " + formatNumber(p.max) + "] " + unit);
   }
   if (p.noise < 0.0)
   {
@@ -93,7 +87,7 @@ void CurrentModel::update(double dt)
 {
   if (!std::isfinite(dt))
   {
-    throw std::invalid_argument("current: time step dt = " + num(dt) + " must be finite [s]");
+    throw std::invalid_argument("current: time step dt = " + formatNumber(dt) + " must be finite [s]");
   }
   const Eigen::Vector3d before = velocity();
   speed_ = step(params_.speed, speed_, dt);

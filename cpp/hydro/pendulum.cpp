@@ -10,17 +10,11 @@ namespace hydro {
 
 namespace {
 
-std::string num(double x)
-{
-  std::ostringstream s;
-  s << std::setprecision(12) << x;
-  return s.str();
-}
 
 [[noreturn]] void fail(const std::string& what, const std::string& name, double value,
                        const std::string& expected)
 {
-  throw std::invalid_argument(what + ": parameter '" + name + "' = " + num(value) + " " + expected);
+  throw std::invalid_argument(what + ": parameter '" + name + "' = " + formatNumber(value) + " " + expected);
 }
 
 void requireFinite(const std::string& what, const std::string& name, double value, const std::string& unit)
@@ -39,7 +33,7 @@ void requireRangeAroundZero(const std::string& what, const std::string& min_name
   requireFinite(what, max_name, max, unit);
   if (min > max)
   {
-    fail(what, min_name, min, "must be <= '" + max_name + "' = " + num(max) + " " + unit);
+    fail(what, min_name, min, "must be <= '" + max_name + "' = " + formatNumber(max) + " " + unit);
   }
   if (min > 0.0)
   {
@@ -90,7 +84,7 @@ void Pendulum::update(double dt)
 {
   if (!std::isfinite(dt))
   {
-    throw std::invalid_argument("pendulum: time step dt = " + num(dt) + " must be finite [s]");
+    throw std::invalid_argument("pendulum: time step dt = " + formatNumber(dt) + " must be finite [s]");
   }
   if (dt <= 0.0)
   {

@@ -11,16 +11,10 @@ namespace hydro {
 
 namespace {
 
-std::string num(double x)
-{
-  std::ostringstream s;
-  s << std::setprecision(12) << x;
-  return s.str();
-}
 
 std::string vec(const Eigen::Vector3d& v)
 {
-  return "(" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + ")";
+  return "(" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")";
 }
 
 const char* const kFirstOrder = "thruster dynamics 'first_order'";
@@ -31,7 +25,7 @@ void requireTimeStep(double dt, const char* what)
 {
   if (!std::isfinite(dt) || dt < 0.0)
   {
-    throw std::invalid_argument(std::string(what) + ": time step dt = " + num(dt) +
+    throw std::invalid_argument(std::string(what) + ": time step dt = " + formatNumber(dt) +
                                 " must be finite and >= 0 [s]");
   }
 }
@@ -60,12 +54,12 @@ FirstOrderDynamics::FirstOrderDynamics(double tau) : tau_(tau)
 {
   if (!std::isfinite(tau))
   {
-    throw std::invalid_argument(std::string(kFirstOrder) + ": parameter 'tau' = " + num(tau) +
+    throw std::invalid_argument(std::string(kFirstOrder) + ": parameter 'tau' = " + formatNumber(tau) +
                                 " must be finite [s]");
   }
   if (!(tau > 0.0))
   {
-    throw std::invalid_argument(std::string(kFirstOrder) + ": parameter 'tau' = " + num(tau) +
+    throw std::invalid_argument(std::string(kFirstOrder) + ": parameter 'tau' = " + formatNumber(tau) +
                                 " must be > 0 [s]");
   }
 }
@@ -84,7 +78,7 @@ BasicConversion::BasicConversion(double gain) : gain_(gain)
 {
   if (!std::isfinite(gain) || gain == 0.0)
   {
-    throw std::invalid_argument(std::string(kBasic) + ": parameter 'gain' = " + num(gain) +
+    throw std::invalid_argument(std::string(kBasic) + ": parameter 'gain' = " + formatNumber(gain) +
                                 " must be finite and non-zero [N per unit^2]");
   }
 }
@@ -113,18 +107,18 @@ TableConversion::TableConversion(std::vector<double> input, std::vector<double> 
     if (!std::isfinite(input_[i]))
     {
       throw std::invalid_argument(std::string(kTable) + ": parameter 'input[" + std::to_string(i) +
-                                  "]' = " + num(input_[i]) + " must be finite");
+                                  "]' = " + formatNumber(input_[i]) + " must be finite");
     }
     if (!std::isfinite(output_[i]))
     {
       throw std::invalid_argument(std::string(kTable) + ": parameter 'output[" + std::to_string(i) +
-                                  "]' = " + num(output_[i]) + " must be finite [N]");
+                                  "]' = " + formatNumber(output_[i]) + " must be finite [N]");
     }
     if (i > 0 && !(input_[i] > input_[i - 1]))
     {
       throw std::invalid_argument(std::string(kTable) + ": parameter 'input[" + std::to_string(i) +
-                                  "]' = " + num(input_[i]) + " must be > input[" +
-                                  std::to_string(i - 1) + "] = " + num(input_[i - 1]) +
+                                  "]' = " + formatNumber(input_[i]) + " must be > input[" +
+                                  std::to_string(i - 1) + "] = " + formatNumber(input_[i - 1]) +
                                   " (strictly increasing)");
     }
   }
@@ -205,13 +199,13 @@ Thruster::Thruster(const ThrusterParams& params) : params_(params)
                                    const char* unit) {
     if (!std::isfinite(lo) || !std::isfinite(hi))
     {
-      throw std::invalid_argument(what + ": parameters '" + lo_name + "' = " + num(lo) + " and '" +
-                                  hi_name + "' = " + num(hi) + " must be finite " + unit);
+      throw std::invalid_argument(what + ": parameters '" + lo_name + "' = " + formatNumber(lo) + " and '" +
+                                  hi_name + "' = " + formatNumber(hi) + " must be finite " + unit);
     }
     if (lo > hi)
     {
-      throw std::invalid_argument(what + ": parameter '" + lo_name + "' = " + num(lo) +
-                                  " must be <= '" + hi_name + "' = " + num(hi) + " " + unit);
+      throw std::invalid_argument(what + ": parameter '" + lo_name + "' = " + formatNumber(lo) +
+                                  " must be <= '" + hi_name + "' = " + formatNumber(hi) + " " + unit);
     }
   };
   check_range("min_thrust", params_.min_thrust, "max_thrust", params_.max_thrust, "[N]");
@@ -241,8 +235,8 @@ double Thruster::update(double t, double dt)
 {
   if (!std::isfinite(t) || !std::isfinite(dt) || dt < 0.0)
   {
-    throw std::invalid_argument("thruster " + std::to_string(params_.id) + ": time t = " + num(t) +
-                                " and step dt = " + num(dt) + " must be finite, dt >= 0 [s]");
+    throw std::invalid_argument("thruster " + std::to_string(params_.id) + ": time t = " + formatNumber(t) +
+                                " and step dt = " + formatNumber(dt) + " must be finite, dt >= 0 [s]");
   }
   if (params_.timeout > 0.0 && t - command_time_ > params_.timeout)
   {

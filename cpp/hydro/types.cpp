@@ -8,6 +8,13 @@
 namespace unexmin {
 namespace hydro {
 
+std::string formatNumber(double x)
+{
+  std::ostringstream s;
+  s << std::setprecision(12) << x;
+  return s.str();
+}
+
 double requireScalar(const ParamMap& params, const std::string& key, const std::string& what)
 {
   const auto it = params.find(key);

@@ -22,6 +22,9 @@ using ParamMap = std::map<std::string, std::vector<double>>;
 /// Value of a required scalar parameter; throws std::invalid_argument naming `what` and `key`.
 double requireScalar(const ParamMap& params, const std::string& key, const std::string& what);
 
+/// A number as error messages show it (12 significant digits).
+std::string formatNumber(double x);
+
 /// Skew-symmetric matrix S(a) with S(a) b = a x b.
 inline Eigen::Matrix3d skew(const Eigen::Vector3d& a)
 {

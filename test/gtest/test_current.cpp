@@ -2,6 +2,8 @@
 // closed-form statistics. No ROS: links the hydro core, Eigen and gtest only.
 #include "hydro/current.h"
 
+#include "expect_error.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,25 +16,8 @@ namespace unexmin {
 namespace hydro {
 namespace {
 
-template <typename F>
-std::string thrownMessage(F f)
-{
-  try
-  {
-    f();
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected std::invalid_argument";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
+using unexmin::test::contains;
+using unexmin::test::thrownMessage;
 
 GaussMarkovParams channel(double mean, double min, double max, double noise, double mu)
 {

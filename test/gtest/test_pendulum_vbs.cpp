@@ -2,6 +2,8 @@
 // No ROS: links the hydro core, Eigen and gtest only.
 #include "hydro/pendulum.h"
 
+#include "expect_error.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,25 +18,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-template <typename F>
-std::string thrownMessage(F f)
-{
-  try
-  {
-    f();
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected std::invalid_argument";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
+using unexmin::test::contains;
+using unexmin::test::thrownMessage;
 
 PendulumParams ux1Pendulum()
 {

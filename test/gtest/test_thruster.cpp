@@ -2,6 +2,8 @@
 // guard, watchdog, wrench). No ROS: links the hydro core, Eigen and gtest only.
 #include "hydro/thruster.h"
 
+#include "expect_error.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,25 +16,8 @@ namespace hydro {
 namespace {
 
 /// Runs `f`, expects std::invalid_argument, and returns its message ("" if nothing was thrown).
-template <typename F>
-std::string thrownMessage(F f)
-{
-  try
-  {
-    f();
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected std::invalid_argument";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
+using unexmin::test::contains;
+using unexmin::test::thrownMessage;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
