@@ -173,6 +173,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
         position = robot_.pendulum().angle();
         velocity = robot_.pendulum().velocity();
       }
+      sensors_->jointState(name, position, velocity);  // [sensors] MSIS head
       js.name.push_back(name);
       js.position.push_back(position);
       js.velocity.push_back(velocity);
