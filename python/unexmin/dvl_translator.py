@@ -19,7 +19,7 @@ Invalid values use the message's INVALID_* markers (0 for the times).
 
 import math
 
-import rospy
+from unexmin.translator_node import run
 from dvl_nortek.msg import DvlBottomWaterTrack
 
 from unexmin.msg import Dvl
@@ -127,34 +127,5 @@ def water_track_to_dvl(track, beam_angle, beam_azimuth=(0.0, math.pi / 2, math.p
     return out
 
 
-class DvlTranslator:
-    """ROS wrapper: ~input_topic (unexmin/Dvl) -> ~output_topic (dvl_nortek/DvlBottomWaterTrack)."""
-
-    def __init__(self):
-        self.load_params()
-        self.translated = 0
-        self.pub = rospy.Publisher(self.output_topic, DvlBottomWaterTrack, queue_size=self.queue_size)
-        self.sub = rospy.Subscriber(self.input_topic, Dvl, self.on_dvl, queue_size=self.queue_size,
-                                    tcp_nodelay=True)
-        rospy.loginfo("dvl_translator: %s -> %s", self.sub.resolved_name, self.pub.resolved_name)
-
-    def load_params(self):
-        """Every parameter, checked in one place (ValueError names the parameter)."""
-        self.input_topic = str(rospy.get_param("~input_topic", "dvl"))
-        self.output_topic = str(rospy.get_param("~output_topic", "dvl_water_track"))
-        self.queue_size = rospy.get_param("~queue_size", 100)
-        if not isinstance(self.queue_size, int) or self.queue_size < 1:
-            raise ValueError(f"parameter ~queue_size = {self.queue_size!r}: expected an integer >= 1")
-        for name in ("input_topic", "output_topic"):
-            if not getattr(self, name):
-                raise ValueError(f"parameter ~{name}: expected a topic name, got ''")
-
-    def on_dvl(self, msg):
-        self.pub.publish(dvl_to_water_track(msg))
-        self.translated += 1
-
-
 def main():
-    rospy.init_node("dvl_translator")
-    DvlTranslator()
-    rospy.spin()
+    run("dvl_translator", Dvl, DvlBottomWaterTrack, dvl_to_water_track, input_topic="dvl", output_topic="dvl_water_track", queue_size=100)

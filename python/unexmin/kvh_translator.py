@@ -10,7 +10,7 @@ publishes kvh/imu_raw itself with the same conversion (see docs/translators.md f
 the ~kvh_from_simulator switch). Parameters: docs/translators.md.
 """
 
-import rospy
+from unexmin.translator_node import run
 from kvh_1775.msg import ImuRawKvh
 
 from unexmin.msg import ImuRaw
@@ -50,34 +50,5 @@ def kvh_to_raw(kvh):
     return out
 
 
-class KvhTranslator:
-    """ROS wrapper: ~input_topic (ImuRaw) -> ~output_topic (ImuRawKvh), message by message."""
-
-    def __init__(self):
-        self.load_params()
-        self.translated = 0
-        self.pub = rospy.Publisher(self.output_topic, ImuRawKvh, queue_size=self.queue_size)
-        self.sub = rospy.Subscriber(self.input_topic, ImuRaw, self.on_raw, queue_size=self.queue_size,
-                                    tcp_nodelay=True)
-        rospy.loginfo("kvh_translator: %s -> %s", self.sub.resolved_name, self.pub.resolved_name)
-
-    def load_params(self):
-        """Every parameter, checked in one place (ValueError names the parameter)."""
-        self.input_topic = str(rospy.get_param("~input_topic", "kvh/raw"))
-        self.output_topic = str(rospy.get_param("~output_topic", "kvh/imu_raw"))
-        self.queue_size = rospy.get_param("~queue_size", 1000)
-        if not isinstance(self.queue_size, int) or self.queue_size < 1:
-            raise ValueError(f"parameter ~queue_size = {self.queue_size!r}: expected an integer >= 1")
-        for name in ("input_topic", "output_topic"):
-            if not getattr(self, name):
-                raise ValueError(f"parameter ~{name}: expected a topic name, got ''")
-
-    def on_raw(self, msg):
-        self.pub.publish(raw_to_kvh(msg))
-        self.translated += 1
-
-
 def main():
-    rospy.init_node("kvh_translator")
-    KvhTranslator()
-    rospy.spin()
+    run("kvh_translator", ImuRaw, ImuRawKvh, raw_to_kvh, input_topic="kvh/raw", output_topic="kvh/imu_raw", queue_size=1000)

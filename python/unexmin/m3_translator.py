@@ -12,7 +12,7 @@ inverse (no ROS master needed), so a round trip is testable. Parameters: docs/so
 
 import math
 
-import rospy
+from unexmin.translator_node import run
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import LaserScan, PointCloud2
 
@@ -42,34 +42,5 @@ def cloud_to_ranges(cloud, angle_min, angle_increment, beams):
     return ranges
 
 
-class M3Translator:
-    """ROS wrapper: ~input_topic (LaserScan) -> ~output_topic (PointCloud2 x y z)."""
-
-    def __init__(self):
-        self.load_params()
-        self.translated = 0
-        self.pub = rospy.Publisher(self.output_topic, PointCloud2, queue_size=self.queue_size)
-        self.sub = rospy.Subscriber(self.input_topic, LaserScan, self.on_scan, queue_size=self.queue_size,
-                                    tcp_nodelay=True)
-        rospy.loginfo("m3_translator: %s -> %s", self.sub.resolved_name, self.pub.resolved_name)
-
-    def load_params(self):
-        """Every parameter, checked in one place (ValueError names the parameter)."""
-        self.input_topic = str(rospy.get_param("~input_topic", "m3/scan"))
-        self.output_topic = str(rospy.get_param("~output_topic", "m3/points"))
-        self.queue_size = rospy.get_param("~queue_size", 100)
-        if not isinstance(self.queue_size, int) or self.queue_size < 1:
-            raise ValueError(f"parameter ~queue_size = {self.queue_size!r}: expected an integer >= 1")
-        for name in ("input_topic", "output_topic"):
-            if not getattr(self, name):
-                raise ValueError(f"parameter ~{name}: expected a topic name, got ''")
-
-    def on_scan(self, msg):
-        self.pub.publish(scan_to_cloud(msg))
-        self.translated += 1
-
-
 def main():
-    rospy.init_node("m3_translator")
-    M3Translator()
-    rospy.spin()
+    run("m3_translator", LaserScan, PointCloud2, scan_to_cloud, input_topic="m3/scan", output_topic="m3/points", queue_size=100)
