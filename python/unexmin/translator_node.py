@@ -40,5 +40,9 @@ class TranslatorNode:
 def run(name, *args, **kwargs):
     """main() of a translator node: init, construct, spin."""
     rospy.init_node(name)
-    TranslatorNode(name, *args, **kwargs)
+    try:
+        TranslatorNode(name, *args, **kwargs)
+    except ValueError as e:  # a bad parameter: one clear line, non-zero exit
+        rospy.logfatal(f"{name}: {e}")
+        raise SystemExit(1)
     rospy.spin()
