@@ -2,7 +2,6 @@
 """rostest: the navigation sensors and translators through ROS (test/rostest/sensors.test)."""
 
 import math
-import threading
 import unittest
 
 import rospy
@@ -14,6 +13,7 @@ from sensor_msgs.msg import FluidPressure, Imu, MagneticField, Range
 
 from unexmin import Simulation
 from unexmin.launcher import wait_for
+from unexmin.recorder import TopicRecorder
 from unexmin.msg import Dvl, ImuRaw
 
 NS = "/UX_1/"
@@ -31,44 +31,13 @@ FLOOR_Z = -3.0         # [m]
 HULL_R = 0.3           # [m]
 
 
-class Recorder:
-    """Every message of every topic, with big queues (a /sim/step burst is 500 messages a second)."""
-
-    def __init__(self):
-        self.lock = threading.Condition()
-        self.msgs = {t: [] for t in TOPICS}
-        self.subs = [rospy.Subscriber(NS + t, c, self.on, t, queue_size=10000, tcp_nodelay=True)
-                     for t, c in TOPICS.items()]
-
-    def on(self, msg, topic):
-        with self.lock:
-            self.msgs[topic].append(msg)
-            self.lock.notify_all()
-
-    def clear(self):
-        with self.lock:
-            for v in self.msgs.values():
-                v.clear()
-
-    def wait_until(self, topic, stamp, timeout=30.0):
-        """Block until `topic` has a message stamped >= stamp [s]."""
-        def ready():
-            m = self.msgs[topic]
-            return m and m[-1].header.stamp.to_sec() >= stamp - 1e-9
-        with self.lock:
-            if not self.lock.wait_for(ready, timeout):
-                raise AssertionError(f"{NS}{topic}: no message stamped {stamp} s within {timeout} s "
-                                     f"({len(self.msgs[topic])} received)")
-            return list(self.msgs[topic])
-
-
 class Sensors(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="sensors_test", timeout=60.0)
         cls.ux = cls.sim.robot("UX_1")
-        cls.rec = Recorder()
-        wait_for(lambda: all(s.get_num_connections() > 0 for s in cls.rec.subs), 30.0,
+        cls.rec = TopicRecorder(NS, TOPICS)
+        wait_for(cls.rec.connected, 30.0,
                  "every sensor topic to connect")
 
     def record(self):

@@ -2,7 +2,6 @@
 """rostest: the sonars and the M3 translator through ROS (test/rostest/sonar.test)."""
 
 import math
-import threading
 import unittest
 
 import rospy
@@ -13,6 +12,7 @@ from std_msgs.msg import Float64
 
 from unexmin import Simulation
 from unexmin.launcher import wait_for
+from unexmin.recorder import TopicRecorder
 
 NS = "/UX_1/"
 TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan,
@@ -23,37 +23,12 @@ MSIS_RATE = 25.0         # [steps/s] msis_step_rate
 MSIS_STEP = math.radians(0.9)
 
 
-class Recorder:
-    def __init__(self):
-        self.lock = threading.Condition()
-        self.msgs = {t: [] for t in TOPICS}
-        self.subs = [rospy.Subscriber(NS + t, c, self.on, t, queue_size=10000, tcp_nodelay=True)
-                     for t, c in TOPICS.items()]
-
-    def on(self, msg, topic):
-        with self.lock:
-            self.msgs[topic].append(msg)
-            self.lock.notify_all()
-
-    def clear(self):
-        with self.lock:
-            for v in self.msgs.values():
-                v.clear()
-
-    def wait_count(self, topic, n, timeout=30.0):
-        """Block until `topic` has n messages."""
-        with self.lock:
-            if not self.lock.wait_for(lambda: len(self.msgs[topic]) >= n, timeout):
-                raise AssertionError(f"{NS}{topic}: {len(self.msgs[topic])} of {n} messages within {timeout} s")
-            return list(self.msgs[topic])
-
-
 class Sonar(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="sonar_test", timeout=60.0)
-        cls.rec = Recorder()
-        wait_for(lambda: all(s.get_num_connections() > 0 for s in cls.rec.subs), 30.0, "every sonar topic to connect")
+        cls.rec = TopicRecorder(NS, TOPICS)
+        wait_for(cls.rec.connected, 30.0, "every sonar topic to connect")
 
     def record(self):
         """Reset to t = 0 (seed 1), step SECONDS of sim time, return every message of the record."""
