@@ -72,7 +72,7 @@ def node_pids(caller, names):
 
 def measure(sink_name, pace, window, workdir):
     from unexmin import Simulation
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.launcher import free_port, stop_process_group, wait_for
 
     cfg = SINKS[sink_name]
     topics = cfg["topics"]
@@ -134,12 +134,7 @@ def measure(sink_name, pace, window, workdir):
     finally:
         if counter and counter.poll() is None:
             counter.kill()
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGINT)
-            try:
-                proc.wait(30)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
+        stop_process_group(proc, 30.0)
         log.close()
 
 

@@ -33,7 +33,7 @@ RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
 
 def measure(robots, window, sink, workdir):
     from unexmin import Simulation
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.launcher import free_port, stop_process_group, wait_for
     import rosgraph
     import rospy
 
@@ -84,12 +84,7 @@ def measure(robots, window, sink, workdir):
     finally:
         if counter and counter.poll() is None:
             counter.kill()
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGINT)
-            try:
-                proc.wait(30)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
+        stop_process_group(proc, 30.0)
         log.close()
 
 

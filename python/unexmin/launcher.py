@@ -14,6 +14,19 @@ def free_port():
         return s.getsockname()[1]
 
 
+def stop_process_group(proc, timeout=15.0):
+    """SIGINT to the process group of `proc` (started with start_new_session=True), as Ctrl-C: ROS
+    nodes close their bags and save their maps; SIGKILL if it has not exited after `timeout` s."""
+    if proc.poll() is not None:
+        return
+    os.killpg(proc.pid, signal.SIGINT)
+    try:
+        proc.wait(timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+
+
 def wait_for(condition, timeout, what, poll=0.05):
     """Poll `condition()` until it is truthy; raise TimeoutError naming `what` after `timeout` s."""
     deadline = time.monotonic() + timeout
@@ -57,12 +70,6 @@ class WorldProcess:
 
     def close(self, timeout=15.0):
         """SIGINT (as Ctrl-C: nodes close bags and save maps), then SIGKILL if it hangs."""
-        if self.proc.poll() is None:
-            os.killpg(self.proc.pid, signal.SIGINT)
-            try:
-                self.proc.wait(timeout)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
+        stop_process_group(self.proc, timeout)
         if self._log not in (None, subprocess.DEVNULL):
             self._log.close()

@@ -13,7 +13,6 @@ import csv
 import json
 import math
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -21,7 +20,7 @@ import time
 import numpy as np
 
 from unexmin.allocation import ThrusterAllocator
-from unexmin.launcher import wait_for
+from unexmin.launcher import stop_process_group, wait_for
 
 ROBOT = "UX_1"
 # (name, body wrench [X Y Z K M N] in allocation units, duration [s])
@@ -75,16 +74,6 @@ def wait_until_written(path, timeout=30.0, quiet=0.5):
         return size > 0 and now - last[1] >= quiet
 
     wait_for(settled, timeout, f"{path} to be written", poll=0.1)
-
-
-def stop(proc, timeout=20.0):
-    if proc.poll() is None:
-        os.killpg(proc.pid, signal.SIGINT)  # rosbag closes the bag on SIGINT
-        try:
-            proc.wait(timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
 
 
 def read_trajectory(bag_path):
@@ -165,7 +154,7 @@ def run(out, seed):
         wait_until_written(bag + ".active")
     finally:
         if recorder is not None:
-            stop(recorder)
+            stop_process_group(recorder, 20.0)  # rosbag closes the bag on SIGINT
             log.close()
         sim.close()
     wall = time.monotonic() - wall0

@@ -11,12 +11,13 @@ and the three yellow hulls (urdf/properties.xacro hull_rgba) as three separate b
 """
 import os
 import shutil
-import signal
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from unexmin.launcher import stop_process_group
 
 REPO = Path(__file__).resolve().parents[2]
 DOCS_IMAGE = REPO / "docs" / "images" / "mine_rviz.png"
@@ -128,12 +129,7 @@ def test_shipped_config_shows_the_mine_and_three_robots(xvfb, tmp_path):
             DOCS_IMAGE.parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(shot, DOCS_IMAGE)
     finally:
-        os.killpg(launch.pid, signal.SIGINT)
-        try:
-            launch.wait(30)
-        except subprocess.TimeoutExpired:
-            os.killpg(launch.pid, signal.SIGKILL)
-            launch.wait()
+        stop_process_group(launch, 30.0)
         log.close()
 
 
