@@ -28,6 +28,7 @@ Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
 {
   for (const auto& tp : description.thrusters) thrusters_.push_back(std::make_unique<hydro::Thruster>(tp));
   propeller_angle_.assign(thrusters_.size(), 0.0);
+  for (const auto& tp : description.thrusters) rotor_speed_state_.push_back(tp.conversion == "basic");
   if (!description.pendulum_joint.empty()) pendulum_ = std::make_unique<hydro::Pendulum>(description.pendulum);
 
   const double radius = description.hydro.radius > 0.0 ? description.hydro.radius
@@ -120,7 +121,7 @@ void Robot::afterStep(double dt)
   if (dt > 0.0) acceleration_ = (toEigen(body_->getLinearVelocity()) - velocity_before_) / dt;
   for (std::size_t i = 0; i < thrusters_.size(); ++i) {
     const auto& th = *thrusters_[i];
-    const double rate = th.params().conversion == "basic"
+    const double rate = rotor_speed_state_[i]
                             ? th.state()
                             : std::copysign(kPropellerRadPerSqrtNewton * std::sqrt(std::abs(th.thrust())), th.thrust());
     propeller_angle_[i] = std::remainder(propeller_angle_[i] + rate * dt, 2.0 * M_PI);

@@ -93,6 +93,8 @@ private:
   hydro::FossenModel model_;
   std::vector<std::unique_ptr<hydro::Thruster>> thrusters_;
   std::vector<double> propeller_angle_;
+  /// Per thruster: its dynamics state is a rotor speed ("basic" conversion), decided once.
+  std::vector<bool> rotor_speed_state_;
   std::unique_ptr<hydro::Pendulum> pendulum_;
   hydro::Vbs vbs_;
   double engine_vbs_mass_ = 0.0;
