@@ -50,6 +50,16 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
     robots_.push_back(
         std::make_unique<RobotRos>(*world_, world_->robot(i), command_nh_, nh_, rates_, physics_rate_, received_));
 
+  // What scripts and tools learn from the simulator (docs/simulator_node.md): the spawned robots and their
+  // thruster counts.
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < world_->robotCount(); ++i) {
+    names.push_back(world_->robot(i).name());
+    nh_.setParam("/sim/thruster_count/" + world_->robot(i).name(),
+                 static_cast<int>(world_->robot(i).thrusterCount()));
+  }
+  nh_.setParam("/sim/robots", names);
+
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   current_pub_ = nh_.advertise<geometry_msgs::Vector3Stamped>("/current", 10);
   clock_every_ = every(physics_rate_, clock_rate_);
