@@ -3,8 +3,8 @@
 // on the watertight (robust) Embree scene we use by default and on Embree's default scene.
 // Coherent rays are M3-like sensor fans, incoherent rays start anywhere in the tunnel in any direction.
 // Not a test: results go to docs/benchmarks.md ("Ray casting"). Usage: ray_caster_bench [repetitions]
-#include "sonar/bullet_ray_caster.h"
-#include "sonar/embree_ray_caster.h"
+#include <unexmin/raycast/bullet_ray_caster.h>
+#include <unexmin/raycast/embree_ray_caster.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -20,7 +20,7 @@
 #include <vector>
 
 using unexmin::sim::TriangleMesh;
-using namespace unexmin::sonar;
+using namespace unexmin::raycast;
 
 namespace {
 

@@ -1,9 +1,15 @@
 // Cost of the navigation sensor models in the ROS-free core: World::step() of the UX-1 in the tank
-// with and without SensorSuite::update() after it (IMU every step, DVL 4 Bullet rays at 8 Hz,
-// pressure at 10 Hz). Built and run by bench/sensors_rtf.py --core with g++ (no catkin target):
+// with and without SensorSuite::update() after it (every sensor of the UX-1's description: IMU every step,
+// DVL 4 rays at 8 Hz, pressure, MSIS, M3; rays through the world's caster as the simulator builds it). Built
+// by catkin (target sensors_core_cost, not a test) and run by bench/sensors_rtf.py --core:
 //   sensors_core_cost <expanded UX-1 URDF> <tank.world> [steps]
-#include "sensors/bullet_ray_caster.h"
-#include "sensors/sensor_suite.h"
+#include <unexmin/raycast/ray_caster.h>
+#include <unexmin/sensors/dvl_sensor.h>
+#include <unexmin/sensors/imu_sensor.h>
+#include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/sensors/sensor_suite.h>
+#include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/sensors/sonar/msis_sensor.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -26,14 +32,23 @@ int main(int argc, char** argv)
   const sim::WorldConfig config = sim::loadWorldConfig(argv[2]);
   const std::map<std::string, sim::RobotDescription> d{{"UX_1", sim::parseRobotDescription(urdf.str(), argv[1])}};
   const long steps = argc > 3 ? std::atol(argv[3]) : 200000;
+  sensors::SensorFactory models;
+  models.add<sensors::ImuSensor>("imu");
+  models.add<sensors::DvlSensor>("dvl");
+  models.add<sensors::PressureSensor>("pressure");
+  models.add<sonar::MsisSensor>("msis");
+  models.add<sonar::M3Sensor>("m3");
   for (int with = 0; with < 2; ++with) {
     sim::World world(config, d, 1, 0.002, 0);
-    auto rays = std::make_shared<sensors::BulletRayCaster>(world.physics(), world.robot(0).body());
-    sensors::SensorSuite suite(world, world.robot(0), rays);
+    const auto caster = raycast::makeRayCaster(config.ray_caster, world);
+    sensors::SensorSuite suite(world, world.robot(0), caster.get(), models);
     const auto t0 = std::chrono::steady_clock::now();
     for (long i = 0; i < steps; ++i) {
       world.step();
-      if (with) suite.update();
+      if (with) {
+        caster->update();
+        suite.update();
+      }
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("%-22s %6.2f us/step  (RTF %6.0f)\n", with ? "physics + sensors" : "physics only", 1e6 * s / steps,

@@ -153,18 +153,16 @@ def count_bag(path, t0, t1, topics):
 
 
 def core_cost():
-    """Build and run bench/sensors_core_cost.cpp against the workspace's core libraries."""
+    """Run the catkin-built bench/sensors_core_cost.cpp (devel/lib/unexmin/sensors_core_cost)."""
     repo, ws = HERE.parent, Path(os.environ.get("UNEXMIN_WS", HERE.parent.parent / "main_ws"))
+    exe = ws / "devel" / "lib" / "unexmin" / "sensors_core_cost"
+    if not exe.exists():
+        sys.exit(f"{exe} is missing: build the workspace first (bash scripts/setup.sh)")
     with tempfile.TemporaryDirectory() as tmp:
-        exe, urdf = Path(tmp) / "sensors_core_cost", Path(tmp) / "ux1.urdf"
+        urdf = Path(tmp) / "ux1.urdf"
         xacro = shutil.which("xacro") or str(Path(sys.executable).parent / "xacro")
         urdf.write_text(subprocess.run([xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"],
                                        capture_output=True, text=True, check=True).stdout)
-        lib = ws / "devel" / "lib"
-        subprocess.run(["g++", "-O2", "-std=c++17", str(HERE / "sensors_core_cost.cpp"), "-o", str(exe),
-                        f"-I{repo / 'cpp'}", "-I/usr/include/eigen3", "-I/usr/include/bullet", f"-L{lib}",
-                        f"-Wl,-rpath,{lib}", "-lunexmin_sensors", "-lunexmin_sim", "-lunexmin_hydro",
-                        "-lBulletDynamics", "-lBulletCollision", "-lLinearMath"], check=True)
         subprocess.run([str(exe), str(urdf), str(repo / "worlds" / "tank.world")], check=True)
 
 

@@ -1,5 +1,7 @@
-// Shared by the core's gtests: the message of an expected std::invalid_argument.
+// Shared by the core's gtests: the message of an expected ParameterError.
 #pragma once
+
+#include <unexmin/core/error.h>
 
 #include <gtest/gtest.h>
 
@@ -9,16 +11,16 @@
 namespace unexmin {
 namespace test {
 
-/// The what() of the std::invalid_argument that f throws; a test failure if it throws none.
+/// The what() of the ParameterError that f throws; a test failure if it throws none.
 template <typename F>
 std::string thrownMessage(F f)
 {
   try {
     f();
-  } catch (const std::invalid_argument& e) {
+  } catch (const ParameterError& e) {
     return e.what();
   }
-  ADD_FAILURE() << "expected std::invalid_argument";
+  ADD_FAILURE() << "expected ParameterError";
   return "";
 }
 

@@ -1,10 +1,16 @@
 // Test fixture for the navigation sensors: the sphere robot of sphere_fixture.h plus sensor mount
 // links and <sensor> elements written by the test, and a world (open water or a shipped world file)
-// with that robot and its SensorSuite (Bullet ray caster, own hull excluded).
+// with that robot and its SensorSuite casting through the world's ray caster as the simulator builds it
+// (raycast::makeRayCaster, Embree by default; own hull excluded).
 #pragma once
 
-#include "sensors/bullet_ray_caster.h"
-#include "sensors/sensor_suite.h"
+#include <unexmin/raycast/ray_caster.h>
+#include <unexmin/sensors/dvl_sensor.h>
+#include <unexmin/sensors/imu_sensor.h>
+#include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/sensors/sonar/msis_sensor.h>
+#include <unexmin/sensors/sensor_suite.h>
 #include "sphere_fixture.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -69,25 +75,50 @@ inline std::string num(double v)
   return o.str();
 }
 
-/// A world with one robot (named after the world's first spawn) described by `urdf`, and the
-/// robot's sensor suite, reset with the world's seed.
+/// The core's models of the simulator's sensor families (the simulator registers the same ones, with their
+/// publishers, in cpp/unexmin/ros/sensor_families.cpp).
+inline const sensors::SensorFactory& coreModels()
+{
+  static const sensors::SensorFactory factory = [] {
+    sensors::SensorFactory f;
+    f.add<sensors::ImuSensor>("imu");
+    f.add<sensors::DvlSensor>("dvl");
+    f.add<sensors::PressureSensor>("pressure");
+    f.add<sonar::MsisSensor>("msis");
+    f.add<sonar::M3Sensor>("m3");
+    return f;
+  }();
+  return factory;
+}
+
+/// A world with one robot (named after the world's first spawn) described by `urdf`, the world's ray caster
+/// of back end `backend` and the robot's sensor suite, reset with the world's seed.
 struct SensorWorld
 {
-  SensorWorld(const sim::WorldConfig& config, const std::string& urdf, std::uint64_t seed = 1, double dt = 0.002)
+  SensorWorld(const sim::WorldConfig& config, const std::string& urdf, std::uint64_t seed = 1, double dt = 0.002,
+              const std::string& backend = "embree")
   {
     std::map<std::string, sim::RobotDescription> d;
     d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf, "(test robot)"));
     world = std::make_unique<sim::World>(config, d, 1, dt, seed);
-    auto rays = std::make_shared<sensors::BulletRayCaster>(world->physics(), robot().body());
-    suite = std::make_unique<sensors::SensorSuite>(*world, robot(), rays);
+    caster = raycast::makeRayCaster(backend, *world);
+    caster->update();
+    suite = std::make_unique<sensors::SensorSuite>(*world, robot(), caster.get(), coreModels());
   }
 
   sim::Robot& robot() { return world->robot(0); }
-  /// One physics step and the sensors after it.
+  /// One physics step and the sensors after it (the caster updated in between, as the simulator does).
   void step()
   {
     world->step();
+    caster->update();
     suite->update();
+  }
+  /// Steps until sensor `s` has taken `n` more samples.
+  void samples(const sensors::Sensor& s, std::uint64_t n)
+  {
+    const std::uint64_t target = s.sampleCount() + n;
+    while (s.sampleCount() < target) step();
   }
   template <class T>
   T& sensor(const std::string& name)
@@ -104,6 +135,7 @@ struct SensorWorld
   }
 
   std::unique_ptr<sim::World> world;
+  std::unique_ptr<raycast::RayCaster> caster;
   std::unique_ptr<sensors::SensorSuite> suite;
 };
 

@@ -1,12 +1,11 @@
 // Test fixture for the sonars (cpp/sonar/msis_sensor.h, m3_sensor.h): the sphere robot of sphere_fixture.h
 // with an MSIS head (base on the hull top, head on a continuous joint about z) and an M3 link, worlds of STL
 // meshes written by the test (icosphere, boxes) or shipped world files, and the robot's SensorSuite casting
-// through the Embree back end (sonar::SensorRays, the simulator's default).
+// through the world's Embree caster (the simulator's default).
 #pragma once
 
 #include "mesh_fixture.h"
 #include "sensor_fixture.h"
-#include "sonar/sensor_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -46,22 +45,8 @@ inline std::string msisLinks(const Eigen::Vector3d& base_xyz = Eigen::Vector3d(0
          num(head_height) + "' rpy='0 0 0'/><axis xyz='0 0 1'/></joint>\n";
 }
 
-/// A world of `config` with one robot of `urdf`, its suite casting through the Embree adapter.
-struct SonarWorld : SensorWorld
-{
-  SonarWorld(const sim::WorldConfig& config, const std::string& urdf, std::uint64_t seed = 1)
-      : SensorWorld(config, urdf, seed)
-  {
-    suite.reset();
-    suite = std::make_unique<sensors::SensorSuite>(*world, robot(), sonar::SensorRays::forRobot(*world, robot()));
-  }
-  /// Steps until sensor `s` has taken `n` more samples.
-  void samples(const sensors::Sensor& s, std::uint64_t n)
-  {
-    const std::uint64_t target = s.sampleCount() + n;
-    while (s.sampleCount() < target) step();
-  }
-};
+/// The sonar tests' world: a SensorWorld (Embree caster).
+using SonarWorld = SensorWorld;
 
 }  // namespace test
 }  // namespace unexmin

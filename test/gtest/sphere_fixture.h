@@ -2,8 +2,8 @@
 // engine against closed-form answers for parameters they choose (not against the shipped defaults).
 #pragma once
 
-#include "sim/robot_description.h"
-#include "sim/world.h"
+#include <unexmin/sim/robot_description.h>
+#include <unexmin/sim/world.h>
 
 #include <cmath>
 #include <map>

@@ -1,6 +1,6 @@
 // Malformed world and robot files stop start-up with one clear message naming the file and problem.
-#include "sim/robot_description.h"
-#include "sim/world.h"
+#include <unexmin/sim/robot_description.h>
+#include <unexmin/sim/world.h>
 #include "sphere_fixture.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <regex>
 
-using unexmin::sim::ConfigError;
+using unexmin::ConfigError;
 
 namespace {
 

@@ -1,6 +1,6 @@
 // CurrentModel: bounded Gauss-Markov (Ornstein-Uhlenbeck) channels, seeded, against their
 // closed-form statistics. No ROS: links the hydro core, Eigen and gtest only.
-#include "hydro/current.h"
+#include <unexmin/hydro/current.h>
 
 #include "expect_error.h"
 
@@ -209,7 +209,7 @@ TEST(CurrentModel, AccelerationIsTheVelocityChangeOverTheStep)
   model.update(0.0);  // no time: no change, no acceleration
   EXPECT_EQ(model.speed(), speed);
   EXPECT_EQ(model.acceleration(), Eigen::Vector3d::Zero());
-  EXPECT_THROW(model.update(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(model.update(std::numeric_limits<double>::quiet_NaN()), ParameterError);
 }
 
 // ---------------------------------------------------------------------------------- statistics
@@ -278,7 +278,7 @@ TEST(CurrentModel, ValidationNamesTheChannelAndField)
   const std::string m = thrownMessage([&] { validate(p); });
   EXPECT_TRUE(contains(m, "current.speed.min")) << m;
   EXPECT_TRUE(contains(m, "0.5")) << m;
-  EXPECT_THROW(CurrentModel(p, 1), std::invalid_argument);
+  EXPECT_THROW(CurrentModel(p, 1), ParameterError);
 
   p = mineCurrent();
   p.horizontal_angle.mean = 0.7;  // outside [-0.5, 0.5]

@@ -2,7 +2,7 @@
 // beam ranges against the analytic distance to the floor, velocity against the set robot velocity,
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.
 #include "sensor_fixture.h"
-#include "sensors/dvl_sensor.h"
+#include <unexmin/sensors/dvl_sensor.h>
 
 #include <gtest/gtest.h>
 
@@ -207,7 +207,7 @@ std::string startupError(const std::string& urdf)
 {
   try {
     SensorWorld w(tank(), urdf);
-  } catch (const sim::ConfigError& e) {
+  } catch (const ConfigError& e) {
     return e.what();
   }
   return "";

@@ -1,6 +1,6 @@
 // FossenModel, submergedFraction and restoringWrench against closed-form physics.
 // No ROS: links the hydro core, Eigen and gtest only.
-#include "hydro/fossen_model.h"
+#include <unexmin/hydro/fossen_model.h>
 
 #include <gtest/gtest.h>
 
@@ -82,7 +82,7 @@ std::string validationMessage(const HydroParams& p)
   {
     validate(p);
   }
-  catch (const std::invalid_argument& e)
+  catch (const ParameterError& e)
   {
     return e.what();
   }
@@ -306,7 +306,7 @@ TEST(FossenModel, ValidationNamesTheParameter)
 
   HydroParams p = sphereParams();
   p.mass = -1.0;
-  EXPECT_THROW(FossenModel{p}, std::invalid_argument);
+  EXPECT_THROW(FossenModel{p}, ParameterError);
   EXPECT_NE(validationMessage(p).find("'mass' = -1 must be > 0 [kg]"), std::string::npos)
       << validationMessage(p);
 

@@ -1,7 +1,7 @@
 // The "gaussian" and "none" noise families (cpp/sensors/gaussian_noise.h, noise_model.h): white
 // noise standard deviation, bias random-walk growth K^2 t, turn-on bias spread, exact "none", errors.
-#include "sensors/gaussian_noise.h"
-#include "sensors/noise_model.h"
+#include <unexmin/sensors/gaussian_noise.h>
+#include <unexmin/sensors/noise_model.h>
 
 #include <gtest/gtest.h>
 
@@ -69,11 +69,11 @@ TEST(NoiseModel, NoneReturnsTheTruthAndUnknownFamiliesAreRefused)
   try {
     createNoise("violet", p);
     FAIL() << "an unknown family was accepted";
-  } catch (const std::invalid_argument& e) {
+  } catch (const ParameterError& e) {
     EXPECT_NE(std::string(e.what()).find("'violet'"), std::string::npos) << e.what();
   }
   p.white = -1.0;
-  EXPECT_THROW(createNoise("gaussian", p), std::invalid_argument);
+  EXPECT_THROW(createNoise("gaussian", p), ParameterError);
 }
 
 TEST(Random, StreamsDependOnSeedRobotAndSensor)

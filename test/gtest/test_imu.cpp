@@ -2,7 +2,7 @@
 // rate, lever-arm accelerations under a known torque, the world's magnetic field, the Allan deviation
 // of the configured white noise, seeded repeatability and start-up errors.
 #include "sensor_fixture.h"
-#include "sensors/imu_sensor.h"
+#include <unexmin/sensors/imu_sensor.h>
 
 #include <gtest/gtest.h>
 
@@ -172,7 +172,7 @@ TEST(Imu, MagneticFieldComesFromTheWorldFile)
   try {
     sim::loadWorldConfig(path);
     FAIL() << "a 2-vector field was accepted";
-  } catch (const sim::ConfigError& e) {
+  } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("'magnetic_field' must be a list of 3 numbers"), std::string::npos) << e.what();
   }
   write("");
@@ -256,7 +256,7 @@ std::string startupError(const std::string& urdf)
 {
   try {
     SensorWorld w(openWater(SphereSpec()), urdf);
-  } catch (const sim::ConfigError& e) {
+  } catch (const ConfigError& e) {
     return e.what();
   }
   return "";

@@ -1,7 +1,7 @@
 // M3 multibeam model (cpp/sonar/m3_sensor.h) in the 4 m test box (worlds/test_box.world, walls at +-2 m):
 // every beam's range against the analytic distance to the walls (+-1 cm), the REP-117 markers beyond
 // range_max and inside range_min, Gaussian range noise, seeds, the 40 Hz schedule and start-up errors.
-#include "sonar/m3_sensor.h"
+#include <unexmin/sensors/sonar/m3_sensor.h>
 #include "sonar_fixture.h"
 
 #include <gtest/gtest.h>
@@ -134,7 +134,7 @@ TEST(M3, BadParametersNameTheSensorAndTheParameter)
     try {
       SonarWorld w(testBox(), m3Urdf({{key, value}}));
       ADD_FAILURE() << "no error for " << key << " = " << value;
-    } catch (const sim::ConfigError& e) {
+    } catch (const ConfigError& e) {
       const std::string m = e.what();
       EXPECT_NE(m.find("sensor 'm3'"), std::string::npos) << m;
       EXPECT_NE(m.find("'" + key + "'"), std::string::npos) << m;

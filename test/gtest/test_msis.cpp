@@ -1,7 +1,7 @@
 // MSIS model (cpp/sonar/msis_sensor.h, echo_model.h) against closed-form answers computed here: bin lines
 // inside a sphere centred on the head and in a 4 m box, the head's step schedule, each noise model on and off,
 // seeds, a 360 deg sweep in the shipped tank (walls and anchor), and start-up errors naming the parameter.
-#include "sonar/msis_sensor.h"
+#include <unexmin/sensors/sonar/msis_sensor.h>
 #include "sonar_fixture.h"
 
 #include <gtest/gtest.h>
@@ -325,7 +325,7 @@ TEST(Msis, BadParametersNameTheSensorAndTheParameter)
     try {
       SonarWorld w(sphereWorld(2.0), msisUrdf(p, rate));
       FAIL() << "no error for " << what;
-    } catch (const sim::ConfigError& e) {
+    } catch (const ConfigError& e) {
       const std::string m = e.what();
       EXPECT_NE(m.find("sensor 'msis'"), std::string::npos) << m;
       EXPECT_NE(m.find("'" + what + "'"), std::string::npos) << m;

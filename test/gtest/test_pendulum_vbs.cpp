@@ -1,6 +1,6 @@
 // Pendulum (constant-speed travel to a target, limits, mass position) and Vbs (limits).
 // No ROS: links the hydro core, Eigen and gtest only.
-#include "hydro/pendulum.h"
+#include <unexmin/hydro/pendulum.h>
 
 #include "expect_error.h"
 
@@ -97,7 +97,7 @@ TEST(Pendulum, LastStepVelocityIsTheActualRate)
   EXPECT_NEAR(p.velocity(), 0.005 / 0.2, 1e-12);
   p.update(0.0);  // no time, no motion
   EXPECT_EQ(p.velocity(), 0.0);
-  EXPECT_THROW(p.update(kNaN), std::invalid_argument);
+  EXPECT_THROW(p.update(kNaN), ParameterError);
 }
 
 TEST(Pendulum, ReversesWhenTheTargetChanges)

@@ -1,7 +1,7 @@
 // Pressure model (cpp/sensors/pressure_sensor.h): atmospheric + rho g depth at the sensor link,
 // within the configured noise; atmospheric above the surface; full-scale clamp; start-up errors.
 #include "sensor_fixture.h"
-#include "sensors/pressure_sensor.h"
+#include <unexmin/sensors/pressure_sensor.h>
 
 #include <gtest/gtest.h>
 
@@ -75,7 +75,7 @@ TEST(Pressure, MalformedParametersStopStartUpNamingSensorAndParameter)
   try {
     SensorWorld w(openWater(s), pressureUrdf(s, Eigen::Vector3d::Zero(), 10.0, {{"pressure_noise", "-3"}}));
     FAIL() << "a negative noise was accepted";
-  } catch (const sim::ConfigError& e) {
+  } catch (const ConfigError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("sensor 'pressure'"), std::string::npos) << m;
     EXPECT_NE(m.find("'pressure_noise' = -3"), std::string::npos) << m;

@@ -1,8 +1,8 @@
-// Ray caster (cpp/sonar) against closed-form answers computed here: an icosphere, a box, a plane, sphere
+// Ray caster (cpp/unexmin/raycast) against closed-form answers computed here: an icosphere, a box, a plane, sphere
 // robots; the Embree and Bullet back ends against each other in the shipped tank; thread-count invariance.
 // Every geometry goes through a World built from STL files written by the test (the path sensors use).
 #include "mesh_fixture.h"
-#include "sonar/ray_caster.h"
+#include <unexmin/raycast/ray_caster.h>
 #include "sphere_fixture.h"
 
 #include <gtest/gtest.h>
@@ -20,9 +20,9 @@
 #include <vector>
 
 using namespace unexmin;
-using sonar::Hit;
-using sonar::HitKind;
-using sonar::Ray;
+using raycast::Hit;
+using raycast::HitKind;
+using raycast::Ray;
 using test::box;
 using test::Geometry;
 using test::icosphere;
@@ -75,11 +75,11 @@ double sphereExit(const Eigen::Vector3d& p, const Eigen::Vector3d& u, const Eige
   return -b + std::sqrt(b * b - (m.squaredNorm() - r * r));
 }
 
-std::unique_ptr<sonar::RayCaster> caster(const std::string& backend, sim::World& world, int threads = 0)
+std::unique_ptr<raycast::RayCaster> caster(const std::string& backend, sim::World& world, int threads = 0)
 {
-  sonar::RayCasterOptions options;
+  raycast::RayCasterOptions options;
   options.threads = threads;
-  return sonar::makeRayCaster(backend, world, options);
+  return raycast::makeRayCaster(backend, world, options);
 }
 
 class RayCasterBackend : public ::testing::TestWithParam<std::string>
@@ -244,7 +244,7 @@ TEST_P(RayCasterBackend, OtherRobotsAreHitTheExcludedOneIsNot)
   const double r = test::SphereSpec().radius;
   auto world = makeWorld({{"room", box({-5, -5, -5}, {5, 5, 5})}}, {{0, 0, 0}, {1.2, 0, 0}, {-1.2, 0, 0}});
   auto rc = caster(GetParam(), *world);
-  const auto spheres = sonar::robotSpheres(*world);
+  const auto spheres = raycast::robotSpheres(*world);
   ASSERT_EQ(spheres.size(), 3u);
   EXPECT_NEAR(spheres[1].radius, r, 1e-6) << "hull radius from the robot description";
   const double tol = 1e-5;  // robot hulls are exact spheres in both back ends
@@ -345,10 +345,10 @@ TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks)
   }
   int escaped[2] = {0, 0};
   for (bool watertight : {false, true}) {
-    sonar::RayCasterOptions options;
+    raycast::RayCasterOptions options;
     options.watertight = watertight;
     std::vector<Hit> hits;
-    sonar::makeRayCaster("embree", *world, options)->cast(rays, hits);
+    raycast::makeRayCaster("embree", *world, options)->cast(rays, hits);
     for (const Hit& h : hits) escaped[watertight] += h.hit() ? 0 : 1;
   }
   EXPECT_GT(escaped[0], 20) << "Embree's default test should leak at edges (else this test proves nothing)";
@@ -409,7 +409,7 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
   for (const auto& spawn : config.robots)
     d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
   sim::World world(config, d, -1, 0.002, 1);
-  const auto spheres = sonar::robotSpheres(world);
+  const auto spheres = raycast::robotSpheres(world);
   // Interior 6 x 4 m, floor at z = -3, rim at +0.3 (worlds/tank.world); origins in the water, outside the hulls.
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> ux(-2.99, 2.99), uy(-1.99, 1.99), uz(-2.99, 0.29), ur(0.5, 12.0);
@@ -477,20 +477,20 @@ TEST(RayCaster, DefectsAreNamed)
 {
   auto world = makeWorld({{"room", box({-1, -1, -1}, {1, 1, 1})}});
   try {
-    sonar::makeRayCaster("optix", *world);
+    raycast::makeRayCaster("optix", *world);
     FAIL() << "an unknown back end must throw";
-  } catch (const sonar::RayCasterError& e) {
+  } catch (const RayCasterError& e) {
     EXPECT_NE(std::string(e.what()).find("unknown back end 'optix' (accepted: embree, bullet)"), std::string::npos)
         << e.what();
   }
-  EXPECT_STREQ(sonar::makeRayCaster("", *world)->name(), "embree") << "embree is the default";
-  EXPECT_STREQ(sonar::makeRayCaster("bullet", *world)->name(), "bullet");
-  auto rc = sonar::makeRayCaster("embree", *world);
+  EXPECT_STREQ(raycast::makeRayCaster("", *world)->name(), "embree") << "embree is the default";
+  EXPECT_STREQ(raycast::makeRayCaster("bullet", *world)->name(), "bullet");
+  auto rc = raycast::makeRayCaster("embree", *world);
   std::vector<Hit> hits;
   const auto message = [&](const std::vector<Ray>& rays, int exclude) {
     try {
       rc->cast(rays, hits, exclude);
-    } catch (const sonar::RayCasterError& e) {
+    } catch (const RayCasterError& e) {
       return std::string(e.what());
     }
     return std::string();
@@ -504,10 +504,10 @@ TEST(RayCaster, DefectsAreNamed)
   nan_origin.origin.x() = NAN;
   EXPECT_NE(message({good, good, good, not_unit}, -1).find("ray 3: direction (1, 1, 0) is not a unit vector"),
             std::string::npos);
-  EXPECT_NE(message({good, no_range}, -1).find("ray 1: max_range 0.000000 m must be finite and > 0"),
+  EXPECT_NE(message({good, no_range}, -1).find("ray 1: max_range 0 m must be finite and > 0"),
             std::string::npos);
   EXPECT_NE(message({nan_origin}, -1).find("ray 0: origin"), std::string::npos);
   EXPECT_NE(message({good}, -2).find("exclude_robot = -2"), std::string::npos);
   EXPECT_EQ(message({good}, -1), "");
-  EXPECT_THROW(caster("embree", *world, -1), sonar::RayCasterError);
+  EXPECT_THROW(caster("embree", *world, -1), RayCasterError);
 }

@@ -1,6 +1,6 @@
 // Thruster dynamics, thrust conversions, their factories and the Thruster (saturation, command
 // guard, watchdog, wrench). No ROS: links the hydro core, Eigen and gtest only.
-#include "hydro/thruster.h"
+#include <unexmin/hydro/thruster.h>
 
 #include "expect_error.h"
 
@@ -15,7 +15,7 @@ namespace unexmin {
 namespace hydro {
 namespace {
 
-/// Runs `f`, expects std::invalid_argument, and returns its message ("" if nothing was thrown).
+/// Runs `f`, expects ParameterError, and returns its message ("" if nothing was thrown).
 using unexmin::test::contains;
 using unexmin::test::thrownMessage;
 
@@ -59,8 +59,8 @@ TEST(ThrusterDynamics, FirstOrderIsExactForOneBigStep)
   EXPECT_NEAR(huge.update(2.0, 1000.0 * tau), 2.0, 1e-12);
   // dt = 0 changes nothing; negative or non-finite dt is a programming error.
   EXPECT_NEAR(huge.update(-5.0, 0.0), 2.0, 1e-12);
-  EXPECT_THROW(huge.update(1.0, -0.1), std::invalid_argument);
-  EXPECT_THROW(huge.update(1.0, kNaN), std::invalid_argument);
+  EXPECT_THROW(huge.update(1.0, -0.1), ParameterError);
+  EXPECT_THROW(huge.update(1.0, kNaN), ParameterError);
   huge.reset();
   EXPECT_EQ(huge.state(), 0.0);
 }
@@ -173,7 +173,7 @@ TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes)
 
 TEST(ThrusterFactories, BadParametersNameTheParameter)
 {
-  EXPECT_THROW(makeThrusterDynamics("first_order", {}), std::invalid_argument);
+  EXPECT_THROW(makeThrusterDynamics("first_order", {}), ParameterError);
   EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {}); }), "'tau'"));
   EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {{"tau", {0.1, 0.2}}}); }),
                        "'tau'"));
@@ -379,8 +379,8 @@ TEST(Thruster, ConstructorValidatesGeometryLimitsAndFamilies)
   EXPECT_TRUE(contains(thrownMessage([&] { Thruster t(p); }), "'lookup'"));
 
   Thruster ok(identityThruster());
-  EXPECT_THROW(ok.update(kNaN, 0.01), std::invalid_argument);
-  EXPECT_THROW(ok.update(1.0, -0.01), std::invalid_argument);
+  EXPECT_THROW(ok.update(kNaN, 0.01), ParameterError);
+  EXPECT_THROW(ok.update(1.0, -0.01), ParameterError);
 }
 
 }  // namespace

@@ -1,0 +1,54 @@
+// Ray caster on Intel Embree 3: the static meshes in one BVH scene (robust, watertight by default), the
+// robots as analytic spheres. The default back end ("embree").
+#pragma once
+
+#include <unexmin/sim/mesh.h>
+#include <unexmin/raycast/ray_caster.h>
+
+#include <embree3/rtcore.h>
+
+namespace unexmin {
+namespace raycast {
+
+class EmbreeRayCaster : public RayCaster
+{
+public:
+  /// Casts against `meshes` (world frame; Hit::index of a mesh hit is its position in this list, nullptr
+  /// entries are skipped, e.g. visual-only meshes) and the spheres `robots` fills on update() (may be empty:
+  /// no robots). The triangles are copied: the meshes need not outlive the caster. Throws RayCasterError on a
+  /// mesh index out of range or an Embree error.
+  EmbreeRayCaster(const std::vector<const sim::TriangleMesh*>& meshes, RobotSphereSource robots,
+                  const RayCasterOptions& options = RayCasterOptions());
+  /// The world's collision meshes (its non-collision meshes are not seen) and robots; the world must
+  /// outlive the caster.
+  explicit EmbreeRayCaster(sim::World& world, const RayCasterOptions& options = RayCasterOptions());
+  ~EmbreeRayCaster() override;
+
+  const char* name() const override { return "embree"; }
+  void update() override;
+
+  /// The committed Embree scene (geometry ID = mesh index), for benchmarks and tools that call Embree directly.
+  RTCScene scene() const { return scene_; }
+  /// Robot spheres as of the last update().
+  const std::vector<RobotSphere>& robots() const { return robots_; }
+
+  /// A block counts as coherent (Embree's coherent stream mode) when every ray starts within this distance
+  /// [m] of the block's first ray and points within kCoherentCos (cosine) of its direction: sensor fans.
+  static constexpr float kCoherentOrigin = 0.5f;
+  static constexpr float kCoherentCos = 0.7071f;  // 45 deg
+
+protected:
+  void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const override;
+
+private:
+  void build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight);
+  void check(const char* what) const;
+
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  RobotSphereSource source_;
+  std::vector<RobotSphere> robots_;
+};
+
+}  // namespace raycast
+}  // namespace unexmin

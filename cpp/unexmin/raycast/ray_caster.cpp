@@ -1,0 +1,229 @@
+#include <unexmin/raycast/ray_caster.h>
+
+#include <unexmin/sim/world.h>
+#include <unexmin/raycast/bullet_ray_caster.h>
+#include <unexmin/raycast/embree_ray_caster.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+namespace unexmin {
+namespace raycast {
+
+/// A fixed set of worker threads that, with the caller, run the blocks [0, n) of one job at a time.
+class WorkerPool
+{
+public:
+  using Job = std::function<void(std::size_t)>;
+
+  explicit WorkerPool(int threads)
+  {
+    for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { loop(); });
+  }
+
+  ~WorkerPool()
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (auto& w : workers_) w.join();
+  }
+
+  int threads() const { return static_cast<int>(workers_.size()) + 1; }
+
+  /// Runs job(b) for every b in [0, blocks) on the workers and the caller; returns when all are done.
+  /// Returns false without running anything when another call is using the workers. Workers that wake
+  /// only after the caller has taken the last block stay out, so a descheduled worker never delays it.
+  bool tryRun(std::size_t blocks, const Job& job)
+  {
+    std::unique_lock<std::mutex> busy(run_mutex_, std::try_to_lock);
+    if (!busy.owns_lock()) return false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      job_ = &job;
+      blocks_ = blocks;
+      next_.store(0);
+      open_ = true;
+      ++generation_;
+    }
+    wake_.notify_all();
+    drain(job, blocks);
+    std::unique_lock<std::mutex> lock(mutex_);
+    open_ = false;
+    done_.wait(lock, [this] { return active_ == 0; });
+    job_ = nullptr;
+    return true;
+  }
+
+private:
+  void drain(const Job& job, std::size_t blocks)
+  {
+    for (std::size_t b = next_.fetch_add(1); b < blocks; b = next_.fetch_add(1)) job(b);
+  }
+
+  void loop()
+  {
+    std::uint64_t seen = 0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      if (!open_) continue;  // the caller already finished this job
+      ++active_;
+      const Job* job = job_;
+      const std::size_t blocks = blocks_;
+      lock.unlock();
+      drain(*job, blocks);
+      lock.lock();
+      if (--active_ == 0) done_.notify_one();
+    }
+  }
+
+  std::vector<std::thread> workers_;
+  std::mutex run_mutex_;  // one job at a time
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  const Job* job_ = nullptr;
+  std::size_t blocks_ = 0;
+  std::atomic<std::size_t> next_{0};
+  bool open_ = false;     // the current job still takes workers
+  int active_ = 0;        // workers inside the current job
+  std::uint64_t generation_ = 0;
+  bool stop_ = false;
+};
+
+namespace {
+
+int resolveThreads(int threads)
+{
+  if (threads < 0) throw RayCasterError("ray caster: threads = " + formatNumber(threads) + " must be >= 0 (0 = all)");
+  if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return threads;
+}
+
+std::string describe(const Eigen::Vector3f& v)
+{
+  std::ostringstream o;
+  o << '(' << v.x() << ", " << v.y() << ", " << v.z() << ')';
+  return o.str();
+}
+
+/// Throws RayCasterError naming ray i and its defect.
+void checkRay(const Ray& ray, std::size_t i)
+{
+  const auto bad = [&](const std::string& what) {
+    return RayCasterError("ray caster: ray " + formatNumber(i) + ": " + what);
+  };
+  if (!ray.origin.allFinite()) throw bad("origin " + describe(ray.origin) + " is not finite");
+  // |d|^2 within 1 +- 2e-3 <=> |d| within 1 +- 1e-3; written so that NaN fails.
+  if (!(std::abs(ray.direction.squaredNorm() - 1.0f) <= 2e-3f))
+    throw bad("direction " + describe(ray.direction) + " is not a unit vector");
+  if (!(ray.max_range > 0.0f) || !std::isfinite(ray.max_range))
+    throw bad("max_range " + formatNumber(ray.max_range) + " m must be finite and > 0");
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const RayCasterOptions& options)
+    : pool_(std::make_unique<WorkerPool>(resolveThreads(options.threads)))
+{
+}
+
+RayCaster::~RayCaster() = default;
+
+int RayCaster::threads() const { return pool_->threads(); }
+
+void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot) const
+{
+  hits.resize(rays.size());
+  cast(rays.data(), hits.data(), rays.size(), exclude_robot);
+}
+
+void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const
+{
+  if (exclude_robot < -1)
+    throw RayCasterError("ray caster: exclude_robot = " + formatNumber(exclude_robot) +
+                         " must be a robot index or -1 (none)");
+  for (std::size_t i = 0; i < n; ++i) checkRay(rays[i], i);
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  const WorkerPool::Job one = [&](std::size_t b) {
+    const std::size_t start = b * kBlock;
+    castBlock(rays + start, hits + start, std::min(kBlock, n - start), exclude_robot);
+  };
+  if (n >= kParallelMin && pool_->threads() > 1 && pool_->tryRun(blocks, one)) return;
+  for (std::size_t b = 0; b < blocks; ++b) one(b);
+}
+
+void RayCaster::finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
+                          Hit& hit)
+{
+  const float length = surface_normal.norm();
+  Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
+  float c = n.dot(ray.direction);
+  if (c > 0.0f) {
+    n = -n;
+    c = -c;
+  }
+  hit.range = range;
+  hit.normal = n;
+  // atan2 keeps full precision near head-on incidence, where acos(-c) would not.
+  hit.incidence = std::atan2(n.cross(ray.direction).norm(), -c);
+  hit.kind = kind;
+  hit.index = index;
+}
+
+bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r, double& t)
+{
+  const Eigen::Vector3d oc = c - o;
+  const double b = oc.dot(d);                         // along the ray to the closest approach
+  const double h2 = r * r - (oc - b * d).squaredNorm();  // half chord squared, free of cancellation
+  if (h2 < 0.0) return false;
+  const double h = std::sqrt(h2);
+  t = oc.squaredNorm() < r * r ? b + h : b - h;
+  return t >= 0.0;
+}
+
+std::vector<RobotSphere> robotSpheres(sim::World& world)
+{
+  std::vector<RobotSphere> spheres(world.robotCount());
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const btRigidBody* body = world.robot(i).body();
+    const btCollisionShape* shape = body->getCollisionShape();
+    if (shape->getShapeType() != SPHERE_SHAPE_PROXYTYPE)
+      throw RayCasterError("ray caster: robot '" + world.robot(i).name() + "' has a '" + shape->getName() +
+                           "' collision shape; only spheres are supported");
+    const btVector3& c = body->getWorldTransform().getOrigin();
+    spheres[i].center = Eigen::Vector3d(c.x(), c.y(), c.z());
+    spheres[i].radius = static_cast<const btSphereShape*>(shape)->getRadius();
+  }
+  return spheres;
+}
+
+const std::vector<std::string>& rayCasterBackends()
+{
+  static const std::vector<std::string> names = {"embree", "bullet"};
+  return names;
+}
+
+std::unique_ptr<RayCaster> makeRayCaster(const std::string& backend, sim::World& world, const RayCasterOptions& options)
+{
+  if (backend.empty() || backend == "embree") return std::make_unique<EmbreeRayCaster>(world, options);
+  if (backend == "bullet") return std::make_unique<BulletRayCaster>(world, options);
+  std::string accepted;
+  for (const auto& name : rayCasterBackends()) accepted += (accepted.empty() ? "" : ", ") + name;
+  throw RayCasterError("ray caster: unknown back end '" + backend + "' (accepted: " + accepted + ")");
+}
+
+}  // namespace raycast
+}  // namespace unexmin

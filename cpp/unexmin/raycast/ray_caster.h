@@ -1,0 +1,148 @@
+// One ray-casting service for every ray sensor (MSIS, multibeam, DVL beams, SLS lasers): batched rays
+// against the same world as physics, the static triangle meshes and the robots' hull spheres.
+// Knows no ROS. Back ends by name: "embree" (default, fast) and "bullet" (fallback). See docs/ray_casting.md.
+#pragma once
+
+#include <unexmin/core/error.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sim {
+class World;
+}  // namespace sim
+
+namespace raycast {
+
+/// One ray, world frame. Single precision, like the meshes and both back ends.
+struct Ray
+{
+  Eigen::Vector3f origin{0, 0, 0};     ///< Start point, world frame [m].
+  Eigen::Vector3f direction{1, 0, 0};  ///< World frame, unit length (checked to 1e-3).
+  float max_range = 1.0f;              ///< Farthest distance that counts as a hit [m], finite and > 0.
+};
+
+/// What a ray hit.
+enum class HitKind : std::uint8_t
+{
+  none,   ///< Nothing within max_range.
+  mesh,   ///< A static mesh: Hit::index is its index in World::meshes().
+  robot,  ///< A robot hull: Hit::index is its index in World::robot(i).
+};
+
+struct Hit
+{
+  /// Distance from the ray origin to the first surface [m]; +inf when nothing within max_range.
+  float range = std::numeric_limits<float>::infinity();
+  /// Surface normal at the hit, world frame, unit, facing the ray (normal . direction <= 0); zero on no hit.
+  Eigen::Vector3f normal{0, 0, 0};
+  /// Angle between -direction and the normal [rad], 0 (head-on) .. pi/2 (grazing); NaN on no hit.
+  float incidence = std::numeric_limits<float>::quiet_NaN();
+  HitKind kind = HitKind::none;
+  int index = -1;  ///< Mesh or robot index (see HitKind); -1 on no hit.
+
+  bool hit() const { return kind != HitKind::none; }
+  /// World point of the hit [m] (meaningless on no hit).
+  Eigen::Vector3f point(const Ray& ray) const { return ray.origin + range * ray.direction; }
+};
+
+/// A robot hull as rays see it: a sphere, world frame.
+struct RobotSphere
+{
+  Eigen::Vector3d center{0, 0, 0};  ///< World frame [m].
+  double radius = 0.0;              ///< [m]
+};
+
+/// Distance [m] along the ray (origin o, unit direction d) to the sphere (c, r): the entry point, or the exit
+/// point when o is inside (as a ray meets the inside of a closed mesh); false when it misses or is behind.
+/// Exact in double precision; both back ends use it for robot hulls.
+bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r, double& t);
+
+/// Fills the robots' current spheres, indexed by robot index (called by update()).
+using RobotSphereSource = std::function<void(std::vector<RobotSphere>&)>;
+
+/// The hull spheres of the world's robots now: centre from the body pose, radius from the collision shape.
+/// Throws RayCasterError when a robot's collision shape is not a sphere.
+std::vector<RobotSphere> robotSpheres(sim::World& world);
+
+struct RayCasterOptions
+{
+  /// Threads that cast, the calling thread included; 0 = every hardware thread. Results do not depend on it.
+  int threads = 0;
+  /// Embree: robust triangle test, so no ray slips between two triangles sharing an edge. false is 5-25 %
+  /// faster but lets rays passing within rounding of an edge through (5 % of rays aimed exactly at edges;
+  /// none of 409 600 random rays in the benchmark). See docs/ray_casting.md. Bullet: always watertight.
+  bool watertight = true;
+};
+
+class WorkerPool;
+
+/// Casts batches of rays against a world whose meshes are fixed when the caster is built and whose robots
+/// move (seen as of the last update()). update() and cast() must not run while the world steps; cast() is
+/// const and may be called from several threads at once (only one call at a time uses the worker threads,
+/// the others cast on their caller's thread; the results are the same).
+class RayCaster
+{
+public:
+  /// Rays per work block: blocks start at multiples of it whatever the thread count, so every ray is cast
+  /// in the same packet with the same neighbours and results are identical for any number of threads.
+  static constexpr std::size_t kBlock = 64;
+  /// Batches shorter than this are cast on the calling thread alone (waking workers costs more).
+  static constexpr std::size_t kParallelMin = 256;
+
+  virtual ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  /// Back-end name, as given to makeRayCaster().
+  virtual const char* name() const = 0;
+
+  /// Refresh the moving robots' poses; call once per physics step before the sensors cast.
+  virtual void update() = 0;
+
+  /// Casts every ray; `hits` is resized to rays.size(), hits[i] answers rays[i]: the first surface at a
+  /// distance in [0, max_range], triangles seen from either side (no back-face culling). The robot with index
+  /// `exclude_robot` (the sensor's own; -1 = none; an index with no robot excludes nothing) is invisible.
+  /// Throws RayCasterError naming the first bad ray (non-finite origin, direction not unit, max_range not
+  /// finite and > 0) before casting any.
+  void cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot = -1) const;
+  /// Same on raw arrays of n rays and n hits.
+  void cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot = -1) const;
+
+  /// Threads in use, the caller included (>= 1).
+  int threads() const;
+
+protected:
+  explicit RayCaster(const RayCasterOptions& options);
+
+  /// Casts rays[0..n) into hits[0..n), n <= kBlock, rays already checked. Called concurrently from several
+  /// threads: must only read shared state. `rays` starts at a multiple of kBlock in the batch.
+  virtual void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const = 0;
+
+  /// Fills the normal (unit, facing the ray) and the incidence of a hit from any surface normal.
+  static void finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
+                        Hit& hit);
+
+private:
+  std::unique_ptr<WorkerPool> pool_;
+};
+
+/// Back ends makeRayCaster() accepts: {"embree", "bullet"}.
+const std::vector<std::string>& rayCasterBackends();
+
+/// Builds the back end named `backend` ("" = "embree") on `world`: its collision meshes and its robots'
+/// spheres. The world must outlive the caster. Throws RayCasterError on an unknown name, listing the
+/// accepted ones.
+std::unique_ptr<RayCaster> makeRayCaster(const std::string& backend, sim::World& world,
+                                         const RayCasterOptions& options = RayCasterOptions());
+
+}  // namespace raycast
+}  // namespace unexmin

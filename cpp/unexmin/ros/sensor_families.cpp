@@ -1,0 +1,26 @@
+// The simulator's sensor families: one line each, the model (cpp/unexmin/sensors) with its publisher
+// (cpp/unexmin/ros). Adding a family: docs/adding_a_sensor.md.
+#include <unexmin/ros/sensor_registry.h>
+
+#include <unexmin/ros/dvl_publisher.h>
+#include <unexmin/ros/imu_publisher.h>
+#include <unexmin/ros/m3_publisher.h>
+#include <unexmin/ros/msis_publisher.h>
+#include <unexmin/ros/pressure_publisher.h>
+
+namespace unexmin {
+namespace ros_layer {
+
+SensorRegistry SensorRegistry::builtin()
+{
+  SensorRegistry r;
+  r.add<sensors::ImuSensor, ImuPublisher>("imu");                  // docs/sensors.md
+  r.add<sensors::DvlSensor, DvlPublisher>("dvl");                  // docs/sensors.md
+  r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
+  r.add<sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
+  r.add<sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
+  return r;
+}
+
+}  // namespace ros_layer
+}  // namespace unexmin

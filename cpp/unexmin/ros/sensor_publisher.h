@@ -1,0 +1,52 @@
+// ROS face of one simulated sensor: publishes its latest sample. One implementation per sensor family,
+// registered with its model in one place (SensorRegistry, ros/sensor_families.cpp) and constructed as
+// Publisher(const Model& sensor, const PublisherContext& ctx).
+#pragma once
+
+#include <unexmin/sensors/sensor.h>
+
+#include <ros/ros.h>
+
+#include <algorithm>
+
+#include <string>
+
+namespace unexmin {
+namespace ros_layer {
+
+/// What a publisher is built with: the node handle (topics, the robot's parameters) and the robot's namespace.
+struct PublisherContext
+{
+  ros::NodeHandle& nh;
+  std::string ns;  ///< "/<robot>/"
+};
+
+class SensorPublisher
+{
+public:
+  /// Outgoing queue per subscriber of a sensor topic sampled at `rate` [Hz of sim time]: 20 s of sim
+  /// time, at least 1000 messages, so that a subscriber (a rosbag recorder) can stall for 0.4 s of
+  /// wall time at a real-time factor of 50 without a message being dropped here.
+  static int queueSize(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
+
+  virtual ~SensorPublisher() = default;
+  /// Publishes the sensor's latest sample, stamped with its sample time, on every topic that has
+  /// a subscriber (messages nobody subscribes to are not built).
+  virtual void publish() = 0;
+
+  /// `topic` relative to the robot's namespace `ns` ("/UX_1/"), unless it is absolute.
+  static std::string resolve(const std::string& ns, const std::string& topic)
+  {
+    return !topic.empty() && topic[0] == '/' ? topic : ns + topic;
+  }
+
+  /// The sensor's text parameter `key` (a topic name), `fallback` when absent.
+  static std::string topicParam(const sensors::Sensor& s, const std::string& key, const std::string& fallback)
+  {
+    const auto it = s.spec().text.find(key);
+    return it == s.spec().text.end() ? fallback : it->second;
+  }
+};
+
+}  // namespace ros_layer
+}  // namespace unexmin

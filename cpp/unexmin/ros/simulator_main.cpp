@@ -1,0 +1,20 @@
+// The UNEXMIN simulator process (like gzserver): see docs/simulator_node.md.
+#include <unexmin/ros/simulator_ros.h>
+
+#include <stdexcept>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "simulator");
+  // Outlives `sim`: when the last NodeHandle goes, roscpp shuts rosconsole down and the start-up
+  // error below would not be printed.
+  ros::NodeHandle nh;
+  try {
+    unexmin::ros_layer::SimulatorRos sim(nh, ros::NodeHandle("~"));
+    sim.spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL_STREAM("unexmin simulator cannot start: " << e.what());
+    return 1;
+  }
+  return 0;
+}

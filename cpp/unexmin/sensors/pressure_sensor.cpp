@@ -1,0 +1,46 @@
+#include <unexmin/sensors/pressure_sensor.h>
+
+#include <unexmin/sensors/sensor_params.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace unexmin {
+namespace sensors {
+
+double hydrostaticPressure(const sim::World& world, double z)
+{
+  const sim::WaterState& w = world.water();
+  return world.config().atmospheric_pressure + w.density * w.gravity * std::max(0.0, w.surface_z - z);
+}
+
+PressureSensor::PressureSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup)
+{
+  SensorParams p(spec, setup.robot);
+  const std::string family = p.text("noise", "gaussian", noiseFamilies());
+  NoiseParams n;
+  n.white = p.number("pressure_noise", 0.0, 0.0, 1e7, "Pa");
+  n.turn_on_bias = p.number("pressure_bias", 0.0, 0.0, 1e7, "Pa");
+  n.interval = interval();
+  range_ = p.number("pressure_range", 1e8, 1.0, 1e9, "Pa");
+  p.finish();
+  noise_ = createNoise(family, n);
+}
+
+void PressureSensor::onReset()
+{
+  noise_->reset(random());
+  last_ = PressureSample();
+}
+
+void PressureSensor::sample(const SensorContext& ctx)
+{
+  const Eigen::Vector3d origin = ctx.state.pose * spec().pose.translation();
+  const double truth = hydrostaticPressure(ctx.world, origin.z());
+  last_.time = ctx.world.time();
+  last_.pressure = std::clamp(noise_->apply(truth, random()), 0.0, range_);
+  last_.variance = noise_->whiteStd() * noise_->whiteStd();
+}
+
+}  // namespace sensors
+}  // namespace unexmin

@@ -1,0 +1,50 @@
+#include <unexmin/sensors/sensor.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace unexmin {
+namespace sensors {
+
+Sensor::Sensor(const sim::SensorSpec& spec, const SensorSetup& setup) : spec_(spec), robot_(setup.robot)
+{
+  const double physics_rate = 1.0 / setup.physics_dt;
+  if (!(spec.rate > 0.0) || spec.rate > physics_rate * (1.0 + 1e-9)) {
+    std::ostringstream o;
+    o << setup.robot << ": sensor '" << spec.name << "' (type " << spec.type << "): rate = " << spec.rate
+      << " Hz: expected (0, " << physics_rate << "] Hz (at most the physics rate)";
+    throw ConfigError(o.str());
+  }
+  tolerance_ = 1e-6 * setup.physics_dt;
+}
+
+void Sensor::reset(std::uint64_t world_seed)
+{
+  random_.seed(Random::streamSeed(world_seed, robot_, spec_.name));
+  next_ = 1;
+  samples_ = 0;
+  sample_time_ = -1.0;
+  onReset();
+}
+
+bool Sensor::update(const SensorContext& ctx)
+{
+  track(ctx);
+  const double t = ctx.world.time();
+  if (t + tolerance_ < static_cast<double>(next_) / spec_.rate) return false;
+  sample(ctx);
+  sample_time_ = t;
+  ++samples_;
+  // Next sample time after t (never two samples in one step; none is skipped when rate <= physics rate).
+  next_ = static_cast<std::uint64_t>(std::floor((t + tolerance_) * spec_.rate)) + 1;
+  return true;
+}
+
+void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits)
+{
+  if (ctx.rays) ctx.rays->cast(rays, hits, ctx.robot_index);
+  else hits.assign(rays.size(), raycast::Hit());
+}
+
+}  // namespace sensors
+}  // namespace unexmin

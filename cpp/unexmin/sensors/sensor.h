@@ -1,0 +1,98 @@
+// Base of every simulated sensor: its specification from the robot description, its schedule
+// (samples at t_k = k / rate of simulation time, k = 1, 2, ..., taken at the first physics step at or
+// after t_k), its seeded random stream and its reset. Knows no ROS; time is a double in seconds.
+#pragma once
+
+#include <unexmin/raycast/ray_caster.h>
+#include <unexmin/sensors/random.h>
+#include <unexmin/sim/robot.h>
+#include <unexmin/sim/robot_description.h>
+#include <unexmin/sim/world.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sensors {
+
+/// What a sensor may read at one physics step; everything is passed in, nothing is global.
+struct SensorContext
+{
+  const sim::World& world;
+  const sim::Robot& robot;
+  const sim::RobotState& state;     ///< robot.state() after this step
+  const raycast::RayCaster* rays;   ///< the world's caster, updated after this step (null: rays hit nothing)
+  int robot_index;                  ///< the robot's index in the world: its own hull is invisible to its rays
+};
+
+/// A joint a sensor moves (the MSIS head, an SLS motor), as joint_states reports it.
+struct MovedJoint
+{
+  std::string name;       ///< URDF joint name
+  double position = 0.0;  ///< [rad] (or [m] for a prismatic joint)
+  double velocity = 0.0;  ///< [rad/s] (or [m/s])
+};
+
+/// What a sensor's constructor may read: the robot description (link poses) and the step.
+struct SensorSetup
+{
+  std::string robot;                       ///< robot name (messages, random stream)
+  const sim::RobotDescription& description;
+  double physics_dt = 0.002;               ///< physics step [s] > 0
+};
+
+class Sensor
+{
+public:
+  /// Throws ConfigError naming the sensor when its rate exceeds the physics rate.
+  Sensor(const sim::SensorSpec& spec, const SensorSetup& setup);
+  virtual ~Sensor() = default;
+  Sensor(const Sensor&) = delete;
+  Sensor& operator=(const Sensor&) = delete;
+
+  const sim::SensorSpec& spec() const { return spec_; }
+  const std::string& name() const { return spec_.name; }
+  const std::string& type() const { return spec_.type; }
+  const std::string& robotName() const { return robot_; }
+  /// frame_id of its messages: the URDF link.
+  const std::string& frame() const { return spec_.link; }
+  double rate() const { return spec_.rate; }  ///< [Hz of sim time]
+
+  /// Back to t = 0 with a (new) world seed: reseeds the random stream, draws turn-on biases and
+  /// restarts the schedule. Call once before the first update.
+  void reset(std::uint64_t world_seed);
+  /// Call after every physics step. Returns true when a sample was taken at this step.
+  bool update(const SensorContext& ctx);
+  /// Simulation time of the latest sample [s] (negative before the first one).
+  double sampleTime() const { return sample_time_; }
+  std::uint64_t sampleCount() const { return samples_; }
+  /// Appends the joints this sensor moves, with their state now (none by default).
+  virtual void movedJoints(std::vector<MovedJoint>& /*out*/) const {}
+
+protected:
+  /// Reset the model's state (turn-on biases are drawn here from random()).
+  virtual void onReset() {}
+  /// Every physics step, before a possible sample (e.g. finite-difference histories).
+  virtual void track(const SensorContext&) {}
+  /// Take one sample at ctx.world.time().
+  virtual void sample(const SensorContext& ctx) = 0;
+  Random& random() { return random_; }
+  /// Casts `rays` through ctx.rays, the robot's own hull excluded; `hits` answers them one for one (all
+  /// misses when the context has no caster).
+  static void castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays,
+                       std::vector<raycast::Hit>& hits);
+  double interval() const { return 1.0 / spec_.rate; }  ///< [s]
+
+private:
+  sim::SensorSpec spec_;
+  std::string robot_;
+  Random random_;
+  std::uint64_t next_ = 1;       ///< index k of the next sample time k / rate
+  std::uint64_t samples_ = 0;
+  double sample_time_ = -1.0;
+  double tolerance_ = 1e-9;      ///< [s] rounding slack of the schedule
+};
+
+}  // namespace sensors
+}  // namespace unexmin

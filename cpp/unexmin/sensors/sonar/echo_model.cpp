@@ -1,0 +1,121 @@
+#include <unexmin/sensors/sonar/echo_model.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace unexmin {
+namespace sonar {
+namespace {
+
+void check(bool ok, const char* name, double value, const char* expected)
+{
+  if (ok) return;
+  std::ostringstream o;
+  o << "echo model: " << name << " = " << value << ": expected " << expected;
+  throw ParameterError(o.str());
+}
+
+}  // namespace
+
+EchoModel::EchoModel(const EchoParams& params) : p_(params)
+{
+  check(std::isfinite(p_.range_min) && p_.range_min >= 0.0, "range_min", p_.range_min, ">= 0 m");
+  check(std::isfinite(p_.range_max) && p_.range_max > p_.range_min, "range_max", p_.range_max, "> range_min");
+  check(p_.nbins >= 1, "nbins", p_.nbins, ">= 1");
+  check(p_.gain >= 0.0 && p_.gain <= 1.0, "gain", p_.gain, "in [0, 1]");
+  check(p_.gain_span >= 0.0 && p_.gain_span <= 120.0, "gain_span", p_.gain_span, "in [0, 120] dB");
+  check(p_.backscatter_exponent >= 0.0 && p_.backscatter_exponent <= 10.0, "backscatter_exponent",
+        p_.backscatter_exponent, "in [0, 10]");
+  check(p_.spreading_exponent >= 0.0 && p_.spreading_exponent <= 4.0, "spreading_exponent", p_.spreading_exponent,
+        "in [0, 4]");
+  check(p_.reference_range > 0.0 && std::isfinite(p_.reference_range), "reference_range", p_.reference_range,
+        "> 0 m");
+  check(p_.absorption >= 0.0 && p_.absorption <= 10.0, "absorption", p_.absorption, "in [0, 10] dB/m");
+  width_ = (p_.range_max - p_.range_min) / p_.nbins;
+  amplification_ = std::pow(10.0, p_.gain_span * p_.gain / 10.0);
+}
+
+double EchoModel::binCenter(std::size_t i) const { return p_.range_min + (static_cast<double>(i) + 0.5) * width_; }
+
+int EchoModel::bin(double r) const
+{
+  if (!(r >= p_.range_min) || !(r < p_.range_max)) return -1;
+  return std::min(p_.nbins - 1, static_cast<int>((r - p_.range_min) / width_));
+}
+
+double EchoModel::loss(double r) const
+{
+  const double spreading = std::pow(p_.reference_range / std::max(r, 1e-3), p_.spreading_exponent);
+  return spreading * std::pow(10.0, -2.0 * p_.absorption * r / 10.0);
+}
+
+double EchoModel::strength(const Echo& e, std::size_t rays) const
+{
+  const double c = std::clamp(e.cos_incidence, 0.0, 1.0);
+  return std::pow(c, p_.backscatter_exponent) * loss(e.range) / static_cast<double>(std::max<std::size_t>(1, rays));
+}
+
+void EchoModel::deposit(const Echo& e, std::size_t rays, std::vector<double>& energy) const
+{
+  const int b = bin(e.range);
+  if (b >= 0) energy[b] += strength(e, rays);
+}
+
+void EchoModel::spreadOver(double a, double b, double amount, std::vector<double>& energy) const
+{
+  if (a > b) std::swap(a, b);
+  if (b - a < 1e-9 * width_) {  // a point
+    const int i = bin(a);
+    if (i >= 0) energy[i] += amount;
+    return;
+  }
+  // Even spread over [a, b]: each bin gets the share of the interval it covers; outside the window is lost.
+  const double density = amount / (b - a);
+  const int lo = std::max(0, static_cast<int>(std::floor((a - p_.range_min) / width_)));
+  const int hi = std::min(p_.nbins - 1, static_cast<int>(std::floor((b - p_.range_min) / width_)));
+  for (int i = lo; i <= hi; ++i) {
+    const double b0 = p_.range_min + i * width_, b1 = b0 + width_;
+    const double overlap = std::min(b, b1) - std::max(a, b0);
+    if (overlap > 0.0) energy[i] += density * overlap;
+  }
+}
+
+void EchoModel::spread(const std::vector<Echo>& column, std::size_t rays, double max_gap,
+                       std::vector<double>& energy) const
+{
+  const std::size_t n = column.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Echo& e = column[k];
+    if (e.range < 0.0) continue;
+    const double s = strength(e, rays);
+    for (int side : {-1, 1}) {
+      const long j = static_cast<long>(k) + side;
+      const bool paired = j >= 0 && j < static_cast<long>(n) && column[j].range >= 0.0 &&
+                          std::abs(column[j].range - e.range) <= max_gap;
+      // Towards the neighbour: half the way (the neighbour fills the other half).
+      if (paired) spreadOver(e.range, 0.5 * (e.range + column[j].range), 0.5 * s, energy);
+      else {
+        const int b = bin(e.range);
+        if (b >= 0) energy[b] += 0.5 * s;
+      }
+    }
+  }
+}
+
+void EchoModel::finish(const std::vector<double>& energy, std::vector<float>& line) const
+{
+  line.resize(p_.nbins);
+  for (int i = 0; i < p_.nbins; ++i) line[i] = static_cast<float>(std::min(1.0, amplification_ * energy[i]));
+}
+
+void EchoModel::line(const std::vector<Echo>& echoes, std::size_t rays, std::vector<float>& out) const
+{
+  std::vector<double> energy(p_.nbins, 0.0);
+  for (const Echo& e : echoes) deposit(e, rays, energy);
+  finish(energy, out);
+}
+
+}  // namespace sonar
+}  // namespace unexmin

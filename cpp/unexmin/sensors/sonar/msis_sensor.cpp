@@ -1,0 +1,237 @@
+#include <unexmin/sensors/sonar/msis_sensor.h>
+
+#include <unexmin/sensors/sensor_params.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace unexmin {
+namespace sonar {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+/// Defaults of the parameters a preset sets.
+struct Preset
+{
+  double range_max, nbins, gain;
+  bool continuous;
+};
+
+Preset preset(const std::string& name)
+{
+  if (name == "thesis_tank") return {3.0, 400.0, 0.2, true};  // thesis 6.1.1: 3 m, 400 bins, 360 deg, gain "Low"
+  return {20.0, 200.0, 0.5, true};                              // none: a medium range, medium gain
+}
+
+bool parseBool(sensors::SensorParams& p, const std::string& key, bool fallback)
+{
+  // xacro writes a Python bool as True/False.
+  const std::string v = p.text(key, fallback ? "true" : "false", {"true", "false", "True", "False", "1", "0"});
+  return v == "true" || v == "True" || v == "1";
+}
+
+double wrap(double a)
+{
+  a = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
+}  // namespace
+
+const std::vector<double>& MsisSensor::mechanicalSteps()
+{
+  static const std::vector<double> steps = {0.225, 0.45, 0.9, 1.8, 3.6};
+  return steps;
+}
+
+MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup)
+{
+  sensors::SensorParams p(spec, setup.robot);
+  const std::string preset_name = p.text("preset", "none", {"none", "thesis_tank"});
+  const Preset pre = preset(preset_name);
+  const bool noise = p.text("noise", "gaussian", {"gaussian", "none"}) == "gaussian";
+
+  EchoParams e;
+  e.range_min = p.number("range_min", 0.3, 0.0, 1000.0, "m");
+  e.range_max = p.number("range_max", pre.range_max, 0.0, 1000.0, "m");
+  if (!(e.range_max > e.range_min)) p.fail("range_max", formatNumber(e.range_max), "more than range_min");
+  const double nbins = p.number("nbins", pre.nbins, 1.0, 10000.0, "bins");
+  if (nbins != std::floor(nbins)) p.fail("nbins", formatNumber(nbins), "a whole number of bins");
+  e.nbins = static_cast<int>(nbins);
+  e.gain = p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high)");
+  e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
+  e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
+  e.spreading_exponent = p.number("spreading_exponent", 2.0, 0.0, 4.0, "(-)");
+  e.reference_range = p.number("reference_range", 1.0, 1e-3, 1000.0, "m");
+  e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
+  echo_ = EchoModel(e);
+
+  const double step_deg = p.number("step", 0.9 * kDeg, 0.0, M_PI, "rad") / kDeg;
+  const auto& steps = mechanicalSteps();
+  const auto match = std::find_if(steps.begin(), steps.end(), [&](double s) { return std::abs(s - step_deg) < 1e-6; });
+  if (match == steps.end()) {
+    std::ostringstream o;
+    o << step_deg << " deg";
+    p.fail("step", o.str(), "one of the Micron DST's mechanical steps 0.225, 0.45, 0.9, 1.8, 3.6 deg (in rad)");
+  }
+  step_ = *match * kDeg;
+  left_ = p.number("sector_left", -M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
+  right_ = p.number("sector_right", M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
+  continuous_ = parseBool(p, "continuous", pre.continuous);
+  if (!continuous_ && std::abs(right_ - left_) < step_ - 1e-9)
+    p.fail("sector_right", formatNumber(right_), "at least one step (" + formatNumber(step_) +
+                                                       " rad) away from sector_left for a sector scan");
+
+  const double bw_h = p.number("beam_width_h", 3.0 * kDeg, 0.0, M_PI, "rad");
+  const double bw_v = p.number("beam_width_v", 35.0 * kDeg, 0.0, M_PI, "rad");
+  hpr_ = static_cast<int>(p.number("hpr", 5.0, 1.0, 1000.0, "rays"));
+  vpr_ = static_cast<int>(p.number("vpr", 70.0, 1.0, 1000.0, "rays"));
+
+  const double sound_speed = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
+  // One ping at a time: the echo from range_max must be back before the next ping.
+  const double max_rate = sound_speed / (2.0 * e.range_max);
+  if (rate() > max_rate * (1.0 + 1e-9)) {
+    std::ostringstream o;
+    o << "at most sound_speed / (2 range_max) = " << max_rate << " steps/s (the echo from range_max must return)";
+    p.fail("rate", formatNumber(rate()), o.str());
+  }
+
+  range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
+  salt_pepper_ = p.number("salt_pepper", 0.0, 0.0, 1.0, "(probability per bin)");
+  shadow_ = parseBool(p, "shadow", false);
+  shadow_threshold_ = p.number("shadow_threshold", 0.6, 0.0, 1.0, "(intensity)");
+  artifacts_ = parseBool(p, "artifacts", false);
+  artifacts_gap_ = p.number("artifacts_gap", 0.5, 0.0, 1000.0, "m");
+  if (!noise) {
+    range_noise_ = salt_pepper_ = 0.0;
+    shadow_ = artifacts_ = false;
+  }
+  threshold_low_ = p.number("threshold_low", 0.05, 0.0, 1.0, "(intensity)");
+  threshold_medium_ = p.number("threshold_medium", 0.25, 0.0, 1.0, "(intensity)");
+  threshold_high_ = p.number("threshold_high", 0.6, 0.0, 1.0, "(intensity)");
+  if (!(threshold_low_ <= threshold_medium_ && threshold_medium_ <= threshold_high_))
+    p.fail("threshold_medium", formatNumber(threshold_medium_), "threshold_low <= threshold_medium <= threshold_high");
+
+  // The head joint: given, or the joint that carries the sensor link.
+  const std::vector<std::string> named = p.words("joint");
+  p.finish();
+  const sim::JointInfo* joint = nullptr;
+  for (const auto& j : setup.description.joints)
+    if (named.empty() ? j.child == spec.link : j.name == named[0]) joint = &j;
+  if (!joint || joint->child != spec.link || (joint->type != "continuous" && joint->type != "revolute"))
+    p.fail("joint", named.empty() ? "(none: the joint whose child is " + spec.link + ")" : "'" + named[0] + "'",
+           "a continuous or revolute joint whose child is the sensor link '" + spec.link + "'");
+  joint_ = joint->name;
+  axis_ = joint->axis.normalized();
+
+  for (int h = 0; h < hpr_; ++h) {
+    const double a = -bw_h / 2.0 + (h + 0.5) * bw_h / hpr_;
+    for (int v = 0; v < vpr_; ++v) {
+      const double el = -bw_v / 2.0 + (v + 0.5) * bw_v / vpr_;
+      dirs_.emplace_back(std::cos(el) * std::cos(a), std::cos(el) * std::sin(a), std::sin(el));
+    }
+  }
+  rays_.resize(dirs_.size());
+  column_.resize(vpr_);
+}
+
+Eigen::Isometry3d MsisSensor::headPose(double a) const
+{
+  return spec().pose * Eigen::AngleAxisd(a, axis_);
+}
+
+void MsisSensor::onReset()
+{
+  angle_ = left_;
+  dir_ = right_ >= left_ ? 1 : -1;
+  last_ = MsisLine();
+}
+
+void MsisSensor::advance()
+{
+  if (continuous_) {
+    angle_ = wrap(angle_ + dir_ * step_);
+    return;
+  }
+  const double limit = dir_ > 0 ? std::max(left_, right_) : std::min(left_, right_);
+  double next = angle_ + dir_ * step_;
+  if ((next - limit) * dir_ > 1e-12) {
+    if (std::abs(angle_ - limit) <= 1e-12) {  // at the limit: turn back
+      dir_ = -dir_;
+      next = angle_ + dir_ * step_;
+    } else {
+      next = limit;  // the last step stops at the limit
+    }
+  }
+  angle_ = next;
+}
+
+EchoLevel MsisSensor::level(float i) const
+{
+  if (i >= threshold_high_) return EchoLevel::high;
+  if (i >= threshold_medium_) return EchoLevel::medium;
+  if (i >= threshold_low_) return EchoLevel::low;
+  return EchoLevel::none;
+}
+
+void MsisSensor::sample(const sensors::SensorContext& ctx)
+{
+  const Eigen::Isometry3d head = ctx.state.pose * headPose(angle_);
+  const Eigen::Matrix3d R = head.linear();
+  const EchoParams& e = echo_.params();
+  for (std::size_t i = 0; i < dirs_.size(); ++i) {
+    rays_[i].origin = head.translation().cast<float>();
+    rays_[i].direction = (R * dirs_[i]).normalized().cast<float>();
+    rays_[i].max_range = static_cast<float>(e.range_max);
+  }
+  castRays(ctx, rays_, hits_);
+
+  energy_.assign(e.nbins, 0.0);
+  const std::size_t n = rays_.size();
+  for (int h = 0; h < hpr_; ++h) {
+    for (int v = 0; v < vpr_; ++v) {
+      const std::size_t i = static_cast<std::size_t>(h) * vpr_ + v;
+      const raycast::Hit& hit = hits_[i];
+      Echo& echo = column_[v];
+      echo.range = -1.0;
+      if (!hit.hit()) continue;
+      echo.range = hit.range + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0);
+      if (echo.range < 0.0) echo.range = 0.0;
+      echo.cos_incidence = std::cos(static_cast<double>(hit.incidence));
+      if (!artifacts_) echo_.deposit(echo, n, energy_);
+    }
+    if (artifacts_) echo_.spread(column_, n, artifacts_gap_, energy_);
+  }
+
+  MsisLine& out = last_;
+  out.time = ctx.world.time();
+  out.angle = angle_;
+  echo_.finish(energy_, out.intensity);
+  out.level.assign(e.nbins, EchoLevel::none);
+  std::vector<char> shadowed(e.nbins, 0);
+  if (shadow_) {
+    const auto strong = std::find_if(out.intensity.begin(), out.intensity.end(),
+                                     [&](float i) { return i >= shadow_threshold_; });
+    for (auto it = strong == out.intensity.end() ? strong : strong + 1; it != out.intensity.end(); ++it) {
+      *it = 0.0f;
+      shadowed[it - out.intensity.begin()] = 1;
+    }
+  }
+  if (salt_pepper_ > 0.0) {
+    for (auto& i : out.intensity) {
+      if (random().uniform() >= salt_pepper_) continue;
+      i = random().uniform() < 0.5 ? static_cast<float>(random().uniform()) : 0.0f;
+    }
+  }
+  for (int b = 0; b < e.nbins; ++b) {
+    out.level[b] = level(out.intensity[b]);
+    if (shadowed[b] && out.level[b] == EchoLevel::none) out.level[b] = EchoLevel::shadow;
+  }
+  advance();
+}
+
+}  // namespace sonar
+}  // namespace unexmin

@@ -1,0 +1,110 @@
+// Mechanical scanning imaging sonar, Tritech Micron DST (thesis 5.4.1; docs/sonars.md). Type name "msis".
+// Frame: the head link (on a continuous/revolute joint, axis usually z); the beam is along the head's +x.
+// Each sample (one ping per mechanical step; the sensor's rate is the step rate [steps/s]):
+//   1. the head is at angle a_k (the joint position): the first ping at sector_left, then one `step` per
+//      ping towards sector_right; at a limit the head turns back (sector scan), or with continuous = true
+//      it keeps turning the same way, the angle wrapped to (-pi, pi];
+//   2. a fan of hpr x vpr rays covers the beam: horizontal angles h_i = -bw_h/2 + (i + 1/2) bw_h / hpr
+//      about the head's z, elevations v_j = -bw_v/2 + (j + 1/2) bw_v / vpr, direction
+//      (cos v cos h, cos v sin h, sin v) in the head frame, cast from the head origin up to range_max;
+//   3. the hits become one line of nbins intensities in [0, 1] (EchoModel: area density, backscatter,
+//      spreading and absorption, gain), then the noise models, each switchable:
+//        range_noise  [m]  Gaussian noise on every ray's range (0: off)
+//        salt_pepper  [-]  probability per bin of a random echo: half uniform intensity (salt), half 0 (pepper)
+//        shadow            true: no return behind the first bin of intensity >= shadow_threshold (bins
+//                          flagged shadow)
+//        artifacts         true: echoes between the hits of neighbouring rays of a column that are within
+//                          artifacts_gap of each other (fills the sparse-ray gaps on the ground)
+//      noise = none turns all four off;
+//   4. each bin gets a level for the colour map: none (< threshold_low), low, medium (>= threshold_medium),
+//      high (>= threshold_high), shadow (a shadowed bin with no echo).
+// Presets (parameter `preset`): "thesis_tank" = the thesis's tank configuration (6.1.1): range 3 m,
+// 400 bins, continuous, low gain (0.2). Parameters given explicitly override the preset.
+#pragma once
+
+#include <unexmin/sensors/sensor.h>
+#include <unexmin/sensors/sonar/echo_model.h>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sonar {
+
+/// Colour-map class of one bin.
+enum class EchoLevel : std::uint8_t
+{
+  none,
+  low,
+  medium,
+  high,
+  shadow
+};
+
+/// One ping: the intensity line along the head's +x.
+struct MsisLine
+{
+  double time = -1.0;            ///< ping time [s]
+  double angle = 0.0;            ///< head joint position of the ping [rad]
+  std::vector<float> intensity;  ///< per bin, 0..1 [-]
+  std::vector<EchoLevel> level;  ///< per bin
+};
+
+class MsisSensor : public sensors::Sensor
+{
+public:
+  /// The mechanical steps of the Micron DST [deg].
+  static const std::vector<double>& mechanicalSteps();
+
+  /// Throws ConfigError naming the robot, the sensor and the parameter.
+  MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup);
+
+  const MsisLine& last() const { return last_; }
+  const EchoModel& echo() const { return echo_; }
+  const std::string& joint() const { return joint_; }
+  /// Head angle now: of the next ping [rad] (the joint position between pings is the last ping's).
+  double headAngle() const { return last_.time < 0.0 ? angle_ : last_.angle; }
+  /// The head joint at headAngle(), at rest (a stepper between steps).
+  void movedJoints(std::vector<sensors::MovedJoint>& out) const override { out.push_back({joint_, headAngle(), 0.0}); }
+  /// Mean head speed while scanning: step x rate [rad/s].
+  double headSpeed() const { return step_ * rate(); }
+  double step() const { return step_; }  ///< [rad]
+  std::size_t raysPerPing() const { return dirs_.size(); }
+  /// Ray directions of the fan in the head frame (column h, then elevation v: index h * vpr + v).
+  const std::vector<Eigen::Vector3d>& fan() const { return dirs_; }
+  /// Head link pose in the base link frame at head angle a [rad].
+  Eigen::Isometry3d headPose(double a) const;
+
+protected:
+  void onReset() override;
+  void sample(const sensors::SensorContext& ctx) override;
+
+private:
+  EchoLevel level(float intensity) const;
+  void advance();
+
+  EchoModel echo_{EchoParams()};
+  std::string joint_;
+  Eigen::Vector3d axis_{0, 0, 1};
+  double step_ = 0.0, left_ = 0.0, right_ = 0.0;
+  bool continuous_ = true;
+  int hpr_ = 1, vpr_ = 1;
+  double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
+  bool shadow_ = false, artifacts_ = false;
+  double threshold_low_ = 0.05, threshold_medium_ = 0.25, threshold_high_ = 0.6;
+  std::vector<Eigen::Vector3d> dirs_;
+  double angle_ = 0.0;  ///< head angle of the next ping [rad]
+  int dir_ = 1;         ///< +1 / -1: direction of the next step
+  std::vector<raycast::Ray> rays_;
+  std::vector<raycast::Hit> hits_;
+  std::vector<Echo> column_;
+  std::vector<double> energy_;
+  MsisLine last_;
+};
+
+}  // namespace sonar
+}  // namespace unexmin

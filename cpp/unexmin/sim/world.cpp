@@ -1,0 +1,116 @@
+#include <unexmin/sim/world.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+
+namespace unexmin {
+namespace sim {
+
+struct World::StaticBody
+{
+  std::unique_ptr<btTriangleIndexVertexArray> array;
+  std::unique_ptr<btBvhTriangleMeshShape> shape;
+  std::unique_ptr<btRigidBody> body;
+};
+
+World::World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions,
+             int robot_count, double dt, std::uint64_t seed)
+    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed)
+{
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw ConfigError(config.file + ": physics step " + formatNumber(dt) + " s must be > 0");
+  const int available = static_cast<int>(config.robots.size());
+  if (robot_count > available)
+    throw ConfigError(config.file + ": " + formatNumber(robot_count) + " robots asked for, the world spawns at most " +
+                      formatNumber(available));
+  if (robot_count < 0) robot_count = available;
+
+  collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
+  dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
+  broadphase_ = std::make_unique<btDbvtBroadphase>();
+  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+  dynamics_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                        collision_config_.get());
+  dynamics_->setGravity(btVector3(0, 0, 0));  // weight and buoyancy are applied by each robot
+
+  for (const auto& entry : config.meshes) {
+    meshes_.push_back(loadMesh(entry));
+    if (!entry.collision) continue;
+    const TriangleMesh& mesh = meshes_.back();
+    auto sb = std::make_unique<StaticBody>();
+    sb->array = std::make_unique<btTriangleIndexVertexArray>(
+        static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()), 3 * static_cast<int>(sizeof(int)),
+        static_cast<int>(mesh.vertices.size()), const_cast<btScalar*>(reinterpret_cast<const btScalar*>(mesh.vertices.data())),
+        static_cast<int>(sizeof(Eigen::Vector3f)));
+    static_assert(sizeof(btScalar) == sizeof(float), "Bullet must be built with float scalars");
+    sb->shape = std::make_unique<btBvhTriangleMeshShape>(sb->array.get(), true);
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, sb->shape.get());
+    info.m_friction = 0.5;
+    sb->body = std::make_unique<btRigidBody>(info);
+    dynamics_->addRigidBody(sb->body.get());
+    static_bodies_.push_back(std::move(sb));
+  }
+  meshes_.shrink_to_fit();  // vertex storage must not move after Bullet points at it
+
+  for (int i = 0; i < robot_count; ++i) {
+    const RobotSpawn& spawn = config.robots[i];
+    const auto it = descriptions.find(spawn.name);
+    if (it == descriptions.end()) throw ConfigError(config.file + ": no robot description for '" + spawn.name + "'");
+    robots_.push_back(std::make_unique<Robot>(it->second, spawn));
+    dynamics_->addRigidBody(robots_.back()->body());
+    robots_.back()->body()->setGravity(btVector3(0, 0, 0));
+  }
+
+  water_.density = config.water_density;
+  water_.gravity = config.gravity;
+  water_.surface_z = config.surface_z;
+  water_.current = current_.velocity();
+}
+
+World::~World()
+{
+  for (auto& r : robots_) dynamics_->removeRigidBody(r->body());
+  for (auto& sb : static_bodies_) dynamics_->removeRigidBody(sb->body.get());
+}
+
+Robot* World::robot(const std::string& name)
+{
+  for (auto& r : robots_)
+    if (r->name() == name) return r.get();
+  return nullptr;
+}
+
+void World::step()
+{
+  current_.update(dt_);
+  water_.current = current_.velocity();
+  water_.current_accel = current_.acceleration();
+  for (auto& r : robots_) r->applyForces(time_, dt_, water_);
+  dynamics_->stepSimulation(static_cast<btScalar>(dt_), 0);
+  for (auto& r : robots_) r->afterStep(dt_);
+  ++steps_;
+  time_ = static_cast<double>(steps_) * dt_;
+}
+
+void World::reset(std::uint64_t seed)
+{
+  seed_ = seed;
+  current_.reset(seed);
+  water_.current = current_.velocity();
+  water_.current_accel.setZero();
+  // Remove and re-add the bodies so cached contacts and solver state start afresh (determinism).
+  for (auto& r : robots_) dynamics_->removeRigidBody(r->body());
+  for (auto& r : robots_) r->reset();
+  solver_->reset();
+  broadphase_->resetPool(dispatcher_.get());
+  for (auto& r : robots_) {
+    dynamics_->addRigidBody(r->body());
+    r->body()->setGravity(btVector3(0, 0, 0));
+  }
+  time_ = 0.0;
+  steps_ = 0;
+}
+
+}  // namespace sim
+}  // namespace unexmin

@@ -1,0 +1,85 @@
+// The simulated world: Bullet dynamics world with the static meshes, the robots and the current.
+// Steps at a fixed physics step; deterministic for a given seed and command sequence.
+#pragma once
+
+#include <unexmin/hydro/current.h>
+#include <unexmin/sim/mesh.h>
+#include <unexmin/sim/robot.h>
+#include <unexmin/sim/world_config.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+
+class btDiscreteDynamicsWorld;
+class btCollisionConfiguration;
+class btCollisionDispatcher;
+class btBroadphaseInterface;
+class btSequentialImpulseConstraintSolver;
+class btRigidBody;
+class btTriangleIndexVertexArray;
+class btBvhTriangleMeshShape;
+struct btDefaultMotionState;
+
+namespace unexmin {
+namespace sim {
+
+class World
+{
+public:
+  /// `descriptions` maps robot name -> description for every robot to spawn; robots are spawned in
+  /// the world file's order, the first `robot_count` of them (all when robot_count < 0).
+  /// dt: physics step [s] > 0. Throws ConfigError on a bad mesh, a missing description or a bad step.
+  World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions,
+        int robot_count, double dt, std::uint64_t seed);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Advance by one physics step.
+  void step();
+
+  double time() const { return time_; }            ///< Simulation time [s].
+  std::uint64_t stepCount() const { return steps_; }
+  double dt() const { return dt_; }
+  std::uint64_t seed() const { return seed_; }
+  const WorldConfig& config() const { return config_; }
+  const WaterState& water() const { return water_; }
+  hydro::CurrentModel& current() { return current_; }
+
+  std::size_t robotCount() const { return robots_.size(); }
+  Robot& robot(std::size_t i) { return *robots_.at(i); }
+  const Robot& robot(std::size_t i) const { return *robots_.at(i); }
+  /// nullptr when there is no robot of that name.
+  Robot* robot(const std::string& name);
+
+  const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+  btDiscreteDynamicsWorld& physics() { return *dynamics_; }
+
+  /// Everything back to t = 0 with a new seed: robots at their spawn poses at rest, actuators
+  /// zeroed, current at its mean.
+  void reset(std::uint64_t seed);
+
+private:
+  WorldConfig config_;
+  double dt_;
+  std::uint64_t seed_;
+  double time_ = 0.0;
+  std::uint64_t steps_ = 0;
+  hydro::CurrentModel current_;
+  WaterState water_;
+
+  std::unique_ptr<btCollisionConfiguration> collision_config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
+
+  std::vector<TriangleMesh> meshes_;
+  struct StaticBody;
+  std::vector<std::unique_ptr<StaticBody>> static_bodies_;
+  std::vector<std::unique_ptr<Robot>> robots_;
+};
+
+}  // namespace sim
+}  // namespace unexmin

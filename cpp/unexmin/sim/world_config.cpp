@@ -1,0 +1,216 @@
+#include <unexmin/sim/world_config.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace unexmin {
+namespace sim {
+namespace {
+
+std::string dirOf(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+class Reader
+{
+public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& what) const { throw ConfigError(file_ + ": " + what); }
+
+  double number(const YAML::Node& node, const std::string& key, const std::string& where,
+                double fallback, bool required = false) const
+  {
+    const YAML::Node v = node[key];
+    if (!v) {
+      if (required) fail("missing '" + where + key + "' (a number)");
+      return fallback;
+    }
+    double x = 0.0;
+    try {
+      x = v.as<double>();
+    } catch (const YAML::Exception&) {
+      fail("'" + where + key + "' must be a number");
+    }
+    if (!std::isfinite(x)) fail("'" + where + key + "' must be finite");
+    return x;
+  }
+
+  Eigen::Vector3d vec3(const YAML::Node& node, const std::string& key, const std::string& where,
+                       const Eigen::Vector3d& fallback) const
+  {
+    const YAML::Node v = node[key];
+    if (!v) return fallback;
+    if (!v.IsSequence() || v.size() != 3) fail("'" + where + key + "' must be a list of 3 numbers");
+    Eigen::Vector3d out;
+    for (int i = 0; i < 3; ++i) {
+      try {
+        out[i] = v[i].as<double>();
+      } catch (const YAML::Exception&) {
+        fail("'" + where + key + "' must be a list of 3 numbers");
+      }
+      if (!std::isfinite(out[i])) fail("'" + where + key + "' must be finite");
+    }
+    return out;
+  }
+
+  std::string text(const YAML::Node& node, const std::string& key, const std::string& where,
+                   const std::string& fallback, bool required = false) const
+  {
+    const YAML::Node v = node[key];
+    if (!v) {
+      if (required) fail("missing '" + where + key + "' (a string)");
+      return fallback;
+    }
+    if (!v.IsScalar()) fail("'" + where + key + "' must be a string");
+    return v.as<std::string>();
+  }
+
+  bool flag(const YAML::Node& node, const std::string& key, const std::string& where, bool fallback) const
+  {
+    const YAML::Node v = node[key];
+    if (!v) return fallback;
+    try {
+      return v.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail("'" + where + key + "' must be true or false");
+    }
+  }
+
+  hydro::GaussMarkovParams channel(const YAML::Node& node, const std::string& key,
+                                   const hydro::GaussMarkovParams& fallback) const
+  {
+    const YAML::Node c = node[key];
+    if (!c) return fallback;
+    if (!c.IsMap()) fail("'current." + key + "' must be a map of mean/min/max/noise/mu");
+    const std::string where = "current." + key + ".";
+    hydro::GaussMarkovParams p;
+    p.mean = number(c, "mean", where, fallback.mean);
+    p.min = number(c, "min", where, std::min(fallback.min, p.mean));
+    p.max = number(c, "max", where, std::max(fallback.max, p.mean));
+    p.noise = number(c, "noise", where, 0.0);
+    p.mu = number(c, "mu", where, 0.0);
+    return p;
+  }
+
+private:
+  std::string file_;
+};
+
+}  // namespace
+
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy)
+{
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = xyz;
+  return pose;
+}
+
+WorldConfig loadWorldConfig(const std::string& path)
+{
+  Reader r(path);
+  std::ifstream in(path);
+  if (!in) r.fail("cannot open the world file");
+  YAML::Node root;
+  try {
+    root = YAML::Load(in);
+  } catch (const YAML::Exception& e) {
+    r.fail(std::string("not valid YAML: ") + e.what());
+  }
+  if (!root.IsMap()) r.fail("the world file must be a YAML map (name, gravity, water, meshes, robots, ...)");
+
+  WorldConfig w;
+  w.file = path;
+  w.name = r.text(root, "name", "", "world");
+  w.gravity = r.number(root, "gravity", "", 9.81);
+  if (w.gravity <= 0.0) r.fail("'gravity' must be > 0 [m/s^2]");
+  if (const YAML::Node water = root["water"]) {
+    if (!water.IsMap()) r.fail("'water' must be a map of density/surface_z");
+    w.water_density = r.number(water, "density", "water.", 1000.0);
+    w.surface_z = r.number(water, "surface_z", "water.", 0.0);
+  }
+  if (w.water_density <= 0.0) r.fail("'water.density' must be > 0 [kg/m^3]");
+  w.atmospheric_pressure = r.number(root, "atmospheric_pressure", "", 101325.0);
+  if (w.atmospheric_pressure < 0.0) r.fail("'atmospheric_pressure' must be >= 0 [Pa]");
+  w.ray_caster = r.text(root, "ray_caster", "", w.ray_caster);
+  if (w.ray_caster.empty()) r.fail("'ray_caster' is empty, expected the name of a ray-casting back end (embree|bullet)");
+  if (const YAML::Node vis = root["visibility"]) {
+    w.visibility = r.text(vis, "level", "visibility.", "none");
+    if (w.visibility != "none" && w.visibility != "low" && w.visibility != "medium" && w.visibility != "high")
+      r.fail("'visibility.level' is '" + w.visibility + "', expected none|low|medium|high");
+    w.visibility_colour = r.vec3(vis, "colour", "visibility.", w.visibility_colour);
+  }
+
+  w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+
+  hydro::GaussMarkovParams zero;
+  hydro::GaussMarkovParams h_angle;
+  h_angle.min = -M_PI;
+  h_angle.max = M_PI;
+  w.current.speed = zero;
+  w.current.horizontal_angle = h_angle;
+  w.current.vertical_angle = zero;
+  if (const YAML::Node cur = root["current"]) {
+    if (!cur.IsMap()) r.fail("'current' must be a map of speed/horizontal_angle/vertical_angle");
+    w.current.speed = r.channel(cur, "speed", zero);
+    w.current.horizontal_angle = r.channel(cur, "horizontal_angle", h_angle);
+    w.current.vertical_angle = r.channel(cur, "vertical_angle", zero);
+  }
+  try {
+    hydro::validate(w.current);
+  } catch (const ParameterError& e) {
+    r.fail(e.what());
+  }
+
+  const std::string base = dirOf(path);
+  if (const YAML::Node meshes = root["meshes"]) {
+    if (!meshes.IsSequence()) r.fail("'meshes' must be a list");
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+      const YAML::Node m = meshes[i];
+      const std::string where = "meshes[" + formatNumber(i) + "].";
+      if (!m.IsMap()) r.fail("'" + where + "' must be a map");
+      MeshEntry e;
+      e.name = r.text(m, "name", where, "mesh" + formatNumber(i));
+      const std::string file = r.text(m, "file", where, "", true);
+      e.file = (!file.empty() && file[0] == '/') ? file : base + "/" + file;
+      if (!std::ifstream(e.file)) r.fail("'" + where + "file' " + e.file + " does not exist");
+      e.scale = r.vec3(m, "scale", where, Eigen::Vector3d::Ones());
+      if ((e.scale.array() <= 0.0).any()) r.fail("'" + where + "scale' must be > 0 on every axis");
+      e.pose = poseFromXyzRpy(r.vec3(m, "xyz", where, Eigen::Vector3d::Zero()),
+                              r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
+      e.collision = r.flag(m, "collision", where, true);
+      e.visual = r.flag(m, "visual", where, true);
+      w.meshes.push_back(e);
+    }
+  }
+
+  const YAML::Node robots = root["robots"];
+  if (!robots || !robots.IsSequence() || robots.size() == 0)
+    r.fail("'robots' must be a non-empty list of {name, description, xyz, rpy}");
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const YAML::Node m = robots[i];
+    const std::string where = "robots[" + formatNumber(i) + "].";
+    if (!m.IsMap()) r.fail("'" + where + "' must be a map");
+    RobotSpawn s;
+    s.name = r.text(m, "name", where, "", true);
+    s.description = r.text(m, "description", where, "ux1.urdf.xacro");
+    s.pose = poseFromXyzRpy(r.vec3(m, "xyz", where, Eigen::Vector3d::Zero()),
+                            r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
+    for (const auto& other : w.robots)
+      if (other.name == s.name) r.fail("robot name '" + s.name + "' appears twice");
+    w.robots.push_back(s);
+  }
+  return w;
+}
+
+}  // namespace sim
+}  // namespace unexmin

@@ -1,0 +1,62 @@
+// World file (YAML): environment, static meshes and robot spawn poses. See docs/worlds.md.
+#pragma once
+
+#include <unexmin/core/error.h>
+
+#include <unexmin/hydro/current.h>
+
+#include <Eigen/Geometry>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sim {
+
+struct MeshEntry
+{
+  std::string name;
+  std::string file;                         ///< Absolute path (resolved against the world file).
+  Eigen::Vector3d scale{1, 1, 1};
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< Mesh frame in the world frame.
+  bool collision = true;
+  bool visual = true;
+};
+
+struct RobotSpawn
+{
+  std::string name;         ///< Robot namespace, e.g. "UX_1".
+  std::string description;  ///< Robot description file name in the package's urdf/ folder.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< base_link in the world frame.
+};
+
+struct WorldConfig
+{
+  std::string file;                       ///< Where it was loaded from.
+  std::string name;
+  double gravity = 9.81;                  ///< [m/s^2], along world -z.
+  double water_density = 1000.0;          ///< [kg/m^3]
+  double surface_z = 0.0;                 ///< World z of the free surface [m].
+  double atmospheric_pressure = 101325.0; ///< [Pa]
+  std::string visibility = "none";        ///< none|low|medium|high
+  Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};
+  /// Earth magnetic field, world frame (ENU) [mG]; default: about the UNEXMIN Kaatiala site
+  /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.
+  Eigen::Vector3d magnetic_field{24.0, 134.0, -508.0};
+  hydro::CurrentParams current;
+  /// Back end of the world's ray caster for every ray sensor: "embree" (default) or "bullet"
+  /// (raycast::rayCasterBackends(); checked when the simulator builds the caster).
+  std::string ray_caster = "embree";
+  std::vector<MeshEntry> meshes;
+  std::vector<RobotSpawn> robots;
+};
+
+/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect.
+WorldConfig loadWorldConfig(const std::string& path);
+
+/// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+
+}  // namespace sim
+}  // namespace unexmin
