@@ -1,0 +1,104 @@
+"""Start-up errors of the simulator process (docs/simulator_node.md): a robot description with a <sensor> of
+an unknown type, an unknown family in ~sensors and an unknown ray-casting back end in the world file each stop
+simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from unexmin.launcher import free_port, stop_process_group, wait_for
+
+REPO = Path(__file__).resolve().parents[2]
+TANK = REPO / "worlds" / "tank.world"
+
+
+@pytest.fixture(scope="module")
+def description():
+    xacro = shutil.which("xacro")
+    assert xacro, "xacro is not on PATH (source scripts/env.sh)"
+    return subprocess.run([xacro, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], capture_output=True,
+                          text=True, check=True).stdout
+
+
+@pytest.fixture(scope="module")
+def master(tmp_path_factory):
+    """A private rosmaster; yields its URI."""
+    import rosgraph
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+               ROS_LOG_DIR=str(tmp_path_factory.mktemp("ros_log")))
+    proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.STDOUT, start_new_session=True)
+    uri = env["ROS_MASTER_URI"]
+    wait_for(lambda: rosgraph.Master("/startup_test", master_uri=uri).is_online(), 30, "the test rosmaster")
+    yield uri
+    stop_process_group(proc)
+
+
+def start(master, urdf, world=TANK, sensors="all"):
+    """Runs simulator_node against `master` with UX_1 described by `urdf`; returns (exit code, output)."""
+    import rosgraph
+    params = rosgraph.Master("/startup_test", master_uri=master)
+    params.setParam("/UX_1/robot_description", urdf)
+    env = dict(os.environ, ROS_MASTER_URI=master)
+    out = subprocess.run(["rosrun", "unexmin", "simulator_node", f"_world_file:={world}", f"_sensors:={sensors}",
+                          "_paused:=true", "__name:=simulator"], env=env, capture_output=True, text=True, timeout=60)
+    return out.returncode, out.stdout + out.stderr
+
+
+def fatal_lines(output):
+    return [line for line in output.splitlines() if "FATAL" in line]
+
+
+def test_an_unknown_sensor_type_stops_start_up_with_one_line(master, description):
+    urdf = description.replace("</unexmin>", "<sensor name='echo' type='echosounder' link='UX_1/base_link' "
+                                             "rate='10'/></unexmin>")
+    code, output = start(master, urdf)
+    assert code == 1, output
+    lines = fatal_lines(output)
+    assert len(lines) == 1, output
+    assert re.search(r"UX_1: sensor 'echo': unknown type 'echosounder' \(known: dvl, imu, m3, msis, pressure\)",
+                     lines[0]), lines[0]
+
+
+def test_an_unknown_sensor_family_in_the_selection_stops_start_up(master, description):
+    code, output = start(master, description, sensors="imu,sonar")
+    assert code == 1, output
+    lines = fatal_lines(output)
+    assert len(lines) == 1 and "parameter ~sensors = 'imu,sonar': unknown family 'sonar'" in lines[0], output
+    assert "dvl, imu, m3, msis, pressure" in lines[0]
+
+
+def test_an_unknown_ray_caster_back_end_in_the_world_file_stops_start_up(master, description, tmp_path):
+    world = tmp_path / "tank.world"
+    text = TANK.read_text().replace("meshes/", str(TANK.parent / "meshes") + "/")
+    assert "ray_caster: embree" in text
+    world.write_text(text.replace("ray_caster: embree", "ray_caster: optix"))
+    code, output = start(master, description, world=world)
+    assert code == 1, output
+    lines = fatal_lines(output)
+    assert len(lines) == 1 and f"{world}: 'ray_caster'" in lines[0] and "optix" in lines[0], output
+    assert "embree" in lines[0] and "bullet" in lines[0], lines[0]
+
+
+def test_a_valid_selection_starts(master, description):
+    """The same set-up with known names starts (so the failures above are about the names): the node is
+    alive until stopped."""
+    import rosgraph
+    rosgraph.Master("/startup_test", master_uri=master).setParam("/UX_1/robot_description", description)
+    env = dict(os.environ, ROS_MASTER_URI=master)
+    proc = subprocess.Popen(["rosrun", "unexmin", "simulator_node", f"_world_file:={TANK}", "_sensors:=imu,dvl",
+                             "_paused:=true", "__name:=simulator"], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    try:
+        master_api = rosgraph.Master("/startup_test", master_uri=master)
+        wait_for(lambda: "/sim/step" in [s for s, _ in master_api.getSystemState()[2]], 60, "/sim/step")
+        topics = {t for t, _ in master_api.getPublishedTopics("")}
+        assert "/UX_1/imu" in topics and "/UX_1/dvl" in topics, sorted(topics)
+        assert "/UX_1/m3/scan" not in topics and "/UX_1/tritech_micron/scan" not in topics, sorted(topics)
+    finally:
+        stop_process_group(proc)
