@@ -1,4 +1,4 @@
-// The "gaussian" and "none" noise families (cpp/sensors/gaussian_noise.h, noise_model.h): white
+// The "gaussian" and "none" noise families (cpp/unexmin/sensors/gaussian_noise.h, noise_model.h): white
 // noise standard deviation, bias random-walk growth K^2 t, turn-on bias spread, exact "none", errors.
 #include <unexmin/sensors/gaussian_noise.h>
 #include <unexmin/sensors/noise_model.h>

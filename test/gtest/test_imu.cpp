@@ -1,4 +1,4 @@
-// IMU model (cpp/sensors/imu_sensor.h) against closed-form answers: gravity at rest, a known yaw
+// IMU model (cpp/unexmin/sensors/imu_sensor.h) against closed-form answers: gravity at rest, a known yaw
 // rate, lever-arm accelerations under a known torque, the world's magnetic field, the Allan deviation
 // of the configured white noise, seeded repeatability and start-up errors.
 #include "sensor_fixture.h"

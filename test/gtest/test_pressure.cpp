@@ -1,4 +1,4 @@
-// Pressure model (cpp/sensors/pressure_sensor.h): atmospheric + rho g depth at the sensor link,
+// Pressure model (cpp/unexmin/sensors/pressure_sensor.h): atmospheric + rho g depth at the sensor link,
 // within the configured noise; atmospheric above the surface; full-scale clamp; start-up errors.
 #include "sensor_fixture.h"
 #include <unexmin/sensors/pressure_sensor.h>

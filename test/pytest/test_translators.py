@@ -79,7 +79,7 @@ def beams():
 
 def ping(v, altitude, sigma, valid=(True, True, True, True), sound_speed=1446.6, pressure=1.2e5):
     """A Dvl message as the simulator's model builds it for DVL velocity v [m/s] over a flat bottom
-    at `altitude` [m] along z (formulas of cpp/sensors/dvl_sensor.h)."""
+    at `altitude` [m] along z (formulas of cpp/unexmin/sensors/dvl_sensor.h)."""
     B = beams()
     m = Dvl()
     m.header.stamp.secs, m.header.stamp.nsecs = 12, 125000000

@@ -420,7 +420,7 @@ def test_thruster_models_schema():
 
 
 def test_positive_pendulum_angle_moves_the_mass_forward():
-    """Sign convention of cpp/hydro/pendulum.h: mass at arm (sin a, 0, -cos a)."""
+    """Sign convention of cpp/unexmin/hydro/pendulum.h: mass at arm (sin a, 0, -cos a)."""
     robot = robot_xml("UX_1")
     joint = joints_by_name(robot)["UX_1/pendulum_joint"]
     xyz, rot = joint_origin(joint)

@@ -1,4 +1,4 @@
-// Topic of an "m3" sensor (cpp/sonar/m3_sensor.h): `topic` (default m3/scan, relative to /<robot>/
+// Topic of an "m3" sensor (cpp/unexmin/sensors/sonar/m3_sensor.h): `topic` (default m3/scan, relative to /<robot>/
 // unless absolute), sensor_msgs/LaserScan of the first echoes, frame = the M3 link, stamp = the ping
 // time: angle_min/max = -/+ fov_h / 2, angle_increment = fov_h / (beams - 1), time_increment 0 (all
 // beams at once), scan_time = 1 / rate, range_min/max, ranges [m] (REP-117: +inf no return within

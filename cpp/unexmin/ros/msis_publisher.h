@@ -1,4 +1,4 @@
-// Topics of an "msis" sensor (cpp/sonar/msis_sensor.h; names from its _topic parameters, relative to
+// Topics of an "msis" sensor (cpp/unexmin/sensors/sonar/msis_sensor.h; names from its _topic parameters, relative to
 // /<robot>/ unless absolute):
 //   topic        (default tritech_micron/scan)  sensor_msgs/PointCloud2, one ping: nbins points at the bin
 //                centres along the head's +x (x = range [m], y = z = 0), fields x y z intensity rgb (FLOAT32;
