@@ -491,7 +491,8 @@ def test_overrides_file_changes_only_what_it_names(tmp_path):
 # ----------------------------------------------------------------------------------------------
 # worlds
 # ----------------------------------------------------------------------------------------------
-WORLD_KEYS = {"name", "gravity", "water", "atmospheric_pressure", "visibility", "current", "meshes", "robots"}
+WORLD_KEYS = {"name", "gravity", "water", "atmospheric_pressure", "visibility", "ray_caster", "current", "meshes",
+              "robots"}
 MESH_KEYS = {"name", "file", "scale", "xyz", "rpy", "collision", "visual"}
 ROBOT_KEYS = {"name", "description", "xyz", "rpy"}
 
@@ -542,6 +543,7 @@ def test_world_schema(world_file):
     assert world["atmospheric_pressure"] == pytest.approx(101325.0)
     assert world["visibility"]["level"] in ("none", "low", "medium", "high")
     assert len(world["visibility"]["colour"]) == 3
+    assert world["ray_caster"] in ("embree", "bullet")
     assert set(world["current"]) == {"speed", "horizontal_angle", "vertical_angle"}
     for var in world["current"].values():
         assert set(var) == {"mean", "min", "max", "noise", "mu"}
