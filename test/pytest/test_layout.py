@@ -1,6 +1,6 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> hydro -> sim -> raycast -> sensors (-> sensors/sonar) -> ros. No folder includes a folder
-above it, no core folder includes a ROS header or links a ROS library, and every project header is included
+in the order core -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros. No folder
+includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
 with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>."""
 
 import re
@@ -10,7 +10,8 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CPP = REPO / "cpp" / "unexmin"
-LAYERS = ["core", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "ros"]
+LAYERS = ["core", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros"]
+SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
 ROS_ROOTS = {"ros", "roscpp", "rosbag", "rosconsole", "tf", "tf2", "tf2_ros", "tf2_eigen", "image_transport",
              "kvh_1775", "ux1_msgs", "dvl_nortek", "std_srvs", "pluginlib", "nodelet", "urdf"}
@@ -65,7 +66,8 @@ def test_no_folder_includes_a_folder_above_it():
             if not header.startswith("unexmin/") or is_ros_header(header):
                 continue
             other = folder_of(REPO / "cpp" / header)
-            if LAYERS.index(other) > own:
+            siblings = other != LAYERS[own] and {other, LAYERS[own]} <= SIBLINGS
+            if LAYERS.index(other) > own or siblings:
                 bad.append(f"{path.relative_to(REPO)} ({LAYERS[own]}) includes <{header}> ({other})")
     assert not bad, "\n".join(bad)
 
@@ -85,7 +87,7 @@ def libraries():
 
 def test_each_library_links_only_libraries_below_it_and_only_ros_links_ros():
     libs = libraries()
-    assert set(libs) == set(LAYERS) - {"sensors/sonar"}, f"libraries {sorted(libs)}"
+    assert set(libs) == set(LAYERS) - SIBLINGS, f"libraries {sorted(libs)}"
     for folder, deps in libs.items():
         for dep in deps:
             m = re.match(r"unexmin_(\w+)$", dep)

@@ -40,6 +40,8 @@ struct SensorSetup
   std::string robot;                       ///< robot name (messages, random stream)
   const sim::RobotDescription& description;
   double physics_dt = 0.002;               ///< physics step [s] > 0
+  /// Visual mode (/sim/mode): lights on, images rendered; false = operational (fastest).
+  bool visual = false;
 };
 
 class Sensor

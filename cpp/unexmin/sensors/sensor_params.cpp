@@ -67,6 +67,19 @@ Eigen::Vector3d SensorParams::vec3(const std::string& key, const Eigen::Vector3d
   return Eigen::Vector3d(it->second[0], it->second[1], it->second[2]);
 }
 
+std::vector<double> SensorParams::numbers(const std::string& key, const std::vector<double>& fallback)
+{
+  used_.insert(key);
+  const std::string expected = formatNumber(static_cast<double>(fallback.size())) + " finite numbers";
+  if (spec_.text.count(key)) fail(key, "'" + spec_.text.at(key) + "'", expected);
+  const auto it = spec_.params.find(key);
+  if (it == spec_.params.end()) return fallback;
+  if (it->second.size() != fallback.size()) fail(key, showAll(it->second), expected);
+  for (double v : it->second)
+    if (!std::isfinite(v)) fail(key, showAll(it->second), expected);
+  return it->second;
+}
+
 std::string SensorParams::text(const std::string& key, const std::string& fallback,
                                const std::vector<std::string>& allowed)
 {

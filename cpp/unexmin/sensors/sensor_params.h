@@ -25,6 +25,8 @@ public:
                 bool hi_open = false);
   /// Three numbers, `fallback` when absent.
   Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback);
+  /// Exactly `fallback.size()` finite numbers, `fallback` when absent.
+  std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback);
   /// Text, `fallback` when absent; when `allowed` is not empty the value must be one of them.
   std::string text(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed = {});
   /// Whitespace-separated words (e.g. link names); empty when absent.

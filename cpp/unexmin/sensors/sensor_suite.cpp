@@ -4,14 +4,14 @@ namespace unexmin {
 namespace sensors {
 
 SensorSuite::SensorSuite(const sim::World& world, const sim::Robot& robot, const raycast::RayCaster* rays,
-                         const SensorFactory& factory, const SensorSelection& selection)
+                         const SensorFactory& factory, const SensorSelection& selection, bool visual)
     : world_(world), robot_(robot), rays_(rays)
 {
   for (std::size_t i = 0; i < world.robotCount(); ++i)
     if (&world.robot(i) == &robot) robot_index_ = static_cast<int>(i);
   if (robot_index_ < 0)
     throw ConfigError("sensors: robot '" + robot.name() + "' is not in world '" + world.config().name + "'");
-  const SensorSetup setup{robot.name(), robot.description(), world.dt()};
+  const SensorSetup setup{robot.name(), robot.description(), world.dt(), visual};
   for (const auto& spec : robot.description().sensors) {
     if (!factory.has(spec.type)) factory.create(spec, setup);  // throws: unknown type
     if (!selection.selected(spec.type)) {

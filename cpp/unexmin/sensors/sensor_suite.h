@@ -20,8 +20,9 @@ public:
   /// robot is not in the world, on a sensor of unknown type (naming the robot, the sensor and the known types;
   /// whether selected or not) and on a bad sensor parameter. Sensors of families `selection` leaves out are
   /// not built (listed by skipped()). Resets every sensor with world.seed().
+  /// `visual`: the simulator's visual mode (SensorSetup::visual).
   SensorSuite(const sim::World& world, const sim::Robot& robot, const raycast::RayCaster* rays,
-              const SensorFactory& factory, const SensorSelection& selection = SensorSelection());
+              const SensorFactory& factory, const SensorSelection& selection = SensorSelection(), bool visual = false);
 
   /// Back to t = 0 with the world's seed `seed` (after World::reset).
   void reset(std::uint64_t seed);

@@ -148,6 +148,8 @@ WorldConfig loadWorldConfig(const std::string& path)
     if (w.visibility != "none" && w.visibility != "low" && w.visibility != "medium" && w.visibility != "high")
       r.fail("'visibility.level' is '" + w.visibility + "', expected none|low|medium|high");
     w.visibility_colour = r.vec3(vis, "colour", "visibility.", w.visibility_colour);
+    if ((w.visibility_colour.array() <= 0.0).any() || (w.visibility_colour.array() > 1.0).any())
+      r.fail("'visibility.colour' must be three numbers in (0, 1]");
   }
 
   w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
@@ -189,6 +191,9 @@ WorldConfig loadWorldConfig(const std::string& path)
                               r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
       e.collision = r.flag(m, "collision", where, true);
       e.visual = r.flag(m, "visual", where, true);
+      e.albedo = r.vec3(m, "albedo", where, e.albedo);
+      if ((e.albedo.array() < 0.0).any() || (e.albedo.array() > 1.0).any())
+        r.fail("'" + where + "albedo' must be three numbers in [0, 1]");
       w.meshes.push_back(e);
     }
   }

@@ -22,6 +22,9 @@ struct MeshEntry
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< Mesh frame in the world frame.
   bool collision = true;
   bool visual = true;
+  /// Diffuse (Lambertian) reflectance per RGB channel, in [0, 1], for cameras and the SLS lasers
+  /// [assumed default 0.3: weathered rock; docs/worlds.md].
+  Eigen::Vector3d albedo{0.3, 0.3, 0.3};
 };
 
 struct RobotSpawn
@@ -40,7 +43,7 @@ struct WorldConfig
   double surface_z = 0.0;                 ///< World z of the free surface [m].
   double atmospheric_pressure = 101325.0; ///< [Pa]
   std::string visibility = "none";        ///< none|low|medium|high
-  Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};
+  Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};  ///< RGB of the murk, each in (0, 1]
   /// Earth magnetic field, world frame (ENU) [mG]; default: about the UNEXMIN Kaatiala site
   /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.
   Eigen::Vector3d magnetic_field{24.0, 134.0, -508.0};
