@@ -10,6 +10,7 @@
 #include <unexmin/sensors/pressure_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
+#include <unexmin/sensors/vision/sls_sensor.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include "sphere_fixture.h"
 
@@ -86,6 +87,7 @@ inline const sensors::SensorFactory& coreModels()
     f.add<sensors::PressureSensor>("pressure");
     f.add<sonar::MsisSensor>("msis");
     f.add<sonar::M3Sensor>("m3");
+    f.add<sensors::vision::SlsSensor>("sls");
     return f;
   }();
   return factory;

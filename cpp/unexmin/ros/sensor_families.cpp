@@ -7,6 +7,7 @@
 #include <unexmin/ros/m3_publisher.h>
 #include <unexmin/ros/msis_publisher.h>
 #include <unexmin/ros/pressure_publisher.h>
+#include <unexmin/ros/sls_publisher.h>
 
 namespace unexmin {
 namespace ros_layer {
@@ -19,6 +20,7 @@ SensorRegistry SensorRegistry::builtin()
   r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
   r.add<sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
   r.add<sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
+  r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/vision.md
   return r;
 }
 

@@ -42,7 +42,7 @@ public:
   /// The publisher of `sensor` (of a registered family; throws ConfigError otherwise).
   std::unique_ptr<SensorPublisher> publisher(sensors::Sensor& sensor, const PublisherContext& ctx) const;
 
-  /// The simulator's families: imu, dvl, pressure, msis, m3 (ros/sensor_families.cpp).
+  /// The simulator's families (ros/sensor_families.cpp).
   static SensorRegistry builtin();
 
 private:

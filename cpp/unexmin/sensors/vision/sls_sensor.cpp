@@ -33,12 +33,13 @@ SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   motor_max_ = p.number("motor_max", 45.0 * kDeg, -2.0 * M_PI, 2.0 * M_PI, "rad");
   if (motor_max_ < motor_min_) p.fail("motor_max", formatNumber(motor_max_), "at least motor_min");
   motor_speed_ = p.number("motor_speed", 10.0 * kDeg, 0.0, 100.0, "rad/s");
-  motor_start_ = p.number("motor_start", motor_min_, motor_min_, motor_max_, "rad");
+  motor_start_ = p.number("motor_start", std::min(std::max(0.0, motor_min_), motor_max_), motor_min_, motor_max_, "rad");
   subpixel_ = p.number("subpixel_noise", 0.2, 0.0, 100.0, "px");
   threshold_ = p.number("threshold", 1e-3, 0.0, 1e6, "(line strength)");
   backscatter_length_ = p.number("backscatter_length", 1.0, 0.0, 1000.0, "m");
   noise_ = p.text("noise", "gaussian", {"gaussian", "none"}) == "gaussian";
   camera_frame_ = p.text("camera_frame", "");
+  scan_frame_ = p.text("scan_frame", spec.link);
   camera_ = CameraModel::fromParams(p, "camera_", false);
   const std::vector<std::string> named = p.words("joint");
   p.finish();

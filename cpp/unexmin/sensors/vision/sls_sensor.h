@@ -4,7 +4,7 @@
 // Frame: the laser head link (spec.link, child of the motor joint, axis usually z). The fan lies in the head's
 // x-z plane, centred on +x: ray j at elevation e_j = -fan/2 + j fan/(rays - 1) has direction (cos e, 0, sin e).
 // The motor sweeps the head between motor_min and motor_max at motor_speed (a triangle wave starting at
-// motor_start, moving up), reported in joint_states. Each sample (the camera's frame rate):
+// motor_start, default 0 (facing the camera's side of the unit), moving up), reported in joint_states. Each sample (the camera's frame rate):
 //   1. every ray of the fan is cast against the world (own hull invisible): the raw fan (LaserScan ranges from
 //      the head origin; +inf beyond range_max, -inf nearer than range_min, REP-117);
 //   2. a laser point is kept when the unit's camera (optical frame `camera_frame`, a link of the robot; image
@@ -24,8 +24,8 @@
 // Parameters: camera_frame (required, a link), camera_width/height [px] (2054 x 1544), camera_hfov [rad]
 // (80 deg), camera_distortion (0 0 0 0 0), fan [rad] (100 deg), rays (200), range_min [m] (0.1),
 // range_max [m] (5), motor_min/motor_max [rad] (-45/45 deg), motor_speed [rad/s] (10 deg/s; 0 = still),
-// motor_start [rad] (motor_min), subpixel_noise [px] (0.2), threshold [-] (1e-3), backscatter_length [m] (1),
-// noise gaussian|none (gaussian), joint (default: the joint whose child is the link). Knows no ROS.
+// motor_start [rad] (0 within the limits), subpixel_noise [px] (0.2), threshold [-] (1e-3), backscatter_length [m] (1),
+// noise gaussian|none (gaussian), scan_frame (head link), joint (default: the joint whose child is the link). Knows no ROS.
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
@@ -67,6 +67,9 @@ public:
   double rangeMin() const { return range_min_; }
   double rangeMax() const { return range_max_; }
   const std::string& joint() const { return joint_; }
+  /// frame_id of the raw fan's LaserScan: a link whose x-y plane is the fan plane (`scan_frame`, default the
+  /// head link).
+  const std::string& scanFrame() const { return scan_frame_; }
   /// The camera that sees this unit: its optical frame (link) and that frame's pose in the base frame.
   const std::string& cameraFrame() const { return camera_frame_; }
   const Eigen::Isometry3d& cameraPose() const { return camera_pose_; }
@@ -91,7 +94,7 @@ private:
   double motor_min_ = 0.0, motor_max_ = 0.0, motor_speed_ = 0.0, motor_start_ = 0.0;
   double subpixel_ = 0.2, threshold_ = 1e-3, backscatter_length_ = 1.0;
   bool noise_ = true;
-  std::string joint_;
+  std::string joint_, scan_frame_;
   Eigen::Vector3d axis_{0, 0, 1};
   std::string camera_frame_;
   Eigen::Isometry3d camera_pose_ = Eigen::Isometry3d::Identity();
