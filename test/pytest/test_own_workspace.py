@@ -173,19 +173,24 @@ def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
     launch_log = open(tmp_path / "roslaunch.log", "w")
     launch = subprocess.Popen(in_workspace(ws, ["roslaunch", "--port", str(port), "unexmin", "tank_world.launch"]),
                               env=env, stdout=launch_log, stderr=subprocess.STDOUT, start_new_session=True)
-    check = subprocess.Popen(in_workspace(ws, ["python3", "-c", CHECK, *nodes.stdout.split()]), env=env, stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    check = subprocess.Popen(in_workspace(ws, ["python3", "-c", CHECK, *nodes.stdout.split()]), env=env,
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
+
+    def launch_log_text():
+        return (tmp_path / "roslaunch.log").read_text()
+
     try:
         try:
-            wait_for(lambda: launch.poll() is not None or check.poll() is not None, 180,
-                     "/clock, /UX_1/odom and every node of tank_world.launch from the fresh workspace")
+            wait_for(lambda: launch.poll() is not None or check.poll() is not None
+                     or "process has died" in launch_log_text(), 180,
+                     "/clock, /UX_1/odom and every node of tank_world.launch from the fresh workspace", poll=0.2)
         except TimeoutError as e:
-            pytest.fail(f"{e}\nroslaunch:\n{(tmp_path / 'roslaunch.log').read_text()[-3000:]}")
-        report = check.communicate(timeout=10)[0] if check.poll() is not None else ""
-        log = (tmp_path / "roslaunch.log").read_text()
+            pytest.fail(f"{e}\nroslaunch:\n{launch_log_text()[-3000:]}")
+        log = launch_log_text()
         assert launch.poll() is None, f"roslaunch exited ({launch.returncode}):\n{log[-3000:]}"
+        assert "process has died" not in log, log[-3000:]   # a node of the launch file failed from here
+        report = check.communicate(timeout=10)[0]
         assert check.returncode == 0, f"{report}\nroslaunch:\n{log[-3000:]}"
-        assert "process has died" not in log, log[-3000:]   # every node of the launch file runs from here
         print(f"built in {build_s:.0f} s; {report.strip()}")
     finally:
         stop_process_group(check)
