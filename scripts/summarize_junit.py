@@ -20,7 +20,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 # Tests that may legitimately be skipped: {"<classname>.<name>" (fnmatch pattern): "why"}.
-# pytest's classname is the module (test_replay.test_sample_bag_contents), gtest's the suite.
+# pytest names a case by module path (test.pytest.test_replay.test_sample_bag_contents), gtest by
+# suite (RayCaster.EmbreeWatertightOptionIsWhatStopsEdgeLeaks).
 ALLOWED_SKIPS = {}
 
 
