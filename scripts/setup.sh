@@ -52,15 +52,8 @@ fi
 PYTHONPATH="$repo/python" "$venv/bin/python" -m unexmin.mine_generator --seed 7 --quiet \
   --out "$repo/worlds/meshes/mine" | sed 's/^/[setup] /'
 
-mkdir -p "$ws/src"
-ln -sfn "$repo" "$ws/src/unexmin"
-for m in "$repo"/msgs/*/; do
-  ln -sfn "${m%/}" "$ws/src/$(basename "$m")"
-done
-# Remove links to msg packages that no longer exist.
-for l in "$ws"/src/*; do
-  [ -L "$l" ] && [ ! -e "$l" ] && rm -f "$l"
-done
+# The same way a user adds the package to their own workspace (README, "Your own workspace").
+bash "$repo/scripts/add_to_workspace.sh" --quiet "$ws"
 
 echo "[setup] building workspace $ws"
 (

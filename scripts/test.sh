@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: gtest (C++ core), rostest (whole system through a real roscore) and pytest (Python
-# tools). Sets the machine up first. Exits non-zero on any failure; the last line is the summary.
+# tools). Sets the machine up first. Exits non-zero on any failure, and on any skipped test that
+# scripts/summarize_junit.py does not allow (a missing dependency must fail); the last line is the summary.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$repo/scripts/setup.sh"
