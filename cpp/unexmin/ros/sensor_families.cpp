@@ -20,7 +20,7 @@ SensorRegistry SensorRegistry::builtin()
   r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
   r.add<sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
   r.add<sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
-  r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/vision.md
+  r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/sls.md
   return r;
 }
 
