@@ -6,6 +6,7 @@
 #include <unexmin/sim/mesh.h>
 #include "mesh_fixture.h"
 #include "sphere_fixture.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -22,10 +23,10 @@ namespace unexmin {
 namespace test {
 namespace {
 
-/// A file of the given content in the test's temporary folder; returns its path.
+/// A file of the given content in the test process's temporary folder; returns its path.
 std::string writeFile(const std::string& name, const std::string& content)
 {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = testTempDir() + name;
   std::ofstream(path, std::ios::binary) << content;
   return path;
 }
@@ -195,7 +196,7 @@ TEST(Mesh, UnreadableEmptyOrTriangleLessFilesStopWithAConfigErrorNamingTheFile)
   const std::uint32_t zero = 0;
   no_triangles.append(reinterpret_cast<const char*>(&zero), 4);
   const std::vector<sim::MeshEntry> bad = {
-      entry("missing", ::testing::TempDir() + "mesh_test_does_not_exist.stl"),
+      entry("missing", testTempDir() + "mesh_test_does_not_exist.stl"),
       entry("empty", writeFile("mesh_test_empty.stl", "")),
       entry("text", writeFile("mesh_test_text.stl", "this is not a mesh\n")),
       entry("no_triangles", writeFile("mesh_test_no_triangles.stl", no_triangles)),
