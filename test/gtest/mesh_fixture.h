@@ -2,6 +2,8 @@
 // simulator's mesh loader reads back: shared by the ray-caster and sonar tests.
 #pragma once
 
+#include "temp_dir.h"
+
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
@@ -23,10 +25,10 @@ struct Geometry
   std::vector<int> indices;
 };
 
-/// Binary STL in the test's temporary folder; returns its path.
+/// Binary STL in the test process's temporary folder; returns its path.
 inline std::string writeStl(const std::string& name, const Geometry& g)
 {
-  const std::string path = ::testing::TempDir() + name + ".stl";
+  const std::string path = testTempDir() + name + ".stl";
   std::ofstream out(path, std::ios::binary);
   char header[80] = {};
   out.write(header, sizeof(header));

@@ -2,6 +2,7 @@
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
 #include "sphere_fixture.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +16,7 @@ namespace {
 
 std::string writeTemp(const std::string& name, const std::string& text)
 {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = unexmin::test::testTempDir() + name;
   std::ofstream(path) << text;
   return path;
 }

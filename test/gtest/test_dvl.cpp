@@ -1,11 +1,14 @@
 // DVL model (cpp/sensors/dvl_sensor.h) in the laboratory tank (worlds/tank.world, floor at z = -3 m):
 // beam ranges against the analytic distance to the floor, velocity against the set robot velocity,
+// velocity_z1/z2 each from its own beam pair (heave while moving and turning; one beam out of the window),
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.
 #include "sensor_fixture.h"
 #include <unexmin/sensors/dvl_sensor.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace unexmin {
@@ -123,6 +126,87 @@ TEST(Dvl, RotationAddsTheLeverArmVelocityOfTheDvlOrigin)
   const Eigen::Vector3d expected = at.linear().transpose() * (st.linear_velocity + st.angular_velocity.cross(r));
   EXPECT_GT((expected - at.linear().transpose() * st.linear_velocity).norm(), 0.05);  // the lever arm matters
   EXPECT_LT((w.sensor<sensors::DvlSensor>("dvl").last().velocity - expected).norm(), 1e-9);
+}
+
+/// Velocity of the DVL origin over the (static) floor in the DVL frame, from the robot state at the ping:
+/// R_dvl^T (v + w x r), r the lever arm from the body origin to the DVL [m/s].
+Eigen::Vector3d dvlVelocity(const sim::RobotState& st)
+{
+  const Eigen::Isometry3d at = dvlPose(st.pose);
+  const Eigen::Vector3d r = at.translation() - st.pose.translation();
+  return at.linear().transpose() * (st.linear_velocity + st.angular_velocity.cross(r));
+}
+
+TEST(Dvl, HeaveWhileMovingAndTurningGivesVelocityZ1AndZ2FromTheirOwnBeamPairs)
+{
+  // Heave plus a horizontal velocity and a yaw rate, the robot slightly rolled and pitched so the lever arm
+  // counts. Beam i measures b_i . v; z1 = (u0 + u2) / (2 cos a) and z2 = (u1 + u3) / (2 cos a) are both the
+  // DVL-frame z velocity. A wrong pair mixes in the horizontal velocity: (u0 + u1) / (2 cos a) =
+  // v_z + tan(a) (v_x + v_y) / 2, (u0 + u3) / (2 cos a) = v_z + tan(a) (v_x - v_y) / 2, (2 u0) / (2 cos a) =
+  // v_z + tan(a) v_x, ... so x, y, x + y and x - y are all made large against the 1e-9 tolerance.
+  const SphereSpec s = undampedSphere();
+  SensorWorld w(tank(), dvlUrdf(s, 500.0, {{"noise", "none"}}));
+  const Eigen::Vector3d v(0.2, -0.07, 0.06), omega(0.04, -0.05, 0.35);  // [m/s] heave 6 cm/s up, [rad/s]
+  w.place(sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 0.6, -1.2), Eigen::Vector3d(0.06, -0.04, 0.9)), v, omega);
+  w.step();
+  const sensors::DvlSample& p = w.sensor<sensors::DvlSensor>("dvl").last();
+  const Eigen::Vector3d expected = dvlVelocity(w.robot().state());
+  // The DVL's z is the world's -z (rpy pi 0 0 on a nearly level robot): the heave shows as -6 cm/s.
+  ASSERT_NEAR(expected.z(), -v.z(), 0.01);
+  for (double horizontal : {expected.x(), expected.y(), expected.x() + expected.y(), expected.x() - expected.y()})
+    ASSERT_GT(std::abs(horizontal), 0.05);
+  ASSERT_TRUE(p.bottom_lock);
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(p.beams[i].valid) << "beam " << i;
+    EXPECT_NEAR(p.beams[i].velocity, beam(i).dot(expected), 1e-9) << "beam " << i;
+  }
+  EXPECT_NEAR(p.velocity_z1, expected.z(), 1e-9);
+  EXPECT_NEAR(p.velocity_z2, expected.z(), 1e-9);
+  EXPECT_LT((p.velocity - expected).norm(), 1e-9);
+}
+
+TEST(Dvl, VelocityZ1AndZ2AreNaNExactlyWhenABeamOfTheirOwnPairIsInvalid)
+{
+  // Tilted so that one beam sees the floor farthest along the DVL z, and altitude_max set between it and the
+  // others: that beam alone is invalid. Pitched (nose down), beam 2 (aft) is the far one: z1 (beams 0, 2) is
+  // NaN and z2 (beams 1, 3) the z velocity; rolled, beam 3: z2 is NaN and z1 the z velocity. A z taken from
+  // the other pair's beams comes out NaN where it must be a number, or a number where it must be NaN.
+  const SphereSpec s = undampedSphere();
+  const Eigen::Vector3d v(0.12, 0.05, -0.15), omega(0.0, 0.0, -0.3);  // [m/s] sinking 15 cm/s, [rad/s]
+  struct Case { Eigen::Vector3d rpy; int far; };
+  for (const Case& c : {Case{Eigen::Vector3d(0, 0.22, 0.3), 2}, Case{Eigen::Vector3d(0.22, 0, 0.3), 3}}) {
+    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-1.6, 0.3, -1.2), c.rpy);
+    std::array<double, 4> along{};
+    for (int i = 0; i < 4; ++i) {
+      along[i] = floorRange(dvlPose(pose), i) * std::cos(kBeamAngle);
+      const Eigen::Vector3d hit = dvlPose(pose) * (floorRange(dvlPose(pose), i) * beam(i));
+      ASSERT_LT(std::abs(hit.x()), 2.9);  // on the open floor (walls at |x| = 3, |y| = 2; anchor at the centre)
+      ASSERT_LT(std::abs(hit.y()), 1.9);
+      ASSERT_GT(std::hypot(hit.x(), hit.y()), 0.6);
+    }
+    const int far = static_cast<int>(std::max_element(along.begin(), along.end()) - along.begin());
+    ASSERT_EQ(far, c.far);
+    double second = 0.0;
+    for (int i = 0; i < 4; ++i)
+      if (i != far) second = std::max(second, along[i]);
+    ASSERT_GT(along[far] - second, 0.05);
+    const double altitude_max = 0.5 * (second + along[far]);
+
+    SensorWorld w(tank(), dvlUrdf(s, 500.0, {{"noise", "none"}, {"altitude_max", num(altitude_max)}}));
+    w.place(pose, v, omega);
+    w.step();
+    const sensors::DvlSample& p = w.sensor<sensors::DvlSensor>("dvl").last();
+    const Eigen::Vector3d expected = dvlVelocity(w.robot().state());
+    ASSERT_GT(std::abs(expected.z()), 0.05);
+    ASSERT_TRUE(p.bottom_lock);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(p.beams[i].valid, i != far) << "beam " << i;
+    const bool z1_valid = far != 0 && far != 2, z2_valid = far != 1 && far != 3;
+    if (z1_valid) EXPECT_NEAR(p.velocity_z1, expected.z(), 1e-9) << "far beam " << far;
+    else EXPECT_TRUE(std::isnan(p.velocity_z1)) << "far beam " << far << ": z1 = " << p.velocity_z1;
+    if (z2_valid) EXPECT_NEAR(p.velocity_z2, expected.z(), 1e-9) << "far beam " << far;
+    else EXPECT_TRUE(std::isnan(p.velocity_z2)) << "far beam " << far << ": z2 = " << p.velocity_z2;
+    EXPECT_LT((p.velocity - expected).norm(), 1e-9);  // three beams still give the whole velocity
+  }
 }
 
 TEST(Dvl, BeyondTheMaximumAltitudeEveryBeamIsInvalid)

@@ -2,6 +2,7 @@
 // rate, lever-arm accelerations under a known torque, the world's magnetic field, the Allan deviation
 // of the configured white noise, seeded repeatability and start-up errors.
 #include "sensor_fixture.h"
+#include "temp_dir.h"
 #include <unexmin/sensors/imu_sensor.h>
 
 #include <gtest/gtest.h>
@@ -154,7 +155,7 @@ TEST(Imu, MagneticFieldComesFromTheWorldFile)
 {
   // A copy of the test box world with a field of its own, written by the test.
   const std::string dir = std::string(UNEXMIN_SOURCE_DIR) + "/worlds/";
-  const std::string path = ::testing::TempDir() + "/magnetic.world";
+  const std::string path = testTempDir() + "magnetic.world";
   auto write = [&](const std::string& field) {
     std::ofstream out(path);
     out << "name: magnetic\n" << field << "meshes:\n  - {name: box, file: " << dir

@@ -1,6 +1,8 @@
 // M3 multibeam model (cpp/sonar/m3_sensor.h) in the 4 m test box (worlds/test_box.world, walls at +-2 m):
-// every beam's range against the analytic distance to the walls (+-1 cm), the REP-117 markers beyond
-// range_max and inside range_min, Gaussian range noise, seeds, the 40 Hz schedule and start-up errors.
+// every beam's range against the analytic distance to the walls (+-1 cm) along the beam's closed-form
+// direction (beam k at -fov_h/2 + k fov_h / (beams - 1), beam 0 to the right, REP-103), beam order and
+// angle_min < angle_max with the robot off-centre, the REP-117 markers beyond range_max and inside range_min,
+// Gaussian range noise, seeds, the 40 Hz schedule and start-up errors.
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include "sonar_fixture.h"
 
@@ -26,15 +28,41 @@ std::string m3Urdf(std::map<std::string, std::string> params, double rate = 40.0
 
 sim::WorldConfig testBox() { return sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world"); }
 
-/// First-return distance of beam k: the nearest wall (+-2 m) over the beam's rays.
-double analytic(const M3Sensor& m3, const Eigen::Isometry3d& sonar, std::size_t k)
+// The model's documented defaults (m3_sensor.h), which m3Urdf() leaves alone.
+constexpr int kBeams = 256, kRaysPerBeam = 4;
+constexpr double kFovH = 120.0 * kDeg, kFovV = 3.0 * kDeg;
+
+/// Ray j of beam k in the sensor frame, from the documented closed form (not from the model):
+/// azimuth a_k = -fov_h/2 + k fov_h / (beams - 1) about z, elevation e_j = -fov_v/2 + (j + 1/2) fov_v / n.
+Eigen::Vector3d ray(int k, int j, int beams = kBeams, double fov_h = kFovH, int rays = kRaysPerBeam,
+                    double fov_v = kFovV)
+{
+  const double a = -fov_h / 2.0 + k * fov_h / (beams - 1);
+  const double e = -fov_v / 2.0 + (j + 0.5) * fov_v / rays;
+  return Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+}
+
+/// Distance from p along the unit d to the first wall of the box (+-2 m); `cos_incidence`: |d . normal| there.
+double toBoxWall(const Eigen::Vector3d& p, const Eigen::Vector3d& d, double* cos_incidence = nullptr)
 {
   double nearest = INFINITY;
-  for (int j = 0; j < m3.raysPerBeam(); ++j) {
-    const Eigen::Vector3d d = sonar.linear() * m3.rayDirection(k, j), p = sonar.translation();
-    for (int a = 0; a < 3; ++a)
-      if (std::abs(d[a]) > 1e-12) nearest = std::min(nearest, ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a]);
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(d[a]) <= 1e-12) continue;
+    const double t = ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a];
+    if (t < nearest) {
+      nearest = t;
+      if (cos_incidence) *cos_incidence = std::abs(d[a]);
+    }
   }
+  return nearest;
+}
+
+/// First-return distance of beam k (default fan): the nearest wall over the beam's rays.
+double analytic(const Eigen::Isometry3d& sonar, int k)
+{
+  double nearest = INFINITY;
+  for (int j = 0; j < kRaysPerBeam; ++j)
+    nearest = std::min(nearest, toBoxWall(sonar.translation(), sonar.linear() * ray(k, j)));
   return nearest;
 }
 
@@ -47,16 +75,66 @@ TEST(M3, EveryBeamMeasuresTheAnalyticDistanceToTheBoxWalls)
   const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-0.4, 0.3, 0.2), Eigen::Vector3d(0.1, -0.15, 0.3));
   w.place(pose);
   w.samples(m3, 1);
+  ASSERT_EQ(m3.beams(), static_cast<std::size_t>(kBeams));
+  ASSERT_EQ(m3.raysPerBeam(), kRaysPerBeam);
   ASSERT_EQ(m3.last().ranges.size(), 256u);
   EXPECT_NEAR(m3.angleIncrement(), 120.0 * kDeg / 255, 1e-12);
   const Eigen::Isometry3d sonar = sonarPose(w);
-  for (std::size_t k = 0; k < 256; ++k) {
-    const double expected = analytic(m3, sonar, k);
+  for (int k = 0; k < 256; ++k) {
+    const double expected = analytic(sonar, k);
     ASSERT_LT(expected, 150.0);
     EXPECT_NEAR(m3.last().ranges[k], expected, 0.01) << "beam " << k;
     // Quantised to the 1 cm resolution.
     EXPECT_NEAR(m3.last().ranges[k] / 0.01, std::round(m3.last().ranges[k] / 0.01), 1e-3) << "beam " << k;
     EXPECT_GT(m3.last().intensities[k], 0.0f);
+  }
+}
+
+TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre)
+{
+  // Five beams over 120 deg (-60, -30, 0, 30, 60 deg), one ray each, the fan level and straight ahead; the robot
+  // 0.8 m left of the box centre (+y, REP-103: x forward, y left, z up), so the right wall (y = -2) is 2.8 m
+  // away and the left one 1.2 m: beam 0 (-60 deg, to the right) measures 2.8 / sin 60 = 3.23 m, beam 4
+  // 1.2 / sin 60 = 1.39 m. A reversed beam order swaps them (and makes angle_min > angle_max).
+  const int beams = 5;
+  const double fov = 120.0 * kDeg;
+  const Eigen::Vector3d mount(0.3, 0.0, -0.05);
+  const std::string urdf = sensorUrdf(
+      SphereSpec(), mountLink("T/m3_link", mount, Eigen::Vector3d::Zero()),
+      sensorXml("m3", "m3", "T/m3_link", 40.0,
+                {{"noise", "none"}, {"beams", num(beams)}, {"fov_h", num(fov)}, {"rays_per_beam", "1"}}));
+  SonarWorld w(testBox(), urdf);
+  auto& m3 = w.sensor<M3Sensor>("m3");
+  w.place(sim::poseFromXyzRpy(Eigen::Vector3d(0.0, 0.8, 0.0), Eigen::Vector3d::Zero()));
+  w.samples(m3, 1);
+
+  // What M3Publisher copies into the LaserScan: angle_min = beamAngle(0), angle_max = beamAngle(beams - 1),
+  // angle_increment; a consumer puts beam k at angle_min + k angle_increment.
+  EXPECT_LT(m3.beamAngle(0), m3.beamAngle(beams - 1));
+  EXPECT_LT(m3.angleMin(), m3.angleMax());
+  EXPECT_NEAR(m3.angleMin(), -fov / 2.0, 1e-12);
+  EXPECT_NEAR(m3.angleMax(), fov / 2.0, 1e-12);
+  EXPECT_NEAR(m3.angleIncrement(), fov / (beams - 1), 1e-12);
+  for (int k = 0; k < beams; ++k) {
+    EXPECT_NEAR(m3.beamAngle(k), -fov / 2.0 + k * fov / (beams - 1), 1e-12) << "beam " << k;
+    EXPECT_NEAR(m3.beamAngle(0) + k * m3.angleIncrement(), m3.beamAngle(k), 1e-12) << "beam " << k;
+  }
+
+  const Eigen::Vector3d p = w.robot().state().pose * mount;
+  ASSERT_LT((p - Eigen::Vector3d(0.3, 0.8, -0.05)).norm(), 1e-3);  // the robot stayed put for the ping
+  // By hand: beam 0 (-60 deg) meets y = -2 at 2.8 / sin 60 (x = 2 only at 1.7 / cos 60 = 3.4); beams 1 and 3
+  // (-+30 deg) meet x = 2 at 1.7 / cos 30; beam 2 at 1.7; beam 4 (60 deg) meets y = 2 at 1.2 / sin 60.
+  const std::vector<double> by_hand = {2.8 / std::sin(60 * kDeg), 1.7 / std::cos(30 * kDeg), 1.7,
+                                       1.7 / std::cos(30 * kDeg), 1.2 / std::sin(60 * kDeg)};
+  ASSERT_EQ(m3.last().ranges.size(), static_cast<std::size_t>(beams));
+  for (int k = 0; k < beams; ++k) {
+    const Eigen::Vector3d d = w.robot().state().pose.linear() * ray(k, 0, beams, fov, 1);
+    double cos_incidence = 0.0;
+    const double range = toBoxWall(p, d, &cos_incidence);
+    ASSERT_NEAR(range, by_hand[k], 0.005) << "beam " << k;
+    EXPECT_NEAR(m3.last().ranges[k], range, 0.01) << "beam " << k;
+    // Intensity cos(incidence)^n, n = 2 (default): 0.75 on the side walls and beams 1, 3, 1 head-on (beam 2).
+    EXPECT_NEAR(m3.last().intensities[k], std::pow(cos_incidence, 2), 1e-4) << "beam " << k;
   }
 }
 
@@ -68,8 +146,8 @@ TEST(M3, BeamsBeyondRangeMaxReportNoReturnAndInsideRangeMinTooClose)
   w.samples(m3, 1);
   const Eigen::Isometry3d sonar = sonarPose(w);
   int inf = 0, too_close = 0, ranged = 0;
-  for (std::size_t k = 0; k < 256; ++k) {
-    const double expected = analytic(m3, sonar, k);
+  for (int k = 0; k < 256; ++k) {
+    const double expected = analytic(sonar, k);
     const float r = m3.last().ranges[k];
     if (expected > range_max + 0.01) {
       EXPECT_TRUE(std::isinf(r) && r > 0) << "beam " << k << ": " << r;  // REP-117: +inf, no return
@@ -98,7 +176,7 @@ TEST(M3, GaussianRangeNoiseHasItsStandardDeviationAndRepeatsWithTheSeed)
     for (int ping = 0; ping < 20; ++ping) {
       w.samples(m3, 1);
       const Eigen::Isometry3d sonar = sonarPose(w);
-      for (std::size_t k = 0; k < 256; ++k) out.push_back(m3.last().ranges[k] - analytic(m3, sonar, k));
+      for (int k = 0; k < 256; ++k) out.push_back(m3.last().ranges[k] - analytic(sonar, k));
     }
     return out;
   };

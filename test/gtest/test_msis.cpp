@@ -1,6 +1,7 @@
 // MSIS model (cpp/sonar/msis_sensor.h, echo_model.h) against closed-form answers computed here: bin lines
-// inside a sphere centred on the head and in a 4 m box, the head's step schedule, each noise model on and off,
-// seeds, a 360 deg sweep in the shipped tank (walls and anchor), and start-up errors naming the parameter.
+// inside a sphere centred on the head and in a 4 m box, the cos^n law on a plate tilted at known angles, the
+// head's step schedule, each noise model on and off, seeds, a 360 deg sweep in the shipped tank (walls and
+// anchor), and start-up errors naming the parameter.
 #include <unexmin/sensors/sonar/msis_sensor.h>
 #include "sonar_fixture.h"
 
@@ -94,6 +95,93 @@ TEST(Msis, IntensityFollowsSpreadingAbsorptionAndGain)
     const double sum = std::accumulate(v.begin(), v.end(), 0.0);
     EXPECT_NEAR(sum, 1.0 / (R * R) * std::pow(10.0, -0.02 * R), 2e-3 * sum) << "R = " << R;
   }
+}
+
+/// A flat square plate (two triangles) of half-size `half` [m] centred on `centre` with unit normal `n`.
+Geometry plate(const Eigen::Vector3d& centre, const Eigen::Vector3d& n, double half)
+{
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  Geometry g;
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
+    g.vertices.push_back(centre + half * (a * u + b * v));
+  g.indices = {0, 1, 2, 0, 2, 3};
+  return g;
+}
+
+/// Normal of a plate turned `tilt` [rad] about z from facing the head's +x (the head looking along world +x).
+Eigen::Vector3d tiltedNormal(double tilt) { return Eigen::Vector3d(-std::cos(tilt), std::sin(tilt), 0.0); }
+
+/// Expected echo strength of one ray from the documented formula (echo_model.h), gain 0 and the defaults
+/// s = 2, r_ref = 1 m, alpha = 0.1 dB/m: w cos(theta)^n (1 / r)^2 10^(-2 alpha r / 10).
+double documentedStrength(double r, double cos_theta, double n, std::size_t rays)
+{
+  return std::pow(cos_theta, n) / (r * r) * std::pow(10.0, -2.0 * 0.1 * r / 10.0) / static_cast<double>(rays);
+}
+
+TEST(Msis, OneRayOnAPlateTiltedByAKnownAngleFollowsTheCosineLaw)
+{
+  // A single ray along the head's +x (hpr = vpr = 1, head angle 0) meets a plate 1.5 m ahead turned by `tilt`
+  // about z: incidence = tilt, so the line is one bin of cos(tilt)^n (1 / r)^2 10^(-0.02 r) (gain 0, A = 1).
+  // With n + 1 instead of n the 60 deg echo halves; the tolerance is 1e-4 relative.
+  const double R = 1.5;
+  for (double n : {2.0, 1.3}) {
+    for (double tilt_deg : {0.0, 35.0, 60.0}) {
+      const double tilt = tilt_deg * kDeg;
+      const Eigen::Vector3d normal = tiltedNormal(tilt);
+      const Eigen::Vector3d centre = kRobot + kHead + Eigen::Vector3d(R, 0, 0);
+      SonarWorld w(meshWorld({{"tilted_plate", plate(centre, normal, 1.5)}}, kRobot),
+                   msisUrdf(clean({{"gain", "0"}, {"hpr", "1"}, {"vpr", "1"}, {"sector_left", "0"},
+                                   {"backscatter_exponent", num(n)}})));
+      auto& msis = w.sensor<MsisSensor>("msis");
+      w.samples(msis, 1);
+      ASSERT_EQ(msis.last().angle, 0.0);
+      // The ray from the head at the ping (the robot hardly moves in the one step before it).
+      const Eigen::Isometry3d& pose = w.robot().state().pose;
+      const Eigen::Vector3d o = pose * kHead, d = pose.linear() * Eigen::Vector3d::UnitX();
+      const double r = (centre - o).dot(normal) / d.dot(normal), cos_theta = std::abs(d.dot(normal));
+      ASSERT_NEAR(r, R, 1e-3);
+      ASSERT_NEAR(cos_theta, std::cos(tilt), 1e-4);
+      const double expected = documentedStrength(r, cos_theta, n, 1);
+      const int bin = static_cast<int>(std::floor((r - 0.3) / ((3.0 - 0.3) / 400)));  // range_min 0.3, 3 m, 400 bins
+      const auto& line = msis.last().intensity;
+      ASSERT_EQ(argmax(line), static_cast<std::size_t>(bin)) << "n " << n << " tilt " << tilt_deg;
+      EXPECT_NEAR(line[bin], expected, 1e-4 * expected) << "n " << n << " tilt " << tilt_deg << " deg";
+      EXPECT_EQ(std::accumulate(line.begin(), line.end(), 0.0), line[bin]);  // nothing elsewhere
+    }
+  }
+}
+
+TEST(Msis, TheWholeFanOnATiltedPlateSumsTheDocumentedEchoOfEveryRay)
+{
+  // The default fan (5 x 70 rays over 3 x 35 deg) on a plate 1.2 m ahead turned 50 deg about z: every ray has
+  // its own range and incidence. The line's sum is the sum over the rays of w cos(theta)^2 L(r), each ray's
+  // direction from the documented fan (msis_sensor.h) and its r, theta from the plane, computed here.
+  const double R = 1.2, tilt = 50 * kDeg;
+  const Eigen::Vector3d normal = tiltedNormal(tilt), centre = kRobot + kHead + Eigen::Vector3d(R, 0, 0);
+  SonarWorld w(meshWorld({{"tilted_plate", plate(centre, normal, 2.0)}}, kRobot),
+               msisUrdf(clean({{"gain", "0"}, {"sector_left", "0"}})));
+  auto& msis = w.sensor<MsisSensor>("msis");
+  w.samples(msis, 1);
+  ASSERT_EQ(msis.last().angle, 0.0);
+  const Eigen::Isometry3d& pose = w.robot().state().pose;
+  const Eigen::Vector3d o = pose * kHead;
+  const int hpr = 5, vpr = 70;
+  const double bw_h = 3 * kDeg, bw_v = 35 * kDeg;
+  double expected = 0.0, head_on = 0.0;
+  for (int i = 0; i < hpr; ++i) {
+    for (int j = 0; j < vpr; ++j) {
+      const double h = -bw_h / 2 + (i + 0.5) * bw_h / hpr, v = -bw_v / 2 + (j + 0.5) * bw_v / vpr;
+      const Eigen::Vector3d d = pose.linear() * Eigen::Vector3d(std::cos(v) * std::cos(h), std::cos(v) * std::sin(h), std::sin(v));
+      const double r = (centre - o).dot(normal) / d.dot(normal);
+      ASSERT_GT(r, 0.3);
+      ASSERT_LT(r, 3.0);
+      expected += documentedStrength(r, std::abs(d.dot(normal)), 2.0, hpr * vpr);
+      head_on += documentedStrength(r, 1.0, 2.0, hpr * vpr);
+    }
+  }
+  ASSERT_LT(expected, 0.7 * head_on);  // the incidence matters (cos^2 50 deg = 0.41)
+  const auto& line = msis.last().intensity;
+  EXPECT_NEAR(std::accumulate(line.begin(), line.end(), 0.0), expected, 1e-3 * expected);
 }
 
 TEST(Msis, SectorScanTurnsBackAtTheLimits)

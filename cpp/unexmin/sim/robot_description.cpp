@@ -284,7 +284,8 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     for (const auto* q = e->FirstChildElement("param"); q; q = q->NextSiblingElement("param")) {
       const char* key = q->Attribute("name");
       const char* value = q->Attribute("value");
-      if (!key || !value) p.fail(sw + "/param needs 'name' and 'value'");
+      if (!key) p.fail(sw + "/param has no 'name'");
+      if (!value) p.fail(sw + "/param[" + key + "] has no 'value'");
       std::istringstream in(value);
       std::string tok;
       bool numeric = true;
