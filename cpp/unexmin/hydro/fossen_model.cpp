@@ -13,12 +13,7 @@ namespace {
 
 const char* const kWhat = "hydro";
 
-std::string num(double x)
-{
-  std::ostringstream s;
-  s << std::setprecision(12) << x;
-  return s.str();
-}
+std::string num(double x) { return formatNumber(x); }
 
 [[noreturn]] void fail(const std::string& name, double value, const std::string& expected)
 {

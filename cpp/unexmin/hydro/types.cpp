@@ -23,10 +23,7 @@ double requireScalar(const ParamMap& params, const std::string& key, const std::
   const double value = it->second.front();
   if (!std::isfinite(value))
   {
-    std::ostringstream msg;
-    msg << what << ": parameter '" << key << "' = " << std::setprecision(12) << value
-        << " must be a finite number";
-    throw ParameterError(msg.str());
+    throw ParameterError(what + ": parameter '" + key + "' = " + formatNumber(value) + " must be a finite number");
   }
   return value;
 }

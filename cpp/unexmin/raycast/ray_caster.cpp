@@ -114,9 +114,7 @@ int resolveThreads(int threads)
 
 std::string describe(const Eigen::Vector3f& v)
 {
-  std::ostringstream o;
-  o << '(' << v.x() << ", " << v.y() << ", " << v.z() << ')';
-  return o.str();
+  return "(" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")";
 }
 
 /// Throws RayCasterError naming ray i and its defect.

@@ -75,10 +75,10 @@ DvlSensor::DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
     const Eigen::Vector3d x = spec.pose.linear().transpose() * pose.linear().col(0);
     const double angle = std::acos(std::clamp(x.dot(directions_[i]), -1.0, 1.0));
     if (angle > kBeamFrameTolerance) {
-      std::ostringstream o;
-      o << "'" << frames[i] << "' whose +x is " << angle * 180.0 / M_PI << " deg away from beam " << i
-        << " of beam_angle/beam_azimuth_0 (tolerance 0.1 deg)";
-      p.fail("beam_frames", o.str(), "frames along the beams");
+      p.fail("beam_frames",
+             "'" + frames[i] + "' whose +x is " + formatNumber(angle * 180.0 / M_PI) + " deg away from beam " +
+                 formatNumber(static_cast<double>(i)) + " of beam_angle/beam_azimuth_0 (tolerance 0.1 deg)",
+             "frames along the beams");
     }
   }
   rays_.resize(4);

@@ -10,10 +10,9 @@ Sensor::Sensor(const sim::SensorSpec& spec, const SensorSetup& setup) : spec_(sp
 {
   const double physics_rate = 1.0 / setup.physics_dt;
   if (!(spec.rate > 0.0) || spec.rate > physics_rate * (1.0 + 1e-9)) {
-    std::ostringstream o;
-    o << setup.robot << ": sensor '" << spec.name << "' (type " << spec.type << "): rate = " << spec.rate
-      << " Hz: expected (0, " << physics_rate << "] Hz (at most the physics rate)";
-    throw ConfigError(o.str());
+    throw ConfigError(setup.robot + ": sensor '" + spec.name + "' (type " + spec.type + "): rate = " +
+                      formatNumber(spec.rate) + " Hz: expected (0, " + formatNumber(physics_rate) +
+                      "] Hz (at most the physics rate)");
   }
   tolerance_ = 1e-6 * setup.physics_dt;
 }

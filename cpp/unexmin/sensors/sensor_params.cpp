@@ -9,13 +9,7 @@ namespace unexmin {
 namespace sensors {
 namespace {
 
-std::string show(double v)
-{
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
+std::string show(double v) { return formatNumber(v); }
 
 std::string showAll(const std::vector<double>& v)
 {

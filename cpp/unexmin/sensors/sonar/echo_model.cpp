@@ -12,9 +12,7 @@ namespace {
 void check(bool ok, const char* name, double value, const char* expected)
 {
   if (ok) return;
-  std::ostringstream o;
-  o << "echo model: " << name << " = " << value << ": expected " << expected;
-  throw ParameterError(o.str());
+  throw ParameterError(std::string("echo model: ") + name + " = " + formatNumber(value) + ": expected " + expected);
 }
 
 }  // namespace

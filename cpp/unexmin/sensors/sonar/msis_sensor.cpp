@@ -73,9 +73,7 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   const auto& steps = mechanicalSteps();
   const auto match = std::find_if(steps.begin(), steps.end(), [&](double s) { return std::abs(s - step_deg) < 1e-6; });
   if (match == steps.end()) {
-    std::ostringstream o;
-    o << step_deg << " deg";
-    p.fail("step", o.str(), "one of the Micron DST's mechanical steps 0.225, 0.45, 0.9, 1.8, 3.6 deg (in rad)");
+    p.fail("step", formatNumber(step_deg) + " deg", "one of the Micron DST's mechanical steps 0.225, 0.45, 0.9, 1.8, 3.6 deg (in rad)");
   }
   step_ = *match * kDeg;
   left_ = p.number("sector_left", -M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
@@ -87,16 +85,19 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
 
   const double bw_h = p.number("beam_width_h", 3.0 * kDeg, 0.0, M_PI, "rad");
   const double bw_v = p.number("beam_width_v", 35.0 * kDeg, 0.0, M_PI, "rad");
-  hpr_ = static_cast<int>(p.number("hpr", 5.0, 1.0, 1000.0, "rays"));
-  vpr_ = static_cast<int>(p.number("vpr", 70.0, 1.0, 1000.0, "rays"));
+  const double hpr = p.number("hpr", 5.0, 1.0, 1000.0, "rays");
+  const double vpr = p.number("vpr", 70.0, 1.0, 1000.0, "rays");
+  if (hpr != std::floor(hpr)) p.fail("hpr", formatNumber(hpr), "a whole number of rays");
+  if (vpr != std::floor(vpr)) p.fail("vpr", formatNumber(vpr), "a whole number of rays");
+  hpr_ = static_cast<int>(hpr);
+  vpr_ = static_cast<int>(vpr);
 
   const double sound_speed = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
   // One ping at a time: the echo from range_max must be back before the next ping.
   const double max_rate = sound_speed / (2.0 * e.range_max);
   if (rate() > max_rate * (1.0 + 1e-9)) {
-    std::ostringstream o;
-    o << "at most sound_speed / (2 range_max) = " << max_rate << " steps/s (the echo from range_max must return)";
-    p.fail("rate", formatNumber(rate()), o.str());
+    p.fail("rate", formatNumber(rate()), "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) +
+                                             " steps/s (the echo from range_max must return)");
   }
 
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
