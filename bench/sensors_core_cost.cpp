@@ -1,15 +1,11 @@
 // Cost of the navigation sensor models in the ROS-free core: World::step() of the UX-1 in the tank
 // with and without SensorSuite::update() after it (every sensor of the UX-1's description: IMU every step,
-// DVL 4 rays at 8 Hz, pressure, MSIS, M3; rays through the world's caster as the simulator builds it). Built
+// DVL 4 rays at 8 Hz, pressure, MSIS, M3, the 4 SLS units; rays through the world's caster as the simulator builds it). Built
 // by catkin (target sensors_core_cost, not a test) and run by bench/sensors_rtf.py --core:
 //   sensors_core_cost <expanded UX-1 URDF> <tank.world> [steps]
 #include <unexmin/raycast/ray_caster.h>
-#include <unexmin/sensors/dvl_sensor.h>
-#include <unexmin/sensors/imu_sensor.h>
-#include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/ros/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
-#include <unexmin/sensors/sonar/m3_sensor.h>
-#include <unexmin/sensors/sonar/msis_sensor.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -32,12 +28,9 @@ int main(int argc, char** argv)
   const sim::WorldConfig config = sim::loadWorldConfig(argv[2]);
   const std::map<std::string, sim::RobotDescription> d{{"UX_1", sim::parseRobotDescription(urdf.str(), argv[1])}};
   const long steps = argc > 3 ? std::atol(argv[3]) : 200000;
-  sensors::SensorFactory models;
-  models.add<sensors::ImuSensor>("imu");
-  models.add<sensors::DvlSensor>("dvl");
-  models.add<sensors::PressureSensor>("pressure");
-  models.add<sonar::MsisSensor>("msis");
-  models.add<sonar::M3Sensor>("m3");
+  // The simulator's own families (only their models are used: nothing here touches ROS).
+  const ros_layer::SensorRegistry registry = ros_layer::SensorRegistry::builtin();
+  const sensors::SensorFactory& models = registry.models();
   for (int with = 0; with < 2; ++with) {
     sim::World world(config, d, 1, 0.002, 0);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);

@@ -72,6 +72,11 @@ class Sonar(unittest.TestCase):
             self.assertLessEqual(len(pts), 256)
             for (x, y, z), r in zip(pts, valid):
                 self.assertAlmostEqual(math.hypot(x, y), r, delta=1e-5 * max(1.0, r))
+        # End to end (REP-103, the M3's order): beam 0 at -fov/2 (to the right), the last at +fov/2.
+        scan = got["m3/scan"][-1]
+        self.assertLess(scan.angle_min, scan.angle_max)
+        self.assertAlmostEqual(scan.angle_min, -math.radians(60), places=5)
+        self.assertAlmostEqual(scan.angle_min + 255 * scan.angle_increment, scan.angle_max, places=5)
         # UX_1 in the tank faces the anchor 1.9 m away, the far wall beyond it: the fan sees something.
         self.assertGreater(max(c.width for c in got["m3/points"]), 50)
 

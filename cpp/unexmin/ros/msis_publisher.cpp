@@ -34,23 +34,8 @@ sensor_msgs::PointCloud2 MsisPublisher::cloud() const
   sensor_msgs::PointCloud2 m;
   m.header.stamp.fromSec(line.time);
   m.header.frame_id = sensor_.frame();
-  const char* names[] = {"x", "y", "z", "intensity", "rgb"};
-  for (std::uint32_t f = 0; f < 5; ++f) {
-    sensor_msgs::PointField field;
-    field.name = names[f];
-    field.offset = 4 * f;
-    field.datatype = sensor_msgs::PointField::FLOAT32;
-    field.count = 1;
-    m.fields.push_back(field);
-  }
   const std::size_t n = line.intensity.size();
-  m.height = 1;
-  m.width = static_cast<std::uint32_t>(n);
-  m.is_bigendian = false;
-  m.point_step = 20;
-  m.row_step = m.point_step * m.width;
-  m.is_dense = true;
-  m.data.resize(m.row_step);
+  floatCloud(m, {"x", "y", "z", "intensity", "rgb"}, n);
   for (std::size_t i = 0; i < n; ++i) {
     const float point[4] = {static_cast<float>(sensor_.echo().binCenter(i)), 0.0f, 0.0f, line.intensity[i]};
     const std::uint32_t rgb = colours()[static_cast<std::size_t>(line.level[i])];

@@ -6,6 +6,8 @@
 #include <unexmin/sensors/sensor.h>
 
 #include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/PointField.h>
 
 #include <algorithm>
 
@@ -38,6 +40,28 @@ public:
   static std::string resolve(const std::string& ns, const std::string& topic)
   {
     return !topic.empty() && topic[0] == '/' ? topic : ns + topic;
+  }
+
+  /// Sets `cloud`'s fields to FLOAT32 `names` at offsets 0, 4, 8, ... (point_step = 4 per name), one row of
+  /// `points` points, little-endian, dense, and sizes its data.
+  static void floatCloud(sensor_msgs::PointCloud2& cloud, const std::vector<std::string>& names, std::size_t points)
+  {
+    cloud.fields.clear();
+    for (std::size_t f = 0; f < names.size(); ++f) {
+      sensor_msgs::PointField field;
+      field.name = names[f];
+      field.offset = static_cast<std::uint32_t>(4 * f);
+      field.datatype = sensor_msgs::PointField::FLOAT32;
+      field.count = 1;
+      cloud.fields.push_back(field);
+    }
+    cloud.height = 1;
+    cloud.width = static_cast<std::uint32_t>(points);
+    cloud.is_bigendian = false;
+    cloud.point_step = static_cast<std::uint32_t>(4 * names.size());
+    cloud.row_step = cloud.point_step * cloud.width;
+    cloud.is_dense = true;
+    cloud.data.resize(cloud.row_step);
   }
 
   /// The sensor's text parameter `key` (a topic name), `fallback` when absent.

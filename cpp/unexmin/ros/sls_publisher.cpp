@@ -22,22 +22,7 @@ sensor_msgs::PointCloud2 SlsPublisher::cloud() const
   sensor_msgs::PointCloud2 m;
   m.header.stamp.fromSec(s.time);
   m.header.frame_id = sensor_.cameraFrame();
-  const char* names[] = {"x", "y", "z", "intensity"};
-  for (std::uint32_t f = 0; f < 4; ++f) {
-    sensor_msgs::PointField field;
-    field.name = names[f];
-    field.offset = 4 * f;
-    field.datatype = sensor_msgs::PointField::FLOAT32;
-    field.count = 1;
-    m.fields.push_back(field);
-  }
-  m.height = 1;
-  m.width = static_cast<std::uint32_t>(s.points.size());
-  m.is_bigendian = false;
-  m.point_step = 16;
-  m.row_step = m.point_step * m.width;
-  m.is_dense = true;
-  m.data.resize(m.row_step);
+  floatCloud(m, {"x", "y", "z", "intensity"}, s.points.size());
   for (std::size_t i = 0; i < s.points.size(); ++i) {
     const float p[4] = {s.points[i].x(), s.points[i].y(), s.points[i].z(), s.intensity[i]};
     std::memcpy(&m.data[i * m.point_step], p, sizeof(p));

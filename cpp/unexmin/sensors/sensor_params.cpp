@@ -98,6 +98,18 @@ std::vector<std::string> SensorParams::words(const std::string& key)
   return out;
 }
 
+const sim::JointInfo& SensorParams::movingJoint(const sim::RobotDescription& description)
+{
+  const std::vector<std::string> named = words("joint");
+  const sim::JointInfo* joint = nullptr;
+  for (const auto& j : description.joints)
+    if (named.empty() ? j.child == spec_.link : j.name == named[0]) joint = &j;
+  if (!joint || joint->child != spec_.link || (joint->type != "continuous" && joint->type != "revolute"))
+    fail("joint", named.empty() ? "(none: the joint whose child is " + spec_.link + ")" : "'" + named[0] + "'",
+         "a continuous or revolute joint whose child is the sensor link '" + spec_.link + "'");
+  return *joint;
+}
+
 void SensorParams::finish() const
 {
   std::vector<std::string> keys;

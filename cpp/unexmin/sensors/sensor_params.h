@@ -32,6 +32,11 @@ public:
   /// Whitespace-separated words (e.g. link names); empty when absent.
   std::vector<std::string> words(const std::string& key);
 
+  /// The continuous or revolute joint that moves the sensor link (an MSIS head, an SLS motor): the joint named
+  /// by the `joint` parameter, or by default the one whose child is the sensor link; fails naming `joint`
+  /// otherwise.
+  const sim::JointInfo& movingJoint(const sim::RobotDescription& description);
+
   /// Throws for any parameter no reader asked for (a typo), except "topic" and names ending in
   /// "_topic", which belong to the publishing layer.
   void finish() const;

@@ -117,16 +117,10 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
     p.fail("threshold_medium", formatNumber(threshold_medium_), "threshold_low <= threshold_medium <= threshold_high");
 
   // The head joint: given, or the joint that carries the sensor link.
-  const std::vector<std::string> named = p.words("joint");
+  const sim::JointInfo& joint = p.movingJoint(setup.description);
   p.finish();
-  const sim::JointInfo* joint = nullptr;
-  for (const auto& j : setup.description.joints)
-    if (named.empty() ? j.child == spec.link : j.name == named[0]) joint = &j;
-  if (!joint || joint->child != spec.link || (joint->type != "continuous" && joint->type != "revolute"))
-    p.fail("joint", named.empty() ? "(none: the joint whose child is " + spec.link + ")" : "'" + named[0] + "'",
-           "a continuous or revolute joint whose child is the sensor link '" + spec.link + "'");
-  joint_ = joint->name;
-  axis_ = joint->axis.normalized();
+  joint_ = joint.name;
+  axis_ = joint.axis.normalized();
 
   for (int h = 0; h < hpr_; ++h) {
     const double a = -bw_h / 2.0 + (h + 0.5) * bw_h / hpr_;

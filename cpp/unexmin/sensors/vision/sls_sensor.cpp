@@ -41,7 +41,7 @@ SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   camera_frame_ = p.text("camera_frame", "");
   scan_frame_ = p.text("scan_frame", spec.link);
   camera_ = CameraModel::fromParams(p, "camera_", false);
-  const std::vector<std::string> named = p.words("joint");
+  const sim::JointInfo& joint = p.movingJoint(setup.description);
   p.finish();
   bool known = false;
   for (const auto& j : setup.description.joints) known = known || j.child == camera_frame_ || j.parent == camera_frame_;
@@ -49,15 +49,8 @@ SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
     p.fail("camera_frame", "'" + camera_frame_ + "'", "a link of the robot (the optical frame of the unit's camera)");
   camera_pose_ = setup.description.linkPose(camera_frame_);
 
-  // The motor joint: given, or the joint that carries the head link.
-  const sim::JointInfo* joint = nullptr;
-  for (const auto& j : setup.description.joints)
-    if (named.empty() ? j.child == spec.link : j.name == named[0]) joint = &j;
-  if (!joint || joint->child != spec.link || (joint->type != "continuous" && joint->type != "revolute"))
-    p.fail("joint", named.empty() ? "(none: the joint whose child is " + spec.link + ")" : "'" + named[0] + "'",
-           "a continuous or revolute joint whose child is the sensor link '" + spec.link + "'");
-  joint_ = joint->name;
-  axis_ = joint->axis.normalized();
+  joint_ = joint.name;  // the motor joint
+  axis_ = joint.axis.normalized();
 
   const int n = static_cast<int>(rays);
   for (int j = 0; j < n; ++j) {
