@@ -3,6 +3,7 @@
 time from launch to the first odometry message (docs/benchmarks.md, "Mine world").
 
     source scripts/env.sh && python bench/mine_rtf.py [--sim-seconds 120] [--seed 0] [--repeat 3] [--world mine|tank]
+                                                      [--sensors all|none|imu,dvl,...]
 
 For each robot count, --repeat times (the summary gives medians), in a fresh process with its own
 ROS master:
@@ -52,12 +53,13 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def measure(robots, sim_seconds, seed, timeout, world_name="mine"):
+def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"):
     t_launch = time.monotonic()
     from unexmin.launcher import WorldProcess, wait_for
     # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
     # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
-    world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False)
+    world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False,
+                         extra_args=(f"sensors:={sensors}",))
     try:
         import rosgraph
         import rospy
@@ -116,12 +118,14 @@ def main():
     ap.add_argument("--timeout", type=float, default=120.0, help="wall seconds allowed for each wait")
     ap.add_argument("--robots", type=int, choices=(1, 2, 3), help="measure this count only (JSON out)")
     ap.add_argument("--world", choices=("mine", "tank"), default="mine", help="tank: the same, for comparison")
+    ap.add_argument("--sensors", default="all", help="sensor families that run (the sensors:= launch argument)")
     args = ap.parse_args()
     if args.robots:
-        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world)))
+        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors)))
         return 0
     cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
-    print(f"{args.world} world, physics 500 Hz, stepped as fast as it goes, {args.sim_seconds:.0f} s of sim time "
+    print(f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
+          f"{args.sim_seconds:.0f} s of sim time "
           f"per run, {args.repeat} runs per count; nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; "
           f"load average before: {os.getloadavg()[0]:.2f}")
     header = (f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
@@ -133,6 +137,7 @@ def main():
         for _ in range(args.repeat):
             proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
                                    "--world", args.world, "--sim-seconds", str(args.sim_seconds),
+                                   "--sensors", args.sensors,
                                    "--timeout", str(args.timeout)], capture_output=True, text=True)
             if proc.returncode != 0:
                 print(proc.stderr[-3000:], file=sys.stderr)
