@@ -35,7 +35,11 @@ from pathlib import Path
 
 import numpy as np
 
-MOTORS_TOPIC = "/ux1/command/motors"
+from unexmin.bag import BagError, read_messages, topic_types
+from unexmin.geometry import quaternion_to_rpy, wrap_angle
+from unexmin.topics import ESC_COMMAND_TOPIC
+
+MOTORS_TOPIC = ESC_COMMAND_TOPIC
 MOTOR_TYPE = "ux1_msgs/msg/MotorCommand"
 FLOAT64_TYPE = "std_msgs/msg/Float64"
 NAV_TYPES = ("nav_msgs/msg/Odometry", "geometry_msgs/msg/PoseWithCovarianceStamped", "geometry_msgs/msg/PoseStamped")
@@ -44,19 +48,6 @@ TRAJ_COLUMNS = ("t", "x", "y", "z", "roll", "pitch", "yaw")   # [s], [m] world f
 
 class ReplayError(Exception):
     """A bag or an argument the replay cannot use; the message says which and why."""
-
-
-def quaternion_to_rpy(x, y, z, w):
-    """Roll, pitch, yaw [rad] (ZYX, REP-103) of a unit quaternion."""
-    roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
-    pitch = math.asin(max(-1.0, min(1.0, 2.0 * (w * y - z * x))))
-    yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-    return roll, pitch, yaw
-
-
-def wrap_angle(a):
-    """Angle(s) [rad] wrapped to [-pi, pi)."""
-    return (np.asarray(a) + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def pose_row(t, pose):
@@ -94,28 +85,27 @@ class Mission:
         return max(ends)
 
 
-def _pick_topic(conns, wanted, types, role, required):
-    """Topic for `role`: `wanted` if given (it must exist with one of `types`), else the only topic of those types."""
-    by_topic = {}
-    for c in conns:
-        by_topic.setdefault(c.topic, c.msgtype)
-    listing = ", ".join(f"{t} [{m}]" for t, m in sorted(by_topic.items())) or "none"
+def pick_topic(types, wanted, accepted, role, required):
+    """Topic of the bag for `role`: `wanted` if given (it must exist with one of the `accepted` types),
+    else the bag's only topic of those types; None when absent and not `required`.
+    types: {topic: message type} of the bag. Raises ReplayError naming the role and the bag's topics."""
+    listing = ", ".join(f"{t} [{m}]" for t, m in sorted(types.items())) or "none"
     if wanted:
-        if wanted not in by_topic:
+        if wanted not in types:
             if required:
                 raise ReplayError(f"no topic {wanted} in the bag (topics: {listing})")
             return None
-        if by_topic[wanted] not in types:
-            raise ReplayError(f"topic {wanted} is {by_topic[wanted]}, expected {' or '.join(types)} for the {role}")
+        if types[wanted] not in accepted:
+            raise ReplayError(f"topic {wanted} is {types[wanted]}, expected {' or '.join(accepted)} for the {role}")
         return wanted
-    candidates = sorted(t for t, m in by_topic.items() if m in types)
+    candidates = sorted(t for t, m in types.items() if m in accepted)
     if len(candidates) == 1:
         return candidates[0]
     if len(candidates) > 1:
         raise ReplayError(f"several {role} topics in the bag ({', '.join(candidates)}): choose one with "
                           f"--{role.split()[0]}-topic")
     if required:
-        raise ReplayError(f"no {role} ({' or '.join(types)}) in the bag (topics: {listing})")
+        raise ReplayError(f"no {role} ({' or '.join(accepted)}) in the bag (topics: {listing})")
     return None
 
 
@@ -126,45 +116,32 @@ def read_bag(path, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum_topic=None,
     Topic defaults: motors_topic (else the bag's only MotorCommand topic); /<robot>/pendulum and
     /<robot>/vbs; navigation /<robot>/odom, else the bag's only Odometry/Pose topic.
     """
-    from rosbags.highlevel import AnyReader
-    from rosbags.typesys import Stores, get_typestore
-
-    path = Path(path)
-    if not path.is_file():
-        raise ReplayError(f"{path}: no such bag file")
-    rows = {"motors": [], "pendulum": [], "vbs": [], "nav": []}
     try:
-        with AnyReader([path], default_typestore=get_typestore(Stores.ROS1_NOETIC)) as reader:
-            conns = list(reader.connections)
-            topics = {c.topic for c in conns}
-            chosen = {
-                # The default topic falls back to the bag's only MotorCommand topic; an explicit one must exist.
-                "motors": _pick_topic(conns, None if motors_topic == MOTORS_TOPIC and motors_topic not in topics
-                                      else motors_topic, (MOTOR_TYPE,), "motors command", True),
-                "pendulum": _pick_topic(conns, pendulum_topic or f"/{robot}/pendulum", (FLOAT64_TYPE,),
-                                        "pendulum command", bool(pendulum_topic)),
-                "vbs": _pick_topic(conns, vbs_topic or f"/{robot}/vbs", (FLOAT64_TYPE,), "vbs command",
-                                   bool(vbs_topic)),
-                "nav": _pick_topic(conns, nav_topic or (f"/{robot}/odom" if f"/{robot}/odom" in topics else None),
-                                   NAV_TYPES, "nav topic", bool(nav_topic)),
-            }
-            role_of = {t: r for r, t in chosen.items() if t}
-            selected = [c for c in conns if c.topic in role_of]
-            for conn, stamp, raw in reader.messages(connections=selected):
-                msg = reader.deserialize(raw, conn.msgtype)
-                role, t = role_of[conn.topic], stamp * 1e-9
-                if role == "motors":
-                    rows["motors"].append((t, int(msg.mode), tuple(float(v) for v in msg.values)))
-                elif role in ("pendulum", "vbs"):
-                    rows[role].append((t, float(msg.data)))
-                else:
-                    pose = msg.pose if conn.msgtype == "geometry_msgs/msg/PoseStamped" else msg.pose.pose
-                    rows["nav"].append(pose_row(t, pose))
-    except ReplayError:
-        raise
-    except Exception as e:  # rosbags raises several error types (and struct/unicode errors) on damaged files
-        raise ReplayError(f"{path}: cannot read the bag ({type(e).__name__}: {e}); is it truncated or corrupt? "
-                          "(`rosbag reindex` repairs a bag whose recording was cut off)") from None
+        types = topic_types(path)
+        chosen = {
+            # The default topic falls back to the bag's only MotorCommand topic; an explicit one must exist.
+            "motors": pick_topic(types, None if motors_topic == MOTORS_TOPIC and motors_topic not in types
+                                 else motors_topic, (MOTOR_TYPE,), "motors command", True),
+            "pendulum": pick_topic(types, pendulum_topic or f"/{robot}/pendulum", (FLOAT64_TYPE,),
+                                   "pendulum command", bool(pendulum_topic)),
+            "vbs": pick_topic(types, vbs_topic or f"/{robot}/vbs", (FLOAT64_TYPE,), "vbs command", bool(vbs_topic)),
+            "nav": pick_topic(types, nav_topic or (f"/{robot}/odom" if f"/{robot}/odom" in types else None),
+                              NAV_TYPES, "nav topic", bool(nav_topic)),
+        }
+        role_of = {t: r for r, t in chosen.items() if t}
+        messages = read_messages(path, set(role_of))
+    except BagError as e:
+        raise ReplayError(str(e)) from None
+    rows = {"motors": [], "pendulum": [], "vbs": [], "nav": []}
+    for topic, msgtype, t, msg in messages:
+        role = role_of[topic]
+        if role == "motors":
+            rows["motors"].append((t, int(msg.mode), tuple(float(v) for v in msg.values)))
+        elif role in ("pendulum", "vbs"):
+            rows[role].append((t, float(msg.data)))
+        else:
+            pose = msg.pose if msgtype == "geometry_msgs/msg/PoseStamped" else msg.pose.pose
+            rows["nav"].append(pose_row(t, pose))
     if not rows["motors"]:
         raise ReplayError(f"{path}: no messages on {chosen['motors']}")
     commands = rows["motors"] + [(t, 0, ()) for t, _ in rows["pendulum"] + rows["vbs"]]
@@ -200,8 +177,9 @@ class LockstepRunner:
     def __init__(self, sim, robot="UX_1", motors_topic=MOTORS_TOPIC, sample_period=0.1, timeout=30.0):
         from ux1_msgs.msg import MotorCommand
 
-        from unexmin.esc_driver_node import EscDriverNode, synchronous_publisher
+        from unexmin.esc_driver_node import EscDriverNode
         from unexmin.launcher import wait_for
+        from unexmin.topics import sync_publisher
 
         self.sim, self.timeout, self.MotorCommand = sim, timeout, MotorCommand
         self.rate = sim.physics_rate
@@ -212,7 +190,7 @@ class LockstepRunner:
                               f"({1.0 / self.rate} s)")
         self.ux = sim.robot(robot)
         self.driver = EscDriverNode(robot=robot, motor_topic=motors_topic, announce=False)
-        self.pub = synchronous_publisher(motors_topic, MotorCommand)
+        self.pub = sync_publisher(motors_topic, MotorCommand)
         wait_for(lambda: self.pub.get_num_connections() > 0
                  and all(p.get_num_connections() > 0 for p in self.driver.thruster_pubs),
                  timeout, f"the ESC driver and the simulator to connect on {motors_topic} and /{robot}/thrusters")

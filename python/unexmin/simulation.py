@@ -12,7 +12,6 @@ See docs/python_api.md.
 
 import math
 import threading
-import warnings
 
 import rospy
 from geometry_msgs.msg import Wrench
@@ -22,6 +21,7 @@ from std_srvs.srv import Empty
 
 from unexmin.launcher import WorldProcess, wait_for
 from unexmin.srv import Reset, Step
+from unexmin.topics import sync_publisher
 
 
 def _finite(name, value):
@@ -29,14 +29,6 @@ def _finite(name, value):
     if not math.isfinite(value):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return value
-
-
-def sync_publisher(topic, msg_class):
-    """A publisher whose publish() writes synchronously (queue_size=None), so a command is on the
-    wire before the next /sim/step request and applies from the next physics step."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SyntaxWarning)  # rospy's advice to set queue_size
-        return rospy.Publisher(topic, msg_class, queue_size=None)
 
 
 class Robot:

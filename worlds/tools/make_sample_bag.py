@@ -28,7 +28,6 @@ reproduce the recorded trajectory (test/pytest/test_replay.py).
 """
 
 import argparse
-import io
 import math
 import os
 import subprocess
@@ -118,51 +117,26 @@ def launch_file_world(launch_file, log_dir):
     return proc
 
 
-class BagRecorder:
-    """Writes rospy messages (their ROS 1 serialisation and definitions) with rosbags' writer."""
-
-    def __init__(self, path):
-        from rosbags.rosbag1 import Writer
-
-        self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        if self.path.exists():
-            self.path.unlink()
-        self.writer = Writer(self.path)
-        self.writer.open()
-        self.conns = {}
-
-    def write(self, topic, msg, t):
-        if topic not in self.conns:
-            pkg, name = msg._type.split("/")
-            self.conns[topic] = self.writer.add_connection(topic, f"{pkg}/msg/{name}", msgdef=msg._full_text,
-                                                           md5sum=msg._md5sum, callerid="/make_sample_bag")
-        buf = io.BytesIO()
-        msg.serialize(buf)
-        self.writer.write(self.conns[topic], int(round(t * 1e9)), buf.getvalue())
-
-    def close(self):
-        self.writer.close()
-
-
 def record(out, nominal=False, duration=DURATION, seed=0):
     """Run the mission and write the bag `out`; returns the number of messages written."""
     import rospy
     from std_msgs.msg import Float64
     from ux1_msgs.msg import MotorCommand
 
-    from unexmin.replay import MOTORS_TOPIC, LockstepRunner
+    from unexmin.bag import BagWriter
+    from unexmin.replay import LockstepRunner
     from unexmin.simulation import Simulation
+    from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")
     if nominal:
         sim = Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"))
     else:
         sim = Simulation(timeout=60.0, world=launch_file_world(perturbed_world_files(tmp), os.path.join(tmp, "log")))
-    bag = BagRecorder(out)
+    bag = BagWriter(out, callerid="/make_sample_bag")
     count = 0
     try:
-        runner = LockstepRunner(sim, "UX_1", MOTORS_TOPIC, sample_period=0.1)
+        runner = LockstepRunner(sim, "UX_1", ESC_COMMAND_TOPIC, sample_period=0.1)
         lead = runner.lead_steps / runner.rate          # mission time 0 is sim time `lead`
         events = mission_events(duration)
         for t, kind, payload in events:
@@ -170,7 +144,7 @@ def record(out, nominal=False, duration=DURATION, seed=0):
                 msg = MotorCommand()
                 msg.header.stamp = rospy.Time.from_sec(t + lead)
                 msg.mode, msg.values = payload[0], list(payload[1])
-                bag.write(MOTORS_TOPIC, msg, t + lead)
+                bag.write(ESC_COMMAND_TOPIC, msg, t + lead)
             else:
                 bag.write(f"/UX_1/{kind}", Float64(payload), t + lead)
             count += 1
