@@ -68,6 +68,12 @@ class EscDriverNode:
                 self.last_thrusts = thrusts
             self._cond.notify_all()
 
+    def close(self):
+        """Unregister the driver's subscriber and publishers (an in-process driver, e.g. the replay's)."""
+        self.sub.unregister()
+        for pub in self.thruster_pubs:
+            pub.unregister()
+
     def wait_processed(self, count, timeout):
         """Block until `count` messages have been handled; False on timeout [s] (wall clock)."""
         with self._cond:

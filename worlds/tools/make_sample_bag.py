@@ -155,6 +155,7 @@ def record(out, nominal=False, duration=DURATION, seed=0):
             count += 1
 
         traj = runner.run(events, duration, seed=seed, on_sample=on_sample)
+        runner.close()
     finally:
         bag.close()
         sim.close()
