@@ -30,7 +30,6 @@ reproduce the recorded trajectory (test/pytest/test_replay.py).
 import argparse
 import math
 import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -100,23 +99,6 @@ def perturbed_world_files(tmp):
     return launch_file
 
 
-def launch_file_world(launch_file, log_dir):
-    """A WorldProcess running `roslaunch <launch_file>` on a private master."""
-    from unexmin.launcher import WorldProcess, free_port
-
-    proc = WorldProcess.__new__(WorldProcess)
-    proc.port = free_port()
-    proc.uri = f"http://127.0.0.1:{proc.port}"
-    os.environ["ROS_MASTER_URI"] = proc.uri
-    os.environ.setdefault("ROS_IP", "127.0.0.1")
-    os.makedirs(log_dir, exist_ok=True)
-    os.environ["ROS_LOG_DIR"] = str(log_dir)
-    proc._log = open(Path(log_dir) / "roslaunch.log", "w")
-    proc.proc = subprocess.Popen(["roslaunch", "--port", str(proc.port), str(launch_file)], stdout=proc._log,
-                                 stderr=subprocess.STDOUT, start_new_session=True)
-    return proc
-
-
 def record(out, nominal=False, duration=DURATION, seed=0):
     """Run the mission and write the bag `out`; returns the number of messages written."""
     import rospy
@@ -124,6 +106,7 @@ def record(out, nominal=False, duration=DURATION, seed=0):
     from ux1_msgs.msg import MotorCommand
 
     from unexmin.bag import BagWriter
+    from unexmin.launcher import WorldProcess
     from unexmin.replay import LockstepRunner
     from unexmin.simulation import Simulation
     from unexmin.topics import ESC_COMMAND_TOPIC
@@ -132,7 +115,8 @@ def record(out, nominal=False, duration=DURATION, seed=0):
     if nominal:
         sim = Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"))
     else:
-        sim = Simulation(timeout=60.0, world=launch_file_world(perturbed_world_files(tmp), os.path.join(tmp, "log")))
+        world = WorldProcess(launch_file=perturbed_world_files(tmp), log_dir=os.path.join(tmp, "log"))
+        sim = Simulation(timeout=60.0, world=world)
     bag = BagWriter(out, callerid="/make_sample_bag")
     count = 0
     try:
