@@ -125,7 +125,7 @@ def run(out, seed):
         import rosgraph
         import rospy
 
-        ux = sim.robot(ROBOT)
+        ux = sim.robot(ROBOT, streams="none")   # rosbag record subscribes what the report needs
         recorder, log = start_recorder(bag, log_dir)
         master = rosgraph.Master(rospy.get_name())
         publishers = ("/simulator", rospy.get_name())  # odometry and thrusts; thruster inputs

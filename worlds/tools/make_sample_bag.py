@@ -106,20 +106,15 @@ def record(out, nominal=False, duration=DURATION, seed=0):
     from ux1_msgs.msg import MotorCommand
 
     from unexmin.bag import BagWriter
-    from unexmin.launcher import WorldProcess
     from unexmin.replay import LockstepRunner
     from unexmin.simulation import Simulation
     from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")
-    if nominal:
-        sim = Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"))
-    else:
-        world = WorldProcess(launch_file=perturbed_world_files(tmp), log_dir=os.path.join(tmp, "log"))
-        sim = Simulation(timeout=60.0, world=world)
-    bag = BagWriter(out, callerid="/make_sample_bag")
+    launch_file = None if nominal else perturbed_world_files(tmp)
     count = 0
-    try:
+    with Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"), launch_file=launch_file,
+                           timeout=60.0) as sim, BagWriter(out, callerid="/make_sample_bag") as bag:
         runner = LockstepRunner(sim, "UX_1", ESC_COMMAND_TOPIC, sample_period=0.1)
         lead = runner.lead_steps / runner.rate          # mission time 0 is sim time `lead`
         events = mission_events(duration)
@@ -140,9 +135,6 @@ def record(out, nominal=False, duration=DURATION, seed=0):
 
         traj = runner.run(events, duration, seed=seed, on_sample=on_sample)
         runner.close()
-    finally:
-        bag.close()
-        sim.close()
     print(f"{out}: {count} messages, {duration:.0f} s; robot went from "
           f"({traj[0, 1]:.2f}, {traj[0, 2]:.2f}, {traj[0, 3]:.2f}) to ({traj[-1, 1]:.2f}, {traj[-1, 2]:.2f}, "
           f"{traj[-1, 3]:.2f}) m, roll/pitch at start "

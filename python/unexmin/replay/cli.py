@@ -33,23 +33,25 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
     wall0 = time.monotonic()
     sim = Simulation(timeout=timeout) if connect else Simulation.launch(
         world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout)
-    bar = runner = None
-    try:
+    bar = None
+    with sim:
+        if robot not in sim.robots:
+            raise ReplayError(f"--robot {robot}: the simulator has no such robot (robots: {', '.join(sim.robots)})")
         runner = LockstepRunner(sim, robot, mission.topics["motors"], sample_period, timeout=timeout)
         if progress:
             from tqdm import tqdm
 
             bar = tqdm(total=round(duration, 3), unit="sim s", desc="replay", leave=False,
                        bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} sim s [{elapsed}<{remaining}]")
-        sim_start = time.monotonic()
-        traj = runner.run(mission.events(), duration, seed=seed, progress=bar.update if bar else None, pace=pace)
-        sim_wall = time.monotonic() - sim_start
-    finally:
-        if bar is not None:
-            bar.close()
-        if runner is not None:
+        try:
+            sim_start = time.monotonic()
+            traj = runner.run(mission.events(), duration, seed=seed, progress=bar.update if bar else None,
+                              pace=pace)
+            sim_wall = time.monotonic() - sim_start
+        finally:
+            if bar is not None:
+                bar.close()
             runner.close()
-        sim.close()
     report = {
         "bag": str(Path(mission.path).resolve()),
         "topics": mission.topics,

@@ -18,6 +18,8 @@ class LockstepRunner:
     the thrusts and tells the Simulation how many command messages went out, so the next /sim/step
     waits for them: every command applies from the physics step after its time, deterministically.
     Mission time 0 is LEAD seconds after the (re)start, so the first sample is the start pose.
+    The robot's sensor streams are not subscribed (the samples come with each step's answer), so the
+    simulator builds no sensor message for this runner.
     """
 
     LEAD = 0.02  # [s] between the reset and mission time 0
@@ -38,7 +40,7 @@ class LockstepRunner:
         if self.sample_steps < 1 or abs(self.sample_steps - sample_period * self.rate) > 1e-6:
             raise ReplayError(f"--sample-period {sample_period} s must be a whole number of physics steps "
                               f"({1.0 / self.rate} s)")
-        self.ux = sim.robot(robot)
+        self.ux = sim.robot(robot, streams="none")
         self.driver = EscDriverNode(robot=robot, motor_topic=motors_topic, announce=False)
         self.pub = sync_publisher(motors_topic, MotorCommand)
         wait_for(lambda: self.pub.get_num_connections() > 0
