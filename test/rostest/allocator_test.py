@@ -71,7 +71,7 @@ class AllocatorInSimulator(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="allocator_test", timeout=60.0)
-        cls.ux = cls.sim.robot("UX_1")
+        cls.ux = cls.sim.robot("UX_1", streams="none")  # dynamics only: no sensor messages
         cls.cond = threading.Condition()
         cls.thrusts = {}           # thruster -> list of values from the allocator
         cls.motors = []            # MotorCommand values

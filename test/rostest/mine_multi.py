@@ -70,7 +70,7 @@ class MineMulti(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="mine_multi_test", timeout=60.0)
-        cls.ux = {n: cls.sim.robot(n) for n in NAMES}
+        cls.ux = {n: cls.sim.robot(n, streams="none") for n in NAMES}  # dynamics; the topics test subscribes its own
 
     def start(self):
         self.sim.reset(seed=SEED)

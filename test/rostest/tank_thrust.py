@@ -34,7 +34,7 @@ class TankThrust(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="tank_thrust_test", timeout=60.0)
-        cls.ux = cls.sim.robot("UX_1")
+        cls.ux = cls.sim.robot("UX_1", streams="none")  # dynamics only: no sensor messages
 
     def setUp(self):
         self.sim.reset(seed=1)
