@@ -35,7 +35,7 @@ def simulator_rss_mb(caller):
 def measure(world, robots, seconds, window):
     sim = Simulation.launch(world, robots=robots, seed=0)
     try:
-        handles = [sim.robot(f"UX_{i + 1}") for i in range(robots)]
+        handles = [sim.robot(f"UX_{i + 1}", streams="none") for i in range(robots)]  # dynamics only
         for h in handles:
             h.thrusts([5.0, 0, -5.0, 0, 5.0, 0, -5.0, 0])
         sim.step(1)

@@ -67,8 +67,8 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         from std_msgs.msg import Float64
         from std_srvs.srv import Empty
 
-        from unexmin.simulation import sync_publisher
         from unexmin.srv import Step
+        from unexmin.topics import sync_publisher
 
         rospy.init_node("mine_bench", anonymous=True, disable_signals=True)
         t_master = time.monotonic()

@@ -140,15 +140,12 @@ def measure(sink_name, pace, window, workdir):
 
 def count_bag(path, t0, t1, topics):
     """Fraction of the messages stamped in (t0, t1] of sim time that the bag holds, per topic."""
-    from rosbags.highlevel import AnyReader
+    from unexmin.bag import read_messages, stamp_to_sec
 
     counts = {t: 0 for t in topics}
-    with AnyReader([Path(path)]) as reader:
-        for conn, _, raw in reader.messages(connections=[c for c in reader.connections if c.topic in counts]):
-            stamp = reader.deserialize(raw, conn.msgtype).header.stamp
-            s = stamp.sec + 1e-9 * stamp.nanosec
-            if t0 + 1e-9 < s <= t1 + 1e-9:
-                counts[conn.topic] += 1
+    for topic, _, _, msg in read_messages(path, set(counts)):
+        if t0 + 1e-9 < stamp_to_sec(msg.header.stamp) <= t1 + 1e-9:
+            counts[topic] += 1
     return {t: counts[t] / max(1, round(RATES[t] * (t1 - t0))) for t in topics}
 
 

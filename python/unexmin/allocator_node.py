@@ -17,8 +17,8 @@ from std_msgs.msg import Float64
 from ux1_msgs.msg import MotorCommand
 
 from unexmin.allocation import DEFAULT_MAX_THRUST, THESIS_MATRIX, AllocationError, ThrusterAllocator
-from unexmin.esc import MODE_NAMES, EscTableError, converter_from_params, parse_mode
-from unexmin.esc_driver_node import default_robot, synchronous_publisher
+from unexmin.esc import MODE_NAMES, converter_from_params, parse_mode
+from unexmin.topics import ESC_COMMAND_TOPIC, robot_param, run_node, sync_publisher
 
 
 def wrench_to_list(msg):
@@ -32,9 +32,9 @@ class ThrusterAllocatorNode:
     def __init__(self):
         self.load_params()
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [synchronous_publisher(f"{ns}thrusters/{i}/input", Float64)
+        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64)
                               for i in range(self.allocator.thrusters)]
-        self.motor_pub = (synchronous_publisher(self.motor_topic, MotorCommand)
+        self.motor_pub = (sync_publisher(self.motor_topic, MotorCommand)
                           if self.publish_motor_command else None)
         self.sub = rospy.Subscriber(f"{ns}force_moments", Wrench, self.on_wrench, queue_size=10, tcp_nodelay=True)
         rospy.loginfo("thruster_allocator: /%sforce_moments -> /%sthrusters/0..%d/input%s, max thrust %.1f N",
@@ -44,9 +44,7 @@ class ThrusterAllocatorNode:
 
     def load_params(self):
         """Every parameter, checked in one place (errors name the parameter)."""
-        self.robot = str(rospy.get_param("~robot", default_robot())).strip("/")
-        if not self.robot:
-            raise AllocationError("parameter ~robot: expected a robot name such as UX_1, got ''")
+        self.robot = robot_param()
         matrix = rospy.get_param("~allocation_matrix", [list(r) for r in THESIS_MATRIX])
         max_thrust = rospy.get_param("~max_thrust", DEFAULT_MAX_THRUST)
         try:
@@ -57,7 +55,7 @@ class ThrusterAllocatorNode:
         if not isinstance(self.publish_motor_command, bool):
             raise AllocationError(f"parameter ~publish_motor_command = {self.publish_motor_command!r}: "
                                   "expected true or false")
-        self.motor_topic = str(rospy.get_param("~motor_command_topic", "/ux1/command/motors"))
+        self.motor_topic = str(rospy.get_param("~motor_command_topic", ESC_COMMAND_TOPIC))
         self.motor_mode = parse_mode(rospy.get_param("~motor_command_mode", "rpm"), "~motor_command_mode")
         # The ESC tables (same parameters as the ESC driver) give the inverse conversion thrust -> rpm/duty.
         self.converter = converter_from_params(lambda name, default: rospy.get_param("~" + name, default))
@@ -86,10 +84,4 @@ class ThrusterAllocatorNode:
 
 def main():
     """Entry point of nodes/thruster_allocator."""
-    rospy.init_node("thruster_allocator")
-    try:
-        ThrusterAllocatorNode()
-    except (AllocationError, EscTableError) as e:
-        rospy.logfatal(f"thruster_allocator: {e}")
-        raise SystemExit(1)
-    rospy.spin()
+    run_node("thruster_allocator", ThrusterAllocatorNode)  # AllocationError, EscTableError: ValueErrors

@@ -7,30 +7,13 @@ simulated robot. Parameters: docs/esc_driver.md.
 """
 
 import threading
-import warnings
 
 import rospy
 from std_msgs.msg import Float64
 from ux1_msgs.msg import MotorCommand
 
 from unexmin.esc import MODE_NAMES, EscTableError, converter_from_params
-
-
-def synchronous_publisher(topic, msg_class, **kwargs):
-    """A rospy publisher whose publish() writes to every subscriber's socket before returning.
-
-    queue_size=None: in lockstep (/sim/step) a command published before the step request is then
-    on the wire first and applies from the next physics step. rospy warns for queue_size=None; the
-    choice is deliberate here.
-    """
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SyntaxWarning)
-        return rospy.Publisher(topic, msg_class, queue_size=None, **kwargs)
-
-
-def default_robot():
-    """Robot name from the node's namespace (/UX_2/esc_driver -> UX_2), UX_1 in the root namespace."""
-    return rospy.get_namespace().strip("/").split("/")[0] or "UX_1"
+from unexmin.topics import ESC_COMMAND_TOPIC, robot_param, run_node, sync_publisher
 
 
 class EscDriverNode:
@@ -41,7 +24,7 @@ class EscDriverNode:
         announce: log the configuration at start (off for an in-process driver)."""
         self.load_params(robot, motor_topic)
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [synchronous_publisher(f"{ns}thrusters/{i}/input", Float64)
+        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64)
                               for i in range(self.thrusters)]
         self.processed = 0          # MotorCommand messages handled (converted and published, or rejected)
         self.published = 0          # thruster input messages published
@@ -55,10 +38,8 @@ class EscDriverNode:
 
     def load_params(self, robot=None, motor_topic=None):
         """Every parameter, checked in one place (ValueError names the parameter)."""
-        self.robot = str(robot or rospy.get_param("~robot", default_robot())).strip("/")
-        if not self.robot:
-            raise ValueError("parameter ~robot: expected a robot name such as UX_1, got ''")
-        self.motor_topic = str(motor_topic or rospy.get_param("~motor_topic", "/ux1/command/motors"))
+        self.robot = robot_param(robot)
+        self.motor_topic = str(motor_topic or rospy.get_param("~motor_topic", ESC_COMMAND_TOPIC))
         self.thrusters = rospy.get_param("~thrusters", 8)
         if not isinstance(self.thrusters, int) or not 1 <= self.thrusters <= 8:
             raise ValueError(f"parameter ~thrusters = {self.thrusters!r}: expected an integer in [1, 8] "
@@ -87,6 +68,12 @@ class EscDriverNode:
                 self.last_thrusts = thrusts
             self._cond.notify_all()
 
+    def close(self):
+        """Unregister the driver's subscriber and publishers (an in-process driver, e.g. the replay's)."""
+        self.sub.unregister()
+        for pub in self.thruster_pubs:
+            pub.unregister()
+
     def wait_processed(self, count, timeout):
         """Block until `count` messages have been handled; False on timeout [s] (wall clock)."""
         with self._cond:
@@ -95,10 +82,4 @@ class EscDriverNode:
 
 def main():
     """Entry point of nodes/esc_driver."""
-    rospy.init_node("esc_driver")
-    try:
-        EscDriverNode()
-    except (ValueError, EscTableError) as e:
-        rospy.logfatal(f"esc_driver: {e}")
-        raise SystemExit(1)
-    rospy.spin()
+    run_node("esc_driver", EscDriverNode)  # EscTableError is a ValueError

@@ -1,6 +1,8 @@
 """Start and stop a headless simulator world (roslaunch) on a private ROS master port."""
 
+import atexit
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -14,17 +16,56 @@ def free_port():
         return s.getsockname()[1]
 
 
+def _process_table():
+    """{pid: (parent pid, start time [clock ticks since boot])} of the live processes (Linux /proc)."""
+    table = {}
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/stat") as f:
+                stat = f.read()
+        except OSError:
+            continue
+        fields = stat[stat.rindex(")") + 2:].split()  # after "pid (comm) ": state ppid pgrp ...
+        if fields[0] not in "ZX":
+            table[int(entry.name)] = (int(fields[1]), int(fields[19]))
+    return table
+
+
+def descendants(pid):
+    """{pid: start time} of the live processes below `pid` (children, grandchildren, ...)."""
+    table = _process_table()
+    found, frontier = {}, {pid}
+    while frontier:
+        frontier = {p for p, (ppid, _) in table.items() if ppid in frontier and p not in found}
+        found.update({p: table[p][1] for p in frontier})
+    return found
+
+
 def stop_process_group(proc, timeout=15.0):
-    """SIGINT to the process group of `proc` (started with start_new_session=True), as Ctrl-C: ROS
-    nodes close their bags and save their maps; SIGKILL if it has not exited after `timeout` s."""
+    """Stop `proc` (started with start_new_session=True) and everything it started.
+
+    SIGINT to its process group, as Ctrl-C: ROS nodes close their bags and save their maps; SIGKILL
+    if it has not exited after `timeout` s. Then SIGKILL to any process it had started that is still
+    alive: roslaunch starts each node in a session of its own, and a rospy node interrupted while it
+    starts can hang instead of exiting (roslaunch would wait 15 s for it, then leave it behind)."""
     if proc.poll() is not None:
         return
+    below = descendants(proc.pid)
     os.killpg(proc.pid, signal.SIGINT)
     try:
         proc.wait(timeout)
     except subprocess.TimeoutExpired:
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
+    table = _process_table()
+    for pid, start in below.items():
+        if pid in table and table[pid][1] == start:  # the same process, not a reused pid
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
 
 
 def wait_for(condition, timeout, what, poll=0.05):
@@ -43,11 +84,16 @@ class WorldProcess:
     """``roslaunch unexmin <world>_world.launch`` as a child process with its own master.
 
     The ROS_MASTER_URI of this process is set to the new master, so rospy nodes created
-    afterwards in this process talk to it.
+    afterwards in this process talk to it. The world is stopped by close(), and at the latest when
+    this Python process exits (a roslaunch in its own session would otherwise outlive it).
     """
 
     def __init__(self, world="tank", robots=1, seed=0, realtime=False, paused=True, port=None,
-                 log_dir=None, extra_args=()):
+                 log_dir=None, extra_args=(), launch_file=None):
+        """world: `<world>_world.launch` of the package, with robots, seed, realtime, paused and
+        extra_args ("name:=value") as its arguments; launch_file: a launch file to run instead (no
+        arguments); port: the master's port (default: a free one); log_dir: roslaunch.log and the
+        nodes' logs (ROS_LOG_DIR)."""
         self.port = port or free_port()
         self.uri = f"http://127.0.0.1:{self.port}"
         os.environ["ROS_MASTER_URI"] = self.uri
@@ -55,21 +101,55 @@ class WorldProcess:
         if log_dir:
             os.makedirs(log_dir, exist_ok=True)
             os.environ["ROS_LOG_DIR"] = log_dir
-        args = [
-            "roslaunch", "--port", str(self.port), "unexmin", f"{world}_world.launch",
-            f"robots:={robots}", f"seed:={seed}", f"realtime:={str(realtime).lower()}",
-            f"paused:={str(paused).lower()}", *extra_args,
-        ]
+        if launch_file:
+            args = ["roslaunch", "--port", str(self.port), str(launch_file)]
+        else:
+            args = [
+                "roslaunch", "--port", str(self.port), "unexmin", f"{world}_world.launch",
+                f"robots:={robots}", f"seed:={seed}", f"realtime:={str(realtime).lower()}",
+                f"paused:={str(paused).lower()}", *extra_args,
+            ]
         self.log_path = os.path.join(log_dir, "roslaunch.log") if log_dir else None
         log = open(self.log_path, "w") if log_dir else subprocess.DEVNULL
         self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         self._log = log
+        atexit.register(self.close)
 
     def alive(self):
         return self.proc.poll() is None
 
+    def _launch_processes(self, master):
+        """(running, dead) process names of this world's roslaunch, e.g. "UX_1/thruster_allocator-4"."""
+        from xmlrpc.client import ServerProxy
+
+        running, dead = [], []
+        for uri in (master.getParam("/roslaunch/uris") or {}).values():
+            code, _, (up, down) = ServerProxy(uri).list_processes()
+            if code == 1:
+                running += [name for name, _ in up]
+                dead += [name for name, _ in down]
+        return running, dead
+
+    def simulator_died(self, master):
+        """True when roslaunch reports the simulator node dead (False while that cannot be asked yet)."""
+        try:
+            _, dead = self._launch_processes(master)
+        except Exception:  # master or roslaunch not answering (yet, or any more)
+            return False
+        return any(re.match(r"simulator-\d+$", name) for name in dead)
+
+    def nodes_up(self, master):
+        """True when every node roslaunch has started is known to the master (`master`: a
+        rosgraph.Master of this world), i.e. has finished its init_node."""
+        running, _ = self._launch_processes(master)
+        # node processes are named "<ns>/<name>-<n>"; the master is "master"
+        active = ["/" + m.group(1) for m in (re.match(r"(.+)-\d+$", name) for name in running) if m]
+        known = {n for table in master.getSystemState() for _, nodes in table for n in nodes}
+        return bool(active) and all(n in known for n in active)
+
     def close(self, timeout=15.0):
-        """SIGINT (as Ctrl-C: nodes close bags and save maps), then SIGKILL if it hangs."""
+        """SIGINT (as Ctrl-C: nodes close bags and save maps), then SIGKILL if it hangs; idempotent."""
+        atexit.unregister(self.close)
         stop_process_group(self.proc, timeout)
         if self._log not in (None, subprocess.DEVNULL):
             self._log.close()

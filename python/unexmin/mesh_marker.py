@@ -15,6 +15,8 @@ import os
 import numpy as np
 import yaml
 
+from unexmin.geometry import rpy_matrix, rpy_quaternion
+
 ROCK = (0.42, 0.47, 0.55, 1.0)      # slate grey-blue: apart from the hull's yellow and rviz's grey
 WATER = (0.10, 0.45, 0.95, 0.45)
 
@@ -44,23 +46,6 @@ def load_world(path):
         meshes.append(entry)
     surface = float((world.get("water") or {}).get("surface_z", 0.0))
     return {"name": world.get("name", "world"), "surface_z": surface, "meshes": meshes}
-
-
-def rpy_matrix(rpy):
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (URDF convention)."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
-def rpy_quaternion(rpy):
-    """(x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = (0.5 * a for a in rpy)
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy,
-            cr * cp * cy + sr * sp * sy)
 
 
 def read_mesh(path):

@@ -20,6 +20,7 @@ import time
 import numpy as np
 
 from unexmin.allocation import ThrusterAllocator
+from unexmin.geometry import yaw_of
 from unexmin.launcher import stop_process_group, wait_for
 
 ROBOT = "UX_1"
@@ -36,10 +37,6 @@ LEGS = (
     ("coast", (0, 0, 0, 0, 0, 0), 4.0),
 )
 TOPICS = [f"/{ROBOT}/odom"] + [f"/{ROBOT}/thrusters/{i}/{k}" for i in range(8) for k in ("input", "thrust")]
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def start_recorder(bag_path, log_dir):
@@ -78,22 +75,17 @@ def wait_until_written(path, timeout=30.0, quiet=0.5):
 
 def read_trajectory(bag_path):
     """(t, x, y, z, yaw) rows from the bag's odometry, and the mean |thrust| per thruster [N]."""
-    from rosbags.highlevel import AnyReader
-    from rosbags.typesys import Stores, get_typestore
-    from pathlib import Path
+    from unexmin.bag import read_messages, stamp_to_sec
 
     rows, thrust_sum, thrust_n = [], np.zeros(8), np.zeros(8)
-    with AnyReader([Path(bag_path)], default_typestore=get_typestore(Stores.ROS1_NOETIC)) as reader:
-        for conn, _, raw in reader.messages(connections=reader.connections):
-            msg = reader.deserialize(raw, conn.msgtype)
-            if conn.topic.endswith("/odom"):
-                p, q = msg.pose.pose.position, msg.pose.pose.orientation
-                t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
-                rows.append((t, p.x, p.y, p.z, yaw_of(q)))
-            elif conn.topic.endswith("/thrust"):
-                i = int(conn.topic.split("/")[-2])
-                thrust_sum[i] += abs(msg.data)
-                thrust_n[i] += 1
+    for topic, _, _, msg in read_messages(bag_path):
+        if topic.endswith("/odom"):
+            p, q = msg.pose.pose.position, msg.pose.pose.orientation
+            rows.append((stamp_to_sec(msg.header.stamp), p.x, p.y, p.z, yaw_of(q)))
+        elif topic.endswith("/thrust"):
+            i = int(topic.split("/")[-2])
+            thrust_sum[i] += abs(msg.data)
+            thrust_n[i] += 1
     rows.sort()
     return np.array(rows), thrust_sum / np.maximum(thrust_n, 1), thrust_n
 
@@ -133,7 +125,7 @@ def run(out, seed):
         import rosgraph
         import rospy
 
-        ux = sim.robot(ROBOT)
+        ux = sim.robot(ROBOT, streams="none")   # rosbag record subscribes what the report needs
         recorder, log = start_recorder(bag, log_dir)
         master = rosgraph.Master(rospy.get_name())
         publishers = ("/simulator", rospy.get_name())  # odometry and thrusts; thruster inputs

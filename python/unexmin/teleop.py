@@ -22,7 +22,6 @@ import math
 import signal
 import sys
 import time
-import warnings
 
 #: Movement keys: key -> (wrench component, sign). Thesis table 5.1 (A is -yaw, D is +yaw).
 MOVE_KEYS = {
@@ -177,21 +176,19 @@ class TeleopNode:
         from geometry_msgs.msg import Wrench
         from std_msgs.msg import Float64
 
+        from unexmin.topics import robot_param, sync_publisher
+
         self.rospy, self.Wrench, self.Float64 = rospy, Wrench, Float64
-        robot = str(rospy.get_param("~robot", rospy.get_namespace().strip("/").split("/")[0] or "UX_1")).strip("/")
-        if not robot:
-            raise ValueError("parameter ~robot: expected a robot name such as UX_1, got ''")
+        robot = robot_param()
         self.rate = rospy.get_param("~rate", 10.0)
         if not (isinstance(self.rate, (int, float)) and 0.5 <= self.rate <= 100.0):
             raise ValueError(f"parameter ~rate = {self.rate!r}: expected [0.5, 100] Hz")
         self.state = state_from_params(lambda name, default: rospy.get_param("~" + name, default))
         self.robot = robot
-        # Synchronous publishers (queue_size=None): the final zero wrench is on the wire before we exit.
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", SyntaxWarning)
-            self.wrench_pub = rospy.Publisher(f"/{robot}/force_moments", Wrench, queue_size=None)
-            self.pendulum_pub = rospy.Publisher(f"/{robot}/pendulum", Float64, queue_size=None, latch=True)
-            self.vbs_pub = rospy.Publisher(f"/{robot}/vbs", Float64, queue_size=None, latch=True)
+        # Synchronous publishers: the final zero wrench is on the wire before we exit.
+        self.wrench_pub = sync_publisher(f"/{robot}/force_moments", Wrench)
+        self.pendulum_pub = sync_publisher(f"/{robot}/pendulum", Float64, latch=True)
+        self.vbs_pub = sync_publisher(f"/{robot}/vbs", Float64, latch=True)
         self.last_sent = None
 
     def publish_wrench(self, now):

@@ -3,6 +3,8 @@
 
 import rospy
 
+from unexmin.topics import run_node
+
 
 class TranslatorNode:
     """Subscribes ~input_topic (in_type), publishes convert(msg) on ~output_topic (out_type).
@@ -38,11 +40,5 @@ class TranslatorNode:
 
 
 def run(name, *args, **kwargs):
-    """main() of a translator node: init, construct, spin."""
-    rospy.init_node(name)
-    try:
-        TranslatorNode(name, *args, **kwargs)
-    except ValueError as e:  # a bad parameter: one clear line, non-zero exit
-        rospy.logfatal(f"{name}: {e}")
-        raise SystemExit(1)
-    rospy.spin()
+    """main() of a translator node: init, construct, spin (a bad parameter: one fatal line, exit status 1)."""
+    run_node(name, lambda: TranslatorNode(name, *args, **kwargs))

@@ -18,6 +18,7 @@ import pytest
 
 from unexmin.allocation import (DEFAULT_MAX_THRUST, DOF, THESIS_MATRIX, AllocationError, ThrusterAllocator,
                                 validate_matrix, validate_max_thrust, validate_wrench)
+from unexmin.geometry import rpy_matrix
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -138,13 +139,6 @@ def _xacro():
     return str(local) if local.exists() else shutil.which("xacro")
 
 
-def _rpy_matrix(r, p, y):
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
 def geometry_matrix():
     """B (6 x 8): body force and moment about the hull centre per newton of each thruster."""
     exe = _xacro()
@@ -159,7 +153,7 @@ def geometry_matrix():
         o = j.find("origin")
         r = np.array([float(v) for v in o.get("xyz").split()])
         axis = np.array([float(v) for v in j.find("axis").get("xyz").split()])
-        d = _rpy_matrix(*[float(v) for v in o.get("rpy").split()]) @ axis
+        d = rpy_matrix([float(v) for v in o.get("rpy").split()]) @ axis
         B[:3, i], B[3:, i] = d, np.cross(r, d)
     return B
 

@@ -137,6 +137,7 @@ CLIENT = textwrap.dedent("""
     import rospy
     from std_msgs.msg import Float64
     from ux1_msgs.msg import MotorCommand
+    from unexmin.topics import ESC_COMMAND_TOPIC
     cases = json.loads(sys.argv[1])
     rospy.init_node("esc_test_client", disable_signals=True)
     got, cond = {}, threading.Condition()
@@ -145,7 +146,7 @@ CLIENT = textwrap.dedent("""
             got.setdefault(i, []).append(msg.data)
             cond.notify_all()
     subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cb, i) for i in range(8)]
-    pub = rospy.Publisher("/ux1/command/motors", MotorCommand, queue_size=10)
+    pub = rospy.Publisher(ESC_COMMAND_TOPIC, MotorCommand, queue_size=10)
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline and not (pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
         time.sleep(0.05)

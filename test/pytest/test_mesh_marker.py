@@ -7,7 +7,6 @@ master: the latched MarkerArray it publishes is the one build_markers makes.
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_mesh_marker.py
 """
 import json
-import math
 import os
 import shutil
 import subprocess
@@ -31,27 +30,6 @@ def polygon_area(xy):
 
 def triangles_area(tris):
     return 0.5 * np.abs(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])[:, 2]).sum()
-
-
-def quat_matrix(q):
-    x, y, z, w = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
-def test_rpy_matrix_is_rz_ry_rx_and_the_quaternion_agrees():
-    rng = np.random.default_rng(4)
-    for rpy in rng.uniform(-math.pi, math.pi, (20, 3)):
-        r, p, y = rpy
-        rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
-        ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
-        rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
-        np.testing.assert_allclose(mm.rpy_matrix(rpy), rz @ ry @ rx, atol=1e-12)
-        q = mm.rpy_quaternion(rpy)
-        assert np.linalg.norm(q) == pytest.approx(1.0)
-        np.testing.assert_allclose(quat_matrix(q), rz @ ry @ rx, atol=1e-12)
-    np.testing.assert_allclose(mm.rpy_quaternion((0, 0, math.pi / 2)), (0, 0, math.sqrt(0.5), math.sqrt(0.5)))
 
 
 def test_read_mesh_gives_the_same_triangles_from_stl_and_ply(tmp_path):

@@ -1,7 +1,7 @@
-"""Rosbag mission replay (python/unexmin/replay.py, nodes/replay_mission) and its sample bag.
+"""Rosbag mission replay (python/unexmin/replay/, nodes/replay_mission) and its sample bag.
 
-- Pure parts (no roscore): angle maths, start-frame alignment and error figures against trajectories
-  built here in closed form; reading the shipped sample bag.
+- Pure parts (no roscore): start-frame alignment and error figures against trajectories built here
+  in closed form (the angle maths: test_geometry.py); reading the shipped sample bag.
 - Round trip: a bag recorded from a known command sequence in the nominal simulator
   (worlds/tools/make_sample_bag.py --nominal) replays to the recorded trajectory within 1 cm and
   0.5 deg; the shipped perturbed bag replays with a much larger error.
@@ -9,7 +9,7 @@
 
 Simulator runs are subprocesses (each launches its own world on a private master and closes it),
 so this process never initialises rospy. Run:
-    /work/main_ws/venv/bin/python -m pytest test/pytest/test_replay.py
+    python -m pytest test/pytest/test_replay.py      (after source scripts/env.sh)
 """
 import json
 import math
@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from unexmin.replay import (MOTORS_TOPIC, Mission, ReplayError, compare, quaternion_to_rpy, read_bag,
-                            to_start_frame, wrap_angle)
+from unexmin.geometry import wrap_angle
+from unexmin.replay import MOTORS_TOPIC, Mission, ReplayError, compare, read_bag, to_start_frame
 
 REPO = Path(__file__).resolve().parents[2]
 SAMPLE_BAG = REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"
@@ -40,24 +40,6 @@ def run(args, tmp_path, timeout=240):
 # ---------------------------------------------------------------------------------------------
 # pure
 # ---------------------------------------------------------------------------------------------
-def test_quaternion_to_rpy_known_rotations():
-    h = math.sqrt(0.5)
-    assert quaternion_to_rpy(0, 0, h, h) == pytest.approx((0, 0, math.pi / 2))
-    assert quaternion_to_rpy(h, 0, 0, h) == pytest.approx((math.pi / 2, 0, 0))
-    # ZYX: yaw 30 deg, pitch 14 deg, roll 8 deg
-    r, p, y = math.radians(8), math.radians(14), math.radians(30)
-    cr, sr, cp, sp, cy, sy = (math.cos(r / 2), math.sin(r / 2), math.cos(p / 2), math.sin(p / 2),
-                              math.cos(y / 2), math.sin(y / 2))
-    q = (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy,
-         cr * cp * cy + sr * sp * sy)
-    assert quaternion_to_rpy(*q) == pytest.approx((r, p, y))
-
-
-def test_wrap_angle():
-    np.testing.assert_allclose(wrap_angle([0, math.pi / 2, 3 * math.pi / 2, -3 * math.pi / 2, 2 * math.pi]),
-                               [0, math.pi / 2, -math.pi / 2, math.pi / 2, 0], atol=1e-12)
-
-
 def helix(t, x0=0.0, y0=0.0, z0=0.0, yaw0=0.0):
     """A trajectory in closed form: forward at 0.2 m/s while turning at 0.1 rad/s and sinking 0.01 m/s."""
     yaw = yaw0 + 0.1 * t
@@ -189,14 +171,13 @@ def test_damaged_bag_gives_one_clear_error(nominal_bag, tmp_path, kind):
 
 
 def test_bag_without_motor_commands(tmp_path):
-    from rosbags.rosbag1 import Writer
-    from rosbags.typesys import Stores, get_typestore
+    from std_msgs.msg import Float64
 
-    ts = get_typestore(Stores.ROS1_NOETIC)
+    from unexmin.bag import BagWriter
+
     bag = tmp_path / "no_motors.bag"
-    with Writer(bag) as w:
-        c = w.add_connection("/UX_1/vbs", "std_msgs/msg/Float64", typestore=ts)
-        w.write(c, 10**9, ts.serialize_ros1(ts.types["std_msgs/msg/Float64"](data=0.1), "std_msgs/msg/Float64"))
+    with BagWriter(bag) as w:
+        w.write("/UX_1/vbs", Float64(0.1), 1.0)
     with pytest.raises(ReplayError, match="no motors command"):
         read_bag(bag)
 

@@ -12,8 +12,9 @@ import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-import numpy as np
 import pytest
+
+from unexmin.geometry import rpy_matrix
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -37,13 +38,6 @@ def param(sensor, name):
         if p.get("name") == name:
             return p.get("value")
     raise KeyError(name)
-
-
-def rpy_matrix(r, p, y):
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
 
 
 def test_navigation_sensors_types_links_and_rates():
@@ -80,7 +74,7 @@ def test_dvl_beam_frames_point_along_the_model_beams():
         j = joints[link]
         assert j.find("parent").get("link") == s.get("link")
         rpy = [float(v) for v in j.find("origin").get("rpy").split()]
-        x = rpy_matrix(*rpy)[:, 0]
+        x = rpy_matrix(rpy)[:, 0]
         c = c0 + i * math.pi / 2
         assert x == pytest.approx([math.sin(a) * math.cos(c), math.sin(a) * math.sin(c), math.cos(a)], abs=1e-9)
 

@@ -19,6 +19,8 @@ import numpy as np
 import pytest
 import yaml
 
+from unexmin.geometry import rpy_matrix
+
 REPO = Path(__file__).resolve().parents[2]
 URDF_DIR = REPO / "urdf"
 ROBOT_FILE = URDF_DIR / "ux1.urdf.xacro"
@@ -78,16 +80,6 @@ def robot_xml(name, *extra):
 
 def floats(text):
     return np.array([float(v) for v in text.split()])
-
-
-def rpy_matrix(rpy):
-    """URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return rz @ ry @ rx
 
 
 def axis_angle_matrix(axis, angle):

@@ -24,9 +24,10 @@ from std_msgs.msg import Float64
 from ux1_msgs.msg import MotorCommand
 
 from unexmin import Simulation
+from unexmin.geometry import yaw_of
 from unexmin.launcher import wait_for
-from unexmin.simulation import sync_publisher
 from unexmin.srv import Step
+from unexmin.topics import ESC_COMMAND_TOPIC, sync_publisher
 
 ALLOCATOR = "/UX_1/thruster_allocator"
 A = {  # thesis eq. 5.12, rows used here
@@ -66,25 +67,18 @@ def response_1d(force, seconds, mass, k_quad, k_lin, tau=0.1, dt=1e-4):
     return x
 
 
-def rpy(q):
-    roll = math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y))
-    pitch = math.asin(max(-1.0, min(1.0, 2 * (q.w * q.y - q.z * q.x))))
-    yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
-    return roll, pitch, yaw
-
-
 class AllocatorInSimulator(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="allocator_test", timeout=60.0)
-        cls.ux = cls.sim.robot("UX_1")
+        cls.ux = cls.sim.robot("UX_1", streams="none")  # dynamics only: no sensor messages
         cls.cond = threading.Condition()
         cls.thrusts = {}           # thruster -> list of values from the allocator
         cls.motors = []            # MotorCommand values
         cls.from_allocator = 0     # thruster messages published by the allocator node
         cls.subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cls.on_thrust, i, queue_size=100)
                     for i in range(8)]
-        cls.motor_sub = rospy.Subscriber("/ux1/command/motors", MotorCommand, cls.on_motors, queue_size=100)
+        cls.motor_sub = rospy.Subscriber(ESC_COMMAND_TOPIC, MotorCommand, cls.on_motors, queue_size=100)
         cls.wrench_pub = sync_publisher("/UX_1/force_moments", Wrench)
         cls.step_srv = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         wait_for(lambda: cls.wrench_pub.get_num_connections() > 0 and cls.motor_sub.get_num_connections() > 0
@@ -184,7 +178,7 @@ class AllocatorInSimulator(unittest.TestCase):
 
     def body_displacement(self, start, end):
         p0, p1 = start.pose.pose.position, end.pose.pose.position
-        yaw = rpy(start.pose.pose.orientation)[2]
+        yaw = yaw_of(start.pose.pose.orientation)
         dx, dy, dz = p1.x - p0.x, p1.y - p0.y, p1.z - p0.z
         return dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw), dz
 
@@ -201,7 +195,7 @@ class AllocatorInSimulator(unittest.TestCase):
         for j in range(3):
             if j != index:
                 self.assertLess(abs(d[j]), 0.02 * expected, msg=f"{axis}: across the axis ({j})")
-        turned = math.remainder(rpy(end.pose.pose.orientation)[2] - rpy(start.pose.pose.orientation)[2], 2 * math.pi)
+        turned = math.remainder(yaw_of(end.pose.pose.orientation) - yaw_of(start.pose.pose.orientation), 2 * math.pi)
         self.assertLess(abs(turned), math.radians(0.5))
 
     def test_x_moves_forward(self):
@@ -220,7 +214,7 @@ class AllocatorInSimulator(unittest.TestCase):
         k_quad = 8 * 0.5 * RHO * 1.0 * 0.005 * R ** 3
         k_lin = 8.0 * math.pi * 1.0e-3 * R ** 3
         expected = response_1d(0.3 * scale, t, inertia, k_quad, k_lin)
-        turned = math.remainder(rpy(end.pose.pose.orientation)[2] - rpy(start.pose.pose.orientation)[2], 2 * math.pi)
+        turned = math.remainder(yaw_of(end.pose.pose.orientation) - yaw_of(start.pose.pose.orientation), 2 * math.pi)
         print(f"N {scale}: turned {math.degrees(turned):.3f} deg in {t} s, expected {math.degrees(expected):.3f} deg")
         self.assertAlmostEqual(turned, expected, delta=0.03 * expected)
         d = self.body_displacement(start, end)

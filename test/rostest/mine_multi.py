@@ -24,7 +24,9 @@ import rostopic
 from tf2_msgs.msg import TFMessage
 
 from unexmin import Simulation
+from unexmin.geometry import yaw_of
 from unexmin.launcher import wait_for
+from unexmin.topics import ESC_COMMAND_TOPIC
 
 NAMES = ["UX_1", "UX_2", "UX_3"]
 R_HULL = 0.3  # [m]
@@ -40,9 +42,8 @@ SEED = 2
 
 
 def pose(odom):
-    p, q = odom.pose.pose.position, odom.pose.pose.orientation
-    yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-    return np.array([p.x, p.y, p.z, yaw])
+    p = odom.pose.pose.position
+    return np.array([p.x, p.y, p.z, yaw_of(odom.pose.pose.orientation)])
 
 
 def surge_1d(force, seconds, dt=1e-4):
@@ -69,7 +70,7 @@ class MineMulti(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="mine_multi_test", timeout=60.0)
-        cls.ux = {n: cls.sim.robot(n) for n in NAMES}
+        cls.ux = {n: cls.sim.robot(n, streams="none") for n in NAMES}  # dynamics; the topics test subscribes its own
 
     def start(self):
         self.sim.reset(seed=SEED)
@@ -147,7 +148,7 @@ class MineMulti(unittest.TestCase):
                                         f"{topic} is {kind} by {node}")
                     elif node_ns is not None and topic not in GLOBAL_TOPICS:
                         # a robot's node on a global topic: only the real UX-1's ESC command
-                        self.assertEqual((topic, node), ("/ux1/command/motors", "/UX_1/thruster_allocator"))
+                        self.assertEqual((topic, node), (ESC_COMMAND_TOPIC, "/UX_1/thruster_allocator"))
         with lock:
             by_node = dict(frames)
         for n in NAMES:

@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""rostest: the navigation sensors and translators through ROS (test/rostest/sensors.test)."""
+"""rostest: the navigation sensors and translators through ROS (test/rostest/sensors.test).
+
+The records are made with the scripting API's collectors (Robot.collect) on a simulator this test
+joins: complete after each step for the simulator's topics; the translators' outputs, which are
+not synchronised with the steps, are waited for up to their last sample's stamp."""
 
 import math
 import unittest
@@ -12,8 +16,6 @@ from kvh_1775.msg import ImuRawKvh
 from sensor_msgs.msg import FluidPressure, Imu, MagneticField, Range
 
 from unexmin import Simulation
-from unexmin.launcher import wait_for
-from unexmin.recorder import TopicRecorder
 from unexmin.msg import Dvl, ImuRaw
 
 NS = "/UX_1/"
@@ -24,6 +26,7 @@ TOPICS = {
     "dvl_twist": TwistWithCovarianceStamped, "dvl_water_track": DvlBottomWaterTrack,
 }
 TYPE_NAMES = {t: c._type for t, c in TOPICS.items()}
+TRANSLATED = {"kvh/imu_raw_translated", "dvl_water_track"}   # published by translator nodes, not the simulator
 SECONDS = 2.0          # [s] of sim time per record
 G = 9.81               # [m/s^2] tank.world gravity
 SPAWN_Z = -1.0         # [m] UX_1 in tank.world
@@ -35,21 +38,42 @@ class Sensors(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="sensors_test", timeout=60.0)
-        cls.ux = cls.sim.robot("UX_1")
-        cls.rec = TopicRecorder(NS, TOPICS)
-        wait_for(cls.rec.connected, 30.0,
-                 "every sensor topic to connect")
+        cls.ux = cls.sim.robot("UX_1")  # subscribes every topic the simulator publishes under /UX_1/
 
     def record(self):
         """Reset to t = 0 (seed 1), step SECONDS of sim time, return every message of the record.
 
         Every sensor samples at exactly t = SECONDS (2 s is a multiple of 1/500, 1/10 and 1/8 s), and a
-        topic's messages arrive in order: once each topic has its t = SECONDS message, the record is
-        complete and nothing of it can arrive after the next record's clear()."""
+        topic's messages arrive in order: once each translated topic has its t = SECONDS message, the
+        record is complete and nothing of it can arrive after the next record's start."""
+        self.drain_translators()
         self.sim.reset(seed=1)
-        self.rec.clear()
+        collectors = {t: self.ux.collect(t, c) for t, c in TOPICS.items()}
         self.sim.run_for(SECONDS)
-        return {t: self.rec.wait_until(t, SECONDS) for t in TOPICS}
+        got = {t: c.wait_until(SECONDS) if t in TRANSLATED else c.messages for t, c in collectors.items()}
+        for c in collectors.values():
+            c.stop()
+        return got
+
+    def drain_translators(self):
+        """Wait until each translator has published its translation of the last message the simulator
+        sent it (translators are not synchronised with the steps: a test that steps without waiting
+        for them leaves translations in flight, which would land in the next record)."""
+        for out, source in (("kvh/imu_raw_translated", "kvh/raw"), ("dvl_water_track", "dvl")):
+            try:
+                last = self.ux.latest(source).header.stamp.to_sec()
+            except LookupError:  # nothing stepped since the start or the last reset
+                continue
+            self.ux.latest(out, TOPICS[out], min_stamp=last, timeout=30.0)
+
+    def test_latest_is_the_newest_sample_at_sim_time(self):
+        # joined simulator, topics subscribed at setUpClass: asked first after the steps, exact at once
+        self.sim.reset(seed=1)
+        self.sim.run_for(0.7)
+        self.sim.step(300)                       # t = 1.3 s
+        for topic, rate in (("kvh/imu_raw", 500), ("imu", 500), ("pressure", 10), ("dvl", 8), ("dvl_sonar1", 8)):
+            expected = math.floor(1.3 * rate + 1e-9) / rate   # 1.3, 1.3, 1.3, 1.25, 1.25: all on the 2 ms grid
+            self.assertAlmostEqual(self.ux.latest(topic).header.stamp.to_sec(), expected, delta=1e-9, msg=topic)
 
     def test_type_names(self):
         published = dict(rospy.get_published_topics())

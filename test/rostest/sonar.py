@@ -1,5 +1,8 @@
 #!/usr/bin/env python3
-"""rostest: the sonars and the M3 translator through ROS (test/rostest/sonar.test)."""
+"""rostest: the sonars and the M3 translator through ROS (test/rostest/sonar.test).
+
+Records are made with the scripting API's collectors (Robot.collect): complete after each step for
+the simulator's topics; the translator's m3/points is waited for."""
 
 import math
 import unittest
@@ -11,8 +14,6 @@ from sensor_msgs.msg import LaserScan, PointCloud2
 from std_msgs.msg import Float64
 
 from unexmin import Simulation
-from unexmin.launcher import wait_for
-from unexmin.recorder import TopicRecorder
 
 NS = "/UX_1/"
 TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan,
@@ -27,16 +28,18 @@ class Sonar(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="sonar_test", timeout=60.0)
-        cls.rec = TopicRecorder(NS, TOPICS)
-        wait_for(cls.rec.connected, 30.0, "every sonar topic to connect")
+        cls.ux = cls.sim.robot("UX_1", streams=["tritech_micron/scan", "msis/msis_r", "m3/scan"])
 
     def record(self):
         """Reset to t = 0 (seed 1), step SECONDS of sim time, return every message of the record."""
         self.sim.reset(seed=1)
-        self.rec.clear()
+        collectors = {t: self.ux.collect(t, c) for t, c in TOPICS.items()}
         self.sim.run_for(SECONDS)
-        counts = {"tritech_micron/scan": MSIS_RATE, "msis/msis_r": MSIS_RATE, "m3/scan": M3_RATE, "m3/points": M3_RATE}
-        return {t: self.rec.wait_count(t, round(r * SECONDS)) for t, r in counts.items()}
+        got = {t: c.messages for t, c in collectors.items()}
+        got["m3/points"] = collectors["m3/points"].wait_count(round(M3_RATE * SECONDS))  # the translator's
+        for c in collectors.values():
+            c.stop()
+        return got
 
     def test_type_names(self):
         published = dict(rospy.get_published_topics())

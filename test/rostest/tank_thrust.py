@@ -9,16 +9,13 @@ import rostest
 from std_msgs.msg import Float64
 
 from unexmin import Simulation
+from unexmin.geometry import yaw_of
 from unexmin.launcher import wait_for
-from unexmin.simulation import sync_publisher
+from unexmin.topics import sync_publisher
 
 # Thesis allocation matrix (eq. 5.12) rows X and N, columns M0..M7.
 A_X = np.array([0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5, 0.0])
 A_N = np.array([-0.25, 0.0, 0.25, 0.0, 0.25, 0.0, -0.25, 0.0])
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def surge_1d(force, seconds, mass, k_quad, k_lin, tau, dt=1e-4):
@@ -37,7 +34,7 @@ class TankThrust(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="tank_thrust_test", timeout=60.0)
-        cls.ux = cls.sim.robot("UX_1")
+        cls.ux = cls.sim.robot("UX_1", streams="none")  # dynamics only: no sensor messages
 
     def setUp(self):
         self.sim.reset(seed=1)

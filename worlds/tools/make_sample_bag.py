@@ -28,10 +28,8 @@ reproduce the recorded trajectory (test/pytest/test_replay.py).
 """
 
 import argparse
-import io
 import math
 import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -101,68 +99,23 @@ def perturbed_world_files(tmp):
     return launch_file
 
 
-def launch_file_world(launch_file, log_dir):
-    """A WorldProcess running `roslaunch <launch_file>` on a private master."""
-    from unexmin.launcher import WorldProcess, free_port
-
-    proc = WorldProcess.__new__(WorldProcess)
-    proc.port = free_port()
-    proc.uri = f"http://127.0.0.1:{proc.port}"
-    os.environ["ROS_MASTER_URI"] = proc.uri
-    os.environ.setdefault("ROS_IP", "127.0.0.1")
-    os.makedirs(log_dir, exist_ok=True)
-    os.environ["ROS_LOG_DIR"] = str(log_dir)
-    proc._log = open(Path(log_dir) / "roslaunch.log", "w")
-    proc.proc = subprocess.Popen(["roslaunch", "--port", str(proc.port), str(launch_file)], stdout=proc._log,
-                                 stderr=subprocess.STDOUT, start_new_session=True)
-    return proc
-
-
-class BagRecorder:
-    """Writes rospy messages (their ROS 1 serialisation and definitions) with rosbags' writer."""
-
-    def __init__(self, path):
-        from rosbags.rosbag1 import Writer
-
-        self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        if self.path.exists():
-            self.path.unlink()
-        self.writer = Writer(self.path)
-        self.writer.open()
-        self.conns = {}
-
-    def write(self, topic, msg, t):
-        if topic not in self.conns:
-            pkg, name = msg._type.split("/")
-            self.conns[topic] = self.writer.add_connection(topic, f"{pkg}/msg/{name}", msgdef=msg._full_text,
-                                                           md5sum=msg._md5sum, callerid="/make_sample_bag")
-        buf = io.BytesIO()
-        msg.serialize(buf)
-        self.writer.write(self.conns[topic], int(round(t * 1e9)), buf.getvalue())
-
-    def close(self):
-        self.writer.close()
-
-
 def record(out, nominal=False, duration=DURATION, seed=0):
     """Run the mission and write the bag `out`; returns the number of messages written."""
     import rospy
     from std_msgs.msg import Float64
     from ux1_msgs.msg import MotorCommand
 
-    from unexmin.replay import MOTORS_TOPIC, LockstepRunner
+    from unexmin.bag import BagWriter
+    from unexmin.replay import LockstepRunner
     from unexmin.simulation import Simulation
+    from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")
-    if nominal:
-        sim = Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"))
-    else:
-        sim = Simulation(timeout=60.0, world=launch_file_world(perturbed_world_files(tmp), os.path.join(tmp, "log")))
-    bag = BagRecorder(out)
+    launch_file = None if nominal else perturbed_world_files(tmp)
     count = 0
-    try:
-        runner = LockstepRunner(sim, "UX_1", MOTORS_TOPIC, sample_period=0.1)
+    with Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"), launch_file=launch_file,
+                           timeout=60.0) as sim, BagWriter(out, callerid="/make_sample_bag") as bag:
+        runner = LockstepRunner(sim, "UX_1", ESC_COMMAND_TOPIC, sample_period=0.1)
         lead = runner.lead_steps / runner.rate          # mission time 0 is sim time `lead`
         events = mission_events(duration)
         for t, kind, payload in events:
@@ -170,7 +123,7 @@ def record(out, nominal=False, duration=DURATION, seed=0):
                 msg = MotorCommand()
                 msg.header.stamp = rospy.Time.from_sec(t + lead)
                 msg.mode, msg.values = payload[0], list(payload[1])
-                bag.write(MOTORS_TOPIC, msg, t + lead)
+                bag.write(ESC_COMMAND_TOPIC, msg, t + lead)
             else:
                 bag.write(f"/UX_1/{kind}", Float64(payload), t + lead)
             count += 1
@@ -181,9 +134,7 @@ def record(out, nominal=False, duration=DURATION, seed=0):
             count += 1
 
         traj = runner.run(events, duration, seed=seed, on_sample=on_sample)
-    finally:
-        bag.close()
-        sim.close()
+        runner.close()
     print(f"{out}: {count} messages, {duration:.0f} s; robot went from "
           f"({traj[0, 1]:.2f}, {traj[0, 2]:.2f}, {traj[0, 3]:.2f}) to ({traj[-1, 1]:.2f}, {traj[-1, 2]:.2f}, "
           f"{traj[-1, 3]:.2f}) m, roll/pitch at start "

@@ -5,6 +5,7 @@
 #include <sensor_msgs/JointState.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace unexmin {
@@ -15,6 +16,11 @@ std::uint64_t every(double physics_rate, double rate)
 {
   return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
 }
+
+/// Outgoing queue per subscriber of a stream published at `rate` [Hz of sim time]: 20 s of sim time,
+/// at least 1000 messages, as the sensors' (SensorPublisher::queueSize), so that a script stepping the
+/// world in bursts (python/unexmin/simulation.py) loses no odometry, joint state or thrust message.
+int streamQueue(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
 
 using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
 
@@ -38,12 +44,12 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
     const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
     subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
-    thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", 10));
+    thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", streamQueue(rates.thrust)));
   }
   subs_.push_back(subscribeCommand(command_nh, ns + "pendulum", [this](const Float64Event& e) { onPendulum(e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
-  odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", 50);
-  joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", 50);
+  odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", streamQueue(rates.odom));
+  joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", streamQueue(rates.joint_states));
   tf_probe_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
   odom_every_ = every(physics_rate, rates.odom);
   joint_every_ = every(physics_rate, rates.joint_states);
