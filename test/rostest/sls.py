@@ -13,8 +13,6 @@ from sensor_msgs import point_cloud2
 from sensor_msgs.msg import JointState, LaserScan, PointCloud2
 
 from unexmin import Simulation
-from unexmin.launcher import wait_for
-from unexmin.recorder import TopicRecorder
 
 NS = "/UX_1/"
 UNITS = range(4)
@@ -36,14 +34,18 @@ class Sls(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.sim = Simulation(node_name="sls_test", timeout=60.0)
-        cls.rec = TopicRecorder(NS, {**TOPICS, "joint_states": JointState})
-        wait_for(cls.rec.connected, 30.0, "every SLS topic to connect")
+        cls.ux = cls.sim.robot("UX_1", streams=[*TOPICS, "joint_states"])
 
     def record(self):
+        """Reset to t = 0 (seed 1), step SECONDS of sim time, return every message of each topic (the
+        collectors lose none)."""
         self.sim.reset(seed=1)
-        self.rec.clear()
+        collectors = {t: self.ux.collect(t, c) for t, c in TOPICS.items()}
         self.sim.run_for(SECONDS)
-        return {t: self.rec.wait_count(t, round(RATE * SECONDS)) for t in TOPICS}
+        got = {t: c.messages for t, c in collectors.items()}
+        for c in collectors.values():
+            c.stop()
+        return got
 
     def test_type_names(self):
         published = dict(rospy.get_published_topics())
@@ -78,7 +80,7 @@ class Sls(unittest.TestCase):
 
     def test_motor_joints_follow_the_triangle_wave(self):
         self.record()
-        js = self.rec.wait_until("joint_states", SECONDS)[-1]
+        js = self.ux.latest("joint_states", JointState)
         self.assertAlmostEqual(js.header.stamp.to_sec(), SECONDS, delta=1e-6)
         for i in UNITS:
             name = f"UX_1/sls_{i}_motor_joint"
