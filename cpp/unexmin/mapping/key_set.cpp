@@ -1,0 +1,99 @@
+#include <unexmin/mapping/key_set.h>
+
+#include <algorithm>
+
+namespace unexmin {
+namespace mapping {
+
+namespace {
+
+/// The 16 bits of v spread to every third bit of 48.
+uint64_t spread(uint64_t v)
+{
+  v &= 0xFFFF;
+  v = (v | (v << 16)) & 0x0000FF0000FFull;
+  v = (v | (v << 8)) & 0x00F00F00F00Full;
+  v = (v | (v << 4)) & 0x0C30C30C30C3ull;
+  v = (v | (v << 2)) & 0x249249249249ull;
+  return v;
+}
+
+uint16_t compact(uint64_t v)
+{
+  v &= 0x249249249249ull;
+  v = (v | (v >> 2)) & 0x0C30C30C30C3ull;
+  v = (v | (v >> 4)) & 0x00F00F00F00Full;
+  v = (v | (v >> 8)) & 0x0000FF0000FFull;
+  v = (v | (v >> 16)) & 0xFFFF;
+  return static_cast<uint16_t>(v);
+}
+
+constexpr int kInitialBits = 16;
+
+}  // namespace
+
+uint64_t mortonCode(const octomap::OcTreeKey& key)
+{
+  return spread(key[0]) | (spread(key[1]) << 1) | (spread(key[2]) << 2);
+}
+
+octomap::OcTreeKey keyOfMorton(uint64_t code)
+{
+  return octomap::OcTreeKey(compact(code), compact(code >> 1), compact(code >> 2));
+}
+
+KeySet::KeySet() : slots_(std::size_t(1) << kInitialBits, kEmpty), mask_((uint64_t(1) << kInitialBits) - 1),
+                   shift_(64 - kInitialBits)
+{
+}
+
+void KeySet::insert(uint64_t code, bool occupied)
+{
+  const uint64_t entry = (code << 1) | (occupied ? 1u : 0u);
+  uint64_t i = (code * 0x9E3779B97F4A7C15ull) >> shift_;
+  for (;;) {
+    uint64_t& slot = slots_[i];
+    if (slot == kEmpty) {
+      slot = entry;
+      used_.push_back(static_cast<uint32_t>(i));
+      if (used_.size() * 2 > slots_.size()) grow();
+      return;
+    }
+    if ((slot >> 1) == code) {
+      slot |= entry & 1u;  // occupied wins
+      return;
+    }
+    i = (i + 1) & mask_;
+  }
+}
+
+void KeySet::grow()
+{
+  std::vector<uint64_t> entries;
+  entries.reserve(used_.size());
+  for (uint32_t i : used_) entries.push_back(slots_[i]);
+  const int bits = 64 - shift_ + 1;
+  slots_.assign(std::size_t(1) << bits, kEmpty);
+  mask_ = (uint64_t(1) << bits) - 1;
+  shift_ = 64 - bits;
+  used_.clear();
+  for (uint64_t e : entries) insert(e >> 1, e & 1u);
+}
+
+const std::vector<uint64_t>& KeySet::sorted()
+{
+  sorted_.clear();
+  sorted_.reserve(used_.size());
+  for (uint32_t i : used_) sorted_.push_back(slots_[i]);
+  std::sort(sorted_.begin(), sorted_.end());
+  return sorted_;
+}
+
+void KeySet::clear()
+{
+  for (uint32_t i : used_) slots_[i] = kEmpty;
+  used_.clear();
+}
+
+}  // namespace mapping
+}  // namespace unexmin
