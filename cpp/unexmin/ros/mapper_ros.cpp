@@ -48,7 +48,13 @@ std_msgs::ColorRGBA heightColour(double z, double lo, double hi)
 MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh)
 {
   loadParams();
-  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_, nh_);
+  // Our own /tf subscribers with the clouds' queue depth: in lockstep the simulator publishes tf far faster
+  // than real time, and tf2_ros's TransformListener (queue 100) would drop samples under load.
+  tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf", queue_size_, [this](const tf2_msgs::TFMessageConstPtr& m) {
+    onTf(m, false);
+  }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  tf_static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf_static", queue_size_,
+                                                      [this](const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); });
   all_ = makeOutput(nh_);
   for (const std::string& robot : robots_) {
     if (per_robot_) robot_maps_.emplace(robot, makeOutput(ros::NodeHandle(nh_, robot)));
@@ -150,6 +156,19 @@ void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2
     for (; x != x.end(); ++x, ++y, ++z) cloud.points.emplace_back(*x, *y, *z);
   }
   enqueue(std::move(cloud));
+}
+
+void MapperRos::onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static)
+{
+  for (const geometry_msgs::TransformStamped& t : msg->transforms) {
+    try {
+      tf_buffer_.setTransform(t, "tf", is_static);
+    } catch (const tf2::TransformException& e) {
+      ROS_WARN_STREAM_THROTTLE(5.0, "mapper: bad transform " << t.header.frame_id << " -> " << t.child_frame_id
+                                                              << ": " << e.what());
+    }
+  }
+  if (!pending_.empty()) drain();
 }
 
 void MapperRos::enqueue(Cloud&& cloud)

@@ -11,7 +11,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
+#include <tf2_msgs/TFMessage.h>
 #include <unexmin/SaveMap.h>
 
 #include <deque>
@@ -57,6 +57,7 @@ private:
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
   void enqueue(Cloud&& cloud);
+  void onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static);
   /// Inserts every pending cloud whose tf is available; drops those past the timeout.
   void drain();
   void publish(Output& out, const ros::Time& stamp);
@@ -78,7 +79,7 @@ private:
   std::string map_file_;
 
   tf2_ros::Buffer tf_buffer_{ros::Duration(120.0)};
-  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  ros::Subscriber tf_sub_, tf_static_sub_;  ///< deep queues: tf2_ros's listener drops beyond 100 messages
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher stats_pub_;
   ros::ServiceServer save_srv_, reset_srv_;
