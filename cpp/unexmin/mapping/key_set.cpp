@@ -50,7 +50,9 @@ KeySet::KeySet() : slots_(std::size_t(1) << kInitialBits, kEmpty), mask_((uint64
 void KeySet::insert(uint64_t code, bool occupied)
 {
   const uint64_t entry = (code << 1) | (occupied ? 1u : 0u);
-  uint64_t i = (code * 0x9E3779B97F4A7C15ull) >> shift_;
+  // Low Morton bits first: voxels near each other (a ray's consecutive voxels) land in nearby slots, so the
+  // walk stays in cache; the high bits are folded in to separate distant blocks.
+  uint64_t i = (code ^ (code >> (64 - shift_)) ^ (code >> 2 * (64 - shift_))) & mask_;
   for (;;) {
     uint64_t& slot = slots_[i];
     if (slot == kEmpty) {

@@ -19,8 +19,10 @@ public:
   using octomap::OcTree::OcTree;
 
   /// Adds log-odds hit (occupied bit set) or miss to the leaf of every entry (code << 1 | occupied, sorted by
-  /// code), clamped, creating leaves and expanding pruned nodes as OctoMap's updateNode does. Inner nodes are
-  /// left stale (lazy).
+  /// code), clamped, creating leaves and expanding pruned nodes as OctoMap's updateNode does. Each inner node
+  /// the batch touched is brought up to date (maximum of its children, or pruned when its 8 children are equal
+  /// leaves) once, when the sorted walk leaves its subtree for good: the tree stays as OctoMap's
+  /// updateInnerOccupancy() and prune() would leave it, at the cost of the touched nodes only.
   void apply(const std::vector<uint64_t>& entries)
   {
     if (entries.empty()) return;
@@ -41,7 +43,10 @@ public:
       const uint64_t code = entry >> 1;
       // The nodes down to the depth where this code leaves the previous one's path are shared.
       unsigned start = 0;
-      if (!first) start = depth_max - 1 - (63 - __builtin_clzll(code ^ previous)) / 3;
+      if (!first) {
+        start = depth_max - 1 - (63 - __builtin_clzll(code ^ previous)) / 3;
+        for (unsigned depth = depth_max - 1; depth > start; --depth) finish(path[depth]);
+      }
       for (unsigned depth = start; depth < depth_max; ++depth) {
         octomap::OcTreeNode* node = path[depth];
         const unsigned pos = (code >> (3 * (depth_max - 1 - depth))) & 7u;
@@ -64,7 +69,16 @@ public:
       previous = code;
       first = false;
     }
+    for (unsigned depth = depth_max; depth-- > 0;) finish(path[depth]);
     size_changed = true;
+  }
+
+private:
+  /// An inner node whose children are final: pruned if they are 8 equal leaves, else it takes their maximum.
+  void finish(octomap::OcTreeNode* node)
+  {
+    if (!nodeHasChildren(node)) return;
+    if (!pruneNode(node)) node->updateOccupancyChildren();
   }
 };
 
@@ -154,7 +168,6 @@ CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points
   const std::vector<uint64_t>& entries = keys_.sorted();
   for (uint64_t e : entries) ++((e & 1u) ? stats.occupied_voxels : stats.free_voxels);
   tree_->apply(entries);
-  dirty_ = dirty_ || !entries.empty();
   ++clouds_;
   points_ += points.size();
   return stats;

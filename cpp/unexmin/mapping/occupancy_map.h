@@ -1,7 +1,7 @@
 // A world-frame occupancy map (an OctoMap OcTree) built from point clouds, each ray-cast from its own sensor
-// origin. Per cloud, every voxel is updated once (occupied wins over free), the tree is updated lazily
-// (inner nodes and pruning wait for update()), and the leaves are visited in Morton order so that one
-// descent serves neighbouring voxels. The result equals OctoMap's own insertPointCloud on the same clouds
+// origin. Per cloud, every voxel is updated once (occupied wins over free), the leaves are visited in Morton
+// order so that one descent serves neighbouring voxels, and each touched inner node is updated (or pruned)
+// once per cloud, not once per voxel below it as OctoMap's updateNode does. The result equals OctoMap's own insertPointCloud on the same clouds
 // (test_mapping.cpp checks it voxel for voxel). Knows no ROS.
 #pragma once
 
@@ -46,7 +46,8 @@ public:
   /// carve free space up to max_range.
   CloudStats insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin);
 
-  /// Brings inner nodes up to date and prunes, if anything changed since the last call.
+  /// Brings inner nodes up to date and prunes, if anything changed since the last call (insertCloud keeps
+  /// the tree up to date: this is for trees changed otherwise).
   void update();
   /// The tree, updated.
   const octomap::OcTree& tree();
