@@ -191,10 +191,11 @@ void MapperRos::drain()
                                                                       << it->stamp << ": " << error);
         ++dropped_;
         it = pending_.erase(it);
-      } else {
-        ++it;
+        continue;
       }
-      continue;
+      // Clouds and tf arrive in stamp order: the clouds behind this one wait too (one check per call, not one
+      // per pending cloud, however long the queue).
+      break;
     }
     const geometry_msgs::TransformStamped tf = tf_buffer_.lookupTransform(world_frame_, it->frame, it->stamp);
     const auto& q = tf.transform.rotation;

@@ -58,7 +58,8 @@ private:
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
   void enqueue(Cloud&& cloud);
   void onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static);
-  /// Inserts every pending cloud whose tf is available; drops those past the timeout.
+  /// Inserts the pending clouds in arrival order up to the first whose tf has not arrived yet; drops those
+  /// past the timeout.
   void drain();
   void publish(Output& out, const ros::Time& stamp);
   void onTimer(const ros::WallTimerEvent&);
