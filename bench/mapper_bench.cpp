@@ -130,7 +130,7 @@ int main(int argc, char** argv)
 
   std::printf("mapper_bench: %d clouds, %zu points, resolution %g m, max range %g m\n", count, points, resolution,
               max_range);
-  std::printf("  ours (dedup, lazy, Morton order):      %8.3f s  %10.0f points/s  %6.2f ms/cloud\n", t_ours,
+  std::printf("  ours (dedup, Morton-ordered batch):    %8.3f s  %10.0f points/s  %6.2f ms/cloud\n", t_ours,
               points / t_ours, 1e3 * t_ours / count);
   std::printf("  OctoMap insertPointCloud + prune/cloud: %8.3f s  %10.0f points/s  %6.2f ms/cloud (worst %.1f ms)\n",
               t_theirs, points / t_theirs, 1e3 * t_theirs / count, 1e3 * worst);
