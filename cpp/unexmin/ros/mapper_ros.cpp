@@ -359,7 +359,7 @@ bool MapperRos::onSaveMap(unexmin::SaveMap::Request& req, unexmin::SaveMap::Resp
 
 bool MapperRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
 {
-  for (Output* out : {&all_}) out->map->reset();
+  all_.map->reset();
   for (auto& entry : robot_maps_) entry.second.map->reset();
   all_.changed_binary = all_.changed_markers = all_.changed_centers = true;
   for (auto& entry : robot_maps_) entry.second.changed_binary = entry.second.changed_markers = entry.second.changed_centers = true;
