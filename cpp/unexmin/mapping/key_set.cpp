@@ -32,9 +32,23 @@ constexpr int kInitialBits = 16;
 
 }  // namespace
 
-uint64_t mortonCode(const octomap::OcTreeKey& key)
+namespace {
+
+struct SpreadTable
 {
-  return spread(key[0]) | (spread(key[1]) << 1) | (spread(key[2]) << 2);
+  uint64_t byte[256];
+  SpreadTable()
+  {
+    for (unsigned v = 0; v < 256; ++v) byte[v] = spread(v);
+  }
+};
+const SpreadTable kSpread;
+
+}  // namespace
+
+uint64_t spreadBits(uint16_t v)
+{
+  return kSpread.byte[v & 0xFF] | (kSpread.byte[v >> 8] << 24);
 }
 
 octomap::OcTreeKey keyOfMorton(uint64_t code)
@@ -87,7 +101,23 @@ const std::vector<uint64_t>& KeySet::sorted()
   sorted_.clear();
   sorted_.reserve(used_.size());
   for (uint32_t i : used_) sorted_.push_back(slots_[i]);
-  std::sort(sorted_.begin(), sorted_.end());
+  // LSD radix sort of the 49-bit entries, 11 bits a pass (5 passes; std::sort below a few hundred entries).
+  if (sorted_.size() < 256) {
+    std::sort(sorted_.begin(), sorted_.end());
+    return sorted_;
+  }
+  constexpr unsigned kBits = 11, kBuckets = 1u << kBits;
+  scratch_.resize(sorted_.size());
+  std::vector<uint64_t>* from = &sorted_;
+  std::vector<uint64_t>* to = &scratch_;
+  for (unsigned shift = 0; shift < 49; shift += kBits) {
+    std::size_t count[kBuckets + 1] = {};
+    for (uint64_t e : *from) ++count[((e >> shift) & (kBuckets - 1)) + 1];
+    for (unsigned b = 0; b < kBuckets; ++b) count[b + 1] += count[b];
+    for (uint64_t e : *from) (*to)[count[(e >> shift) & (kBuckets - 1)]++] = e;
+    std::swap(from, to);
+  }
+  if (from != &sorted_) sorted_.swap(scratch_);
   return sorted_;
 }
 

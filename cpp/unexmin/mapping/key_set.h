@@ -12,9 +12,14 @@
 namespace unexmin {
 namespace mapping {
 
+/// The 16 bits of v spread to every third bit of 48 (bit i to bit 3i).
+uint64_t spreadBits(uint16_t v);
 /// Morton code of a key: bits of z, y, x interleaved, the root's child index in the top 3 bits (of 48).
 /// (code >> 3 * (15 - depth)) & 7 is the child index OctoMap's computeChildIdx gives at that depth.
-uint64_t mortonCode(const octomap::OcTreeKey& key);
+inline uint64_t mortonCode(const octomap::OcTreeKey& key)
+{
+  return spreadBits(key[0]) | (spreadBits(key[1]) << 1) | (spreadBits(key[2]) << 2);
+}
 /// The key of a Morton code.
 octomap::OcTreeKey keyOfMorton(uint64_t code);
 
@@ -42,7 +47,7 @@ private:
   static constexpr uint64_t kEmpty = ~uint64_t(0);
   std::vector<uint64_t> slots_;   // (code << 1 | occupied) or kEmpty
   std::vector<uint32_t> used_;    // indices of the filled slots
-  std::vector<uint64_t> sorted_;
+  std::vector<uint64_t> sorted_, scratch_;
   uint64_t mask_;
   int shift_;
 };

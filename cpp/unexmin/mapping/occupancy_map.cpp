@@ -129,6 +129,7 @@ void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::point
     }
   }
   octomap::OcTreeKey key = key_origin;
+  uint64_t spread[3] = {spreadBits(key[0]), spreadBits(key[1]) << 1, spreadBits(key[2]) << 2};
   for (;;) {
     unsigned dim;
     if (t_max[0] < t_max[1]) dim = t_max[0] < t_max[2] ? 0 : 2;
@@ -137,7 +138,8 @@ void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::point
     t_max[dim] += t_delta[dim];
     if (key == key_end) return;
     if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return;
-    keys_.addFree(mortonCode(key));
+    spread[dim] = spreadBits(key[dim]) << dim;  // only the axis that moved
+    keys_.addFree(spread[0] | spread[1] | spread[2]);
   }
 }
 
