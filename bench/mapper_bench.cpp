@@ -3,7 +3,7 @@
 // M3-like pings (a 256-beam fan over 130 degrees) from a robot flying and turning through a 40 m x 5 m x 4 m
 // gallery (ranges up to about 10 m, free-space range 10 m). Not a test; docs/benchmarks.md "Mapping".
 //
-//   mapper_bench [resolution_m=0.1] [max_range_m=10] [pings=2000]
+//   mapper_bench [resolution_m=0.1] [max_range_m=10] [pings=2000] [runs=5]
 #include <unexmin/mapping/occupancy_map.h>
 
 #include <octomap/OcTree.h>
@@ -75,6 +75,7 @@ int main(int argc, char** argv)
   const double resolution = argc > 1 ? std::atof(argv[1]) : 0.1;
   const double max_range = argc > 2 ? std::atof(argv[2]) : 10.0;
   const int count = argc > 3 ? std::atoi(argv[3]) : 2000;
+  const int repeats = std::max(1, argc > 4 ? std::atoi(argv[4]) : 5);
   const std::vector<Ping> pings = makePings(count);
   std::size_t points = 0;
   for (const Ping& p : pings) points += p.points.size();
@@ -82,61 +83,60 @@ int main(int argc, char** argv)
   unexmin::mapping::MapperParams params;
   params.resolution = resolution;
   params.max_range = max_range;
-
-  // Ours: insert every cloud; update() once a second of pings (40 clouds), as the node does on its timer (a no-op
-  // since insertCloud keeps inner nodes and pruning up to date).
-  unexmin::mapping::OccupancyMap ours(params);
-  auto t0 = Clock::now();
-  for (std::size_t k = 0; k < pings.size(); ++k) {
-    ours.insertCloud(pings[k].points, pings[k].origin);
-    if (k % 40 == 39) ours.update();
-  }
-  ours.update();
-  const double t_ours = std::chrono::duration<double>(Clock::now() - t0).count();
-
-  // Breakdown: ours without the periodic update.
-  unexmin::mapping::OccupancyMap plain(params);
-  auto t1 = Clock::now();
-  for (const Ping& p : pings) plain.insertCloud(p.points, p.origin);
-  const double t_plain = std::chrono::duration<double>(Clock::now() - t1).count();
-  t1 = Clock::now();
-  plain.update();
-  const double t_update = std::chrono::duration<double>(Clock::now() - t1).count();
-
-  // octomap_server's way: insertPointCloud (non-lazy) and prune after every cloud.
-  octomap::OcTree theirs(resolution);
-  theirs.setProbHit(params.prob_hit);
-  theirs.setProbMiss(params.prob_miss);
-  theirs.setClampingThresMin(params.clamp_min);
-  theirs.setClampingThresMax(params.clamp_max);
   std::vector<octomap::Pointcloud> clouds(pings.size());
   for (std::size_t k = 0; k < pings.size(); ++k)
     for (const auto& p : pings[k].points) clouds[k].push_back(p);
+
+  // The two alternate, `repeats` times each, on a fresh map: the minimum and the median time of each are
+  // reported (the machine is shared; the minimum is the least disturbed run).
+  std::vector<double> t_ours, t_theirs;
+  std::size_t occupied_ours = 0, occupied_theirs = 0, memory_ours = 0;
   double worst = 0.0;
-  t0 = Clock::now();
-  for (std::size_t k = 0; k < pings.size(); ++k) {
-    const auto c0 = Clock::now();
-    theirs.insertPointCloud(clouds[k], pings[k].origin, max_range, false, false);
+  for (int r = 0; r < repeats; ++r) {
+    // Ours: insert every cloud; update() once a second of pings (40 clouds), as the node does on its timer (a
+    // no-op: insertCloud keeps inner nodes and pruning up to date).
+    unexmin::mapping::OccupancyMap ours(params);
+    auto t0 = Clock::now();
+    for (std::size_t k = 0; k < pings.size(); ++k) {
+      ours.insertCloud(pings[k].points, pings[k].origin);
+      if (k % 40 == 39) ours.update();
+    }
+    ours.update();
+    t_ours.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    occupied_ours = ours.occupiedLeafCount();
+    memory_ours = ours.memoryUsage();
+
+    // octomap_server's way: insertPointCloud (non-lazy) and prune after every cloud.
+    octomap::OcTree theirs(resolution);
+    theirs.setProbHit(params.prob_hit);
+    theirs.setProbMiss(params.prob_miss);
+    theirs.setClampingThresMin(params.clamp_min);
+    theirs.setClampingThresMax(params.clamp_max);
+    t0 = Clock::now();
+    for (std::size_t k = 0; k < pings.size(); ++k) {
+      const auto c0 = Clock::now();
+      theirs.insertPointCloud(clouds[k], pings[k].origin, max_range, false, false);
+      theirs.prune();
+      worst = std::max(worst, std::chrono::duration<double>(Clock::now() - c0).count());
+    }
+    t_theirs.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    theirs.updateInnerOccupancy();
     theirs.prune();
-    worst = std::max(worst, std::chrono::duration<double>(Clock::now() - c0).count());
+    occupied_theirs = 0;
+    for (auto it = theirs.begin_leafs(); it != theirs.end_leafs(); ++it) occupied_theirs += theirs.isNodeOccupied(*it);
   }
-  const double t_theirs = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::sort(t_ours.begin(), t_ours.end());
+  std::sort(t_theirs.begin(), t_theirs.end());
+  const double min_ours = t_ours.front(), med_ours = t_ours[t_ours.size() / 2];
+  const double min_theirs = t_theirs.front(), med_theirs = t_theirs[t_theirs.size() / 2];
 
-  // The same maps? (occupied leaves after both are pruned)
-  theirs.updateInnerOccupancy();
-  theirs.prune();
-  std::size_t occupied_theirs = 0;
-  for (auto it = theirs.begin_leafs(); it != theirs.end_leafs(); ++it) occupied_theirs += theirs.isNodeOccupied(*it);
-
-  std::printf("mapper_bench: %d clouds, %zu points, resolution %g m, max range %g m\n", count, points, resolution,
-              max_range);
-  std::printf("  ours (dedup, Morton-ordered batch):    %8.3f s  %10.0f points/s  %6.2f ms/cloud\n", t_ours,
-              points / t_ours, 1e3 * t_ours / count);
-  std::printf("  OctoMap insertPointCloud + prune/cloud: %8.3f s  %10.0f points/s  %6.2f ms/cloud (worst %.1f ms)\n",
-              t_theirs, points / t_theirs, 1e3 * t_theirs / count, 1e3 * worst);
-  std::printf("  speed-up %.1fx; occupied leaves: ours %zu, OctoMap %zu; tree memory ours %zu bytes\n",
-              t_theirs / t_ours, ours.occupiedLeafCount(), occupied_theirs, ours.memoryUsage());
-  std::printf("  ours, breakdown: insertion alone %.3f s, one final update (inner nodes + prune) %.3f s\n", t_plain,
-              t_update);
+  std::printf("mapper_bench: %d clouds, %zu points, resolution %g m, max range %g m, %d runs each\n", count, points,
+              resolution, max_range, repeats);
+  std::printf("  ours (dedup, Morton-ordered batch):      min %7.3f s (%9.0f points/s), median %7.3f s\n", min_ours,
+              points / min_ours, med_ours);
+  std::printf("  OctoMap insertPointCloud + prune/cloud:  min %7.3f s (%9.0f points/s), median %7.3f s, worst cloud %.1f ms\n",
+              min_theirs, points / min_theirs, med_theirs, 1e3 * worst);
+  std::printf("  speed-up %.1fx (minima), %.1fx (medians); occupied leaves: ours %zu, OctoMap %zu; tree memory ours %zu bytes\n",
+              min_theirs / min_ours, med_theirs / med_ours, occupied_ours, occupied_theirs, memory_ours);
   return 0;
 }
