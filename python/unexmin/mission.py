@@ -46,16 +46,17 @@ def start_recorder(bag_path, log_dir):
     return proc, log
 
 
-def recorder_connected(master, publishers):
+def recorder_connected(master, publishers, topics=None):
     """True once the publishing nodes have a live connection to a rosbag recorder on every recorded
-    topic (a publisher drops messages for subscribers that are registered but not yet connected)."""
+    topic (default: this mission's TOPICS; a publisher drops messages for subscribers that are registered
+    but not yet connected)."""
     from xmlrpc.client import ServerProxy
 
     connected = set()
     for node in publishers:
         bus = ServerProxy(master.lookupNode(node)).getBusInfo(master.caller_id)[2]
         connected |= {c[4] for c in bus if c[1].startswith("/record") and c[2] == "o" and c[5]}
-    return all(t in connected for t in TOPICS)
+    return all(t in connected for t in (TOPICS if topics is None else topics))
 
 
 def wait_until_written(path, timeout=30.0, quiet=0.5):

@@ -1,5 +1,5 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros. No folder
+in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros. No folder
 includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
 with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>."""
 
@@ -10,7 +10,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CPP = REPO / "cpp" / "unexmin"
-LAYERS = ["core", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros"]
+LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros"]
 SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
 ROS_ROOTS = {"ros", "roscpp", "rosbag", "rosconsole", "tf", "tf2", "tf2_ros", "tf2_eigen", "image_transport",

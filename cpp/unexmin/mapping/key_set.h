@@ -1,0 +1,56 @@
+// The set of voxels one cloud touches, each once (a free voxel of one ray that is the endpoint of another
+// counts as occupied: occupied wins). Keys are OctoMap keys of a 16-level tree, held as their Morton codes so
+// that the sorted set visits the tree depth-first. Knows no ROS.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <octomap/OcTreeKey.h>  // after <cstdint>: it uses uint16_t without including it
+
+namespace unexmin {
+namespace mapping {
+
+/// The 16 bits of v spread to every third bit of 48 (bit i to bit 3i).
+uint64_t spreadBits(uint16_t v);
+/// Morton code of a key: bits of z, y, x interleaved, the root's child index in the top 3 bits (of 48).
+/// (code >> 3 * (15 - depth)) & 7 is the child index OctoMap's computeChildIdx gives at that depth.
+inline uint64_t mortonCode(const octomap::OcTreeKey& key)
+{
+  return spreadBits(key[0]) | (spreadBits(key[1]) << 1) | (spreadBits(key[2]) << 2);
+}
+/// The key of a Morton code.
+octomap::OcTreeKey keyOfMorton(uint64_t code);
+
+/// Open-addressing hash set of Morton codes with one "occupied" bit each; clear() costs the number of
+/// entries, not the capacity, so one set serves every cloud.
+class KeySet
+{
+public:
+  KeySet();
+
+  /// Adds a voxel a ray crosses (free unless it is, or becomes, an endpoint).
+  void addFree(uint64_t code) { insert(code, false); }
+  /// Adds an endpoint voxel (occupied).
+  void addOccupied(uint64_t code) { insert(code, true); }
+  /// Number of distinct voxels.
+  std::size_t size() const { return used_.size(); }
+  /// The entries as (code << 1 | occupied), sorted by code.
+  const std::vector<uint64_t>& sorted();
+  void clear();
+
+private:
+  void insert(uint64_t code, bool occupied);
+  void grow();
+
+  static constexpr uint64_t kEmpty = ~uint64_t(0);
+  std::vector<uint64_t> slots_;   // (code << 1 | occupied) or kEmpty
+  std::vector<uint32_t> used_;    // indices of the filled slots
+  std::vector<uint64_t> sorted_, scratch_;
+  uint64_t mask_;
+  int shift_;
+};
+
+}  // namespace mapping
+}  // namespace unexmin
