@@ -13,7 +13,7 @@ M3Publisher::M3Publisher(const sonar::M3Sensor& sensor, const PublisherContext& 
 
 void M3Publisher::publish()
 {
-  if (pub_.getNumSubscribers() == 0) return;
+  if (!wanted(pub_)) return;
   const sonar::M3Scan& s = sensor_.last();
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
@@ -27,7 +27,7 @@ void M3Publisher::publish()
   m.range_max = static_cast<float>(sensor_.rangeMax());
   m.ranges = s.ranges;
   m.intensities = s.intensities;
-  pub_.publish(m);
+  emit(pub_, m);
 }
 
 }  // namespace ros_layer
