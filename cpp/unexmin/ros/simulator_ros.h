@@ -85,7 +85,7 @@ private:
   // The simulator's own recorder (~record, ~record_topics, /sim/record; docs/recording.md).
   std::string record_path_;
   std::unique_ptr<BagRecorder> recorder_;
-  // ~lockstep_wait_subscribers: before every `pace_every_`-th step, wait until subscribers took their messages.
+  // ~lockstep_wait_subscribers: before every `pace_every_`-th lockstep step, wait until subscribers took their messages.
   bool wait_subscribers_ = false;
   std::uint64_t pace_every_ = 1;
   SubscriberPacer pacer_;

@@ -7,6 +7,10 @@
 // is TransportSubscriberLink::outbox_ (its messages_sent statistic counts messages queued, not written),
 // which this class reads under the link's own mutex through the standard explicit-instantiation access rule;
 // it depends on roscpp's member names, which have not changed since 2010 (checked against the headers at build time).
+// An empty outbox is not enough: the kernel buffers megabytes between two processes, and a subscriber that
+// reads them in a burst overflows its own queue (rosbag record: 100 messages per topic) and drops silently. So
+// the pacer also waits until the kernel holds nothing for this process's TCPROS connections: nothing unacknowledged
+// on our side and nothing unread on a subscriber's side (sock_diag; subscribers on this machine, IPv4).
 #pragma once
 
 #include <ros/publication.h>
@@ -26,7 +30,8 @@ public:
   {
     std::size_t queued = 0;
     std::size_t writing = 0;  ///< connections in the middle of writing a message
-    bool empty() const { return queued == 0 && writing == 0; }
+    std::size_t in_kernel = 0;  ///< [bytes] written, not yet read by the subscriber (same machine) or acknowledged
+    bool empty() const { return queued == 0 && writing == 0 && in_kernel == 0; }
   };
   Backlog backlog();
 
@@ -46,6 +51,7 @@ private:
   std::size_t calls_ = 0;
   double waited_ = 0.0;
   std::size_t waits_ = 0;
+  bool kernel_ok_ = true;
 };
 
 }  // namespace ros_layer

@@ -47,6 +47,17 @@ def main():
                 return all(any(n.startswith("/record") for n in by_topic.get(t, ())) for t in rosbag_topics)
 
             wait_for(subscribed, 30.0, "rosbag record to subscribe every topic")
+            # Registered is not connected: messages published before the TCP connection exists are not
+            # queued for it. Wait until the simulator lists an outgoing connection to rosbag on each topic.
+            import xmlrpc.client
+            simulator = xmlrpc.client.ServerProxy(master.lookupNode("/simulator"))
+
+            def connected():
+                _, _, bus = simulator.getBusInfo("/record_run")
+                out = {c[4] for c in bus if c[2] == "o" and c[1].startswith("/record") and c[5]}
+                return out >= set(rosbag_topics)
+
+            wait_for(connected, 30.0, "the simulator to connect to rosbag record on every topic")
         ux = sim.robot("UX_1")
         t0 = time.monotonic()
         # `commands` thruster commands, each applied before a step of 20 ms (recorded on thrusters/<i>/input).
