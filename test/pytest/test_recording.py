@@ -23,11 +23,11 @@ RATES = {
     "/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/imu_raw": 500, "/UX_1/pressure": 10,
     "/UX_1/dvl": 8, "/UX_1/dvl_twist": 8, "/UX_1/dvl_water_track": 8,
     **{f"/UX_1/dvl_sonar{i}": 8 for i in range(4)},
-    "/UX_1/m3/scan": 40, "/UX_1/tritech_micron/scan": 25, "/UX_1/msis/msis_r": 25,
+    "/UX_1/m3/scan": 40, "/UX_1/m3/points": 40, "/UX_1/tritech_micron/scan": 25, "/UX_1/msis/msis_r": 25,
     **{f"/UX_1/sls_{i}/points": 10 for i in range(4)}, **{f"/UX_1/sls_{i}/scan": 10 for i in range(4)},
     "/UX_1/odom": 50, **{f"/UX_1/thrusters/{i}/thrust": 50 for i in range(8)}, "/current": 10,
 }
-SIM_PUBLISHED = {t for t in RATES if t != "/UX_1/dvl_water_track"}  # the translator's topic is not the simulator's
+SIM_PUBLISHED = set(RATES)  # the M3 and DVL translations included: the simulator makes them (C++)
 LOCKED_ONLY = {"/UX_1/dvl_twist"}  # published only with bottom lock: one per locked /UX_1/dvl message
 
 

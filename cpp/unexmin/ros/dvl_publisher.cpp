@@ -1,4 +1,5 @@
 #include <unexmin/ros/dvl_publisher.h>
+#include <unexmin/ros/dvl_water_track.h>
 
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
 #include <sensor_msgs/Range.h>
@@ -23,6 +24,11 @@ DvlPublisher::DvlPublisher(const sensors::DvlSensor& sensor, const PublisherCont
   dvl_ = ctx.nh.advertise<unexmin::Dvl>(resolve(ctx.ns, topicParam(sensor, "topic", name)), queue);
   twist_ = ctx.nh.advertise<geometry_msgs::TwistWithCovarianceStamped>(
       resolve(ctx.ns, topicParam(sensor, "twist_topic", name + "_twist")), queue);
+  bool translate = true;
+  ctx.nh.param(ctx.ns + "dvl_from_simulator", translate, true);
+  if (translate)
+    track_ = ctx.nh.advertise<dvl_nortek::DvlBottomWaterTrack>(
+        resolve(ctx.ns, topicParam(sensor, "water_track_topic", name + "_water_track")), queue);
   const std::string sonar = topicParam(sensor, "sonar_topic", name + "_sonar");
   std::istringstream frames(topicParam(sensor, "beam_frames", ""));
   for (std::size_t i = 0; i < 4; ++i) {
@@ -37,7 +43,8 @@ void DvlPublisher::publish()
   std_msgs::Header header;
   header.stamp.fromSec(s.time);
   header.frame_id = sensor_.frame();
-  if (wanted(dvl_)) {
+  const bool track = track_ && wanted(track_);
+  if (wanted(dvl_) || track) {
     unexmin::Dvl m;
     m.header = header;
     m.bottom_lock = s.bottom_lock;
@@ -60,7 +67,8 @@ void DvlPublisher::publish()
       m.beam_velocity[i] = s.beams[i].velocity;
       m.beam_velocity_std[i] = s.beams[i].velocity_std;
     }
-    emit(dvl_, m);
+    if (wanted(dvl_)) emit(dvl_, m);
+    if (track) emit(track_, waterTrack(m));
   }
   for (std::size_t i = 0; i < 4; ++i) {
     if (!wanted(sonar_[i])) continue;

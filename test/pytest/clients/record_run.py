@@ -6,7 +6,7 @@ stock `rosbag record` of TOPICS, steps SECONDS of sim time (+1 s so that every r
 message after SECONDS), stops the simulator's recorder through /sim/record, stops rosbag record with SIGINT
 and the world, and prints one JSON line: {"wall": stepping wall time [s], "sim": sim time reached [s]}.
 
-usage: record_run.py <log dir> <seconds> <commands> [--rosbag <bag> <topic>...] -- <launch args>
+usage: record_run.py <log dir> <seconds> <commands> [--world tank|mine] [--rosbag <bag> <topic>...] -- <launch args>
 """
 
 import json
@@ -22,9 +22,12 @@ def main():
     sep = argv.index("--")
     own, launch_args = argv[:sep], argv[sep + 1:]
     log_dir, seconds, commands = own[0], float(own[1]), int(own[2])
-    rosbag_bag, rosbag_topics = None, []
-    if len(own) > 3 and own[3] == "--rosbag":
-        rosbag_bag, rosbag_topics = own[4], own[5:]
+    rosbag_bag, rosbag_topics, world_name = None, [], "tank"
+    rest = own[3:]
+    if rest[:1] == ["--world"]:
+        world_name, rest = rest[1], rest[2:]
+    if rest[:1] == ["--rosbag"]:
+        rosbag_bag, rosbag_topics = rest[1], rest[2:]
 
     import rosgraph
     import rospy
@@ -32,7 +35,7 @@ def main():
     from unexmin.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record
 
-    world = WorldProcess(world="tank", paused=True, log_dir=log_dir, extra_args=launch_args)
+    world = WorldProcess(world=world_name, paused=True, log_dir=log_dir, extra_args=launch_args)
     recorder = None
     try:
         sim = Simulation(world=world, timeout=60.0)
