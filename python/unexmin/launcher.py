@@ -5,6 +5,7 @@ import signal
 import socket
 import subprocess
 import time
+import uuid
 
 
 def free_port():
@@ -14,17 +15,56 @@ def free_port():
         return s.getsockname()[1]
 
 
-def stop_process_group(proc, timeout=15.0):
+def marked_processes(marker):
+    """PIDs of the live processes whose environment's UNEXMIN_RUN (markers joined by ':', a nested run adds
+    its own) holds `marker` (readable environments only: our own processes)."""
+    pids = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit() or int(d) == os.getpid():
+            continue
+        try:
+            with open(f"/proc/{d}/environ", "rb") as f:
+                env = f.read().split(b"\0")
+            with open(f"/proc/{d}/stat") as f:
+                zombie = f.read().rsplit(")", 1)[1].split()[0] == "Z"
+        except OSError:
+            continue
+        runs = [e[len(b"UNEXMIN_RUN="):].decode(errors="replace").split(":") for e in env
+                if e.startswith(b"UNEXMIN_RUN=")]
+        if runs and marker in runs[0] and not zombie:
+            pids.append(int(d))
+    return pids
+
+
+def stop_process_group(proc, timeout=15.0, marker=None):
     """SIGINT to the process group of `proc` (started with start_new_session=True), as Ctrl-C: ROS
-    nodes close their bags and save their maps; SIGKILL if it has not exited after `timeout` s."""
-    if proc.poll() is not None:
+    nodes close their bags and save their maps; SIGKILL if it has not exited after `timeout` s.
+
+    roslaunch starts its master and nodes in sessions of their own and, interrupted while it is still
+    launching, can exit leaving some running. With `marker` (the UNEXMIN_RUN value given in `proc`'s
+    environment, which every descendant inherits), any such process left is sent SIGINT, then SIGTERM and
+    SIGKILL after `timeout` s each."""
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGINT)
+        try:
+            proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    if marker is None:
         return
-    os.killpg(proc.pid, signal.SIGINT)
-    try:
-        proc.wait(timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
+        left = marked_processes(marker)
+        if not left:
+            return
+        for pid in left:
+            try:
+                os.kill(pid, sig)
+            except ProcessLookupError:
+                pass
+        deadline = time.monotonic() + timeout
+        while marked_processes(marker) and time.monotonic() < deadline:
+            time.sleep(0.05)
 
 
 def wait_for(condition, timeout, what, poll=0.05):
@@ -62,7 +102,11 @@ class WorldProcess:
         ]
         self.log_path = os.path.join(log_dir, "roslaunch.log") if log_dir else None
         log = open(self.log_path, "w") if log_dir else subprocess.DEVNULL
-        self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        # Every process of this world inherits the marker: close() finds any that roslaunch left behind.
+        self.marker = uuid.uuid4().hex
+        outer = os.environ.get("UNEXMIN_RUN")
+        env = dict(os.environ, UNEXMIN_RUN=f"{outer}:{self.marker}" if outer else self.marker)
+        self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True, env=env)
         self._log = log
 
     def alive(self):
@@ -70,6 +114,6 @@ class WorldProcess:
 
     def close(self, timeout=15.0):
         """SIGINT (as Ctrl-C: nodes close bags and save maps), then SIGKILL if it hangs."""
-        stop_process_group(self.proc, timeout)
+        stop_process_group(self.proc, timeout, self.marker)
         if self._log not in (None, subprocess.DEVNULL):
             self._log.close()

@@ -10,6 +10,7 @@
 See docs/python_api.md.
 """
 
+import atexit
 import math
 import threading
 import warnings
@@ -170,10 +171,13 @@ class Simulation:
         """Start a headless lockstep world (paused) on a private master and connect to it."""
         proc = WorldProcess(world=world, robots=robots, seed=seed, realtime=False, paused=True, log_dir=log_dir)
         try:
-            return cls(timeout=timeout, world=proc, **kwargs)
-        except Exception:
+            sim = cls(timeout=timeout, world=proc, **kwargs)
+        except BaseException:  # Ctrl-C (KeyboardInterrupt) while connecting too: no roslaunch left behind
             proc.close()
             raise
+        # A script that ends without close() (Ctrl-C, an exception) stops its world on exit all the same.
+        atexit.register(sim.close)
+        return sim
 
     def _on_clock(self, msg):
         self._time = max(self._time, msg.clock.to_sec())
