@@ -197,6 +197,13 @@ class Simulation:
         (the Robot handles count theirs): the next step waits until they are applied."""
         self._commands_sent += int(n)
 
+    def _gone(self, what):
+        """Error text when a call to the simulator failed: whether its world is still running, and its log."""
+        if self._world is not None and not self._world.alive():
+            return (f"{what}: the simulator world exited (code {self._world.proc.returncode}); "
+                    f"see {self._world.log_path or 'the roslaunch output'}")
+        return f"{what}: the simulator is not answering (has it died? see its log)"
+
     def pause(self):
         self._pause()
 
@@ -209,8 +216,11 @@ class Simulation:
             raise ValueError(f"step needs a non-negative whole number of steps, got {n!r}")
         # hold: this script is in control, so the simulator's command watchdog (a safety net for
         # live nodes that die) does not zero its commands while it steps.
-        res = self._step(duration=0.0, steps=int(n), client=rospy.get_name(), commands=self._commands_sent,
-                         hold=True)
+        try:
+            res = self._step(duration=0.0, steps=int(n), client=rospy.get_name(), commands=self._commands_sent,
+                             hold=True)
+        except (rospy.ServiceException, rospy.ROSException, OSError) as e:
+            raise RuntimeError(self._gone(f"/sim/step failed ({e})")) from None
         self._time = res.time
         self._odometry = {o.child_frame_id.split("/")[0]: o for o in res.odometry}
         return self._time

@@ -251,6 +251,12 @@ bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Res
 bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& res)
 {
   std::uint64_t steps = req.steps;
+  // 1e6 s of sim time at most per call, as `duration` (a uint32 step count reaches 8.6e6 s at 500 Hz).
+  const double max_steps = 1e6 * physics_rate_;
+  if (static_cast<double>(steps) > max_steps) {
+    ROS_WARN_STREAM("/sim/step: rejected " << steps << " steps, expected at most " << max_steps << " (1e6 s)");
+    return false;
+  }
   if (steps == 0) {
     if (!std::isfinite(req.duration) || req.duration < 0.0 || req.duration > 1e6) {
       ROS_WARN_STREAM("/sim/step: rejected duration " << req.duration << " s, expected [0, 1e6]");
