@@ -91,7 +91,9 @@ class WorldProcess:
         self.port = port or free_port()
         self.uri = f"http://127.0.0.1:{self.port}"
         os.environ["ROS_MASTER_URI"] = self.uri
-        os.environ.setdefault("ROS_IP", "127.0.0.1")
+        # Loopback unless the user chose an address (ROS_IP or ROS_HOSTNAME): docs/reliability.md.
+        if not os.environ.get("ROS_IP") and not os.environ.get("ROS_HOSTNAME"):
+            os.environ["ROS_IP"] = "127.0.0.1"
         if log_dir:
             os.makedirs(log_dir, exist_ok=True)
             os.environ["ROS_LOG_DIR"] = log_dir
