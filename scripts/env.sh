@@ -12,3 +12,10 @@ source "$UNEXMIN_WS/devel/setup.bash"
 unset _unexmin_u
 export PATH="$UNEXMIN_VENV/bin:$PATH"
 unset _unexmin_repo
+# Safe by default (docs/reliability.md): the master and every node bind to the loopback and advertise
+# 127.0.0.1, unless you set ROS_IP or ROS_HOSTNAME (e.g. export ROS_IP=<this machine's address> before
+# sourcing, to reach a real robot or another machine) or ROS_MASTER_URI yourself.
+if [ -z "${ROS_IP:-}" ] && [ -z "${ROS_HOSTNAME:-}" ]; then
+  export ROS_IP=127.0.0.1
+fi
+export ROS_MASTER_URI=${ROS_MASTER_URI:-http://127.0.0.1:11311}

@@ -17,7 +17,7 @@ apt_packages=(
   ros-core-dev rosbash python3-rostest python3-rosbag ros-robot-state-publisher tf2-tools
   libtf2-ros-dev python3-tf2-ros liburdf-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
   libvisualization-msgs-dev python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-visualization-msgs
-  libstd-srvs-dev python3-std-srvs librosbag-dev
+  libstd-srvs-dev python3-std-srvs librosbag-dev librosbag-storage-dev pluginlib-dev
   # C++ core
   libbullet-dev libeigen3-dev liboctomap-dev libpcl-dev libpcl-conversions-dev libembree-dev
   libassimp-dev octomap-tools libyaml-cpp-dev libbenchmark-dev libtinyxml2-dev liburdfdom-dev

@@ -7,6 +7,7 @@ import signal
 import socket
 import subprocess
 import time
+import uuid
 
 
 def free_port():
@@ -43,29 +44,66 @@ def descendants(pid):
     return found
 
 
-def stop_process_group(proc, timeout=15.0):
+def marked_processes(marker):
+    """PIDs of the live processes whose environment's UNEXMIN_RUN (markers joined by ':', a nested run adds
+    its own) holds `marker` (readable environments only: our own processes)."""
+    pids = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit() or int(d) == os.getpid():
+            continue
+        try:
+            with open(f"/proc/{d}/environ", "rb") as f:
+                env = f.read().split(b"\0")
+            with open(f"/proc/{d}/stat") as f:
+                zombie = f.read().rsplit(")", 1)[1].split()[0] == "Z"
+        except OSError:
+            continue
+        runs = [e[len(b"UNEXMIN_RUN="):].decode(errors="replace").split(":") for e in env
+                if e.startswith(b"UNEXMIN_RUN=")]
+        if runs and marker in runs[0] and not zombie:
+            pids.append(int(d))
+    return pids
+
+
+def stop_process_group(proc, timeout=15.0, marker=None):
     """Stop `proc` (started with start_new_session=True) and everything it started.
 
     SIGINT to its process group, as Ctrl-C: ROS nodes close their bags and save their maps; SIGKILL
     if it has not exited after `timeout` s. Then SIGKILL to any process it had started that is still
     alive: roslaunch starts each node in a session of its own, and a rospy node interrupted while it
-    starts can hang instead of exiting (roslaunch would wait 15 s for it, then leave it behind)."""
-    if proc.poll() is not None:
+    starts can hang instead of exiting (roslaunch would wait 15 s for it, then leave it behind). With
+    `marker` (the UNEXMIN_RUN value given in `proc`'s environment, which every descendant inherits), any
+    process of the run still left (e.g. re-parented to init when roslaunch exited early) is sent SIGINT,
+    then SIGTERM and SIGKILL after `timeout` s each."""
+    if proc.poll() is None:
+        below = descendants(proc.pid)
+        os.killpg(proc.pid, signal.SIGINT)
+        try:
+            proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        table = _process_table()
+        for pid, start in below.items():
+            if pid in table and table[pid][1] == start:  # the same process, not a reused pid
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+    if marker is None:
         return
-    below = descendants(proc.pid)
-    os.killpg(proc.pid, signal.SIGINT)
-    try:
-        proc.wait(timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
-    table = _process_table()
-    for pid, start in below.items():
-        if pid in table and table[pid][1] == start:  # the same process, not a reused pid
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
+        left = marked_processes(marker)
+        if not left:
+            return
+        for pid in left:
             try:
-                os.kill(pid, signal.SIGKILL)
+                os.kill(pid, sig)
             except ProcessLookupError:
                 pass
+        deadline = time.monotonic() + timeout
+        while marked_processes(marker) and time.monotonic() < deadline:
+            time.sleep(0.05)
 
 
 def wait_for(condition, timeout, what, poll=0.05):
@@ -97,7 +135,9 @@ class WorldProcess:
         self.port = port or free_port()
         self.uri = f"http://127.0.0.1:{self.port}"
         os.environ["ROS_MASTER_URI"] = self.uri
-        os.environ.setdefault("ROS_IP", "127.0.0.1")
+        # Loopback unless the user chose an address (ROS_IP or ROS_HOSTNAME): docs/reliability.md.
+        if not os.environ.get("ROS_IP") and not os.environ.get("ROS_HOSTNAME"):
+            os.environ["ROS_IP"] = "127.0.0.1"
         if log_dir:
             os.makedirs(log_dir, exist_ok=True)
             os.environ["ROS_LOG_DIR"] = log_dir
@@ -111,7 +151,11 @@ class WorldProcess:
             ]
         self.log_path = os.path.join(log_dir, "roslaunch.log") if log_dir else None
         log = open(self.log_path, "w") if log_dir else subprocess.DEVNULL
-        self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        # Every process of this world inherits the marker: close() finds any that roslaunch left behind.
+        self.marker = uuid.uuid4().hex
+        outer = os.environ.get("UNEXMIN_RUN")
+        env = dict(os.environ, UNEXMIN_RUN=f"{outer}:{self.marker}" if outer else self.marker)
+        self.proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True, env=env)
         self._log = log
         atexit.register(self.close)
 
@@ -150,6 +194,6 @@ class WorldProcess:
     def close(self, timeout=15.0):
         """SIGINT (as Ctrl-C: nodes close bags and save maps), then SIGKILL if it hangs; idempotent."""
         atexit.unregister(self.close)
-        stop_process_group(self.proc, timeout)
+        stop_process_group(self.proc, timeout, self.marker)
         if self._log not in (None, subprocess.DEVNULL):
             self._log.close()

@@ -329,9 +329,12 @@ class Simulation:
                             port=port, launch_file=launch_file)
         try:
             return cls(timeout=timeout, world=proc, **kwargs)
-        except BaseException:
+        except BaseException:  # Ctrl-C (KeyboardInterrupt) while connecting too: no roslaunch left behind
             proc.close(timeout=3.0)  # a failed world: no need to wait for nodes stuck in their start-up
             raise
+        # A script that ends without close() (Ctrl-C, an exception) stops its world on exit all the same.
+        atexit.register(sim.close)
+        return sim
 
     def __enter__(self):
         return self
@@ -369,6 +372,13 @@ class Simulation:
         (the Robot handles count theirs): the next step waits until they are applied."""
         self._commands_sent += int(n)
 
+    def _gone(self, what):
+        """Error text when a call to the simulator failed: whether its world is still running, and its log."""
+        if self._world is not None and not self._world.alive():
+            return (f"{what}: the simulator world exited (code {self._world.proc.returncode}); "
+                    f"see {self._world.log_path or 'the roslaunch output'}")
+        return f"{what}: the simulator is not answering (has it died? see its log)"
+
     def pause(self):
         """Stop free running. When it returns, sim.time and odom() are those of the paused world and
         every message published until then has arrived (it asks for a step of 0 steps, which also
@@ -405,7 +415,11 @@ class Simulation:
     def _step_once(self, n):
         # hold: this script is in control, so the simulator's command watchdog (a safety net for
         # live nodes that die) does not zero its commands while it steps.
-        res = self._step(duration=0.0, steps=n, client=rospy.get_name(), commands=self._commands_sent, hold=True)
+        try:
+            res = self._step(duration=0.0, steps=n, client=rospy.get_name(), commands=self._commands_sent,
+                             hold=True)
+        except (rospy.ServiceException, rospy.ROSException, OSError) as e:
+            raise RuntimeError(self._gone(f"/sim/step failed ({e})")) from None
         self.free_running = False
         self._time = res.time
         self._step_count = res.step

@@ -1,4 +1,5 @@
 #include <unexmin/ros/dvl_publisher.h>
+#include <unexmin/ros/dvl_water_track.h>
 
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
 #include <sensor_msgs/Range.h>
@@ -23,6 +24,11 @@ DvlPublisher::DvlPublisher(const sensors::DvlSensor& sensor, const PublisherCont
   dvl_ = ctx.nh.advertise<unexmin::Dvl>(resolve(ctx.ns, topicParam(sensor, "topic", name)), queue);
   twist_ = ctx.nh.advertise<geometry_msgs::TwistWithCovarianceStamped>(
       resolve(ctx.ns, topicParam(sensor, "twist_topic", name + "_twist")), queue);
+  bool translate = true;
+  ctx.nh.param(ctx.ns + "dvl_from_simulator", translate, true);
+  if (translate)
+    track_ = ctx.nh.advertise<dvl_nortek::DvlBottomWaterTrack>(
+        resolve(ctx.ns, topicParam(sensor, "water_track_topic", name + "_water_track")), queue);
   const std::string sonar = topicParam(sensor, "sonar_topic", name + "_sonar");
   std::istringstream frames(topicParam(sensor, "beam_frames", ""));
   for (std::size_t i = 0; i < 4; ++i) {
@@ -37,7 +43,8 @@ void DvlPublisher::publish()
   std_msgs::Header header;
   header.stamp.fromSec(s.time);
   header.frame_id = sensor_.frame();
-  if (dvl_.getNumSubscribers() > 0) {
+  const bool track = track_ && wanted(track_);
+  if (wanted(dvl_) || track) {
     unexmin::Dvl m;
     m.header = header;
     m.bottom_lock = s.bottom_lock;
@@ -60,10 +67,11 @@ void DvlPublisher::publish()
       m.beam_velocity[i] = s.beams[i].velocity;
       m.beam_velocity_std[i] = s.beams[i].velocity_std;
     }
-    dvl_.publish(m);
+    if (wanted(dvl_)) emit(dvl_, m);
+    if (track) emit(track_, waterTrack(m));
   }
   for (std::size_t i = 0; i < 4; ++i) {
-    if (sonar_[i].getNumSubscribers() == 0) continue;
+    if (!wanted(sonar_[i])) continue;
     sensor_msgs::Range m;
     m.header.stamp = header.stamp;
     m.header.frame_id = beam_frames_[i];
@@ -72,9 +80,9 @@ void DvlPublisher::publish()
     m.min_range = static_cast<float>(sensor_.rangeMin());
     m.max_range = static_cast<float>(sensor_.rangeMax());
     m.range = static_cast<float>(s.beams[i].range);  // +inf: no bottom within the window (REP 117)
-    sonar_[i].publish(m);
+    emit(sonar_[i], m);
   }
-  if (s.bottom_lock && twist_.getNumSubscribers() > 0) {
+  if (s.bottom_lock && wanted(twist_)) {
     geometry_msgs::TwistWithCovarianceStamped m;
     m.header = header;
     m.twist.twist.linear.x = s.velocity.x();
@@ -83,7 +91,7 @@ void DvlPublisher::publish()
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) m.twist.covariance[6 * r + c] = s.covariance(r, c);
     for (int i = 3; i < 6; ++i) m.twist.covariance[7 * i] = kUnmeasuredVariance;
-    twist_.publish(m);
+    emit(twist_, m);
   }
 }
 

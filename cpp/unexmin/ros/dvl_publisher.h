@@ -5,6 +5,9 @@
 //                                         frame: the beam_frames link (else the DVL link)
 //   twist_topic  (default <name>_twist)   geometry_msgs/TwistWithCovarianceStamped, DVL frame; only with
 //                                         bottom lock; the angular part is not measured (zero, variance 1e6)
+//   water_track_topic (default <name>_water_track)  dvl_nortek/DvlBottomWaterTrack, the translation of
+//                                         python/unexmin/dvl_translator.py (dvl_water_track.h), built here when the
+//                                         robot's parameter dvl_from_simulator is true (default)
 #pragma once
 
 #include <unexmin/ros/sensor_publisher.h>
@@ -23,7 +26,7 @@ public:
 
 private:
   const sensors::DvlSensor& sensor_;
-  ros::Publisher dvl_, twist_;
+  ros::Publisher dvl_, twist_, track_;
   std::array<ros::Publisher, 4> sonar_;
   std::array<std::string, 4> beam_frames_;
 };

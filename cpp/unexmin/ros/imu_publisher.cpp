@@ -44,7 +44,7 @@ void ImuPublisher::publish()
   std_msgs::Header header;
   header.stamp.fromSec(s.time);
   header.frame_id = sensor_.frame();
-  if (imu_.getNumSubscribers() > 0) {
+  if (wanted(imu_)) {
     sensor_msgs::Imu m;
     m.header = header;
     m.orientation.w = 1.0;
@@ -55,16 +55,16 @@ void ImuPublisher::publish()
       m.angular_velocity_covariance[4 * i] = s.gyro_variance;
       m.linear_acceleration_covariance[4 * i] = s.accel_variance;
     }
-    imu_.publish(m);
+    emit(imu_, m);
   }
-  if (mag_.getNumSubscribers() > 0) {
+  if (wanted(mag_)) {
     sensor_msgs::MagneticField m;
     m.header = header;
     set(m.magnetic_field, s.magnetic_field, kTeslaPerMilliGauss);
     for (int i = 0; i < 3; ++i) m.magnetic_field_covariance[4 * i] = s.mag_variance * kTeslaPerMilliGauss * kTeslaPerMilliGauss;
-    mag_.publish(m);
+    emit(mag_, m);
   }
-  if (raw_ && raw_.getNumSubscribers() > 0) {
+  if (raw_ && wanted(raw_)) {
     unexmin::ImuRaw m;
     m.header = header;
     set(m.linear_acceleration, s.specific_force);
@@ -73,9 +73,9 @@ void ImuPublisher::publish()
     m.temperature = s.temperature;
     m.pressure = s.pressure;
     m.pressure_temperature = s.pressure_temperature;
-    raw_.publish(m);
+    emit(raw_, m);
   }
-  if (kvh_ && kvh_.getNumSubscribers() > 0) {
+  if (kvh_ && wanted(kvh_)) {
     // Same conversion as python/unexmin/kvh_translator.py (checked by test/rostest/sensors.py).
     kvh_1775::ImuRawKvh m;
     m.header = header;
@@ -85,7 +85,7 @@ void ImuPublisher::publish()
     m.temperature_imu = s.temperature;
     m.pressure = s.pressure * kBarPerPascal;
     m.temperature_pressure = s.pressure_temperature;
-    kvh_.publish(m);
+    emit(kvh_, m);
   }
 }
 

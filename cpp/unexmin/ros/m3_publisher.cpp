@@ -1,3 +1,4 @@
+#include <unexmin/ros/m3_cloud.h>
 #include <unexmin/ros/m3_publisher.h>
 
 #include <sensor_msgs/LaserScan.h>
@@ -9,11 +10,17 @@ M3Publisher::M3Publisher(const sonar::M3Sensor& sensor, const PublisherContext& 
 {
   pub_ = ctx.nh.advertise<sensor_msgs::LaserScan>(resolve(ctx.ns, topicParam(sensor, "topic", "m3/scan")),
                                               queueSize(sensor.rate()));
+  bool translate = true;
+  ctx.nh.param(ctx.ns + "m3_from_simulator", translate, true);
+  if (translate)
+    points_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(resolve(ctx.ns, topicParam(sensor, "points_topic", "m3/points")),
+                                                         queueSize(sensor.rate()));
 }
 
 void M3Publisher::publish()
 {
-  if (pub_.getNumSubscribers() == 0) return;
+  const bool points = points_ && wanted(points_);
+  if (!wanted(pub_) && !points) return;
   const sonar::M3Scan& s = sensor_.last();
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
@@ -27,7 +34,8 @@ void M3Publisher::publish()
   m.range_max = static_cast<float>(sensor_.rangeMax());
   m.ranges = s.ranges;
   m.intensities = s.intensities;
-  pub_.publish(m);
+  if (wanted(pub_)) emit(pub_, m);
+  if (points) emit(points_, scanToCloud(m));
 }
 
 }  // namespace ros_layer

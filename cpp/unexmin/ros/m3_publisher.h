@@ -3,7 +3,9 @@
 // time: angle_min/max = -/+ fov_h / 2, angle_increment = fov_h / (beams - 1), time_increment 0 (all
 // beams at once), scan_time = 1 / rate, range_min/max, ranges [m] (REP-117: +inf no return within
 // range_max, -inf nearer than range_min), intensities = cos(incidence)^n of the return (0: none).
-// The translator python/unexmin/m3_translator.py turns it into the real robot's m3/points.
+// `points_topic` (default m3/points): sensor_msgs/PointCloud2 x y z, the translation of
+// python/unexmin/m3_translator.py (m3_cloud.h), built here when the robot's parameter m3_from_simulator is
+// true (default); the rospy translator stays for the real robot (sensors.launch m3_translator:=true).
 #pragma once
 
 #include <unexmin/ros/sensor_publisher.h>
@@ -20,7 +22,7 @@ public:
 
 private:
   const sonar::M3Sensor& sensor_;
-  ros::Publisher pub_;
+  ros::Publisher pub_, points_;
 };
 
 }  // namespace ros_layer

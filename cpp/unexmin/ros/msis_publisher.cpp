@@ -48,12 +48,12 @@ sensor_msgs::PointCloud2 MsisPublisher::cloud() const
 
 void MsisPublisher::publish()
 {
-  if (angle_.getNumSubscribers() > 0) {
+  if (wanted(angle_)) {
     std_msgs::Float64 a;
     a.data = sensor_.last().angle;
-    angle_.publish(a);
+    emit(angle_, a);
   }
-  if (scan_.getNumSubscribers() > 0) scan_.publish(cloud());
+  if (wanted(scan_)) emit(scan_, cloud());
 }
 
 }  // namespace ros_layer

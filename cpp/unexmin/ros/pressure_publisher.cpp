@@ -14,14 +14,14 @@ PressurePublisher::PressurePublisher(const sensors::PressureSensor& sensor, cons
 
 void PressurePublisher::publish()
 {
-  if (pub_.getNumSubscribers() == 0) return;
+  if (!wanted(pub_)) return;
   const sensors::PressureSample& s = sensor_.last();
   sensor_msgs::FluidPressure m;
   m.header.stamp.fromSec(s.time);
   m.header.frame_id = sensor_.frame();
   m.fluid_pressure = s.pressure;
   m.variance = s.variance;
-  pub_.publish(m);
+  emit(pub_, m);
 }
 
 }  // namespace ros_layer

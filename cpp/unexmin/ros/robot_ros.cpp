@@ -65,11 +65,17 @@ bool RobotRos::finite(const std::string& topic, double value) const
   return false;
 }
 
+void RobotRos::record(const std::string& topic, const Float64Event& event) const
+{
+  if (recorder_ && recorder_->active()) recorder_->write("/" + robot_.name() + "/" + topic, *event.getConstMessage());
+}
+
 void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
 {
   ++received_[event.getPublisherName()];
   const auto& msg = event.getConstMessage();
   const std::string topic = "thrusters/" + std::to_string(i) + "/input";
+  record(topic, event);
   if (!finite(topic, msg->data)) return;
   auto& th = robot_.thruster(i);
   if (!th.setCommand(msg->data, now_))
@@ -81,6 +87,7 @@ void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
 void RobotRos::onPendulum(const Float64Event& event)
 {
   ++received_[event.getPublisherName()];
+  record("pendulum", event);
   const auto& msg = event.getConstMessage();
   if (!finite("pendulum", msg->data)) return;
   if (!robot_.hasPendulum()) {
@@ -96,6 +103,7 @@ void RobotRos::onPendulum(const Float64Event& event)
 void RobotRos::onVbs(const Float64Event& event)
 {
   ++received_[event.getPublisherName()];
+  record("vbs", event);
   const auto& msg = event.getConstMessage();
   if (!finite("vbs", msg->data)) return;
   const auto& p = robot_.vbs().params();
@@ -143,7 +151,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
   };
   if (due(odom_every_, last_odom_)) {
     const bool tf_wanted = tf_probe_.getNumSubscribers() > 0;
-    const bool odom_wanted = odom_pub_.getNumSubscribers() > 0;
+    const bool odom_wanted = wanted(odom_pub_, recorder_);
     if (tf_wanted || odom_wanted) {
       const nav_msgs::Odometry o = odometry(stamp);
       if (tf_wanted) {
@@ -156,15 +164,15 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
         t.transform.rotation = o.pose.pose.orientation;
         tf.sendTransform(t);
       }
-      if (odom_wanted) odom_pub_.publish(o);
+      if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
     }
   }
   if (due(thrust_every_, last_thrust_)) {
     for (std::size_t i = 0; i < thrust_pubs_.size(); ++i) {
-      if (thrust_pubs_[i].getNumSubscribers() == 0) continue;
+      if (!wanted(thrust_pubs_[i], recorder_)) continue;
       std_msgs::Float64 m;
       m.data = robot_.thruster(i).thrust();
-      thrust_pubs_[i].publish(m);
+      publishRecorded(thrust_pubs_[i], recorder_, m);
     }
   }
   const bool joint_wall_ok = all || (wall_now_ - last_joint_wall_).toSec() >= min_wall_period_;
@@ -191,7 +199,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
       js.position.push_back(position);
       js.velocity.push_back(velocity);
     }
-    joint_pub_.publish(js);
+    publishRecorded(joint_pub_, recorder_, js);
   }
 }
 

@@ -48,6 +48,14 @@ public:
     min_wall_period_ = min_period;
   }
 
+  /// Hands every message of this robot (its streams, its sensors, the commands it receives) to `recorder`
+  /// too (null: none); it must outlive this.
+  void attach(BagRecorder* recorder)
+  {
+    recorder_ = recorder;
+    sensors_->attach(recorder);
+  }
+
   /// Forget what was published (the world was reset to step 0).
   void restart()
   {
@@ -60,6 +68,8 @@ private:
   void onThrusterInput(std::size_t i, const Float64Event& event);
   void onPendulum(const Float64Event& event);
   void onVbs(const Float64Event& event);
+  /// Writes a received command to the recording (when its topic is recorded).
+  void record(const std::string& topic, const Float64Event& event) const;
   /// Shared edge check: rejects (warns, returns false) a non-finite command.
   bool finite(const std::string& topic, double value) const;
 
@@ -83,6 +93,7 @@ private:
   std::uint64_t last_thrust_ = UINT64_MAX;
   std::vector<std::string> joint_names_;
   std::unique_ptr<SensorsRos> sensors_;
+  BagRecorder* recorder_ = nullptr;
 };
 
 }  // namespace ros_layer

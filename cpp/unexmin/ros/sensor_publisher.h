@@ -3,6 +3,7 @@
 // Publisher(const Model& sensor, const PublisherContext& ctx).
 #pragma once
 
+#include <unexmin/ros/bag_recorder.h>
 #include <unexmin/sensors/sensor.h>
 
 #include <ros/ros.h>
@@ -33,8 +34,12 @@ public:
 
   virtual ~SensorPublisher() = default;
   /// Publishes the sensor's latest sample, stamped with its sample time, on every topic that has
-  /// a subscriber (messages nobody subscribes to are not built).
+  /// a subscriber or is recorded (other messages are not built). Implementations test a topic with
+  /// wanted() and send with emit(), the one way to the simulator's recorder.
   virtual void publish() = 0;
+
+  /// The simulator's recorder (may be null: nothing recorded); must outlive this publisher.
+  void attach(BagRecorder* recorder) { recorder_ = recorder; }
 
   /// `topic` relative to the robot's namespace `ns` ("/UX_1/"), unless it is absolute.
   static std::string resolve(const std::string& ns, const std::string& topic)
@@ -70,6 +75,19 @@ public:
     const auto it = s.spec().text.find(key);
     return it == s.spec().text.end() ? fallback : it->second;
   }
+
+protected:
+  /// Whether a message for `pub` must be built: it has a subscriber or its topic is recorded.
+  bool wanted(const ros::Publisher& pub) const { return ros_layer::wanted(pub, recorder_); }
+  /// Publishes `m` on `pub` and writes it to the recording when its topic is recorded.
+  template <class M>
+  void emit(const ros::Publisher& pub, const M& m) const
+  {
+    publishRecorded(pub, recorder_, m);
+  }
+
+private:
+  BagRecorder* recorder_ = nullptr;
 };
 
 }  // namespace ros_layer

@@ -28,6 +28,11 @@ void SensorsRos::publish(std::uint64_t step)
     if (suite_->fresh(i)) publishers_[i]->publish();
 }
 
+void SensorsRos::attach(BagRecorder* recorder)
+{
+  for (auto& p : publishers_) p->attach(recorder);
+}
+
 void SensorsRos::restart()
 {
   suite_->reset(world_.seed());

@@ -31,6 +31,8 @@ public:
   void publish(std::uint64_t step);
   /// The world was reset (new seed, step 0): sensors back to turn-on.
   void restart();
+  /// Hands every sensor message to `recorder` too (null: none); it must outlive this.
+  void attach(BagRecorder* recorder);
 
   sensors::SensorSuite& suite() { return *suite_; }
   const sensors::SensorSuite& suite() const { return *suite_; }

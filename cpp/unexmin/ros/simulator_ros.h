@@ -4,8 +4,10 @@
 #pragma once
 
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/ros/bag_recorder.h>
 #include <unexmin/ros/robot_ros.h>
 #include <unexmin/ros/sensor_registry.h>
+#include <unexmin/ros/subscriber_pacer.h>
 #include <unexmin/sensors/sensor_selection.h>
 #include <unexmin/sim/world.h>
 
@@ -13,6 +15,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <unexmin/Record.h>
 #include <unexmin/Reset.h>
 #include <unexmin/Step.h>
 
@@ -43,6 +46,7 @@ private:
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Response& res);
   bool onStep(unexmin::Step::Request& req, unexmin::Step::Response& res);
+  bool onRecord(unexmin::Record::Request& req, unexmin::Record::Response& res);
 
   ros::NodeHandle nh_;
   ros::NodeHandle pnh_;
@@ -78,6 +82,13 @@ private:
   // Real-time pacing: wall time and sim time when pacing last (re)started.
   ros::WallTime pace_wall_;
   double pace_sim_ = 0.0;
+  // The simulator's own recorder (~record, ~record_topics, /sim/record; docs/recording.md).
+  std::string record_path_;
+  std::unique_ptr<BagRecorder> recorder_;
+  // ~lockstep_wait_subscribers: before every `pace_every_`-th lockstep step, wait until subscribers took their messages.
+  bool wait_subscribers_ = false;
+  std::uint64_t pace_every_ = 1;
+  SubscriberPacer pacer_;
 };
 
 }  // namespace ros_layer

@@ -49,8 +49,8 @@ sensor_msgs::LaserScan SlsPublisher::scan() const
 
 void SlsPublisher::publish()
 {
-  if (points_.getNumSubscribers() > 0) points_.publish(cloud());
-  if (scan_.getNumSubscribers() > 0) scan_.publish(scan());
+  if (wanted(points_)) emit(points_, cloud());
+  if (wanted(scan_)) emit(scan_, scan());
 }
 
 }  // namespace ros_layer
