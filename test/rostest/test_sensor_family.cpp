@@ -110,7 +110,7 @@ TEST(SensorFamily, AnUnknownTypeStopsStartUpNamingRobotSensorAndKnownTypes)
     ros_layer::SimulatorRos sim(ros::NodeHandle(), ros::NodeHandle("~"));
     ADD_FAILURE() << "expected ConfigError";
   } catch (const ConfigError& e) {
-    EXPECT_STREQ(e.what(), "UX_1: sensor 'altimeter': unknown type 'altimeter' (known: dvl, imu, m3, msis, pressure)");
+    EXPECT_STREQ(e.what(), "UX_1: sensor 'altimeter': unknown type 'altimeter' (known: camera, dvl, imu, m3, msis, pressure)");
   }
   ros::param::set("/UX_1/robot_description", original);
 }
