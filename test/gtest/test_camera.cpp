@@ -125,11 +125,14 @@ double henyeyGreenstein(double g, double cos_psi)
   return (1 - g * g) / (4 * M_PI * std::pow(1 + g * g - 2 * g * cos_psi, 1.5));
 }
 
-/// LED intensity towards unit direction `dir` (from the light) [W/sr].
+/// LED intensity towards unit direction `dir` (from the light) [W/sr]: I0 cos^m(theta), faded to 0 by a smoothstep
+/// over the outer 20 % of the cone's half angle.
 double led(const Eigen::Vector3d& dir)
 {
-  const double cos_theta = dir.x();  // beam along +x
-  return cos_theta > std::cos(kCone / 2) ? kI0 * std::pow(cos_theta, kExponent) : 0.0;
+  const double theta = std::acos(std::min(1.0, dir.x())), half = kCone / 2;  // beam along +x
+  if (theta >= half) return 0.0;
+  const double x = std::min(1.0, (half - theta) / (0.2 * half));
+  return kI0 * std::pow(std::cos(theta), kExponent) * x * x * (3 - 2 * x);
 }
 
 /// Unit ray of pixel (u, v) of an undistorted camera with focal f and centre (cx, cy), world frame.

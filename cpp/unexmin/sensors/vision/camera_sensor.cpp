@@ -116,7 +116,7 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   }
   if (sls)
     laser_ = std::make_unique<LaserLine>(std::make_unique<SlsSensor>(*sls, setup), spec.pose, model_, laser_power,
-                                         laser_width, laser_colour, clip_far_);
+                                         laser_width, laser_colour, clip_far_, kHullAlbedo.y());
 }
 
 CameraSensor::~CameraSensor() = default;
@@ -177,6 +177,28 @@ void CameraSensor::prepare(const SensorContext& ctx)
                          static_cast<float>(m.albedo.z()), 0.0f);
 }
 
+inline void CameraSensor::encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed)
+{
+  Eigen::Array4f s = (exposure_f_ * radiance).min(1.0f);
+  if (noise_) {
+    // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
+    // the image does not depend on the thread count or on how often a pixel is encoded.
+    const std::uint64_t hash = mix(seed + 0x9e3779b97f4a7c15ull * i);
+    const float* normal = normal_;
+    const Eigen::Array4f n(normal[hash & 0xfff], normal[(hash >> 12) & 0xfff], normal[(hash >> 24) & 0xfff], 0.0f);
+    s += (s * shot_ + read2_).sqrt() * n;
+  }
+  const Eigen::Array4f out = (gain_f_ * s).max(0.0f).min(1.0f) * static_cast<float>(kEncodeEntries) + 0.5f;
+  std::uint8_t* px = &frame_.rgb[3 * i];
+  for (int k = 0; k < 3; ++k) px[k] = encode_[static_cast<std::size_t>(out[k])];
+}
+
+void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed)
+{
+  const float* rad = &frame_.radiance[3 * i];
+  encodePixel(i, Eigen::Array4f(rad[0], rad[1], rad[2], 0.0f), seed);
+}
+
 void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
 {
   const int w = model_.width(), h = model_.height();
@@ -189,11 +211,13 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
     const int rows = std::min(band, h - row0);
     const std::size_t first = static_cast<std::size_t>(row0) * w, n = static_cast<std::size_t>(rows) * w;
     rays_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      rays_[i].origin = origin;
-      rays_[i].direction = rot * dirs_[first + i];
-      rays_[i].max_range = static_cast<float>(clip_far_);
-    }
+    parallelRows(rows, [&](int r0, int r1) {
+      for (std::size_t i = static_cast<std::size_t>(r0) * w; i < static_cast<std::size_t>(r1) * w; ++i) {
+        rays_[i].origin = origin;
+        rays_[i].direction = rot * dirs_[first + i];
+        rays_[i].max_range = static_cast<float>(clip_far_);
+      }
+    });
     castRays(ctx, rays_, hits_);
 
     if (shadows_) {
@@ -267,28 +291,6 @@ void CameraSensor::shadeRows(int row0, int rows, const Eigen::Isometry3d& cam, c
       }
     }
   });
-}
-
-void CameraSensor::encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed)
-{
-  Eigen::Array4f s = (exposure_f_ * radiance).min(1.0f);
-  if (noise_) {
-    // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
-    // the image does not depend on the thread count or on how often a pixel is encoded.
-    const std::uint64_t hash = mix(seed + 0x9e3779b97f4a7c15ull * i);
-    const float* normal = normal_;
-    const Eigen::Array4f n(normal[hash & 0xfff], normal[(hash >> 12) & 0xfff], normal[(hash >> 24) & 0xfff], 0.0f);
-    s += (s * shot_ + read2_).sqrt() * n;
-  }
-  const Eigen::Array4f out = (gain_f_ * s).max(0.0f).min(1.0f) * static_cast<float>(kEncodeEntries) + 0.5f;
-  std::uint8_t* px = &frame_.rgb[3 * i];
-  for (int k = 0; k < 3; ++k) px[k] = encode_[static_cast<std::size_t>(out[k])];
-}
-
-void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed)
-{
-  const float* rad = &frame_.radiance[3 * i];
-  encodePixel(i, Eigen::Array4f(rad[0], rad[1], rad[2], 0.0f), seed);
 }
 
 }  // namespace vision

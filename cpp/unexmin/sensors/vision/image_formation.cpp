@@ -11,20 +11,25 @@ namespace sensors {
 namespace vision {
 namespace {
 
-constexpr int kPowEntries = 1024;    ///< cos^m table over [cos_half, 1]
-constexpr int kExpEntries = 8192;    ///< exp(-c x) table over [0, x_max]
+constexpr int kPowEntries = ImageFormation::kPowEntries;
+constexpr int kExpEntries = ImageFormation::kExpEntries;
 constexpr int kSimpson = 4;          ///< Simpson sub-intervals per range bin (even)
 constexpr int kMaxNodesU = 65;       ///< backscatter table: pixel nodes across ...
-constexpr int kMaxNodesV = 49;       ///< ... and down
+constexpr int kMaxNodesV = 49;      ///< ... and down
 constexpr double kConeMargin = 5.0 * M_PI / 180.0;  ///< [rad] a light is kept if a grid ray passes this close
 
 }  // namespace
 
-Eigen::Vector3d LedLight::at(double cos_theta) const
+double LedLight::profile(double cos_theta) const
 {
-  if (cos_theta <= std::cos(cone / 2.0) || cos_theta <= 0.0) return Eigen::Vector3d::Zero();
-  return intensity * std::pow(cos_theta, exponent);
+  const double half = std::min(cone / 2.0, M_PI / 2.0);
+  const double theta = std::acos(std::max(-1.0, std::min(1.0, cos_theta)));
+  if (!(theta < half)) return 0.0;
+  const double x = std::min(1.0, (half - theta) / (kEdge * half));  // 0 at the cone's edge, 1 inside the rim
+  return std::pow(cos_theta, exponent) * x * x * (3.0 - 2.0 * x);
 }
+
+Eigen::Vector3d LedLight::at(double cos_theta) const { return intensity * profile(cos_theta); }
 
 ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> lights, const WaterOptics& water,
                                double max_range, int threads)
@@ -44,7 +49,7 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
     f.cos_half = static_cast<float>(cos_half);
     f.pow_m.resize(kPowEntries + 2);
     for (int i = 0; i <= kPowEntries + 1; ++i)
-      f.pow_m[i] = static_cast<float>(std::pow(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries), l.exponent));
+      f.pow_m[i] = static_cast<float>(l.profile(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries)));
     f.pow_scale = static_cast<float>(kPowEntries / std::max(1e-9, 1.0 - cos_half));
     fast_.push_back(std::move(f));
     reach_cos_.push_back(std::cos(std::min(M_PI, l.cone / 2.0 + kConeMargin)));
@@ -61,43 +66,12 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
   buildTable(camera, threads);
 }
 
-Eigen::Array4f ImageFormation::transmission4(float x) const
-{
-  const float f = std::max(0.0f, x) * exp_scale_;
-  const int i = static_cast<int>(f);
-  if (i >= kExpEntries) return Eigen::Array4f::Zero();
-  const Eigen::Map<const Eigen::Array4f> e0(&exp_[4 * i]), e1(&exp_[4 * i + 4]);
-  return e0 + (f - static_cast<float>(i)) * (e1 - e0);
-}
-
 bool ImageFormation::lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
 {
   const Fast& l = fast_[static_cast<std::size_t>(k)];
   const Eigen::Vector3f v = p - l.position;
   const float r = v.norm();
   return l.axis.dot(v) > l.cos_half * r && n.dot(v) < 0.0f;
-}
-
-Eigen::Array4f ImageFormation::direct4(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n,
-                                       const Eigen::Array4f& albedo, unsigned lit) const
-{
-  Eigen::Array4f sum = Eigen::Array4f::Zero();
-  for (int k : active_) {
-    if (!(lit & (1u << k))) continue;
-    const Fast& l = fast_[static_cast<std::size_t>(k)];
-    const Eigen::Vector3f v = p - l.position;  // light -> surface
-    const float r = std::sqrt(v.squaredNorm());
-    const float ca = l.axis.dot(v);
-    if (!(ca > l.cos_half * r)) continue;  // outside the cone
-    const float cos_phi = -n.dot(v);       // r cos(incidence)
-    if (!(cos_phi > 0.0f)) continue;       // lit from behind
-    const float inv_r = 1.0f / r;
-    const float fi = (ca * inv_r - l.cos_half) * l.pow_scale;
-    const int i = std::min(static_cast<int>(fi), kPowEntries);
-    const float pw = l.pow_m[i] + (fi - static_cast<float>(i)) * (l.pow_m[i + 1] - l.pow_m[i]);
-    sum += l.intensity * (pw * cos_phi * inv_r * inv_r * inv_r) * transmission4(range + r);
-  }
-  return albedo * sum;
 }
 
 Eigen::Array3d ImageFormation::integrand(const Eigen::Vector3d& d, double s, std::vector<char>* reached) const
@@ -115,7 +89,7 @@ Eigen::Array3d ImageFormation::integrand(const Eigen::Vector3d& d, double s, std
     if (reached && cos_theta > reach_cos_[k]) (*reached)[k] = 1;
     if (!(cos_theta > fast_[k].cos_half) || !(cos_theta > 0.0)) continue;
     const double p = water_.phase(-dir.dot(d));  // scattered back along -d, towards the lens
-    const double geometry = p * std::pow(cos_theta, l.exponent) / (r * r);
+    const double geometry = p * l.profile(cos_theta) / (r * r);
     sum += b * l.intensity.array() * geometry * (-c * (s + r)).exp();
   }
   return sum;
@@ -165,28 +139,6 @@ void ImageFormation::buildTable(const CameraModel& camera, int threads)
     for (const auto& row : reached) any = any || row[k];
     if (any) active_.push_back(static_cast<int>(k));
   }
-}
-
-Eigen::Array4f ImageFormation::backscatter4(float u, float v, float r) const
-{
-  const float fu = std::min(std::max(u * inv_step_u_, 0.0f), static_cast<float>(nu_ - 1));
-  const float fv = std::min(std::max(v * inv_step_v_, 0.0f), static_cast<float>(nv_ - 1));
-  const int iu = std::min(static_cast<int>(fu), nu_ - 2), iv = std::min(static_cast<int>(fv), nv_ - 2);
-  const float wu = fu - static_cast<float>(iu), wv = fv - static_cast<float>(iv);
-  const float rr = std::min(std::max(r, 0.0f), s_.back());
-  int j = std::min(static_cast<int>(std::sqrt(rr * inv_range_) * static_cast<float>(bins_)), bins_ - 1);
-  // Rounding in the square root may land one bin off: step to the bin that holds rr.
-  if (rr < s_[j]) --j;
-  else if (j + 1 < bins_ && rr > s_[j + 1]) ++j;
-  const float wr = (rr - s_[j]) * inv_bin_[j];
-  const std::size_t stride = static_cast<std::size_t>((bins_ + 1) * 4);
-  const float* n00 = &table_[static_cast<std::size_t>(iv * nu_ + iu) * stride + j * 4];
-  using Map = Eigen::Map<const Eigen::Array4f>;
-  const auto at = [&](const float* node) { return Map(node) + wr * (Map(node + 4) - Map(node)); };
-  const Eigen::Array4f top = at(n00) + wu * (at(n00 + stride) - at(n00));
-  const float* n01 = n00 + nu_ * stride;
-  const Eigen::Array4f bottom = at(n01) + wu * (at(n01 + stride) - at(n01));
-  return top + wv * (bottom - top);
 }
 
 }  // namespace vision

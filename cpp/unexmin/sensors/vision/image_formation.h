@@ -24,15 +24,19 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace unexmin {
 namespace sensors {
 namespace vision {
 
-/// An LED lamp: a cone of light of radiant intensity I0 cos^m(theta).
+/// An LED lamp: a cone of light of radiant intensity I0 cos^m(theta), its edge softened over the outer kEdge of the
+/// half angle (a smoothstep down to 0 at cone / 2, as a reflector's beam ends) [assumed].
 struct LedLight
 {
+  static constexpr double kEdge = 0.2;  ///< fraction of the half angle over which the beam fades out
   Eigen::Vector3d position{0, 0, 0};   ///< camera optical frame [m]
   Eigen::Vector3d axis{0, 0, 1};       ///< unit, camera optical frame (the light link's +x)
   Eigen::Vector3d intensity{1, 1, 1};  ///< I0: on-axis radiant intensity per channel (R, G, B) [W/sr]
@@ -41,11 +45,16 @@ struct LedLight
 
   /// Radiant intensity per channel toward a direction with cos(theta) = cos_theta off the axis [W/sr].
   Eigen::Vector3d at(double cos_theta) const;
+  /// I(theta) / I0 [-]: cos^m(theta) times the edge's fade, 0 beyond cone / 2.
+  double profile(double cos_theta) const;
 };
 
 class ImageFormation
 {
 public:
+  static constexpr int kPowEntries = 1024;  ///< cos^m table over [cos_half, 1]
+  static constexpr int kExpEntries = 8192;  ///< exp(-c x) table over [0, x_max]
+
   /// `camera`: the image the pixels refer to; `lights` in its optical frame; `max_range` [m] > 0: the farthest
   /// surface (beyond it a ray sees open water up to max_range). `threads` builds the table (0 = all).
   ImageFormation(const CameraModel& camera, std::vector<LedLight> lights, const WaterOptics& water, double max_range,
@@ -114,6 +123,61 @@ private:
   std::vector<float> inv_bin_;  ///< 1 / bin width [1/m]
   std::vector<float> table_;  ///< [(node * (bins + 1) + j) * 4 + channel] (4th lane 0)
 };
+
+// ---------------------------------------------------------------- the per-pixel fast path, inline
+
+inline Eigen::Array4f ImageFormation::transmission4(float x) const
+{
+  const float f = std::max(0.0f, x) * exp_scale_;
+  const int i = static_cast<int>(f);
+  if (i >= kExpEntries) return Eigen::Array4f::Zero();
+  const Eigen::Map<const Eigen::Array4f> e0(&exp_[4 * i]), e1(&exp_[4 * i + 4]);
+  return e0 + (f - static_cast<float>(i)) * (e1 - e0);
+}
+
+inline Eigen::Array4f ImageFormation::direct4(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n,
+                                       const Eigen::Array4f& albedo, unsigned lit) const
+{
+  Eigen::Array4f sum = Eigen::Array4f::Zero();
+  for (int k : active_) {
+    if (!(lit & (1u << k))) continue;
+    const Fast& l = fast_[static_cast<std::size_t>(k)];
+    const Eigen::Vector3f v = p - l.position;  // light -> surface
+    const float r = std::sqrt(v.squaredNorm());
+    const float ca = l.axis.dot(v);
+    if (!(ca > l.cos_half * r)) continue;  // outside the cone
+    const float cos_phi = -n.dot(v);       // r cos(incidence)
+    if (!(cos_phi > 0.0f)) continue;       // lit from behind
+    const float inv_r = 1.0f / r;
+    const float fi = (ca * inv_r - l.cos_half) * l.pow_scale;
+    const int i = std::min(static_cast<int>(fi), kPowEntries);
+    const float pw = l.pow_m[i] + (fi - static_cast<float>(i)) * (l.pow_m[i + 1] - l.pow_m[i]);
+    sum += l.intensity * (pw * cos_phi * inv_r * inv_r * inv_r) * transmission4(range + r);
+  }
+  return albedo * sum;
+}
+
+inline Eigen::Array4f ImageFormation::backscatter4(float u, float v, float r) const
+{
+  const float fu = std::min(std::max(u * inv_step_u_, 0.0f), static_cast<float>(nu_ - 1));
+  const float fv = std::min(std::max(v * inv_step_v_, 0.0f), static_cast<float>(nv_ - 1));
+  const int iu = std::min(static_cast<int>(fu), nu_ - 2), iv = std::min(static_cast<int>(fv), nv_ - 2);
+  const float wu = fu - static_cast<float>(iu), wv = fv - static_cast<float>(iv);
+  const float rr = std::min(std::max(r, 0.0f), s_.back());
+  int j = std::min(static_cast<int>(std::sqrt(rr * inv_range_) * static_cast<float>(bins_)), bins_ - 1);
+  // Rounding in the square root may land one bin off: step to the bin that holds rr.
+  if (rr < s_[j]) --j;
+  else if (j + 1 < bins_ && rr > s_[j + 1]) ++j;
+  const float wr = (rr - s_[j]) * inv_bin_[j];
+  const std::size_t stride = static_cast<std::size_t>((bins_ + 1) * 4);
+  const float* n00 = &table_[static_cast<std::size_t>(iv * nu_ + iu) * stride + j * 4];
+  using Map = Eigen::Map<const Eigen::Array4f>;
+  const auto at = [&](const float* node) { return Map(node) + wr * (Map(node + 4) - Map(node)); };
+  const Eigen::Array4f top = at(n00) + wu * (at(n00 + stride) - at(n00));
+  const float* n01 = n00 + nu_ * stride;
+  const Eigen::Array4f bottom = at(n01) + wu * (at(n01 + stride) - at(n01));
+  return top + wv * (bottom - top);
+}
 
 }  // namespace vision
 }  // namespace sensors

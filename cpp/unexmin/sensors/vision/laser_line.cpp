@@ -8,17 +8,15 @@ namespace sensors {
 namespace vision {
 namespace {
 
-/// Green albedo of a robot hull [assumed: the UX-1's yellow paint, as the SLS model].
-constexpr double kHullAlbedoGreen = 0.6;
 /// Neighbouring hits farther apart than this in the image [px] are not joined (a depth jump between them).
 constexpr double kMaxSegment = 6.0;
 
 }  // namespace
 
 LaserLine::LaserLine(std::unique_ptr<SlsSensor> sls, const Eigen::Isometry3d& camera_pose, const CameraModel& camera,
-                     double power, double width, const Eigen::Vector3d& colour, double clip_far)
+                     double power, double width, const Eigen::Vector3d& colour, double clip_far, double hull_albedo)
     : sls_(std::move(sls)), camera_pose_(camera_pose), camera_(camera), power_(power), width_(width),
-      colour_(colour.cast<float>()), clip_far_(clip_far)
+      colour_(colour.cast<float>()), clip_far_(clip_far), hull_albedo_(hull_albedo)
 {
   // The fan plane through the model's first and last rays; rays spaced so that neighbouring hits are about
   // 0.5 px apart where the line crosses the image centre.
@@ -83,7 +81,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     if (!(q1.z() > 0.0) || !(q2.z() > 0.0)) continue;
     const Eigen::Vector2d a = pixel(p), d1 = pixel(q1) - a, d2 = pixel(q2) - a;
     const double jacobian = std::abs(d1.x() * d2.y() - d1.y() * d2.x()) / (eps * eps);  // [px^2 / m^2]
-    double albedo = kHullAlbedoGreen;
+    double albedo = hull_albedo_;
     if (hit.kind == raycast::HitKind::mesh)
       albedo = ctx.world.config().meshes.at(static_cast<std::size_t>(hit.index)).albedo.y();
     spots[j].uv = uv;

@@ -35,9 +35,9 @@ class LaserLine
 public:
   /// `sls`: the unit whose laser this camera sees; `camera_pose`: the camera's optical frame in the base frame;
   /// `camera`: the rendered image; `power` [W] > 0; `width` [px] > 0; `colour` >= 0 per channel; `clip_far` [m]:
-  /// how far the fan is cast.
+  /// how far the fan is cast; `hull_albedo` [-]: green albedo of a robot hull the line lands on.
   LaserLine(std::unique_ptr<SlsSensor> sls, const Eigen::Isometry3d& camera_pose, const CameraModel& camera,
-            double power, double width, const Eigen::Vector3d& colour, double clip_far);
+            double power, double width, const Eigen::Vector3d& colour, double clip_far, double hull_albedo);
 
   const SlsSensor& sls() const { return *sls_; }
   int rays() const { return static_cast<int>(fan_.size()); }
@@ -61,7 +61,7 @@ private:
   CameraModel camera_;
   double power_, width_;
   Eigen::Vector3f colour_;
-  double clip_far_;
+  double clip_far_, hull_albedo_;
   double dtheta_ = 0.0;               ///< [rad] between neighbouring fan rays
   std::vector<Eigen::Vector3d> fan_;  ///< head frame
   std::vector<raycast::Ray> rays_;
