@@ -1,6 +1,6 @@
 """Start-up errors of the simulator process (docs/simulator_node.md): a robot description with a <sensor> of
-an unknown type, an unknown family in ~sensors and an unknown ray-casting back end in the world file each stop
-simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
+an unknown type, an unknown family in ~sensors, an unknown ~visibility level and an unknown ray-casting back end
+in the world file each stop simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
 
 import os
 import re
@@ -14,7 +14,7 @@ from unexmin.launcher import free_port, stop_process_group, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 TANK = REPO / "worlds" / "tank.world"
-BUILTIN = {"dvl", "imu", "m3", "msis", "pressure", "sls"}  # families every simulator knows
+BUILTIN = {"camera", "dvl", "imu", "m3", "msis", "pressure", "sls"}  # families every simulator knows
 
 
 @pytest.fixture(scope="module")
@@ -40,14 +40,15 @@ def master(tmp_path_factory):
     stop_process_group(proc)
 
 
-def start(master, urdf, world=TANK, sensors="all"):
+def start(master, urdf, world=TANK, sensors="all", extra=()):
     """Runs simulator_node against `master` with UX_1 described by `urdf`; returns (exit code, output)."""
     import rosgraph
     params = rosgraph.Master("/startup_test", master_uri=master)
     params.setParam("/UX_1/robot_description", urdf)
     env = dict(os.environ, ROS_MASTER_URI=master)
     out = subprocess.run(["rosrun", "unexmin", "simulator_node", f"_world_file:={world}", f"_sensors:={sensors}",
-                          "_paused:=true", "__name:=simulator"], env=env, capture_output=True, text=True, timeout=60)
+                          "_paused:=true", "__name:=simulator", *extra], env=env, capture_output=True, text=True,
+                         timeout=60)
     return out.returncode, out.stdout + out.stderr
 
 
@@ -86,6 +87,19 @@ def test_an_unknown_ray_caster_back_end_in_the_world_file_stops_start_up(master,
     lines = fatal_lines(output)
     assert len(lines) == 1 and f"{world}: 'ray_caster'" in lines[0] and "optix" in lines[0], output
     assert "embree" in lines[0] and "bullet" in lines[0], lines[0]
+
+
+def test_an_unknown_visibility_level_stops_start_up(master, description):
+    import rosgraph
+    try:
+        code, output = start(master, description, sensors="imu", extra=["_visibility:=murky"])
+    finally:  # rosrun left ~visibility on the master: the next start must not inherit it
+        rosgraph.Master("/startup_test", master_uri=master).deleteParam("/simulator/visibility")
+    assert code == 1, output
+    lines = fatal_lines(output)
+    assert len(lines) == 1, output
+    assert ("parameter ~visibility = 'murky': expected none|low|medium|high (or empty: the world file's level)"
+            in lines[0]), lines[0]
 
 
 def test_a_valid_selection_starts(master, description):

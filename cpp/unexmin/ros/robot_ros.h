@@ -29,10 +29,11 @@ class RobotRos
 public:
   /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
-  /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`.
+  /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`, in
+  /// visual mode when `visual` (SensorSetup::visual).
   RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
            double physics_rate, std::map<std::string, std::uint64_t>& received, const raycast::RayCaster* rays,
-           const SensorRegistry& registry, const sensors::SensorSelection& selection);
+           const SensorRegistry& registry, const sensors::SensorSelection& selection, bool visual = false);
 
   /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
   void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all = false);

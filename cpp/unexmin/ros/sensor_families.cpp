@@ -2,6 +2,7 @@
 // (cpp/unexmin/ros). Adding a family: docs/adding_a_sensor.md.
 #include <unexmin/ros/sensor_registry.h>
 
+#include <unexmin/ros/camera_publisher.h>
 #include <unexmin/ros/dvl_publisher.h>
 #include <unexmin/ros/imu_publisher.h>
 #include <unexmin/ros/m3_publisher.h>
@@ -21,6 +22,7 @@ SensorRegistry SensorRegistry::builtin()
   r.add<sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
   r.add<sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
   r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/sls.md
+  r.add<sensors::vision::CameraSensor, CameraPublisher>("camera");  // docs/vision.md
   return r;
 }
 

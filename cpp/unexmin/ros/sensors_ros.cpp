@@ -4,10 +4,11 @@ namespace unexmin {
 namespace ros_layer {
 
 SensorsRos::SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays,
-                       const SensorRegistry& registry, const sensors::SensorSelection& selection, ros::NodeHandle& nh)
+                       const SensorRegistry& registry, const sensors::SensorSelection& selection, ros::NodeHandle& nh,
+                       bool visual)
     : world_(world)
 {
-  suite_ = std::make_unique<sensors::SensorSuite>(world, robot, rays, registry.models(), selection);
+  suite_ = std::make_unique<sensors::SensorSuite>(world, robot, rays, registry.models(), selection, visual);
   const PublisherContext ctx{nh, "/" + robot.name() + "/"};
   for (std::size_t i = 0; i < suite_->size(); ++i) {
     sensors::Sensor& s = suite_->sensor(i);

@@ -23,8 +23,9 @@ public:
   /// Builds `robot`'s sensors of the families `selection` keeps (throws ConfigError naming the robot, the
   /// sensor and the parameter or the known types on a bad one) and advertises their topics under /<robot>/.
   /// `rays` (the world's caster, updated by its owner after every step; may be null) must outlive this.
+  /// `visual`: the simulator's visual mode (/sim/mode), passed to every sensor (SensorSetup::visual).
   SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays, const SensorRegistry& registry,
-             const sensors::SensorSelection& selection, ros::NodeHandle& nh);
+             const sensors::SensorSelection& selection, ros::NodeHandle& nh, bool visual = false);
 
   /// Call after every physics step with the world's step count; a repeated call for the same step
   /// (end of a /sim/step, after a reset) does nothing.

@@ -31,7 +31,8 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   command_nh_.setCallbackQueue(&command_queue_);
   loadParams();
 
-  const sim::WorldConfig config = sim::loadWorldConfig(world_file_);
+  sim::WorldConfig config = sim::loadWorldConfig(world_file_);
+  if (!visibility_.empty()) config.visibility = visibility_;  // before the world (and every sensor) sees it
   if (robot_count_ > static_cast<int>(config.robots.size()))
     badParam("robots", formatNumber(robot_count_),
              "at most " + formatNumber(config.robots.size()) + " (spawn poses in " + world_file_ + ")");
@@ -59,7 +60,7 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   }
   for (std::size_t i = 0; i < world_->robotCount(); ++i)
     robots_.push_back(std::make_unique<RobotRos>(*world_, world_->robot(i), command_nh_, nh_, rates_, physics_rate_,
-                                                 received_, caster_.get(), registry_, selection_));
+                                                 received_, caster_.get(), registry_, selection_, visual_));
 
   // What scripts and tools learn from the simulator (docs/simulator_node.md): the spawned robots and their
   // thruster counts.
@@ -92,7 +93,9 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
 
   ROS_INFO_STREAM("unexmin simulator: world '" << config.name << "' (" << world_file_ << "), "
                   << world_->robotCount() << " robot(s), physics " << physics_rate_ << " Hz, "
-                  << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_ << ", sensors " << selection_.text() << (paused_ ? ", paused" : ""));
+                  << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_ << ", sensors " << selection_.text()
+                  << ", " << (visual_ ? "visual" : "operational") << " mode, visibility " << config.visibility
+                  << (paused_ ? ", paused" : ""));
 }
 
 void SimulatorRos::loadParams()
@@ -112,6 +115,11 @@ void SimulatorRos::loadParams()
   nh_.param<std::string>("/sim/mode", mode, "operational");
   if (mode != "operational" && mode != "visual")
     throw ParameterError("parameter /sim/mode = '" + mode + "': expected operational|visual");
+  visual_ = mode == "visual";
+  pnh_.param<std::string>("visibility", visibility_, "");
+  if (!visibility_.empty() && visibility_ != "none" && visibility_ != "low" && visibility_ != "medium" &&
+      visibility_ != "high")
+    badParam("visibility", "'" + visibility_ + "'", "none|low|medium|high (or empty: the world file's level)");
   pnh_.param("physics_rate", physics_rate_, 500.0);
   if (!(physics_rate_ >= 100.0 && physics_rate_ <= 20000.0))
     badParam("physics_rate", formatNumber(physics_rate_), "[100, 20000] Hz");

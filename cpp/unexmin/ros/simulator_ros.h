@@ -69,6 +69,8 @@ private:
   SensorRegistry registry_;
   std::string sensors_param_ = "all";
   sensors::SensorSelection selection_;     ///< from ~sensors
+  bool visual_ = false;                    ///< /sim/mode == visual: cameras render, lights and lasers on
+  std::string visibility_;                 ///< ~visibility: overrides the world file's level (empty: keep it)
   std::unique_ptr<sim::World> world_;
   std::unique_ptr<raycast::RayCaster> caster_;  ///< every ray sensor's (null when no sensor runs)
   std::vector<std::unique_ptr<RobotRos>> robots_;

@@ -1,0 +1,298 @@
+#include <unexmin/sensors/vision/camera_sensor.h>
+
+#include <unexmin/sensors/sensor_params.h>
+#include <unexmin/sensors/vision/parallel_rows.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace unexmin {
+namespace sensors {
+namespace vision {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+/// Rays cast per batch: bounds the memory of rays and hits whatever the resolution.
+constexpr std::size_t kBandRays = 262144;
+/// Entries of the gamma table over [0, 1].
+constexpr int kEncodeEntries = 4096;
+
+/// splitmix64: a well-mixed 64-bit hash of z.
+inline std::uint64_t mix(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// 4096 standard normal quantiles at (i + 0.5) / 4096 (16 kB: stays in the L1 cache): a draw is a 12-bit index
+/// into them, so its distribution is the normal one quantised to 4096 equiprobable values (tails cut at 3.7 sigma).
+const std::vector<float>& normalTable()
+{
+  static const std::vector<float> table = [] {
+    std::vector<float> t(4096);
+    for (int i = 0; i < 4096; ++i) {
+      // Inverse of the standard normal CDF by bisection on erfc (once, at start-up).
+      const double q = (i + 0.5) / 4096.0;
+      double lo = -10.0, hi = 10.0;
+      for (int it = 0; it < 80; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * std::erfc(-mid / std::sqrt(2.0)) < q ? lo : hi) = mid;
+      }
+      t[static_cast<std::size_t>(i)] = static_cast<float>(0.5 * (lo + hi));
+    }
+    return t;
+  }();
+  return table;
+}
+
+bool isLink(const sim::RobotDescription& d, const std::string& link)
+{
+  if (link == d.base_link) return true;
+  for (const auto& j : d.joints)
+    if (j.child == link) return true;
+  return false;
+}
+
+}  // namespace
+
+const Eigen::Vector3d CameraSensor::kHullAlbedo{0.95, 0.75, 0.10};
+
+CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup)
+    : Sensor(spec, setup), visual_(setup.visual)
+{
+  SensorParams p(spec, setup.robot);
+  model_ = CameraModel::fromParams(p);
+  clip_far_ = p.number("clip_far", 20.0, 0.1, 10000.0, "m");
+  exposure_ = p.number("exposure", 20.0, 0.0, 1e12, "m^2 sr / W");
+  gain_ = p.number("gain", 1.0, 0.0, 1e6, "");
+  gamma_ = p.number("gamma", 1.0, 0.1, 10.0, "");
+  noise_ = p.text("noise", "gaussian", {"gaussian", "none"}) == "gaussian";
+  full_well_ = p.number("full_well", 10000.0, 1.0, 1e9, "e-");
+  read_noise_ = p.number("read_noise", 10.0, 0.0, 1e9, "e-");
+  const std::vector<std::string> light_links = p.words("lights");
+  const Eigen::Vector3d intensity = p.vec3("light_intensity", Eigen::Vector3d(1.5, 1.5, 1.5));
+  for (int k = 0; k < 3; ++k)
+    if (!(intensity[k] >= 0.0) || !std::isfinite(intensity[k]))
+      p.fail("light_intensity", formatNumber(intensity[k]), "three finite numbers >= 0 W/sr");
+  const double cone = p.number("light_cone", 90.0 * kDeg, 1e-3, M_PI, "rad");
+  const double exponent = p.number("light_exponent", 1.0, 0.0, 1000.0, "");
+  // xacro writes a Python bool as True/False.
+  const std::string shadows = p.text("shadows", "false", {"true", "false", "True", "False", "1", "0"});
+  shadows_ = shadows == "true" || shadows == "True" || shadows == "1";
+  const double laser_power = p.number("laser_power", 0.05, 0.0, 1000.0, "W");
+  const double laser_width = p.number("laser_width", 1.0, 0.1, 100.0, "px");
+  const Eigen::Vector3d laser_colour = p.vec3("laser_colour", Eigen::Vector3d(0.05, 1.0, 0.15));
+  for (int k = 0; k < 3; ++k)
+    if (!(laser_colour[k] >= 0.0) || !std::isfinite(laser_colour[k]))
+      p.fail("laser_colour", formatNumber(laser_colour[k]), "three finite numbers >= 0");
+  p.finish();
+
+  if (light_links.size() > 32) p.fail("lights", formatNumber(light_links.size()) + " links", "at most 32 lights");
+  const Eigen::Isometry3d to_camera = spec.pose.inverse();
+  for (const auto& link : light_links) {
+    if (!isLink(setup.description, link)) p.fail("lights", "'" + link + "'", "links of the robot (the LED lights)");
+    const Eigen::Isometry3d pose = to_camera * setup.description.linkPose(link);
+    LedLight l;
+    l.position = pose.translation();
+    l.axis = pose.linear().col(0);
+    l.intensity = intensity;
+    l.cone = cone;
+    l.exponent = exponent;
+    lights_.push_back(l);
+  }
+
+  // The SLS unit that names this camera's link as the camera that sees its laser.
+  const sim::SensorSpec* sls = nullptr;
+  for (const auto& s : setup.description.sensors) {
+    const auto it = s.text.find("camera_frame");
+    if (s.type != "sls" || it == s.text.end() || it->second != spec.link) continue;
+    if (sls)
+      throw ConfigError(p.where() + ": SLS units '" + sls->name + "' and '" + s.name +
+                        "' both name it as their camera (camera_frame " + spec.link + "); expected at most one");
+    sls = &s;
+  }
+  if (sls)
+    laser_ = std::make_unique<LaserLine>(std::make_unique<SlsSensor>(*sls, setup), spec.pose, model_, laser_power,
+                                         laser_width, laser_colour, clip_far_, kHullAlbedo.y());
+}
+
+CameraSensor::~CameraSensor() = default;
+
+void CameraSensor::onReset()
+{
+  frame_.time = -1.0;
+  frame_.rendered = false;
+}
+
+void CameraSensor::sample(const SensorContext& ctx)
+{
+  frame_.time = ctx.world.time();
+  frame_.rendered = false;
+  // One draw per sample, rendered or not: the stream does not depend on who watches.
+  const auto seed = static_cast<std::uint64_t>(random().uniform() * 9007199254740992.0);
+  if (!visual_ || (demand_ && !demand_())) return;
+  prepare(ctx);
+  render(ctx, seed);
+  frame_.rendered = true;
+}
+
+void CameraSensor::prepare(const SensorContext& ctx)
+{
+  const sim::WorldConfig& config = ctx.world.config();
+  const std::string key = config.visibility + " " + formatNumber(config.visibility_colour.x()) + " " +
+                          formatNumber(config.visibility_colour.y()) + " " + formatNumber(config.visibility_colour.z());
+  if (!formation_ || key != water_key_) {
+    formation_ = std::make_unique<ImageFormation>(
+        model_, lights_, WaterOptics::fromVisibility(config.visibility, config.visibility_colour), clip_far_);
+    water_key_ = key;
+  }
+  const int w = model_.width(), h = model_.height();
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  if (dirs_.size() != n) {
+    dirs_.resize(n);
+    parallelRows(h, [&](int v0, int v1) {
+      for (int v = v0; v < v1; ++v)
+        for (int u = 0; u < w; ++u) dirs_[static_cast<std::size_t>(v) * w + u] = model_.ray(u, v).cast<float>();
+    });
+    frame_.width = w;
+    frame_.height = h;
+    frame_.rgb.assign(3 * n, 0);
+    frame_.radiance.assign(3 * n, 0.0f);
+    frame_.range.assign(n, std::numeric_limits<float>::infinity());
+    encode_.resize(kEncodeEntries + 1);
+    for (int i = 0; i <= kEncodeEntries; ++i)
+      encode_[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::pow(i / double(kEncodeEntries), 1.0 / gamma_)));
+    exposure_f_ = static_cast<float>(exposure_);
+    gain_f_ = static_cast<float>(gain_);
+    shot_ = static_cast<float>(1.0 / full_well_);
+    read2_ = static_cast<float>((read_noise_ / full_well_) * (read_noise_ / full_well_));
+    normal_ = normalTable().data();
+  }
+  albedo_.clear();
+  for (const auto& m : config.meshes)
+    albedo_.emplace_back(static_cast<float>(m.albedo.x()), static_cast<float>(m.albedo.y()),
+                         static_cast<float>(m.albedo.z()), 0.0f);
+}
+
+inline void CameraSensor::encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed)
+{
+  Eigen::Array4f s = (exposure_f_ * radiance).min(1.0f);
+  if (noise_) {
+    // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
+    // the image does not depend on the thread count or on how often a pixel is encoded.
+    const std::uint64_t hash = mix(seed + 0x9e3779b97f4a7c15ull * i);
+    const float* normal = normal_;
+    const Eigen::Array4f n(normal[hash & 0xfff], normal[(hash >> 12) & 0xfff], normal[(hash >> 24) & 0xfff], 0.0f);
+    s += (s * shot_ + read2_).sqrt() * n;
+  }
+  const Eigen::Array4f out = (gain_f_ * s).max(0.0f).min(1.0f) * static_cast<float>(kEncodeEntries) + 0.5f;
+  std::uint8_t* px = &frame_.rgb[3 * i];
+  for (int k = 0; k < 3; ++k) px[k] = encode_[static_cast<std::size_t>(out[k])];
+}
+
+void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed)
+{
+  const float* rad = &frame_.radiance[3 * i];
+  encodePixel(i, Eigen::Array4f(rad[0], rad[1], rad[2], 0.0f), seed);
+}
+
+void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
+{
+  const int w = model_.width(), h = model_.height();
+  const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
+  const Eigen::Matrix3f rot = cam.linear().cast<float>();
+  const Eigen::Vector3f origin = cam.translation().cast<float>();
+  const int band = std::max<int>(1, static_cast<int>(kBandRays / static_cast<std::size_t>(w)));
+  std::vector<unsigned> lit;
+  for (int row0 = 0; row0 < h; row0 += band) {
+    const int rows = std::min(band, h - row0);
+    const std::size_t first = static_cast<std::size_t>(row0) * w, n = static_cast<std::size_t>(rows) * w;
+    rays_.resize(n);
+    parallelRows(rows, [&](int r0, int r1) {
+      for (std::size_t i = static_cast<std::size_t>(r0) * w; i < static_cast<std::size_t>(r1) * w; ++i) {
+        rays_[i].origin = origin;
+        rays_[i].direction = rot * dirs_[first + i];
+        rays_[i].max_range = static_cast<float>(clip_far_);
+      }
+    });
+    castRays(ctx, rays_, hits_);
+
+    if (shadows_) {
+      lit.assign(n, ~0u);
+      // One ray from each light towards every surface point it would light; a hit before the point shadows it.
+      shadow_rays_.clear();
+      std::vector<std::pair<std::size_t, int>> pairs;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!hits_[i].hit()) continue;
+        const Eigen::Vector3f p = hits_[i].range * dirs_[first + i];
+        const Eigen::Vector3f nrm = rot.transpose() * hits_[i].normal;
+        for (int k : formation_->activeLights()) {
+          if (!formation_->lights(k, p, nrm)) continue;
+          const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
+          const Eigen::Vector3f to = hits_[i].point(rays_[i]) - from;
+          const float len = to.norm();
+          if (!(len > 2e-3f)) continue;
+          raycast::Ray r;
+          r.origin = from;
+          r.direction = to / len;
+          r.max_range = len * 0.999f - 1e-3f;
+          shadow_rays_.push_back(r);
+          pairs.emplace_back(i, k);
+        }
+      }
+      castRays(ctx, shadow_rays_, shadow_hits_);
+      for (std::size_t s = 0; s < pairs.size(); ++s)
+        if (shadow_hits_[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
+    }
+    shadeRows(row0, rows, cam, shadows_ ? lit.data() : nullptr, seed);
+  }
+  if (laser_) {
+    // The line adds light to a few pixels: encode those again (noise is a function of seed and pixel alone).
+    touched_.clear();
+    laser_->draw(ctx, formation_->water(), frame_.range, frame_.radiance, touched_);
+    for (std::size_t i : touched_) encodePixel(i, seed);
+  }
+}
+
+void CameraSensor::shadeRows(int row0, int rows, const Eigen::Isometry3d& cam, const unsigned* lit, std::uint64_t seed)
+{
+  const int w = model_.width();
+  const Eigen::Matrix3f to_camera = cam.linear().cast<float>().transpose();
+  const Eigen::Array4f hull(static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
+                            static_cast<float>(kHullAlbedo.z()), 0.0f);
+  const float far = static_cast<float>(clip_far_);
+  parallelRows(rows, [&](int r0, int r1) {
+    for (int r = r0; r < r1; ++r) {
+      const int v = row0 + r;
+      for (int u = 0; u < w; ++u) {
+        const std::size_t i = static_cast<std::size_t>(r) * w + u;
+        const std::size_t g = static_cast<std::size_t>(v) * w + u;
+        const raycast::Hit& hit = hits_[i];
+        Eigen::Array4f radiance;
+        if (hit.hit()) {
+          const Eigen::Array4f& albedo =
+              hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)] : hull;
+          radiance = formation_->direct4(hit.range * dirs_[g], hit.range, to_camera * hit.normal, albedo,
+                                                 lit ? lit[i] : ~0u) +
+                     formation_->backscatter4(static_cast<float>(u), static_cast<float>(v), hit.range);
+          frame_.range[g] = hit.range;
+        } else {
+          radiance = formation_->backscatter4(static_cast<float>(u), static_cast<float>(v), far);
+          frame_.range[g] = std::numeric_limits<float>::infinity();
+        }
+        float* out = &frame_.radiance[3 * g];
+        out[0] = radiance[0];
+        out[1] = radiance[1];
+        out[2] = radiance[2];
+        encodePixel(g, radiance, seed);
+      }
+    }
+  });
+}
+
+}  // namespace vision
+}  // namespace sensors
+}  // namespace unexmin

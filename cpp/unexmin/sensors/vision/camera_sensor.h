@@ -1,0 +1,132 @@
+// A camera of the UX-1 (family "camera"): renders rgb8 images on the CPU by casting one ray per pixel of the
+// published (distorted) image through the world's ray caster, lit only by the robot's own lights in the water of
+// the world's visibility (ImageFormation), with its SLS unit's laser line (LaserLine) and sensor noise. Frame: the
+// sensor link, the camera's REP-103 optical frame (z forward, x right, y down); rate = frames per second.
+//
+// Modes (SensorSetup::visual, /sim/mode): in visual mode a frame is rendered at each sample that is wanted (see
+// setDemand: the ROS layer asks only when someone subscribes to the image); in operational mode nothing is
+// rendered, the lights and the laser line are off, and a sample only moves the schedule (the ROS layer publishes
+// camera_info alone). See docs/vision.md.
+//
+// Per pixel: the ray of the pixel centre (CameraModel::ray, distortion undone exactly), cast up to clip_far; the
+// radiance at the lens L = direct + backscatter (ImageFormation; albedo of the hit mesh from the world file, of a
+// robot hull kHullAlbedo); the laser line added; then the sensor: signal s = min(1, exposure L) in fractions of
+// full well, shot noise sqrt(s / full_well) and read noise read_noise / full_well (Gaussian, seeded), times gain,
+// clamped to [0, 1], gamma-encoded v^(1/gamma) and rounded to 8 bits per channel.
+//
+// Parameters (units; default):
+//   width, height [px] (2054 x 1544), hfov [rad] (80 deg), distortion k1 k2 p1 p2 k3 (0), render_scale (1):
+//       CameraModel::fromParams
+//   clip_far [m] (20): pixel rays end here (open water beyond)
+//   exposure [m^2 sr / W] (20): fraction of full well per unit radiance at the lens
+//   gain [-] (1), gamma [-] (1: linear), noise gaussian|none (gaussian), full_well [e-] (10000),
+//   read_noise [e-] (10)
+//   lights: links of the robot's LED lights (+x = beam axis; none by default); light_intensity I0 per channel
+//       [W/sr] (1.5 1.5 1.5), light_cone full angle [rad] (90 deg), light_exponent m [-] (1)
+//   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
+//   laser_power [W] (0.05), laser_width [px] (1), laser_colour (0.05 1 0.15): the line of the SLS unit whose
+//       <sensor type="sls"> names this camera's link as its camera_frame (none: no line)
+#pragma once
+
+#include <unexmin/sensors/sensor.h>
+#include <unexmin/sensors/vision/camera_model.h>
+#include <unexmin/sensors/vision/image_formation.h>
+#include <unexmin/sensors/vision/laser_line.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace unexmin {
+namespace sensors {
+namespace vision {
+
+/// One frame of a camera.
+struct CameraFrame
+{
+  double time = -1.0;            ///< sim time of the sample [s]
+  bool rendered = false;         ///< false: no image at this sample (operational mode, or not wanted)
+  int width = 0, height = 0;     ///< [px] of the published image
+  std::vector<std::uint8_t> rgb; ///< rgb8, row-major, 3 * width bytes per row
+  /// Linear radiance at the lens per pixel and channel, before the sensor [W m^-2 sr^-1] (3 per pixel).
+  std::vector<float> radiance;
+  std::vector<float> range;      ///< distance from the lens to the surface per pixel [m]; +inf: none
+};
+
+class CameraSensor : public Sensor
+{
+public:
+  /// Albedo (R, G, B) of a robot hull seen by a camera [assumed: the UX-1's yellow paint, urdf hull_rgba].
+  static const Eigen::Vector3d kHullAlbedo;
+
+  CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
+  ~CameraSensor() override;
+
+  /// The published image's geometry (render_scale applied): CameraInfo's K, D, P and size.
+  const CameraModel& model() const { return model_; }
+  /// Visual mode: images are rendered (when wanted), lights and laser on.
+  bool visual() const { return visual_; }
+  const CameraFrame& last() const { return frame_; }
+  /// Renders only at samples where `wanted()` is true (e.g. the image topic has a subscriber); null: always.
+  void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
+
+  double clipFar() const { return clip_far_; }      ///< [m]
+  double exposure() const { return exposure_; }     ///< [m^2 sr / W]
+  double gain() const { return gain_; }             ///< [-]
+  double gamma() const { return gamma_; }           ///< [-]
+  bool shadows() const { return shadows_; }
+  /// The lights in this camera's optical frame.
+  const std::vector<LedLight>& lights() const { return lights_; }
+  /// The laser line drawn in this camera's image (null: no SLS unit names this camera).
+  const LaserLine* laser() const { return laser_.get(); }
+  /// The image formation of the latest rendered frame's water (null before the first render).
+  const ImageFormation* formation() const { return formation_.get(); }
+  /// The camera's optical frame in the base frame.
+  const Eigen::Isometry3d& pose() const { return spec().pose; }
+
+protected:
+  void onReset() override;
+  void sample(const SensorContext& ctx) override;
+
+private:
+  /// Builds what rendering needs (once, and again when the world's water changes).
+  void prepare(const SensorContext& ctx);
+  /// Renders frame_ (noise of frame seed `seed`).
+  void render(const SensorContext& ctx, std::uint64_t seed);
+  /// Radiance, range and rgb of rows [row0, row0 + rows) from hits_ (the band's hits); `lit`: per pixel of the band,
+  /// the lights that reach it (bit k: light k; null: all of them).
+  void shadeRows(int row0, int rows, const Eigen::Isometry3d& cam, const unsigned* lit, std::uint64_t seed);
+  /// The sensor at pixel i: noise, gain, gamma, 8 bits per channel from its radiance.
+  void encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed);
+  void encodePixel(std::size_t i, std::uint64_t seed);
+
+  CameraModel model_;
+  bool visual_ = false;
+  double clip_far_ = 20.0, exposure_ = 20.0, gain_ = 1.0, gamma_ = 1.0;
+  bool noise_ = true, shadows_ = false;
+  double full_well_ = 10000.0, read_noise_ = 10.0;
+  std::vector<LedLight> lights_;
+  std::unique_ptr<LaserLine> laser_;
+  std::function<bool()> demand_;
+
+  // Built at the first render (visual mode only).
+  std::unique_ptr<ImageFormation> formation_;
+  std::string water_key_;                 ///< visibility level and colour the formation was built for
+  std::vector<Eigen::Vector3f> dirs_;     ///< per pixel: unit ray direction in the optical frame
+  std::vector<Eigen::Array4f> albedo_;    ///< per world mesh (R, G, B, 0)
+  std::vector<raycast::Ray> rays_;        ///< one band of rows
+  std::vector<raycast::Hit> hits_;
+  std::vector<raycast::Ray> shadow_rays_;
+  std::vector<raycast::Hit> shadow_hits_;
+  std::vector<std::uint8_t> encode_;      ///< gamma table: signal in [0, 1] -> 8 bits
+  float exposure_f_ = 0.0f, gain_f_ = 0.0f, shot_ = 0.0f, read2_ = 0.0f;
+  const float* normal_ = nullptr;         ///< standard normal quantiles (noise draws)
+  std::vector<std::size_t> touched_;      ///< pixels the laser line lit this frame
+  CameraFrame frame_;
+};
+
+}  // namespace vision
+}  // namespace sensors
+}  // namespace unexmin

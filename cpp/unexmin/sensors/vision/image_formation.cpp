@@ -1,0 +1,146 @@
+#include <unexmin/sensors/vision/image_formation.h>
+
+#include <unexmin/core/error.h>
+#include <unexmin/sensors/vision/parallel_rows.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace unexmin {
+namespace sensors {
+namespace vision {
+namespace {
+
+constexpr int kPowEntries = ImageFormation::kPowEntries;
+constexpr int kExpEntries = ImageFormation::kExpEntries;
+constexpr int kSimpson = 4;          ///< Simpson sub-intervals per range bin (even)
+constexpr int kMaxNodesU = 65;       ///< backscatter table: pixel nodes across ...
+constexpr int kMaxNodesV = 49;      ///< ... and down
+constexpr double kConeMargin = 5.0 * M_PI / 180.0;  ///< [rad] a light is kept if a grid ray passes this close
+
+}  // namespace
+
+double LedLight::profile(double cos_theta) const
+{
+  const double half = std::min(cone / 2.0, M_PI / 2.0);
+  const double theta = std::acos(std::max(-1.0, std::min(1.0, cos_theta)));
+  if (!(theta < half)) return 0.0;
+  const double x = std::min(1.0, (half - theta) / (kEdge * half));  // 0 at the cone's edge, 1 inside the rim
+  return std::pow(cos_theta, exponent) * x * x * (3.0 - 2.0 * x);
+}
+
+Eigen::Vector3d LedLight::at(double cos_theta) const { return intensity * profile(cos_theta); }
+
+ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> lights, const WaterOptics& water,
+                               double max_range, int threads)
+    : water_(water), lights_(std::move(lights)), max_range_(max_range)
+{
+  if (!(max_range > 0.0) || !std::isfinite(max_range))
+    throw ParameterError("image formation: max_range = " + formatNumber(max_range) + " m: expected > 0");
+  if (lights_.size() > 32) throw ParameterError("image formation: at most 32 lights");
+  for (auto& l : lights_) {
+    l.axis.normalize();
+    Fast f;
+    f.position = l.position.cast<float>();
+    f.axis = l.axis.cast<float>();
+    const Eigen::Vector3d i0 = l.intensity / M_PI;
+    f.intensity = Eigen::Array4f(static_cast<float>(i0[0]), static_cast<float>(i0[1]), static_cast<float>(i0[2]), 0.0f);
+    const double cos_half = std::max(0.0, std::cos(l.cone / 2.0));
+    f.cos_half = static_cast<float>(cos_half);
+    f.pow_m.resize(kPowEntries + 2);
+    for (int i = 0; i <= kPowEntries + 1; ++i)
+      f.pow_m[i] = static_cast<float>(l.profile(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries)));
+    f.pow_scale = static_cast<float>(kPowEntries / std::max(1e-9, 1.0 - cos_half));
+    fast_.push_back(std::move(f));
+    reach_cos_.push_back(std::cos(std::min(M_PI, l.cone / 2.0 + kConeMargin)));
+  }
+  // Longest light path: to the farthest surface and back to a light beside the lens.
+  double reach = 0.0;
+  for (const auto& l : lights_) reach = std::max(reach, l.position.norm());
+  const double x_max = 2.0 * max_range + 2.0 * reach + 1.0;
+  exp_.assign(4 * (kExpEntries + 2), 0.0f);
+  const Eigen::Vector3d c = water_.c();
+  for (int i = 0; i <= kExpEntries + 1; ++i)
+    for (int k = 0; k < 3; ++k) exp_[4 * i + k] = static_cast<float>(std::exp(-c[k] * x_max * i / kExpEntries));
+  exp_scale_ = static_cast<float>(kExpEntries / x_max);
+  buildTable(camera, threads);
+}
+
+bool ImageFormation::lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
+{
+  const Fast& l = fast_[static_cast<std::size_t>(k)];
+  const Eigen::Vector3f v = p - l.position;
+  const float r = v.norm();
+  return l.axis.dot(v) > l.cos_half * r && n.dot(v) < 0.0f;
+}
+
+Eigen::Array3d ImageFormation::integrand(const Eigen::Vector3d& d, double s, std::vector<char>* reached) const
+{
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  const Eigen::Vector3d x = s * d;
+  const Eigen::Array3d c = water_.c().array(), b = water_.b.array();
+  for (std::size_t k = 0; k < lights_.size(); ++k) {
+    const LedLight& l = lights_[k];
+    const Eigen::Vector3d w = x - l.position;
+    const double r = w.norm();
+    if (!(r > 1e-9)) continue;
+    const Eigen::Vector3d dir = w / r;  // the light's direction of travel
+    const double cos_theta = l.axis.dot(dir);
+    if (reached && cos_theta > reach_cos_[k]) (*reached)[k] = 1;
+    if (!(cos_theta > fast_[k].cos_half) || !(cos_theta > 0.0)) continue;
+    const double p = water_.phase(-dir.dot(d));  // scattered back along -d, towards the lens
+    const double geometry = p * l.profile(cos_theta) / (r * r);
+    sum += b * l.intensity.array() * geometry * (-c * (s + r)).exp();
+  }
+  return sum;
+}
+
+void ImageFormation::buildTable(const CameraModel& camera, int threads)
+{
+  nu_ = std::max(2, std::min(kMaxNodesU, camera.width()));
+  nv_ = std::max(2, std::min(kMaxNodesV, camera.height()));
+  step_u_ = static_cast<float>(std::max(1, camera.width() - 1)) / static_cast<float>(nu_ - 1);
+  step_v_ = static_cast<float>(std::max(1, camera.height() - 1)) / static_cast<float>(nv_ - 1);
+  s_.resize(static_cast<std::size_t>(bins_ + 1));
+  for (int j = 0; j <= bins_; ++j) s_[j] = static_cast<float>(max_range_ * (j / double(bins_)) * (j / double(bins_)));
+  inv_bin_.resize(static_cast<std::size_t>(bins_));
+  for (int j = 0; j < bins_; ++j) inv_bin_[j] = 1.0f / (s_[j + 1] - s_[j]);
+  inv_step_u_ = 1.0f / step_u_;
+  inv_step_v_ = 1.0f / step_v_;
+  inv_range_ = 1.0f / s_.back();
+  table_.assign(static_cast<std::size_t>(nu_ * nv_ * (bins_ + 1) * 4), 0.0f);
+  std::vector<std::vector<char>> reached(static_cast<std::size_t>(nv_), std::vector<char>(lights_.size(), 0));
+
+  parallelRows(nv_, [&](int v0, int v1) {
+    for (int jv = v0; jv < v1; ++jv)
+      for (int iu = 0; iu < nu_; ++iu) {
+        const Eigen::Vector3d d = camera.ray(iu * step_u_, jv * step_v_);
+        float* out = &table_[static_cast<std::size_t>((jv * nu_ + iu) * (bins_ + 1) * 4)];
+        Eigen::Array3d total = Eigen::Array3d::Zero();
+        Eigen::Array3d f0 = integrand(d, 0.0, &reached[jv]);
+        for (int j = 0; j < bins_; ++j) {
+          // Simpson over [s_j, s_j+1] in kSimpson sub-intervals.
+          const double a = s_[j], h = (s_[j + 1] - s_[j]) / kSimpson;
+          Eigen::Array3d acc = f0;
+          Eigen::Array3d f = f0;
+          for (int m = 1; m <= kSimpson; ++m) {
+            f = integrand(d, a + m * h, &reached[jv]);
+            acc += (m == kSimpson ? 1.0 : (m % 2 ? 4.0 : 2.0)) * f;
+          }
+          total += acc * (h / 3.0);
+          f0 = f;
+          for (int c = 0; c < 3; ++c) out[(j + 1) * 4 + c] = static_cast<float>(total[c]);
+        }
+      }
+  }, threads, 1);
+
+  for (std::size_t k = 0; k < lights_.size(); ++k) {
+    bool any = false;
+    for (const auto& row : reached) any = any || row[k];
+    if (any) active_.push_back(static_cast<int>(k));
+  }
+}
+
+}  // namespace vision
+}  // namespace sensors
+}  // namespace unexmin
