@@ -78,7 +78,7 @@ done
 
 [ "$quiet" -eq 1 ] && exit 0
 say "$src holds: ${names[*]}. Next, build and use the workspace:"
-say "  cd $ws && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2"
+say "  cd $ws && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2"
 say "  source $ws/devel/setup.bash    # roslaunch also needs xacro 1.13.3 (scripts/setup.sh's venv) on PATH"
 say "or let scripts/setup.sh install the Debian packages and the venv, then build this workspace:"
 say "  UNEXMIN_WS=$ws bash $repo/scripts/setup.sh && UNEXMIN_WS=$ws source $repo/scripts/env.sh"

@@ -61,7 +61,7 @@ echo "[setup] building workspace $ws"
   source /opt/ros/*/setup.bash 2>/dev/null || true
   cd "$ws"
   export PATH="$venv/bin:$PATH"
-  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2 >"$ws/build.log" 2>&1 \
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2 >"$ws/build.log" 2>&1 \
     || { tail -n 60 "$ws/build.log"; echo "[setup] build failed, full log: $ws/build.log" >&2; exit 1; }
 )
 echo "[setup] ready: source $repo/scripts/env.sh"

@@ -153,6 +153,7 @@ def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
     start = time.monotonic()
     with open(tmp_path / "build.log", "w") as log:
         build = subprocess.run(["catkin_make", "-C", str(ws), "-DPYTHON_EXECUTABLE=/usr/bin/python3",
+                                "-DPython3_EXECUTABLE=/usr/bin/python3",
                                 "-DCMAKE_BUILD_TYPE=Release", "-DCATKIN_ENABLE_TESTING=OFF", "-j2", *targets],
                                env=env, stdout=log, stderr=subprocess.STDOUT, timeout=900)
     build_s = time.monotonic() - start
