@@ -83,13 +83,19 @@ def stop_process_group(proc, timeout=15.0, marker=None):
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
-        table = _process_table()
-        for pid, start in below.items():
-            if pid in table and table[pid][1] == start:  # the same process, not a reused pid
-                try:
-                    os.kill(pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
+        # The SIGINT reached them too: give them `timeout` s to finish (a rosbag recorder indexes and closes
+        # its bag after its parent script has exited), then SIGKILL what is still there.
+        def alive():
+            table = _process_table()
+            return [p for p, start in below.items() if p in table and table[p][1] == start]  # not a reused pid
+        deadline = time.monotonic() + timeout
+        while alive() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        for pid in alive():
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
     if marker is None:
         return
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
