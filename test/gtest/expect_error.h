@@ -7,20 +7,22 @@
 
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 
 namespace unexmin {
 namespace test {
 
-/// The what() of the ParameterError that f throws; a test failure if it throws none.
-template <typename F>
+/// The what() of the error of type E (ParameterError unless given) that f throws; a test failure if it throws
+/// none.
+template <typename E = ParameterError, typename F>
 std::string thrownMessage(F f)
 {
   try {
     f();
-  } catch (const ParameterError& e) {
+  } catch (const E& e) {
     return e.what();
   }
-  ADD_FAILURE() << "expected ParameterError";
+  ADD_FAILURE() << "expected an error of the expected type (" << typeid(E).name() << ")";
   return "";
 }
 

@@ -30,22 +30,9 @@ Eigen::Vector2d plumbBob(const Eigen::Vector2d& xy, const std::array<double, 5>&
           y * radial + d[2] * (r2 + 2 * y * y) + 2 * d[3] * x * y};
 }
 
-/// The message of the ConfigError `f` throws (a failure when none).
-template <typename F>
-std::string configMessage(F f)
-{
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected ConfigError";
-  return "";
-}
-
 void expectConfigError(const std::function<void()>& f, const std::string& part)
 {
-  const std::string message = configMessage(f);
+  const std::string message = thrownMessage<ConfigError>(f);
   EXPECT_TRUE(contains(message, part)) << message;
   EXPECT_TRUE(contains(message, "T: sensor 'cam' (type camera)")) << message;
 }

@@ -34,19 +34,6 @@ sim::SensorSpec spec(const hydro::ParamMap& params, const std::map<std::string, 
   return s;
 }
 
-/// The what() of the ConfigError f throws; a test failure if none.
-template <typename F>
-std::string configError(F f)
-{
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected ConfigError";
-  return "";
-}
-
 /// The message names the robot and the sensor (with its type) and holds every one of `parts`.
 void expectNames(const std::string& m, const std::string& robot, const std::string& sensor, const std::string& type,
                  const std::vector<std::string>& parts)
@@ -71,12 +58,12 @@ TEST(SensorParams, AValueOutOfRangeNamesRobotSensorParameterValueAndRange)
 {
   const sim::SensorSpec s = spec({{"beam_angle", {2.0}}, {"altitude_min", {-0.5}}, {"rate_ok", {10.0}}});
   SensorParams p(s, "UX_1");
-  expectNames(configError([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_1", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_1", "nav_dvl", "dvl",
               {"parameter 'beam_angle' = 2", "expected a number in [0, 1.5] rad"});
-  expectNames(configError([&] { p.number("altitude_min", 0.1, 0.0, 10000.0, "m"); }), "UX_1", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("altitude_min", 0.1, 0.0, 10000.0, "m"); }), "UX_1", "nav_dvl", "dvl",
               {"parameter 'altitude_min' = -0.5", "[0, 10000] m"});
   // An open upper end excludes the end itself and says so.
-  expectNames(configError([&] { p.number("rate_ok", 1.0, 0.0, 10.0, "Hz", true); }), "UX_1", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("rate_ok", 1.0, 0.0, 10.0, "Hz", true); }), "UX_1", "nav_dvl", "dvl",
               {"parameter 'rate_ok' = 10", "[0, 10) Hz"});
 }
 
@@ -86,18 +73,18 @@ TEST(SensorParams, NonNumbersMissingValuesAndWrongCountsAreNamedWithTheirText)
   const sim::SensorSpec s = spec({{"pair", {1.0, 2.0}}, {"not_finite", {nan}}, {"three", {1.0, 2.0}}},
                                  {{"beam_angle", "steep"}, {"empty", ""}, {"vector_text", "up"}});
   SensorParams p(s, "UX_2");
-  expectNames(configError([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'beam_angle' = 'steep'", "expected a number in [0, 1.5] rad"});
   // value='' (no value given): the empty text, quoted.
-  expectNames(configError([&] { p.number("empty", 1.0, 0.0, 2.0, "m"); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("empty", 1.0, 0.0, 2.0, "m"); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'empty' = ''", "[0, 2] m"});
-  expectNames(configError([&] { p.number("pair", 1.0, 0.0, 5.0, "m"); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("pair", 1.0, 0.0, 5.0, "m"); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'pair' = 1 2", "one number", "[0, 5] m"});
-  expectNames(configError([&] { p.number("not_finite", 1.0, 0.0, 5.0, "m"); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.number("not_finite", 1.0, 0.0, 5.0, "m"); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'not_finite' = nan", "[0, 5] m"});
-  expectNames(configError([&] { p.vec3("three", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.vec3("three", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'three' = 1 2", "three numbers"});
-  expectNames(configError([&] { p.vec3("vector_text", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.vec3("vector_text", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'vector_text' = 'up'", "three numbers"});
 }
 
@@ -120,9 +107,9 @@ TEST(SensorParams, AWordNotAllowedNamesTheAllowedOnes)
 {
   const sim::SensorSpec s = spec({{"noise", {1.0}}}, {{"mode", "brown"}});
   SensorParams p(s, "UX_3");
-  expectNames(configError([&] { p.text("mode", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.text("mode", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
               {"parameter 'mode' = 'brown'", "one of gaussian|none"});
-  expectNames(configError([&] { p.text("noise", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.text("noise", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
               {"parameter 'noise' = '1'", "one of gaussian|none"});
 }
 
@@ -133,7 +120,7 @@ TEST(SensorParams, AnUnreadParameterIsATypoExceptTopicNames)
   SensorParams p(s, "UX_1");
   p.number("beam_angle", 0.4, 0.0, 1.5, "rad");
   p.number("altitude_max", 75.0, 0.0, 1e4, "m");
-  expectNames(configError([&] { p.finish(); }), "UX_1", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.finish(); }), "UX_1", "nav_dvl", "dvl",
               {"unknown parameter 'altitud_max'", "altitude_max", "beam_angle"});
 
   const sim::SensorSpec topics_only = spec({}, {{"topic", "dvl/data"}, {"range_topic", "dvl/range"}});
@@ -145,7 +132,7 @@ TEST(SensorParams, FailIsAConfigErrorUnderTheOneErrorRoot)
   static_assert(std::is_base_of<Error, ConfigError>::value, "ConfigError is an unexmin::Error");
   const sim::SensorSpec s = spec({});
   SensorParams p(s, "UX_1");
-  expectNames(configError([&] { p.fail("beam_frames", "'x'", "4 link names"); }), "UX_1", "nav_dvl", "dvl",
+  expectNames(thrownMessage<ConfigError>([&] { p.fail("beam_frames", "'x'", "4 link names"); }), "UX_1", "nav_dvl", "dvl",
               {"parameter 'beam_frames' = 'x': expected 4 link names"});
 }
 
@@ -154,7 +141,7 @@ TEST(SensorParams, FailIsAConfigErrorUnderTheOneErrorRoot)
 /// Start-up of the robot "T" (test_fixture's sphere) in open water with one sensor; the ConfigError's what().
 std::string startup(const std::string& links, const std::string& sensor)
 {
-  return configError([&] {
+  return thrownMessage<ConfigError>([&] {
     SonarWorld w(meshWorld({}, Eigen::Vector3d(0, 0, -50)), sensorUrdf(SphereSpec(), links, sensor));
   });
 }
@@ -201,13 +188,13 @@ TEST(SensorParams, AParamWithoutValueOrWithANonFiniteOneStopsTheDescriptionNamin
     return sensorUrdf(SphereSpec(), links, "<sensor name='depth' type='pressure' link='T/p_link' rate='5'>" + param +
                                                "</sensor>\n");
   };
-  std::string m = configError([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise'/>"), "UX_1 description"); });
+  std::string m = thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise'/>"), "UX_1 description"); });
   EXPECT_TRUE(contains(m, "UX_1 description")) << m;
   EXPECT_TRUE(contains(m, "sensor name='depth'")) << m;
   EXPECT_TRUE(contains(m, "pressure_noise")) << m;
   EXPECT_TRUE(contains(m, "'value'")) << m;
 
-  m = configError([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise' value='nan'/>"), "UX_1 description"); });
+  m = thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise' value='nan'/>"), "UX_1 description"); });
   EXPECT_TRUE(contains(m, "UX_1 description")) << m;
   EXPECT_TRUE(contains(m, "sensor name='depth'")) << m;
   EXPECT_TRUE(contains(m, "pressure_noise")) << m;

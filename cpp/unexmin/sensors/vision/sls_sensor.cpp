@@ -108,8 +108,11 @@ void SlsSensor::sample(const SensorContext& ctx)
   }
   castRays(ctx, rays_, hits_);
 
-  const WaterOptics water = WaterOptics::fromVisibility(ctx.world.config().visibility, ctx.world.config().visibility_colour);
-  const double c = water.c().y(), b = water.b.y();
+  if (water_world_ != &ctx.world) {  // the water is the world's, fixed while it lives: derive it once
+    water_ = WaterOptics::fromVisibility(ctx.world.config().visibility, ctx.world.config().visibility_colour);
+    water_world_ = &ctx.world;
+  }
+  const double c = water_.c().y(), b = water_.b.y();
   const double level = threshold_ * (1.0 + b * backscatter_length_);
 
   // Laser points inside the image: candidates for the sight lines.

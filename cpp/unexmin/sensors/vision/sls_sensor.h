@@ -30,6 +30,7 @@
 
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/vision/camera_model.h>
+#include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Geometry>
 
@@ -101,6 +102,8 @@ private:
   CameraModel camera_;
   double baseline_ = 0.0;
   double now_ = 0.0;
+  WaterOptics water_;                        ///< the world's water, derived at the first sample in it
+  const sim::World* water_world_ = nullptr;
   std::vector<Eigen::Vector3d> dirs_;
   std::vector<raycast::Ray> rays_, sight_;
   std::vector<raycast::Hit> hits_, sight_hits_;
