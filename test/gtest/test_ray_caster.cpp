@@ -185,10 +185,21 @@ TEST_P(RayCasterBackend, InsideBoxRangesNormalsAndIncidenceAreAnalytic)
     short_rays.push_back(makeRay(p, d, t - 1e-3));
     long_rays.push_back(makeRay(p, d, t + 1e-3));
   }
-  std::vector<Hit> hits, short_hits, long_hits;
+  std::vector<Hit> hits, short_hits, long_hits, bare_hits;
   rc->cast(rays, hits);
   rc->cast(short_rays, short_hits);
   rc->cast(long_rays, long_hits);
+  // Rays that do not ask for the incidence (cameras) get the same hits without it.
+  std::vector<Ray> bare_rays = rays;
+  for (Ray& r : bare_rays) r.incidence = false;
+  rc->cast(bare_rays, bare_hits);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_EQ(bare_hits[i].range, hits[i].range) << "ray " << i;
+    EXPECT_EQ(bare_hits[i].normal, hits[i].normal) << "ray " << i;
+    EXPECT_EQ(bare_hits[i].index, hits[i].index) << "ray " << i;
+    EXPECT_TRUE(std::isnan(bare_hits[i].incidence)) << "ray " << i;
+    EXPECT_FALSE(std::isnan(hits[i].incidence)) << "ray " << i;
+  }
   for (std::size_t i = 0; i < rays.size(); ++i) {
     ASSERT_TRUE(hits[i].hit()) << "ray " << i;
     EXPECT_NEAR(hits[i].range, expected[i], 1e-4) << "ray " << i;

@@ -176,7 +176,8 @@ void RayCaster::finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal,
   hit.range = range;
   hit.normal = n;
   // atan2 keeps full precision near head-on incidence, where acos(-c) would not.
-  hit.incidence = std::atan2(n.cross(ray.direction).norm(), -c);
+  hit.incidence = ray.incidence ? std::atan2(n.cross(ray.direction).norm(), -c)
+                                : std::numeric_limits<float>::quiet_NaN();
   hit.kind = kind;
   hit.index = index;
 }

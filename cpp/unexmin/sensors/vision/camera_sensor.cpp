@@ -216,6 +216,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
         rays_[i].origin = origin;
         rays_[i].direction = rot * dirs_[first + i];
         rays_[i].max_range = static_cast<float>(clip_far_);
+        rays_[i].incidence = false;  // shading uses the normal
       }
     });
     castRays(ctx, rays_, hits_);
@@ -239,6 +240,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
           r.origin = from;
           r.direction = to / len;
           r.max_range = len * 0.999f - 1e-3f;
+          r.incidence = false;
           shadow_rays_.push_back(r);
           pairs.emplace_back(i, k);
         }
