@@ -255,3 +255,32 @@ def test_a_missing_device_is_one_error_line_and_a_failure(rig, tmp_path):
     assert res.returncode == 1
     assert len(lines) == 1, res.stderr
     assert str(missing) in lines[0] and "No such file or directory" in lines[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# teleop:= on the world launch files (roslaunch --nodes / --dump-params: no master needed)
+# ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("launch_file", ["tank_world.launch", "mine_world.launch"])
+@pytest.mark.parametrize("teleop, node", [("joystick", "/UX_1/joystick"), ("keyboard", "/UX_1/teleop"),
+                                          ("none", None)])
+def test_the_teleop_argument_starts_one_teleop_for_ux_1(launch_file, teleop, node):
+    out = subprocess.run(["roslaunch", "--nodes", "unexmin", launch_file, f"teleop:={teleop}"],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    teleops = {n for n in out.stdout.split() if n in ("/UX_1/joystick", "/UX_1/teleop")}
+    assert teleops == ({node} if node else set())
+
+
+def test_the_joystick_device_argument_and_a_bad_teleop_value():
+    import yaml
+
+    out = subprocess.run(["roslaunch", "--dump-params", "unexmin", "tank_world.launch", "teleop:=joystick",
+                          "joystick_device:=/dev/input/js3"], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    params = yaml.safe_load(out.stdout)
+    assert params["/UX_1/joystick/device"] == "/dev/input/js3"
+    assert params["/UX_1/joystick/mapping"].endswith("/config/joystick.yaml")
+    bad = subprocess.run(["roslaunch", "--nodes", "unexmin", "tank_world.launch", "teleop:=mouse"],
+                         capture_output=True, text=True, timeout=120)
+    assert bad.returncode != 0
+    assert "teleop_must_be_keyboard_joystick_or_none" in bad.stdout + bad.stderr
