@@ -6,8 +6,8 @@ joystick node commands the wrench, the thruster allocator (thesis matrix, eq. 5.
 stick up is X = 10 N, a surge force of 10 · Σ|A_X| · cos 45° = 14.1 N; full right stick left is N = 2 N m, a
 yaw moment of 2 · Σ|A_N| · 0.3 m = 0.6 N m. Starting from rest, the distance (angle) covered in T seconds is
 below the drag-free bound F T² / (2 m): with the UX-1's drag and the thrusters' 0.1 s lag, the closed-form
-answer is 0.90 of it (both motions); the test asks for 0.80..0.97, which a wrong sign, axis, speed step
-(11 N: 0.99) or allocation breaks.
+answer is 0.90 of it (both motions); the test asks for 0.85..0.94 (measured: 0.897, 0.896), which a wrong sign, axis,
+speed step (11 N: 0.99) or allocation breaks.
 """
 
 import math
@@ -128,8 +128,8 @@ class Joystick(unittest.TestCase):
         forward, lateral, dz, turned = self.moved()
         force = 10.0 * 2.0 * math.cos(math.pi / 4)              # Σ|A_X| = 2
         bound = force * seconds ** 2 / (2 * 1.5 * RHO * VOLUME)   # rigid + added mass 1/2 rho V
-        self.assertGreater(forward, 0.8 * bound)
-        self.assertLess(forward, 0.97 * bound)
+        self.assertGreater(forward, 0.85 * bound)
+        self.assertLess(forward, 0.94 * bound)
         self.assertLess(abs(lateral), 0.02 * forward)
         self.assertLess(abs(dz), 0.01)
         self.assertLess(abs(turned), 0.01)
@@ -142,8 +142,8 @@ class Joystick(unittest.TestCase):
         moment = 2.0 * 1.0 * RADIUS                             # Σ|A_N| = 1, tangential arm 0.3 m
         inertia = 0.4 * RHO * VOLUME * RADIUS ** 2
         bound = moment * seconds ** 2 / (2 * inertia)
-        self.assertGreater(turned, 0.8 * bound)
-        self.assertLess(turned, 0.97 * bound)
+        self.assertGreater(turned, 0.85 * bound)
+        self.assertLess(turned, 0.94 * bound)
         self.assertLess(math.hypot(forward, lateral), 0.01)
 
 
