@@ -141,6 +141,7 @@ LISTENER = textwrap.dedent("""
     import json, sys, time
     import rospy
     from geometry_msgs.msg import Wrench
+    from sensor_msgs.msg import Joy
     from std_msgs.msg import Float64
     out = open(sys.argv[1], "a", buffering=1)
     def rec(topic, data):
@@ -150,13 +151,15 @@ LISTENER = textwrap.dedent("""
                      m.torque.x, m.torque.y, m.torque.z]), queue_size=100)
     rospy.Subscriber("/UX_1/pendulum", Float64, lambda m: rec("pendulum", m.data), queue_size=100)
     rospy.Subscriber("/UX_1/vbs", Float64, lambda m: rec("vbs", m.data), queue_size=100)
+    rospy.Subscriber("/joy", Joy, lambda m: rec("joy", [list(m.axes), list(m.buttons)]), queue_size=100)
     rec("ready", None)
     rospy.spin()
 """)
 
 
 class Rig:
-    """A private master, a listener and a private tmux server; everything is stopped in close()."""
+    """A private master, a listener (of the three command topics and /joy, for test_joystick.py too) and a
+    private tmux server; everything is stopped in close()."""
 
     def __init__(self, tmp_path):
         self.tmp = tmp_path
