@@ -110,7 +110,7 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
     wall0 = time.monotonic()
     world = WorldProcess(world="mine", robots=1, seed=seed, realtime=False, paused=True, log_dir=log_dir,
                          extra_args=("mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}"))
-    recorder = log = None
+    recorder = log = sim = stats_sub = None
     stats = {}
     legs = []
     try:
@@ -120,7 +120,7 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
 
         from unexmin.msg import MapperStats
 
-        rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
+        stats_sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
         wait_for(lambda: "last" in stats, 120.0, "the mapper's /mapper/stats")
         ux = sim.robot(ROBOT)
         log = open(os.path.join(log_dir, "rosbag_record.log"), "w")
@@ -169,7 +169,14 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
         if recorder is not None:
             stop_process_group(recorder, 20.0)
             log.close()
-        world.close(30.0)  # SIGINT: the mapper saves mine_map.bt
+        if stats_sub is not None:
+            stats_sub.unregister()
+        # This script's topics go first, while the master is up (no "unable to communicate" at exit), then the
+        # world gets SIGINT: the mapper saves mine_map.bt.
+        if sim is not None:
+            sim.close(30.0)
+        else:
+            world.close(30.0)
     wall = time.monotonic() - wall0
     if not os.path.exists(map_path):
         raise RuntimeError(f"the mapper did not save {map_path}: see {log_dir}")

@@ -448,10 +448,11 @@ class Simulation:
         self._odometry = {}
         self._streams.sync()
 
-    def close(self):
-        """Unsubscribe this script's topics and stop the world this object launched (if any); idempotent.
-        Another Simulation can then be made (or launched) in this process."""
-        self._close()
+    def close(self, timeout=15.0):
+        """Unsubscribe this script's topics and stop the world this object launched (if any; it gets
+        `timeout` s of wall time after SIGINT before SIGKILL); idempotent. Another Simulation can then be
+        made (or launched) in this process."""
+        self._close(timeout)
 
     def _close(self, world_timeout=15.0):
         global _open
