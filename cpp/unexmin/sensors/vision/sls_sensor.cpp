@@ -1,5 +1,6 @@
 #include <unexmin/sensors/vision/sls_sensor.h>
 
+#include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <algorithm>
@@ -12,8 +13,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// Green albedo of a robot hull seen by a laser [assumed: the UX-1's yellow paint].
-constexpr double kHullAlbedo = 0.6;
 /// A sight line shorter than the camera range by more than this [m] is blocked (the point's own surface is
 /// at the end of the line).
 constexpr double kSightSlack = 0.005;
@@ -151,7 +150,7 @@ void SlsSensor::sample(const SensorContext& ctx)
     const raycast::Hit& h = hits_[j];
     const double rl = h.range;
     const double rc = sight_[k].max_range + kSightSlack;
-    double albedo = kHullAlbedo;
+    double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh) albedo = ctx.world.config().meshes.at(static_cast<std::size_t>(h.index)).albedo.y();
     const double strength = albedo * std::cos(static_cast<double>(h.incidence)) * std::exp(-c * (rl + rc)) / rl;
     if (!(strength >= level) || strength <= 0.0) continue;
