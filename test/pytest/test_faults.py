@@ -5,34 +5,13 @@ every process of a run inherits; every wait is on a condition."""
 
 import os
 import signal
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, stop_process_group, wait_for
-
-RUNS = []
-
-
-@pytest.fixture(autouse=True)
-def no_leftovers():
-    yield
-    while RUNS:
-        proc, marker = RUNS.pop()
-        stop_process_group(proc, 15.0, marker)
-
-
-def start(args, tmp, **env):
-    marker = f"faults-test-{os.getpid()}-{len(RUNS)}-{time.monotonic_ns()}"
-    e = dict(os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker, **env)
-    proc = subprocess.Popen(args, stdout=open(tmp / "out.log", "w"), stderr=subprocess.STDOUT, env=e,
-                            start_new_session=True, cwd=tmp)
-    RUNS.append((proc, marker))
-    return proc, marker
-
+from unexmin.launcher import free_port, marked_processes, wait_for
 
 def pids_of(marker, name):
     out = []
@@ -46,10 +25,10 @@ def pids_of(marker, name):
     return out
 
 
-def world(tmp, *args):
+def world(runs, tmp, *args):
     port = free_port()
     uri = f"http://127.0.0.1:{port}"
-    proc, marker = start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", *args], tmp,
+    proc, marker = runs.start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", *args], tmp,
                          ROS_MASTER_URI=uri)
     return proc, marker, uri
 
@@ -57,11 +36,11 @@ def world(tmp, *args):
 @pytest.mark.parametrize("node,args", [("thruster_allocator", ()),
                                        ("kvh_translator", ("kvh_translator:=true",)),
                                        ("esc_driver", ())])
-def test_killed_node_is_respawned(tmp_path, node, args):
-    proc, marker, uri = world(tmp_path, "realtime:=true", *args)
+def test_killed_node_is_respawned(tmp_path, runs, node, args):
+    proc, marker, uri = world(runs, tmp_path, "realtime:=true", *args)
     if node == "esc_driver":  # not in the world launch: its own control.launch on the world's master
         (tmp_path / "esc").mkdir()
-        _, marker = start(["roslaunch", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false",
+        _, marker = runs.start(["roslaunch", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false",
                            "esc_driver:=true"], tmp_path / "esc", ROS_MASTER_URI=uri)
     first = wait_for(lambda: pids_of(marker, node), 90, f"{node} to start")
     os.kill(first[0], signal.SIGKILL)
@@ -92,8 +71,8 @@ except RuntimeError as e:
 """
 
 
-def test_killed_simulator_gives_a_clear_error(tmp_path):
-    proc, marker = start([sys.executable, "-c", SCRIPT, str(tmp_path / "log")], tmp_path)
+def test_killed_simulator_gives_a_clear_error(tmp_path, runs):
+    proc, marker = runs.start([sys.executable, "-c", SCRIPT, str(tmp_path / "log")], tmp_path)
     log = tmp_path / "out.log"
     wait_for(lambda: "stepping" in log.read_text(), 120, "the script to step")
     sim = wait_for(lambda: pids_of(marker, "simulator_node"), 30, "the simulator process")
@@ -107,8 +86,8 @@ def test_killed_simulator_gives_a_clear_error(tmp_path):
     wait_for(lambda: not marked_processes(marker), 60, "every process of the run to exit")
 
 
-def test_dead_master_ends_every_node(tmp_path):
-    proc, marker, uri = world(tmp_path, "realtime:=true")
+def test_dead_master_ends_every_node(tmp_path, runs):
+    proc, marker, uri = world(runs, tmp_path, "realtime:=true")
     wait_for(lambda: pids_of(marker, "simulator_node") and pids_of(marker, "thruster_allocator"), 90, "the nodes")
     master = wait_for(lambda: pids_of(marker, "rosmaster"), 30, "the master")
     os.kill(master[0], signal.SIGKILL)

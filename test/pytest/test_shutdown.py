@@ -9,12 +9,11 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, stop_process_group, wait_for
+from unexmin.launcher import free_port, marked_processes, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 EXIT_TIMEOUT = 40.0  # [s] roslaunch: 15 s SIGINT grace per node, then SIGTERM
@@ -46,12 +45,12 @@ def alive(pid):
     return state != "Z"
 
 
-def interrupt_and_check(proc, bags=()):
+def interrupt_and_check(runs, proc, bags=()):
     """SIGINT to `proc`'s process group (a terminal's Ctrl-C); every process of its tree gone (and every one
     that carries this run's UNEXMIN_RUN marker), bags indexed."""
     pids = tree(proc.pid)
     assert len(pids) > 1, "the run has not started its children yet"
-    marker = next(m for p, m in RUNS if p is proc)
+    marker = runs.marker(proc)
     os.killpg(proc.pid, signal.SIGINT)
     proc.wait(EXIT_TIMEOUT)
     wait_for(lambda: not [p for p in pids if alive(p)], EXIT_TIMEOUT, "every child process to exit")
@@ -67,62 +66,41 @@ def interrupt_and_check(proc, bags=()):
     return pids
 
 
-RUNS = []
-
-
-@pytest.fixture(autouse=True)
-def no_leftovers():
-    """Whatever a failing test leaves running is stopped (the UNEXMIN_RUN marker each run carries)."""
-    yield
-    while RUNS:
-        proc, marker = RUNS.pop()
-        stop_process_group(proc, 15.0, marker)
-
-
-def start(args, tmp, **env):
-    marker = f"shutdown-test-{os.getpid()}-{len(RUNS)}-{time.monotonic_ns()}"
-    e = dict(os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker, **env)
-    log = open(tmp / "out.log", "w")
-    proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, env=e, start_new_session=True, cwd=tmp)
-    RUNS.append((proc, marker))
-    return proc
-
-
-def test_roslaunch_with_record(tmp_path):
+def test_roslaunch_with_record(tmp_path, runs):
     """roslaunch itself, running: (interrupted while still launching, roslaunch 1.15 can leave its master and
     nodes running; our launchers clean those up, test_mission_while_launching; docs/reliability.md)"""
     bag = tmp_path / "run.bag"
     port = free_port()
-    proc = start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "realtime:=false",
+    proc, _ = runs.start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "realtime:=false",
                   f"record:={bag}"], tmp_path, ROS_MASTER_URI=f"http://127.0.0.1:{port}")
     # lockstep running free, the simulator writing its bag
     wait_for(lambda: bag.exists() and bag.stat().st_size > 1_000_000, 120, "the simulator to write 1 MB of its bag")
-    interrupt_and_check(proc, [bag])
+    interrupt_and_check(runs, proc, [bag])
     assert bag.exists()
 
 
-def test_mission(tmp_path):
+def test_mission(tmp_path, runs):
     out = tmp_path / "mission"
-    proc = start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
     wait_for(lambda: (out / "mission.bag.active").exists(), 120, "the mission's rosbag record to start")
     wait_for(lambda: "surge forward" in (tmp_path / "out.log").read_text(), 120, "the first leg to be driven")
-    interrupt_and_check(proc, [out / "mission.bag"])
+    interrupt_and_check(runs, proc, [out / "mission.bag"])
 
 
-def test_mission_while_launching(tmp_path):
+def test_mission_while_launching(tmp_path, runs):
     out = tmp_path / "mission"
-    proc = start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
     wait_for(lambda: (out / "logs" / "roslaunch.log").exists() and len(tree(proc.pid)) > 3, 60,
              "the mission to launch its world")
-    interrupt_and_check(proc, [out / "mission.bag"])
+    interrupt_and_check(runs, proc, [out / "mission.bag"])
 
 
-def test_replay(tmp_path):
-    proc = start([sys.executable, "-m", "unexmin.replay", str(REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"),
+def test_replay(tmp_path, runs):
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.replay", str(REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"),
                   "--out", str(tmp_path / "replay"), "--pace", "1"], tmp_path)
     wait_for(lambda: "%" in (tmp_path / "out.log").read_text() or len(tree(proc.pid)) > 6, 120,
              "the replay to run")
-    interrupt_and_check(proc)
+    interrupt_and_check(runs, proc)
 
 
 SCRIPT = """
@@ -135,7 +113,7 @@ while True:
 """
 
 
-def test_simulation_script(tmp_path):
-    proc = start([sys.executable, "-c", SCRIPT, str(tmp_path / "log")], tmp_path)
+def test_simulation_script(tmp_path, runs):
+    proc, _ = runs.start([sys.executable, "-c", SCRIPT, str(tmp_path / "log")], tmp_path)
     wait_for(lambda: "connected" in (tmp_path / "out.log").read_text(), 120, "the script to connect")
-    interrupt_and_check(proc)
+    interrupt_and_check(runs, proc)

@@ -1,0 +1,46 @@
+"""Fixtures shared by the pytest suite."""
+
+import os
+import subprocess
+import time
+
+import pytest
+
+from unexmin.launcher import stop_process_group
+
+
+class MarkedRuns:
+    """Processes a test starts, each in a session of its own with a fresh UNEXMIN_RUN marker in its
+    environment: every process it starts inherits the marker, so the whole run can be found
+    (unexmin.launcher.marked_processes) and stopped, even what left the process group."""
+
+    def __init__(self):
+        self._runs = []
+
+    def start(self, args, tmp, **env):
+        """Start `args` in folder `tmp` (its output in tmp/out.log, ROS_HOME and ROS_LOG_DIR inside tmp),
+        with `env` added to the environment; returns (process, marker)."""
+        marker = f"pytest-{os.getpid()}-{len(self._runs)}-{time.monotonic_ns()}"
+        e = dict(os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker,
+                 **env)
+        log = open(tmp / "out.log", "w")
+        proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, env=e, start_new_session=True, cwd=tmp)
+        self._runs.append((proc, marker, log))
+        return proc, marker
+
+    def marker(self, proc):
+        return next(m for p, m, _ in self._runs if p is proc)
+
+    def stop_all(self):
+        while self._runs:
+            proc, marker, log = self._runs.pop()
+            stop_process_group(proc, 15.0, marker)
+            log.close()
+
+
+@pytest.fixture
+def runs():
+    """A MarkedRuns whose processes are stopped when the test ends, whatever its outcome."""
+    r = MarkedRuns()
+    yield r
+    r.stop_all()
