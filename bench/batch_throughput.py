@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Batch throughput on Dask: the same missions with 1 and with 2 local workers (docs/benchmarks.md,
+"Batch missions on Dask").
+
+    source scripts/env.sh && python bench/batch_throughput.py [--spec examples/batch/tank_currents.yaml]
+                                                              [--missions 8] [--workers 1 2] [--out DIR]
+
+For each worker count, a fresh local cluster runs the first --missions missions of the spec (by default the
+shipped tank Monte-Carlo: the main job's tank mission, 30 s of sim time, every sensor, one ray-casting thread
+per simulator). Reports the batch's wall time (cluster start to the last result), missions per minute,
+the mean wall time per mission (start-up included), the load average before and after, and the throughput
+ratio against the first worker count. The tables of the runs must be equal but for wall times (checked).
+"""
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def main(argv=None):
+    from unexmin.batch import run_batch
+    from unexmin.batch_spec import load_spec
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--spec", default=os.path.join(HERE, "..", "examples", "batch", "tank_currents.yaml"))
+    parser.add_argument("--missions", type=int, default=8)
+    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--out", default=None, help="folder for the runs' outputs (default: a temporary one)")
+    args = parser.parse_args(argv)
+    spec = load_spec(args.spec)
+    out = args.out or tempfile.mkdtemp(prefix="batch_bench_")
+    results, tables = [], []
+    print(f"spec {os.path.abspath(args.spec)}: {args.missions} missions of {spec['mission']}, {spec['duration']:g} s "
+          f"of sim time each, sensors {spec['sensors']}, ray_caster_threads {spec['ray_caster_threads']}; "
+          f"{os.cpu_count()} hardware threads")
+    for workers in args.workers:
+        load0 = os.getloadavg()
+        t0 = time.monotonic()
+        df = run_batch(spec, os.path.join(out, f"workers{workers}"), workers=workers, limit=args.missions,
+                       progress=False, log=lambda _: None)
+        wall = time.monotonic() - t0
+        ok = int((df["status"] == "ok").sum())
+        results.append({"workers": workers, "missions": len(df), "ok": ok, "wall_s": round(wall, 1),
+                        "missions_per_min": round(len(df) / wall * 60.0, 2),
+                        "mean_mission_wall_s": round(float(df["wall_time_s"].mean()), 1),
+                        "load_before": [round(v, 2) for v in load0],
+                        "load_after": [round(v, 2) for v in os.getloadavg()]})
+        tables.append(df.drop(columns=["wall_time_s", "log"]))
+        r = results[-1]
+        print(f"workers {workers}: {r['ok']}/{r['missions']} ok in {r['wall_s']:.1f} s = {r['missions_per_min']:.2f} "
+              f"missions/min (mean {r['mean_mission_wall_s']:.1f} s per mission); load {r['load_before']} -> "
+              f"{r['load_after']}", flush=True)
+    for r in results[1:]:
+        r["throughput_ratio"] = round(r["missions_per_min"] / results[0]["missions_per_min"], 3)
+        print(f"throughput ratio {r['workers']} vs {results[0]['workers']} workers: {r['throughput_ratio']:.3f}")
+    same = all(t.equals(tables[0]) for t in tables[1:])
+    print(f"tables equal but for wall times: {same}")
+    print(json.dumps(results))
+    return 0 if same and all(r["ok"] == r["missions"] for r in results) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
