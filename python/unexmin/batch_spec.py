@@ -177,7 +177,7 @@ def check_spec(raw, path="<spec>"):
                 raise SpecError(f"{path}: {key}.{name}: parameter names are Python identifiers")
             if name in taken:
                 raise SpecError(f"{path}: parameter {name!r} is given both in {taken[name]} and in {key}")
-            if name in ("seed", "index", "status", "error", "log", "wall_time_s", "attempts", "duration"):
+            if name in ("seed", "index", "robots", "status", "error", "log", "wall_time_s", "attempts", "duration"):
                 raise SpecError(f"{path}: {key}.{name}: this name is a column of the results table")
             taken[name] = key
     for name, value in fixed.items():
