@@ -70,6 +70,7 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
     try:
         log(f"[batch] {len(missions)} missions of {spec['mission']} on {scheduler or f'a local cluster of {workers} workers'}"
             f"; Dask dashboard: {client.dashboard_link}")
+        t_submit = time.monotonic()
         futures = [client.submit(run_mission, spec, m, out, key=f"unexmin-mission-{m['index']:05d}-{os.getpid()}-"
                                  f"{time.monotonic_ns()}", pure=False) for m in missions]
         keys = {f.key for f in futures}
@@ -90,11 +91,14 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
                             refresh=False)
             bar.update(1)
         bar.close()
+        running_s = time.monotonic() - t_submit
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
-    return table(spec, rows)
+    df = table(spec, rows)
+    df.attrs["running_s"] = running_s  # [s] of wall time from the first submission to the last result
+    return df
 
 
 def table(spec, rows):

@@ -33,7 +33,8 @@ def _child(task_path):
         task = json.load(f)
     spec, mission = task["spec"], task["mission"]
     folder = os.path.dirname(os.path.abspath(task_path))
-    result = {"status": "failed", "error": "", "metrics": {}}
+    result = {"status": "failed", "error": "", "metrics": {}, "timings": {}}
+    t0 = time.monotonic()
     try:
         sys.path[:0] = spec["python_path"]
         from unexmin.batch_spec import load_mission_function
@@ -45,7 +46,10 @@ def _child(task_path):
         os.environ.setdefault("ROS_HOME", os.path.join(folder, "ros_home"))
         with Simulation.launch(launch_file=task["launch_file"], log_dir=os.path.join(folder, "logs"),
                                timeout=min(120.0, spec["timeout"]), node_name="unexmin_batch") as sim:
+            result["timings"]["launch_s"] = round(time.monotonic() - t0, 3)
             metrics = fn(sim, params)
+            result["timings"]["mission_s"] = round(time.monotonic() - t0 - result["timings"]["launch_s"], 3)
+        result["timings"]["total_s"] = round(time.monotonic() - t0, 3)
         result["metrics"] = check_metrics(spec["mission"], metrics)
         result["status"] = "ok"
     except Exception as e:  # the parent records it: failures are data

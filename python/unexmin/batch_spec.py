@@ -30,7 +30,7 @@ WORLD_PARAMS = {
 }
 DISTRIBUTIONS = {"uniform": 2, "normal": 2, "loguniform": 2, "integers": 2, "choice": None}
 KEYS = {"world", "robots", "mission", "duration", "timeout", "retries", "seeds", "sweep", "sample", "sample_seed",
-        "params", "sensors", "mode", "ray_caster_threads", "python_path"}
+        "params", "sensors", "mode", "ray_caster_threads", "python_path", "control"}
 _PACKAGE = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 VISIBILITY = ("none", "low", "medium", "high")
 
@@ -158,6 +158,9 @@ def check_spec(raw, path="<spec>"):
         if not isinstance(value, str) or (accepted and value not in accepted):
             raise SpecError(f"{path}: {key}: expected {' | '.join(accepted) if accepted else 'a text'}, got {value!r}")
         spec[key] = value
+    spec["control"] = raw.get("control", True)
+    if not isinstance(spec["control"], bool):
+        raise SpecError(f"{path}: control: expected true or false, got {spec['control']!r}")
     spec["seeds"] = _seeds(f"{path}: seeds", raw.get("seeds", 1))
     python_path = raw.get("python_path", [])
     if not isinstance(python_path, list) or not all(isinstance(p, str) for p in python_path):
@@ -306,7 +309,8 @@ def write_launch(spec, mission, folder):
     overrides = write_overrides(spec, mission["params"], folder)
     args = {"world": world, "robots": spec["robots"], "realtime": "false", "paused": "true",
             "seed": mission["seed"], "mode": spec["mode"], "sensors": spec["sensors"],
-            "ray_caster_threads": spec["ray_caster_threads"]}
+            "ray_caster_threads": spec["ray_caster_threads"], "control": str(spec["control"]).lower(),
+            "mesh_marker": "false"}  # no rviz in a batch
     for k in range(1, spec["robots"] + 1):
         args[f"UX_{k}_overrides"] = overrides
     body = "\n".join(f'    <arg name="{k}" value="{v}"/>' for k, v in args.items())

@@ -139,6 +139,7 @@ def six_missions(folder, mission="unexmin.batch_missions:tank_survey", extra="")
         duration: 2.0
         timeout: 60
         sensors: none
+        control: false
         seeds: 3
         sweep: {{current_speed: [0.0, 0.25]}}
         sample: {{current_angle: {{uniform: [-3.14, 3.14]}}}}
@@ -180,6 +181,7 @@ def test_failures_are_recorded_and_the_batch_completes(tmp_path):
         duration: 1.0
         timeout: 15
         sensors: none
+        control: false
         seeds: 5
         python_path: [{HERE}]
     """, tmp_path)
