@@ -24,20 +24,29 @@ TAIL = ("status", "error", "log", "attempts", "wall_time_s")
 
 
 def local_cluster(workers):
-    """A Dask LocalCluster of `workers` single-threaded worker processes on the loopback."""
+    """A Dask LocalCluster of `workers` single-threaded worker processes on the loopback. Its scheduler
+    (in this process) hands a worker a mission only when the worker is free (worker-saturation 1.0): a
+    mission lasts seconds to minutes, so none waits behind another on a busy worker while one is idle."""
+    import dask
     from dask.distributed import LocalCluster
 
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                        dashboard_address="127.0.0.1:0", scheduler_port=0)
+    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                            dashboard_address="127.0.0.1:0", scheduler_port=0)
+
+
+def _executing(dask_worker):
+    """Keys of the tasks a Dask worker is executing now (run on each worker by Client.run)."""
+    return [str(ts.key) for ts in dask_worker.state.executing]
 
 
 def _running(client, keys):
-    """How many of `keys` a worker is running now."""
+    """How many of `keys` the workers are executing now (None if they cannot be asked)."""
     try:
-        processing = client.processing()
-    except Exception:  # scheduler busy or gone: the bar shows the last count
+        executing = client.run(_executing)
+    except Exception:  # a worker busy or gone: the bar shows "?"
         return None
-    return sum(1 for tasks in processing.values() for k in tasks if k in keys)
+    return sum(1 for tasks in executing.values() for k in tasks if k in keys)
 
 
 def run_sequential(spec, out, limit=None):
@@ -76,20 +85,22 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
         keys = {f.key for f in futures}
         rows, failed = [], 0
         bar = tqdm(total=len(futures), desc="missions", unit="mission", disable=not progress, file=sys.stderr)
-        for future in as_completed(futures):
-            try:
-                row = future.result()
-            except Exception as e:  # the task itself died (a worker lost twice): still a row
-                m = missions[futures.index(future)]
-                row = dict({"index": m["index"], "seed": m["seed"]}, **m["params"], status="failed",
-                           error=f"Dask task failed: {type(e).__name__}: {e}", log="", attempts=0, wall_time_s=math.nan)
-            rows.append(row)
-            failed += row["status"] != "ok"
-            keys.discard(future.key)
-            running = _running(client, keys)
-            bar.set_postfix(done=len(rows) - failed, failed=failed, running="?" if running is None else running,
-                            refresh=False)
-            bar.update(1)
+        pending = as_completed(futures)
+        polled = 0.0
+        while not pending.is_empty():
+            batch = pending.next_batch(block=False)
+            if time.monotonic() - polled > 1.0:  # the bar's running count, about once a second
+                polled = time.monotonic()
+                running = _running(client, keys)
+                bar.set_postfix(done=len(rows) - failed, failed=failed, running="?" if running is None else running)
+            if not batch:
+                time.sleep(0.2)
+            for future in batch:
+                rows.append(_row(future, futures, missions))
+                failed += rows[-1]["status"] != "ok"
+                keys.discard(future.key)
+                bar.update(1)
+                polled = 0.0  # ask the workers again at once: the counts changed
         bar.close()
         running_s = time.monotonic() - t_submit
     finally:
@@ -99,6 +110,17 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
     df = table(spec, rows)
     df.attrs["running_s"] = running_s  # [s] of wall time from the first submission to the last result
     return df
+
+
+def _row(future, futures, missions):
+    """The results row of a finished Dask task; a task that itself failed (a worker lost again and again)
+    gives a failed row too."""
+    try:
+        return future.result()
+    except Exception as e:
+        m = missions[futures.index(future)]
+        return dict({"index": m["index"], "seed": m["seed"]}, **m["params"], status="failed",
+                    error=f"Dask task failed: {type(e).__name__}: {e}", log="", attempts=0, wall_time_s=math.nan)
 
 
 def table(spec, rows):
