@@ -3,14 +3,14 @@
 "Batch missions on Dask").
 
     source scripts/env.sh && python bench/batch_throughput.py [--spec examples/batch/tank_currents.yaml]
-                                                              [--missions 8] [--workers 1 2] [--out DIR]
+                                                              [--missions 8] [--workers 1 2 2 1] [--out DIR]
 
 For each worker count, a fresh local cluster runs the first --missions missions of the spec (by default the
 shipped tank Monte-Carlo: the main job's tank mission, 30 s of sim time, every sensor, one ray-casting thread
 per simulator). Reports the batch's wall time end to end (cluster start-up included) and from the first
 submission to the last result (the steady state of a long batch), missions per minute of each,
-the mean wall time per mission (start-up included), the load average before and after, and the throughput
-ratio against the first worker count. The tables of the runs must be equal but for wall times (checked).
+the mean wall time per mission (start-up included), the load average before and after; then, per worker count
+over its runs, missions per minute and the throughput ratio against the smallest count. The tables of the runs must be equal but for wall times (checked).
 """
 
 import argparse
@@ -30,7 +30,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spec", default=os.path.join(HERE, "..", "examples", "batch", "tank_currents.yaml"))
     parser.add_argument("--missions", type=int, default=8)
-    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2, 2, 1],
+                        help="worker counts, one batch each, in this order (default 1 2 2 1)")
     parser.add_argument("--out", default=None, help="folder for the runs' outputs (default: a temporary one)")
     args = parser.parse_args(argv)
     spec = load_spec(args.spec)
@@ -42,7 +43,7 @@ def main(argv=None):
     for workers in args.workers:
         load0 = os.getloadavg()
         t0 = time.monotonic()
-        df = run_batch(spec, os.path.join(out, f"workers{workers}"), workers=workers, limit=args.missions,
+        df = run_batch(spec, os.path.join(out, f"run{len(results)}_workers{workers}"), workers=workers, limit=args.missions,
                        progress=False, log=lambda _: None)
         wall = time.monotonic() - t0
         ok = int((df["status"] == "ok").sum())
@@ -59,14 +60,26 @@ def main(argv=None):
               f"missions/min end to end; {r['running_s']:.1f} s = {r['running_missions_per_min']:.2f} missions/min "
               f"from the first submission to the last result (mean {r['mean_mission_wall_s']:.1f} s per mission); "
               f"load {r['load_before']} -> {r['load_after']}", flush=True)
-    for r in results[1:]:
-        r["throughput_ratio"] = round(r["running_missions_per_min"] / results[0]["running_missions_per_min"], 3)
-        r["end_to_end_ratio"] = round(r["missions_per_min"] / results[0]["missions_per_min"], 3)
-        print(f"throughput ratio {r['workers']} vs {results[0]['workers']} workers: {r['throughput_ratio']:.3f} "
-              f"(first submission to last result; end to end, cluster start-up included: {r['end_to_end_ratio']:.3f})")
+    # Per worker count, over its runs (give e.g. --workers 1 2 2 1 so that a load that drifts during the
+    # benchmark weighs on both counts alike): missions / summed wall time.
+    counts = sorted({r["workers"] for r in results})
+    pooled = {}
+    for w in counts:
+        runs = [r for r in results if r["workers"] == w]
+        missions = sum(r["missions"] for r in runs)
+        pooled[w] = {"runs": len(runs), "missions_per_min": missions / sum(r["wall_s"] for r in runs) * 60.0,
+                     "running_missions_per_min": missions / sum(r["running_s"] for r in runs) * 60.0}
+        print(f"workers {w}, {len(runs)} run(s): {pooled[w]['running_missions_per_min']:.2f} missions/min from first "
+              f"submission to last result, {pooled[w]['missions_per_min']:.2f} end to end")
+    for w in counts[1:]:
+        ratio = pooled[w]["running_missions_per_min"] / pooled[counts[0]]["running_missions_per_min"]
+        end_to_end = pooled[w]["missions_per_min"] / pooled[counts[0]]["missions_per_min"]
+        pooled[w].update(throughput_ratio=round(ratio, 3), end_to_end_ratio=round(end_to_end, 3))
+        print(f"throughput ratio {w} vs {counts[0]} workers: {ratio:.3f} (first submission to last result; end to "
+              f"end, cluster start-up included: {end_to_end:.3f})")
     same = all(t.equals(tables[0]) for t in tables[1:])
     print(f"tables equal but for wall times: {same}")
-    print(json.dumps(results))
+    print(json.dumps({"runs": results, "pooled": pooled}))
     return 0 if same and all(r["ok"] == r["missions"] for r in results) else 1
 
 
