@@ -12,8 +12,10 @@ its error and log path; run_mission itself never raises for a mission's failure.
 import json
 import math
 import os
+import signal
 import subprocess
 import sys
+import threading
 import time
 import traceback
 import uuid
@@ -27,8 +29,23 @@ def mission_folder(out, index):
     return os.path.join(out, "missions", f"{index:05d}")
 
 
+def _watch_parent():
+    """Interrupt this process (as Ctrl-C: the mission's world closes) when the Dask worker that started it
+    is gone, e.g. a batch stopped with Ctrl-C: a mission process is in a session of its own and would
+    otherwise run on with its world."""
+    parent = os.getppid()
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(1.0)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=watch, daemon=True, name="watch_parent").start()
+
+
 def _child(task_path):
     """The child process: launch the mission's world, run the mission function, write result.json."""
+    _watch_parent()
     with open(task_path) as f:
         task = json.load(f)
     spec, mission = task["spec"], task["mission"]
