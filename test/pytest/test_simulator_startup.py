@@ -1,6 +1,6 @@
 """Start-up errors of the simulator process (docs/simulator_node.md): a robot description with a <sensor> of
-an unknown type, an unknown family in ~sensors, an unknown ~visibility level and an unknown ray-casting back end
-in the world file each stop simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
+an unknown type, an unknown family in ~sensors, an unknown ~visibility level, a negative ~ray_caster_threads and
+an unknown ray-casting back end in the world file each stop simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
 
 import os
 import re
@@ -100,6 +100,18 @@ def test_an_unknown_visibility_level_stops_start_up(master, description):
     assert len(lines) == 1, output
     assert ("parameter ~visibility = 'murky': expected none|low|medium|high (or empty: the world file's level)"
             in lines[0]), lines[0]
+
+
+def test_a_negative_ray_caster_thread_count_stops_start_up(master, description):
+    import rosgraph
+    try:
+        code, output = start(master, description, sensors="imu", extra=["_ray_caster_threads:=-1"])
+    finally:  # as above: the next start must not inherit ~ray_caster_threads
+        rosgraph.Master("/startup_test", master_uri=master).deleteParam("/simulator/ray_caster_threads")
+    assert code == 1, output
+    lines = fatal_lines(output)
+    assert len(lines) == 1, output
+    assert "parameter ~ray_caster_threads = -1: expected >= 0 (0 = every hardware thread)" in lines[0], lines[0]
 
 
 def test_a_valid_selection_starts(master, description):

@@ -52,7 +52,9 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   selection_ = sensors::SensorSelection::parse(sensors_param_, registry_.types(), "parameter ~sensors");
   if (!selection_.none()) {
     try {
-      caster_ = raycast::makeRayCaster(config.ray_caster, *world_);
+      raycast::RayCasterOptions options;
+      options.threads = ray_caster_threads_;
+      caster_ = raycast::makeRayCaster(config.ray_caster, *world_, options);
     } catch (const RayCasterError& e) {
       throw ConfigError(world_file_ + ": 'ray_caster': " + e.what());
     }
@@ -120,6 +122,9 @@ void SimulatorRos::loadParams()
   if (!visibility_.empty() && visibility_ != "none" && visibility_ != "low" && visibility_ != "medium" &&
       visibility_ != "high")
     badParam("visibility", "'" + visibility_ + "'", "none|low|medium|high (or empty: the world file's level)");
+  pnh_.param("ray_caster_threads", ray_caster_threads_, 0);
+  if (ray_caster_threads_ < 0)
+    badParam("ray_caster_threads", formatNumber(ray_caster_threads_), ">= 0 (0 = every hardware thread)");
   pnh_.param("physics_rate", physics_rate_, 500.0);
   if (!(physics_rate_ >= 100.0 && physics_rate_ <= 20000.0))
     badParam("physics_rate", formatNumber(physics_rate_), "[100, 20000] Hz");
