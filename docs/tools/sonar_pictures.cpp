@@ -94,7 +94,7 @@ int main(int argc, char** argv)
   const std::map<std::string, sim::RobotDescription> d{{config.robots[0].name, sim::parseRobotDescription(urdf.str(), argv[1])}};
   const ros_layer::SensorRegistry registry = ros_layer::SensorRegistry::builtin();
 
-  // The anchor hangs at (0, 0), top 1.8 m deep; the robot 1.9 m deep facing it from -x at these distances
+  // The anchor hangs at (0, 0) from 1.8 to 2.39 m depth; the robot 2.4 m deep (the head 2.07 m) facing it from -x at these distances
   // (centre to anchor axis) [m]: the thesis's long, medium and close scans (6.1.1).
   struct Place { const char* name; double distance; };
   for (const Place& place : {Place{"long", 2.6}, Place{"medium", 1.6}, Place{"close", 0.9}}) {
@@ -106,7 +106,7 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "the robot has no MSIS named 'msis'\n");
       return 1;
     }
-    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-place.distance, 0.0, -1.9), Eigen::Vector3d::Zero());
+    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-place.distance, 0.0, -2.4), Eigen::Vector3d::Zero());
     const int pings = static_cast<int>(std::lround(2.0 * M_PI / msis->step()));
     const double range = msis->echo().params().range_max;
     const int size = static_cast<int>(2.0 * range * 100.0);  // 1 cm per pixel
@@ -147,7 +147,7 @@ int main(int argc, char** argv)
     std::printf("%s: %d pings from %.1f m\n", path.c_str(), pings, place.distance);
   }
 
-  // M3: the robot 1.9 m deep, 2 m from the anchor, the fan pitched as mounted; 40 pings (1 s) accumulated.
+  // M3: the robot 2.2 m deep (the fan 2.33 m), 2 m from the anchor, the fan pitched as mounted; 40 pings (1 s) accumulated.
   {
     sim::World world(config, d, 1, 0.002, 7);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);
@@ -157,7 +157,7 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "the robot has no M3 named 'm3'\n");
       return 1;
     }
-    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -1.7), Eigen::Vector3d::Zero());
+    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -2.2), Eigen::Vector3d::Zero());
     const int size = 600;  // 1 px = 1 cm: 6 m square, sonar at the bottom centre, x up
     Image px(static_cast<std::size_t>(size) * size, {0, 0, 0});
     for (int ring = 1; ring <= 5; ++ring) {  // range rings every metre
