@@ -40,6 +40,12 @@ EchoModel::EchoModel(const EchoParams& params) : p_(params)
   check(p_.display_span > 0.0 && p_.display_span <= 200.0, "display_span", p_.display_span, "in (0, 200] dB");
   check(p_.levels >= 1 && p_.levels <= 65535, "levels", p_.levels, "in [1, 65535]");
   width_ = (p_.range_max - p_.range_min) / p_.nbins;
+  ray_factor_ = std::pow(10.0, (p_.source_level + p_.backscatter_strength) / 10.0) * p_.beam_solid_angle;
+  bin_gain_.resize(p_.nbins);
+  for (int i = 0; i < p_.nbins; ++i) bin_gain_[i] = std::pow(10.0, (gainDb() + tvg(binCenter(i))) / 10.0);
+  thresholds_.resize(p_.levels);
+  for (int k = 1; k <= p_.levels; ++k)
+    thresholds_[k - 1] = std::pow(10.0, (p_.display_min + (k - 0.5) * step()) / 10.0);
 }
 
 double EchoModel::binCenter(std::size_t i) const { return p_.range_min + (static_cast<double>(i) + 0.5) * width_; }
@@ -75,7 +81,21 @@ double EchoModel::echoLevel(const Echo& e, std::size_t rays) const
 
 double EchoModel::strength(const Echo& e, std::size_t rays) const
 {
-  return std::pow(10.0, echoLevel(e, rays) / 10.0);
+  // echoLevel in linear form: SL BS0 Omega / N  cos^(n - 1)  r^-2  10^(-2 alpha r / 10)  10^(X / 10).
+  const double c = std::min(1.0, e.cos_incidence);
+  if (!(c > 0.0)) return 0.0;
+  const double r = std::max(e.range, 1e-3);
+  const double incidence = std::pow(c, p_.backscatter_exponent) / std::max(c, 1e-3);
+  const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
+  return ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence / (r * r) *
+         std::pow(10.0, -0.2 * p_.absorption * r) * extra;
+}
+
+int EchoModel::code(double power, std::size_t i) const
+{
+  if (!(power > 0.0)) return 0;
+  return static_cast<int>(std::upper_bound(thresholds_.begin(), thresholds_.end(), power * bin_gain_[i]) -
+                          thresholds_.begin());
 }
 
 double EchoModel::outputLevel(double power, double r) const
@@ -93,7 +113,7 @@ float EchoModel::quantise(double level) const
 {
   if (!(level > p_.display_min)) return 0.0f;
   const double q = std::min<double>(p_.levels, std::round((level - p_.display_min) / p_.display_span * p_.levels));
-  return static_cast<float>(q / p_.levels);
+  return static_cast<float>(q / p_.levels);  // as finish(): code / levels
 }
 
 void EchoModel::deposit(const Echo& e, std::size_t rays, std::vector<double>& energy) const
@@ -146,7 +166,7 @@ void EchoModel::spread(const std::vector<Echo>& column, std::size_t rays, double
 void EchoModel::finish(const std::vector<double>& energy, std::vector<float>& line) const
 {
   line.resize(p_.nbins);
-  for (int i = 0; i < p_.nbins; ++i) line[i] = quantise(outputLevel(energy[i], binCenter(i)));
+  for (int i = 0; i < p_.nbins; ++i) line[i] = static_cast<float>(static_cast<double>(code(energy[i], i)) / p_.levels);
 }
 
 void EchoModel::line(const std::vector<Echo>& echoes, std::size_t rays, std::vector<float>& out) const

@@ -83,6 +83,11 @@ public:
   float quantise(double level) const;
   /// Output level of one quantisation step [dB].
   double step() const { return p_.display_span / p_.levels; }
+  /// The code (0 .. levels) of a power P [uPa^2] in bin i: the same as quantise(outputLevel(P, r_i)), by the
+  /// bin's precomputed gain and the code thresholds (no logarithm).
+  int code(double power, std::size_t i) const;
+  /// The least power [uPa^2] in bin i with a code >= q (1 .. levels).
+  double codePower(int q, std::size_t i) const { return thresholds_[q - 1] / bin_gain_[i]; }
 
   /// Adds the power of every echo to the bin of its range (the area density), then gain, TVG and quantisation:
   /// `line` (resized to nbins) is the intensity line in [0, 1]. `rays`: rays in the fan.
@@ -105,6 +110,9 @@ private:
 
   EchoParams p_;
   double width_ = 0.0;
+  double ray_factor_ = 0.0;           ///< 10^((SL + BS0) / 10) Omega [uPa^2 m^2 sr]
+  std::vector<double> bin_gain_;      ///< per bin: 10^((G + TVG(r_i)) / 10)
+  std::vector<double> thresholds_;    ///< code k >= 1 from 10^((display_min + (k - 1/2) step) / 10) on
 };
 
 }  // namespace sonar

@@ -158,6 +158,11 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   }
   rays_.resize(dirs_.size());
   surface_.resize(dirs_.size());
+  // The shadow's least code; per bin, the exponential draw u below which the noise floor alone stays code 0.
+  shadow_code_ = std::max(1, static_cast<int>(std::ceil(shadow_threshold_ * e.levels - 1e-9)));
+  noise_visible_.resize(e.nbins);
+  for (int b = 0; b < e.nbins; ++b)
+    noise_visible_[b] = -std::expm1(-echo_.codePower(1, b) / noise_power_);  // P(noise E >= code-1 power) = 1 - that
   column_.resize(vpr_);
 }
 
@@ -276,20 +281,26 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   out.level.assign(e.nbins, EchoLevel::none);
   std::vector<char> shadowed(e.nbins, 0);
   if (shadow_) {  // no echo behind the first strong one (the noise stays)
-    echo_.finish(energy_, out.intensity);
-    const auto strong = std::find_if(out.intensity.begin(), out.intensity.end(),
-                                     [&](float i) { return i >= shadow_threshold_; });
-    for (auto it = strong == out.intensity.end() ? strong : strong + 1; it != out.intensity.end(); ++it) {
-      const std::size_t b = it - out.intensity.begin();
+    int b = 0;
+    while (b < e.nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b))) ++b;
+    for (++b; b < e.nbins; ++b) {
       energy_[b] = 0.0;
       shadowed[b] = 1;
     }
   }
   // Receiver noise: speckle (Rayleigh amplitude: exponential power) on the echoes, the noise floor (Rayleigh),
-  // then the occasional spike near the noise level (salt) or dropped bin (pepper).
-  for (double& p : energy_) {
-    if (speckle_) p *= exponential(random());
-    if (noise_floor_) p += noise_power_ * exponential(random());
+  // then the occasional spike near the noise level (salt) or dropped bin (pepper). The same draws whatever the
+  // geometry; a logarithm only where the draw can change the code (noise_visible_: below it the floor stays 0).
+  for (int b = 0; b < e.nbins; ++b) {
+    double& p = energy_[b];
+    if (speckle_) {
+      const double u = random().uniform();
+      if (p > 0.0) p *= -std::log1p(-u);
+    }
+    if (noise_floor_) {
+      const double u = random().uniform();
+      if (p > 0.0 || u >= noise_visible_[b]) p += noise_power_ * -std::log1p(-u);
+    }
     if (salt_pepper_ > 0.0 && random().uniform() < salt_pepper_)
       p = random().uniform() < 0.5 ? noise_power_ * std::pow(10.0, salt_level_ * random().uniform() / 10.0) : 0.0;
   }

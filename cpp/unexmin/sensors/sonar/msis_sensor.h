@@ -108,6 +108,8 @@ private:
   double noise_power_ = 0.0;      ///< 10^(noise_level / 10) [uPa^2]
   double ghost_extra_ = 0.0;      ///< 40 log10 |R|: two surface reflections [dB]
   double surface_extra_ = 0.0;    ///< surface backscatter - backscatter_strength [dB]
+  int shadow_code_ = 1;           ///< least code of a shadowing echo
+  std::vector<double> noise_visible_;  ///< per bin: uniform draw from which the noise floor alone shows
   double threshold_low_ = 0.05, threshold_medium_ = 0.25, threshold_high_ = 0.6;
   std::vector<Eigen::Vector3d> dirs_;
   double angle_ = 0.0;  ///< head angle of the next ping [rad]
