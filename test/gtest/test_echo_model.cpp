@@ -138,6 +138,25 @@ TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes)
   EXPECT_EQ(m.quantise(99.0), 0.0f);
   EXPECT_EQ(m.quantise(-std::numeric_limits<double>::infinity()), 0.0f);
   EXPECT_EQ(m.quantise(170.0), 1.0f);
+
+  // One echo alone at its own range (the M3's return): the same code as its level through gain and TVG at r,
+  // for the default TVG (k = 20: the spreading cancels) and another (k = 30), away from the code edges.
+  for (double k : {20.0, 30.0}) {
+    EchoParams q = flat(0.0, 100.0, 1);
+    q.tvg_spreading = k;
+    q.absorption = 0.3;
+    q.gain = 0.5;
+    const EchoModel mq(q);
+    for (double r : {0.7, 3.0, 12.0, 40.0}) {
+      for (double c : {1.0, 0.6, 0.2}) {
+        const Echo e{r, c, -2.0};
+        const double level = mq.outputLevel(mq.strength(e, 3), r);
+        const double x = (level - q.display_min) / mq.step();
+        if (std::abs(x - std::floor(x) - 0.5) < 1e-6) continue;  // on an edge: either code
+        EXPECT_EQ(mq.echoCode(e, 3), static_cast<int>(std::lround(mq.quantise(level) * 255.0))) << "k " << k << " r " << r << " c " << c;
+      }
+    }
+  }
 }
 
 TEST(EchoModel, LineSumsThePowerOfABinThenGainTvgAndQuantisation)

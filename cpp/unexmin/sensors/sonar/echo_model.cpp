@@ -41,6 +41,7 @@ EchoModel::EchoModel(const EchoParams& params) : p_(params)
   check(p_.levels >= 1 && p_.levels <= 65535, "levels", p_.levels, "in [1, 65535]");
   width_ = (p_.range_max - p_.range_min) / p_.nbins;
   ray_factor_ = std::pow(10.0, (p_.source_level + p_.backscatter_strength) / 10.0) * p_.beam_solid_angle;
+  gain_ = std::pow(10.0, gainDb() / 10.0);
   bin_gain_.resize(p_.nbins);
   for (int i = 0; i < p_.nbins; ++i) bin_gain_[i] = std::pow(10.0, (gainDb() + tvg(binCenter(i))) / 10.0);
   thresholds_.resize(p_.levels);
@@ -85,10 +86,29 @@ double EchoModel::strength(const Echo& e, std::size_t rays) const
   const double c = std::min(1.0, e.cos_incidence);
   if (!(c > 0.0)) return 0.0;
   const double r = std::max(e.range, 1e-3);
-  const double incidence = std::pow(c, p_.backscatter_exponent) / std::max(c, 1e-3);
   const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
-  return ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence / (r * r) *
-         std::pow(10.0, -0.2 * p_.absorption * r) * extra;
+  return ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence(c) / (r * r) *
+         std::exp(-0.2 * M_LN10 * p_.absorption * r) * extra;
+}
+
+double EchoModel::incidence(double c) const
+{
+  const double n = p_.backscatter_exponent;
+  return (n == 2.0 ? c * c : std::pow(c, n)) / std::max(c, 1e-3);  // Lambert's n = 2 without pow
+}
+
+int EchoModel::echoCode(const Echo& e, std::size_t rays) const
+{
+  // strength x 10^((G + TVG(r)) / 10) at the echo's own range: the absorption cancels, the spreading leaves
+  // r^(k / 10 - 2) (1 for the default k = 20).
+  const double c = std::min(1.0, e.cos_incidence);
+  if (!(c > 0.0)) return 0;
+  const double r = std::max(e.range, 1e-3);
+  const double spreading = p_.tvg_spreading == 20.0 ? 1.0 : std::pow(r, p_.tvg_spreading / 10.0 - 2.0);
+  const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
+  const double out = ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence(c) * spreading *
+                     gain_ * extra;
+  return static_cast<int>(std::upper_bound(thresholds_.begin(), thresholds_.end(), out) - thresholds_.begin());
 }
 
 int EchoModel::code(double power, std::size_t i) const

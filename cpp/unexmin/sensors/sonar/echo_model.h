@@ -86,6 +86,8 @@ public:
   /// The code (0 .. levels) of a power P [uPa^2] in bin i: the same as quantise(outputLevel(P, r_i)), by the
   /// bin's precomputed gain and the code thresholds (no logarithm).
   int code(double power, std::size_t i) const;
+  /// The code of one echo alone, at its own range (gain and TVG at r, not at a bin centre): the M3's return.
+  int echoCode(const Echo& e, std::size_t rays) const;
   /// The least power [uPa^2] in bin i with a code >= q (1 .. levels).
   double codePower(int q, std::size_t i) const { return thresholds_[q - 1] / bin_gain_[i]; }
 
@@ -105,12 +107,15 @@ public:
   void finish(const std::vector<double>& energy, std::vector<float>& line) const;
 
 private:
+  /// cos^n / cos: backscatter times footprint (cos bounded >= 1e-3 below).
+  double incidence(double c) const;
   /// Adds `amount` spread evenly over the range interval [a, b] (clipped to the window).
   void spreadOver(double a, double b, double amount, std::vector<double>& energy) const;
 
   EchoParams p_;
   double width_ = 0.0;
   double ray_factor_ = 0.0;           ///< 10^((SL + BS0) / 10) Omega [uPa^2 m^2 sr]
+  double gain_ = 1.0;                 ///< 10^(G / 10)
   std::vector<double> bin_gain_;      ///< per bin: 10^((G + TVG(r_i)) / 10)
   std::vector<double> thresholds_;    ///< code k >= 1 from 10^((display_min + (k - 1/2) step) / 10) on
 };

@@ -109,7 +109,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
     out.ranges[k] = static_cast<float>(r);
     // The return's level by the sonar equation, the beam's whole footprint at the return's incidence.
     const Echo echo{hits_[i].range, std::cos(static_cast<double>(hits_[i].incidence))};
-    out.intensities[k] = echo_.quantise(echo_.outputLevel(echo_.strength(echo, 1), echo.range));
+    out.intensities[k] = static_cast<float>(static_cast<double>(echo_.echoCode(echo, 1)) / echo_.params().levels);
   }
 }
 
