@@ -2,6 +2,7 @@
 // beam ranges against the analytic distance to the floor, velocity against the set robot velocity,
 // velocity_z1/z2 each from its own beam pair (heave while moving and turning; one beam out of the window),
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.
+#include "mesh_fixture.h"
 #include "sensor_fixture.h"
 #include <unexmin/sensors/dvl_sensor.h>
 
@@ -318,6 +319,48 @@ TEST(Dvl, MalformedParametersStopStartUpNamingSensorAndParameter)
                                          {"beam_frames", "T/dvl_beam_0_link T/dvl_beam_1_link T/dvl_beam_2_link T/dvl_beam_3_link"}})));
   EXPECT_NE(e.find("'beam_frames'"), std::string::npos) << e;
   EXPECT_NE(e.find("5 deg"), std::string::npos) << e;
+}
+
+TEST(Dvl, ABeamThatMeetsTheFreeSurfaceFirstReportsNoBottomAndSaysSo)
+{
+  // The tank with a ceiling 0.4..0.5 m above its free surface (z = 0); the robot upside down, its DVL 0.3 m deep
+  // looking up. Sound does not cross the surface: every beam meets it first, so no beam is valid, each is
+  // flagged `surface` with its figure of merit (velocity_std) +inf, and there is no bottom lock or altitude --
+  // not the ceiling as a false bottom. With the surface raised above the ceiling the same beams lock on it at
+  // the ray-plane distance computed here.
+  for (const double surface_z : {0.0, 2.0}) {
+    sim::WorldConfig config = tank();
+    config.surface_z = surface_z;
+    sim::MeshEntry ceiling;
+    ceiling.name = "ceiling";
+    ceiling.file = writeStl("dvl_ceiling", box(Eigen::Vector3d(-2.9, -1.9, 0.4), Eigen::Vector3d(2.9, 1.9, 0.5)));
+    config.meshes.push_back(ceiling);
+    const SphereSpec s = undampedSphere();
+    SensorWorld w(config, dvlUrdf(s, 500.0, {{"beam_velocity_noise", "0.002"}}));
+    w.place(sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 1.0, -0.6), Eigen::Vector3d(M_PI, 0, 0)));
+    w.step();
+    auto& dvl = w.sensor<sensors::DvlSensor>("dvl");
+    const Eigen::Isometry3d at = dvlPose(w.robot().state().pose);
+    ASSERT_NEAR(at.translation().z(), -0.3, 1e-3);
+    for (int i = 0; i < 4; ++i) {
+      const auto& b = dvl.last().beams[i];
+      const Eigen::Vector3d d = at.linear() * beam(i);
+      ASSERT_GT(d.z(), 0.0) << "beam " << i << " does not point up";
+      if (surface_z == 0.0) {
+        EXPECT_FALSE(b.valid) << "beam " << i;
+        EXPECT_TRUE(b.surface) << "beam " << i;
+        EXPECT_TRUE(std::isinf(b.range)) << "beam " << i;
+        EXPECT_TRUE(std::isinf(b.velocity_std)) << "beam " << i;
+      } else {
+        EXPECT_TRUE(b.valid) << "beam " << i;
+        EXPECT_FALSE(b.surface) << "beam " << i;
+        EXPECT_NEAR(b.range, (0.4 - at.translation().z()) / d.z(), 0.002) << "beam " << i;
+        EXPECT_NEAR(b.velocity_std, 0.002, 1e-12) << "beam " << i;
+      }
+    }
+    EXPECT_EQ(dvl.last().bottom_lock, surface_z != 0.0);
+    EXPECT_EQ(std::isnan(dvl.last().altitude), surface_z == 0.0);
+  }
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
-// EchoModel (cpp/unexmin/sensors/sonar/echo_model.h) on its own, against the documented formula evaluated here:
-// the bins, the spreading and absorption loss L(r), the gain A = 10^(G gain / 10), the backscatter law
-// cos(theta)^n, the line (sum per bin, gain, saturation at 1), the artifact spreading between neighbouring rays
-// (strength kept), and bad parameters -> ParameterError naming the parameter and its value.
+// EchoModel (cpp/unexmin/sensors/sonar/echo_model.h) on its own, against the documented sonar equation evaluated
+// here: the bins, TL(r) and TVG(r), the gain G = gain x span [dB], the echo level of a ray (source level, spreading,
+// absorption, backscatter cos(theta)^n, footprint), output level and 8-bit quantisation, the line (power summed
+// per bin), the artifact spreading between neighbouring rays (power kept), and bad parameters -> ParameterError
+// naming the parameter and its value.
 #include <unexmin/sensors/sonar/echo_model.h>
 #include "expect_error.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -23,7 +25,7 @@ using sonar::Echo;
 using sonar::EchoModel;
 using sonar::EchoParams;
 
-/// No spreading and no absorption: L(r) = 1, so a strength is w cos(theta)^n alone.
+/// No absorption and no gain.
 EchoParams flat(double range_min, double range_max, int nbins)
 {
   EchoParams p;
@@ -31,7 +33,6 @@ EchoParams flat(double range_min, double range_max, int nbins)
   p.range_max = range_max;
   p.nbins = nbins;
   p.gain = 0.0;
-  p.spreading_exponent = 0.0;
   p.absorption = 0.0;
   return p;
 }
@@ -58,85 +59,136 @@ TEST(EchoModel, BinsSplitTheWindowIntoEqualHalfOpenIntervals)
   EXPECT_EQ(m.bin(std::numeric_limits<double>::infinity()), -1);
 }
 
-TEST(EchoModel, LossIsSpreadingRelativeToTheReferenceRangeTimesTwoWayAbsorption)
+TEST(EchoModel, TransmissionLossIsSphericalSpreadingPlusAbsorptionAndTheTvgUndoesItsConfiguredShare)
 {
-  struct Case { double s, r_ref, alpha, r, expected; };
-  // L(r) = (r_ref / r)^s 10^(-2 alpha r / 10), by hand.
-  for (const Case& c : {Case{2.0, 1.0, 0.0, 2.0, 0.25}, Case{2.0, 1.0, 0.0, 0.5, 4.0},
-                        Case{1.0, 2.0, 0.5, 4.0, 0.5 * std::pow(10.0, -0.4)},  // 2 x 0.5 dB/m x 4 m = 4 dB
-                        Case{0.0, 1.0, 1.0, 5.0, 0.1},                         // 10 dB two way
-                        Case{2.0, 1.0, 0.1, 2.0, 0.25 * std::pow(10.0, -0.04)},  // the defaults
-                        Case{4.0, 3.0, 0.0, 1.5, 16.0}}) {
+  struct Case { double alpha, k, r, tl, tvg; };
+  // TL = 20 log10 r + alpha r, TVG = k log10 r + 2 alpha r, by hand.
+  for (const Case& c : {Case{0.0, 20.0, 10.0, 20.0, 20.0}, Case{0.0, 40.0, 100.0, 40.0, 80.0},
+                        Case{0.5, 30.0, 1.0, 0.5, 1.0}, Case{0.1, 20.0, 0.1, -20.0 + 0.01, -20.0 + 0.02},
+                        Case{1.0, 0.0, 1000.0, 60.0 + 1000.0, 2000.0}}) {
     EchoParams p;
-    p.spreading_exponent = c.s;
-    p.reference_range = c.r_ref;
     p.absorption = c.alpha;
-    EXPECT_NEAR(EchoModel(p).loss(c.r), c.expected, 1e-12 * c.expected)
-        << "s " << c.s << " r_ref " << c.r_ref << " alpha " << c.alpha << " r " << c.r;
+    p.tvg_spreading = c.k;
+    const EchoModel m(p);
+    EXPECT_NEAR(m.transmissionLoss(c.r), c.tl, 1e-9) << "alpha " << c.alpha << " r " << c.r;
+    EXPECT_NEAR(m.tvg(c.r), c.tvg, 1e-9) << "alpha " << c.alpha << " k " << c.k << " r " << c.r;
   }
 }
 
-TEST(EchoModel, GainAmplifiesByItsShareOfTheSpanInDecibels)
+TEST(EchoModel, GainIsItsShareOfTheSpanInDecibels)
 {
   struct Case { double gain, span, expected; };
-  for (const Case& c : {Case{0.0, 40.0, 1.0}, Case{0.5, 40.0, 100.0}, Case{0.25, 40.0, 10.0},
-                        Case{1.0, 30.0, 1000.0}, Case{0.2, 40.0, std::pow(10.0, 0.8)}, Case{1.0, 0.0, 1.0}}) {
+  for (const Case& c : {Case{0.0, 40.0, 0.0}, Case{0.5, 40.0, 20.0}, Case{0.2, 40.0, 8.0}, Case{1.0, 30.0, 30.0},
+                        Case{1.0, 0.0, 0.0}}) {
     EchoParams p;
     p.gain = c.gain;
     p.gain_span = c.span;
-    EXPECT_NEAR(EchoModel(p).amplification(), c.expected, 1e-12 * c.expected) << "gain " << c.gain << " span " << c.span;
+    EXPECT_NEAR(EchoModel(p).gainDb(), c.expected, 1e-12) << "gain " << c.gain << " span " << c.span;
   }
 }
 
-TEST(EchoModel, StrengthIsTheRayShareTimesCosineToTheNTimesLoss)
+TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint)
 {
-  for (double n : {0.0, 1.0, 2.0, 3.0, 1.5}) {
-    EchoParams p = flat(0.0, 10.0, 10);
-    p.backscatter_exponent = n;
-    const EchoModel m(p);
-    for (double theta_deg : {0.0, 30.0, 60.0, 80.0}) {
-      const double c = std::cos(theta_deg * M_PI / 180.0);
-      // w = 1 / 4 rays, L = 1.
-      EXPECT_NEAR(m.strength(Echo{2.0, c}, 4), std::pow(c, n) / 4.0, 1e-15) << "n " << n << " theta " << theta_deg;
-    }
-    // cos(theta) is clamped to [0, 1].
-    EXPECT_NEAR(m.strength(Echo{2.0, 1.2}, 4), 0.25, 1e-15) << "n " << n;
-    if (n > 0.0) {
-      EXPECT_EQ(m.strength(Echo{2.0, -0.3}, 4), 0.0) << "n " << n;
-    }
-  }
-  // Lambert (n = 2) at 60 deg with the default loss and 10 rays: 0.25 x (1 / 2.5)^2 x 10^(-0.05) / 10.
-  const EchoModel d{EchoParams()};
-  EXPECT_NEAR(d.strength(Echo{2.5, 0.5}, 10), 0.25 * 0.16 * std::pow(10.0, -0.05) / 10.0, 1e-15);
-  // No ray in the fan counts as one (no division by zero).
-  EXPECT_NEAR(d.strength(Echo{2.5, 1.0}, 0), d.strength(Echo{2.5, 1.0}, 1), 1e-15);
-}
-
-TEST(EchoModel, LineSumsTheEchoesOfABinAppliesTheGainAndSaturatesAtOne)
-{
-  EchoParams p = flat(0.0, 4.0, 4);  // bins of 1 m
-  p.gain = 0.5;
-  p.gain_span = 20.0;                // A = 10
+  // By hand: SL 200 dB, r = 2 m, no absorption, BS0 -20 dB, n = 2, cos 0.5, Omega 0.04 sr over 4 rays, extra 0:
+  // 2 TL = 40 log10 2 = 12.041 dB; BS = -20 + 20 log10 0.5 = -26.021 dB; A = 4 x 0.01 / 0.5 = 0.08 m^2 -> -10.969 dB.
+  EchoParams p = flat(0.0, 10.0, 10);
+  p.beam_solid_angle = 0.04;
   const EchoModel m(p);
-  const std::size_t rays = 100;      // w = 0.01
-  std::vector<Echo> echoes = {{1.2, 1.0}, {1.7, 1.0},  // bin 1: 2 x 0.01 -> 0.2 after the gain
-                              {2.5, 0.5},              // bin 2: 0.01 x 0.25 -> 0.025
+  EXPECT_NEAR(m.echoLevel(Echo{2.0, 0.5}, 4), 200.0 - 12.0412 - 26.0206 - 10.9691, 1e-3);
+  // The power is the same as a product of the linear factors: SL r^-4 BS0 cos^n (r^2 Omega / N / cos).
+  for (double n : {0.0, 1.0, 2.0, 3.5}) {
+    EchoParams q = p;
+    q.backscatter_exponent = n;
+    q.absorption = 0.2;
+    const EchoModel mq(q);
+    for (double r : {0.5, 1.0, 3.0, 17.0}) {
+      for (double c : {1.0, 0.8, 0.3}) {
+        const double expected = 1e20 * std::pow(r, -4) * std::pow(10.0, -2 * 0.2 * r / 10) * 0.01 * std::pow(c, n) *
+                                (r * r * 0.04 / 4 / c) * std::pow(10.0, -0.3);  // extra -3 dB
+        EXPECT_NEAR(mq.strength(Echo{r, c, -3.0}, 4), expected, 1e-9 * expected) << "n " << n << " r " << r << " c " << c;
+      }
+    }
+  }
+  // Grazing or behind: no echo.
+  EXPECT_EQ(m.strength(Echo{2.0, 0.0}, 4), 0.0);
+  EXPECT_EQ(m.strength(Echo{2.0, -0.3}, 4), 0.0);
+  // cos above 1 counts as 1; no ray in the fan counts as one (no division by zero).
+  EXPECT_NEAR(m.strength(Echo{2.0, 1.2}, 4), m.strength(Echo{2.0, 1.0}, 4), 1e-9 * m.strength(Echo{2.0, 1.0}, 4));
+  EXPECT_NEAR(m.strength(Echo{2.5, 1.0}, 0), m.strength(Echo{2.5, 1.0}, 1), 1e-9 * m.strength(Echo{2.5, 1.0}, 1));
+}
+
+TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes)
+{
+  EchoParams p = flat(0.0, 10.0, 10);
+  p.gain = 0.25;            // G = 10 dB
+  p.absorption = 0.5;
+  p.tvg_spreading = 30.0;   // TVG(10 m) = 30 + 10 = 40 dB
+  p.display_min = 100.0;
+  p.display_span = 51.0;    // 0.2 dB per code
+  p.levels = 255;
+  const EchoModel m(p);
+  EXPECT_DOUBLE_EQ(m.step(), 0.2);
+  EXPECT_NEAR(m.outputLevel(1e8, 10.0), 80.0 + 10.0 + 40.0, 1e-9);
+  EXPECT_EQ(m.outputLevel(0.0, 10.0), -std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(m.inputPower(130.0, 10.0), 1e8, 1e-3);
+  // code = round((L - 100) / 0.2): 130 dB -> 150; 130.09 -> 150; 130.11 -> 151; below 100 -> 0; above 151 -> 255.
+  EXPECT_FLOAT_EQ(m.quantise(130.0), 150.0f / 255.0f);
+  EXPECT_FLOAT_EQ(m.quantise(130.09), 150.0f / 255.0f);
+  EXPECT_FLOAT_EQ(m.quantise(130.11), 151.0f / 255.0f);
+  EXPECT_EQ(m.quantise(99.0), 0.0f);
+  EXPECT_EQ(m.quantise(-std::numeric_limits<double>::infinity()), 0.0f);
+  EXPECT_EQ(m.quantise(170.0), 1.0f);
+
+  // One echo alone at its own range (the M3's return): the same code as its level through gain and TVG at r,
+  // for the default TVG (k = 20: the spreading cancels) and another (k = 30), away from the code edges.
+  for (double k : {20.0, 30.0}) {
+    EchoParams q = flat(0.0, 100.0, 1);
+    q.tvg_spreading = k;
+    q.absorption = 0.3;
+    q.gain = 0.5;
+    const EchoModel mq(q);
+    for (double r : {0.7, 3.0, 12.0, 40.0}) {
+      for (double c : {1.0, 0.6, 0.2}) {
+        const Echo e{r, c, -2.0};
+        const double level = mq.outputLevel(mq.strength(e, 3), r);
+        const double x = (level - q.display_min) / mq.step();
+        if (std::abs(x - std::floor(x) - 0.5) < 1e-6) continue;  // on an edge: either code
+        EXPECT_EQ(mq.echoCode(e, 3), static_cast<int>(std::lround(mq.quantise(level) * 255.0))) << "k " << k << " r " << r << " c " << c;
+      }
+    }
+  }
+}
+
+TEST(EchoModel, LineSumsThePowerOfABinThenGainTvgAndQuantisation)
+{
+  EchoParams p = flat(0.0, 4.0, 4);  // bins of 1 m, centres 0.5, 1.5, 2.5, 3.5
+  p.gain = 0.5;
+  p.gain_span = 20.0;                // G = 10 dB
+  const EchoModel m(p);
+  const std::size_t rays = 100;
+  std::vector<Echo> echoes = {{1.2, 1.0}, {1.7, 1.0},  // bin 1
+                              {2.5, 0.5},              // bin 2
                               {4.0, 1.0}, {-0.1, 1.0}, {7.0, 1.0}};  // outside the window: lost
-  for (int k = 0; k < 60; ++k) echoes.push_back({3.5, 1.0});  // bin 3: 0.6 -> 6 -> saturated
+  for (int k = 0; k < 60; ++k) echoes.push_back({3.5, 1.0});  // bin 3
   std::vector<float> line = {9.0f};  // resized and overwritten
   m.line(echoes, rays, line);
   ASSERT_EQ(line.size(), 4u);
+  const auto expected = [&](double power, double centre) {
+    const double level = 10 * std::log10(power) + 10.0 + 20 * std::log10(centre);  // + G + TVG (alpha 0)
+    return std::clamp(std::round((level - 125.0) / 80.0 * 255.0), 0.0, 255.0) / 255.0;
+  };
   EXPECT_EQ(line[0], 0.0f);  // no echo: exactly nothing
-  EXPECT_NEAR(line[1], 0.2, 1e-6);
-  EXPECT_NEAR(line[2], 0.025, 1e-7);
-  EXPECT_EQ(line[3], 1.0f);  // saturated: exactly the ceiling
+  const double b1 = m.strength({1.2, 1.0}, rays) + m.strength({1.7, 1.0}, rays);
+  EXPECT_NEAR(line[1], expected(b1, 1.5), 1e-6);
+  EXPECT_NEAR(line[2], expected(m.strength({2.5, 0.5}, rays), 2.5), 1e-6);
+  EXPECT_NEAR(line[3], expected(60 * m.strength({3.5, 1.0}, rays), 3.5), 1e-6);
+  EXPECT_GT(line[1], 0.0f);
+  EXPECT_LT(line[3], 1.0f);
 
   // The same by deposit + finish.
   std::vector<double> energy(4, 0.0);
   for (const Echo& e : echoes) m.deposit(e, rays, energy);
-  EXPECT_NEAR(energy[1], 0.02, 1e-15);
-  EXPECT_NEAR(energy[2], 0.0025, 1e-15);
-  EXPECT_NEAR(energy[3], 0.6, 1e-12);
+  EXPECT_NEAR(energy[1], b1, 1e-12 * b1);
   std::vector<float> again;
   m.finish(energy, again);
   EXPECT_EQ(again, line);  // the same arithmetic: the same floats
@@ -144,26 +196,27 @@ TEST(EchoModel, LineSumsTheEchoesOfABinAppliesTheGainAndSaturatesAtOne)
 
 TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
 {
-  const EchoModel m(flat(0.0, 10.0, 10));  // bins of 1 m, L = 1, n = 2
-  // Two neighbours 3 m apart, head-on, one ray each (strength 1): each keeps half in its own bin and spreads
+  const EchoModel m(flat(0.0, 10.0, 10));  // bins of 1 m
+  // Two neighbours 3 m apart, head-on, one ray each (powers a, b): each keeps half in its own bin and spreads
   // half evenly over the half-way to the other (1.5 m): [2.5, 4] and [4, 5.5].
   std::vector<double> energy(10, 0.0);
   m.spread({{2.5, 1.0}, {5.5, 1.0}}, 1, 5.0, energy);
-  const std::vector<double> paired = {0, 0, 0.5 + 0.5 / 3, 1.0 / 3, 1.0 / 3, 0.5 / 3 + 0.5, 0, 0, 0, 0};
-  for (int i = 0; i < 10; ++i) EXPECT_NEAR(energy[i], paired[i], 1e-12) << "bin " << i;
-  EXPECT_NEAR(sum(energy), 2.0, 1e-12);
+  const double a = m.strength({2.5, 1.0}, 1), b = m.strength({5.5, 1.0}, 1);
+  const std::vector<double> paired = {0, 0, 0.5 * a + 0.5 * a / 3, a / 3, b / 3, 0.5 * b / 3 + 0.5 * b, 0, 0, 0, 0};
+  for (int i = 0; i < 10; ++i) EXPECT_NEAR(energy[i], paired[i], 1e-12 * a) << "bin " << i;
+  EXPECT_NEAR(sum(energy), a + b, 1e-12 * a);
 
   // Farther apart than max_gap, or a ray without echo between them: no spreading, each in its own bin.
   for (const auto& column : {std::vector<Echo>{{2.5, 1.0}, {5.5, 1.0}}, std::vector<Echo>{{2.5, 1.0}, {-1.0, 1.0}, {5.5, 1.0}}}) {
     std::vector<double> e(10, 0.0);
     m.spread(column, 1, column.size() == 2 ? 2.9 : 5.0, e);
-    for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], i == 2 || i == 5 ? 1.0 : 0.0, 1e-12) << "bin " << i;
+    for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], i == 2 ? a : i == 5 ? b : 0.0, 1e-12 * a) << "bin " << i;
   }
 
-  // Three rays of a fan of 8, at incidences (strengths s_k = cos^2 / 8), all paired (gaps 1 and 1.6 m <= 2 m):
+  // Three rays of a fan of 8, at incidences (powers s_k from the model), all paired (gaps 1 and 1.6 m <= 2 m):
   // ray 0 keeps half in bin 1 and spreads half over [1.5, 2]; ray 1 spreads halves over [2, 2.5] and
   // [2.5, 3.3]; ray 2 spreads half over [3.3, 4.1] and keeps half in bin 4.
-  const double s0 = 1.0 / 8, s1 = 0.64 / 8, s2 = 0.36 / 8;
+  const double s0 = m.strength({1.5, 1.0}, 8), s1 = m.strength({2.5, 0.8}, 8), s2 = m.strength({4.1, 0.6}, 8);
   std::vector<double> e(10, 0.0);
   m.spread({{1.5, 1.0}, {2.5, 0.8}, {4.1, 0.6}}, 8, 2.0, e);
   const std::vector<double> three = {0,
@@ -172,8 +225,8 @@ TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
                                      0.5 * s1 * 0.3 / 0.8 + 0.5 * s2 * 0.7 / 0.8,
                                      0.5 * s2 * 0.1 / 0.8 + 0.5 * s2,
                                      0, 0, 0, 0, 0};
-  for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], three[i], 1e-12) << "bin " << i;
-  EXPECT_NEAR(sum(e), s0 + s1 + s2, 1e-12);
+  for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], three[i], 1e-12 * s0) << "bin " << i;
+  EXPECT_NEAR(sum(e), s0 + s1 + s2, 1e-12 * s0);
 }
 
 TEST(EchoModel, ErrorsAreParameterErrorsUnderTheOneErrorRoot)
@@ -206,10 +259,14 @@ TEST(EchoModel, BadParametersThrowAParameterErrorNamingTheParameterAndItsValue)
       {"backscatter_exponent", "-1", [](EchoParams& p) { p.backscatter_exponent = -1.0; }},
       {"backscatter_exponent", "11", [](EchoParams& p) { p.backscatter_exponent = 11.0; }},
       {"backscatter_exponent", "nan", [&](EchoParams& p) { p.backscatter_exponent = nan; }},
-      {"spreading_exponent", "4.5", [](EchoParams& p) { p.spreading_exponent = 4.5; }},
-      {"spreading_exponent", "-0.5", [](EchoParams& p) { p.spreading_exponent = -0.5; }},
-      {"reference_range", "0", [](EchoParams& p) { p.reference_range = 0.0; }},
-      {"reference_range", "inf", [&](EchoParams& p) { p.reference_range = inf; }},
+      {"source_level", "90", [](EchoParams& p) { p.source_level = 90.0; }},
+      {"source_level", "nan", [&](EchoParams& p) { p.source_level = nan; }},
+      {"backscatter_strength", "5", [](EchoParams& p) { p.backscatter_strength = 5.0; }},
+      {"beam_solid_angle", "0", [](EchoParams& p) { p.beam_solid_angle = 0.0; }},
+      {"tvg_spreading", "70", [](EchoParams& p) { p.tvg_spreading = 70.0; }},
+      {"display_min", "inf", [&](EchoParams& p) { p.display_min = inf; }},
+      {"display_span", "0", [](EchoParams& p) { p.display_span = 0.0; }},
+      {"levels", "0", [](EchoParams& p) { p.levels = 0; }},
       {"absorption", "-0.1", [](EchoParams& p) { p.absorption = -0.1; }},
       {"absorption", "12", [](EchoParams& p) { p.absorption = 12.0; }},
       {"absorption", "nan", [&](EchoParams& p) { p.absorption = nan; }},
@@ -228,13 +285,13 @@ TEST(EchoModel, BadParametersThrowAParameterErrorNamingTheParameterAndItsValue)
   edge.gain = 1.0;
   edge.gain_span = 120.0;
   edge.backscatter_exponent = 10.0;
-  edge.spreading_exponent = 4.0;
+  edge.tvg_spreading = 60.0;
   edge.absorption = 10.0;
   EXPECT_NO_THROW(EchoModel{edge});
   edge.gain = 0.0;
   edge.gain_span = 0.0;
   edge.backscatter_exponent = 0.0;
-  edge.spreading_exponent = 0.0;
+  edge.tvg_spreading = 0.0;
   edge.absorption = 0.0;
   EXPECT_NO_THROW(EchoModel{edge});
 }

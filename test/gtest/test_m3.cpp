@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace unexmin {
 namespace test {
@@ -133,8 +135,15 @@ TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre)
     const double range = toBoxWall(p, d, &cos_incidence);
     ASSERT_NEAR(range, by_hand[k], 0.005) << "beam " << k;
     EXPECT_NEAR(m3.last().ranges[k], range, 0.01) << "beam " << k;
-    // Intensity cos(incidence)^n, n = 2 (default): 0.75 on the side walls and beams 1, 3, 1 head-on (beam 2).
-    EXPECT_NEAR(m3.last().intensities[k], std::pow(cos_incidence, 2), 1e-4) << "beam " << k;
+    // Intensity: the documented sonar equation (m3_sensor.h, echo_model.h) of the beam's solid angle
+    // (fov / beams x 2 sin(fov_v / 2)) at the return's incidence, gain 0.5 x 40 dB, TVG 20 log r + 2 alpha r,
+    // 8 bits over 80 dB from 125 dB; within one code. Beam 2 is head-on, the side walls at 60 deg
+    // incidence are 6 dB (19 codes) weaker per the cos^2 x footprint / cos law.
+    const double omega = fov / beams * 2.0 * std::sin(3.0 * kDeg / 2.0);
+    const double level = 210.0 - 40 * std::log10(range) - 0.2 * range - 20.0 + 20 * std::log10(cos_incidence) +
+                         10 * std::log10(range * range * omega / cos_incidence) + 20.0 + 20 * std::log10(range) + 0.2 * range;
+    const double code = std::clamp(std::round((level - 125.0) / 80.0 * 255.0), 0.0, 255.0) / 255.0;
+    EXPECT_NEAR(m3.last().intensities[k], code, 1.01 / 255) << "beam " << k << " level " << level;
   }
 }
 
@@ -202,6 +211,53 @@ TEST(M3, PingsAtFortyHertzOfSimulationTime)
     EXPECT_LT(m3.last().time, k / 40.0 + 0.002 - 1e-9);
   }
   EXPECT_NEAR(w.world->time(), 2.0, 1e-9);
+}
+
+TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
+{
+  // worlds/tank.world (walls x = +-3, y = +-2, rim 0.3 m above the free surface z = 0), the M3 0.2 m deep in the
+  // corner (0.7 m from x = 3, 0.4 m from y = 2), the fan pitched 20 deg up: beams that meet a wall below the
+  // surface (the left ones, on y = 2) measure it (+-1 cm, the ray-plane
+  // distance computed here for the beam's lowest and highest rays); beams whose rays meet the surface first
+  // report no return (+inf), not the wall above the water.
+  sim::WorldConfig tank = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
+  tank.robots.resize(1);
+  const Eigen::Vector3d mount(0.3, 0.0, 0.0), mount_rpy(0.0, -20.0 * kDeg, 0.0);
+  tank.robots[0].pose = sim::poseFromXyzRpy(Eigen::Vector3d(2.0, 1.6, -0.2), Eigen::Vector3d::Zero());
+  SonarWorld w(tank, sensorUrdf(SphereSpec(), mountLink("T/m3_link", mount, mount_rpy),
+                                sensorXml("m3", "m3", "T/m3_link", 40.0, {{"noise", "none"}})));
+  auto& m3 = w.sensor<M3Sensor>("m3");
+  w.samples(m3, 1);
+  const Eigen::Isometry3d link = w.robot().state().pose * sim::poseFromXyzRpy(mount, mount_rpy);
+  const Eigen::Vector3d p = link.translation();
+  ASSERT_LT(p.z(), 0.0);
+  int on_walls = 0, surface = 0;
+  for (int k = 0; k < kBeams; ++k) {
+    double first = INFINITY;  // the nearest wall hit below the surface over the beam's rays
+    bool all_surface = true, all_wall = true;
+    for (int j = 0; j < kRaysPerBeam; ++j) {
+      const Eigen::Vector3d d = link.linear() * ray(k, j);
+      const double lim[2][2] = {{-3, 3}, {-2, 2}};
+      double wall = INFINITY;
+      for (int a = 0; a < 2; ++a)
+        if (std::abs(d[a]) > 1e-12) wall = std::min(wall, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
+      const double to_surface = d.z() > 0 ? -p.z() / d.z() : INFINITY;
+      if (wall < to_surface) first = std::min(first, wall), all_surface = false;
+      else all_wall = false;
+    }
+    const float r = m3.last().ranges[k];
+    if (all_surface) {
+      EXPECT_EQ(r, std::numeric_limits<float>::infinity()) << "beam " << k;
+      ++surface;
+    } else if (all_wall) {
+      EXPECT_NEAR(r, first, 0.01) << "beam " << k;
+      ++on_walls;
+    } else {  // the beam straddles the waterline: its lowest rays' wall or nothing
+      EXPECT_TRUE(std::isinf(r) || std::abs(r - first) < 0.01) << "beam " << k << " range " << r;
+    }
+  }
+  EXPECT_GT(on_walls, 20);
+  EXPECT_GT(surface, 20);
 }
 
 TEST(M3, BadParametersNameTheSensorAndTheParameter)

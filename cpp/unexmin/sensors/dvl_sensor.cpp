@@ -105,10 +105,15 @@ void DvlSensor::sample(const SensorContext& ctx)
   const Eigen::Matrix3d R = dvl.linear();
   const Eigen::Vector3d origin = dvl.translation();
   const double cos_a = std::cos(beam_angle_);
+  const double surface_z = ctx.world.water().surface_z;
+  std::array<double, 4> to_surface;
   for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d d = (R * directions_[i]).normalized();
     rays_[i].origin = origin.cast<float>();
-    rays_[i].direction = (R * directions_[i]).normalized().cast<float>();
-    rays_[i].max_range = static_cast<float>(altitude_max_ / cos_a);
+    rays_[i].direction = d.cast<float>();
+    // Sound stops at the free surface: a beam that reaches it before any bottom hears the surface, not a bottom.
+    to_surface[i] = d.z() > 1e-9 ? (surface_z - origin.z()) / d.z() : kInf;
+    rays_[i].max_range = static_cast<float>(std::clamp(to_surface[i], 0.0, altitude_max_ / cos_a));
   }
   castRays(ctx, rays_, hits_);
 
@@ -129,9 +134,11 @@ void DvlSensor::sample(const SensorContext& ctx)
     const double range = range_noise_[i]->apply(hit_range, random());
     const double velocity = velocity_noise_[i]->apply(scale * directions_[i].dot(v), random());
     const double along_z = hit_range * cos_a;
+    b.surface = !hits_[i].hit() && to_surface[i] <= altitude_max_ / cos_a;
     b.valid = hits_[i].hit() && along_z >= altitude_min_ && along_z <= altitude_max_;
     b.range = b.valid ? std::max(0.0, range) : kInf;
     b.velocity = b.valid ? velocity : kNaN;
+    if (b.surface) b.velocity_std = kInf;  // the figure of merit: no bottom velocity from this beam
     n_valid += b.valid ? 1 : 0;
   }
 

@@ -2,7 +2,8 @@
 // Frame: the DVL link (on the UX-1 Nortek's instrument axes: x forward, y starboard, z out of the
 // transducer face). Beam i points along b_i = (sin a cos c_i, sin a sin c_i, cos a), a = beam_angle,
 // c_i = beam_azimuth_0 + i * 90 deg. Each ping:
-//   - every beam is ray-cast from the DVL origin against the world (RayCaster); a beam is valid when
+//   - every beam is ray-cast from the DVL origin against the world (RayCaster), up to the free surface (a beam
+//     that reaches it first is invalid, flagged `surface`, its figure of merit velocity_std +inf); valid when
 //     it hits with a distance along z (range cos a) in [altitude_min, altitude_max];
 //   - beam velocity u_i = (1 + e) b_i . v + noise, v the DVL origin's velocity over the (static)
 //     bottom in the DVL frame, e a scale error drawn at turn-on;
@@ -44,7 +45,9 @@ struct DvlBeam
   bool valid = false;                  ///< bottom detected within the altitude window
   double range = 0.0;                  ///< along the beam [m]; +inf when invalid
   double velocity = 0.0;               ///< along the beam, positive away from the face [m/s]; NaN when invalid
-  double velocity_std = 0.0;           ///< its white noise, 1 sigma [m/s]
+  double velocity_std = 0.0;           ///< its white noise, 1 sigma [m/s] (the figure of merit); +inf when
+                                       ///< the beam met the free surface
+  bool surface = false;                ///< the beam reached the free surface before any bottom: invalid
 };
 
 struct DvlSample

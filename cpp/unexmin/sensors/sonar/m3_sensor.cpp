@@ -2,6 +2,7 @@
 
 #include <unexmin/sensors/sensor_params.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,8 +36,24 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   resolution_ = p.number("range_resolution", 0.01, 1e-6, 10.0, "m");
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
   if (!noise) range_noise_ = 0.0;
-  backscatter_exponent_ = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
+  EchoParams e;  // the sonar equation of the intensities (echo_model.h): one bin over the range window
+  e.range_min = range_min_;
+  e.range_max = range_max_;
+  e.nbins = 1;
+  e.gain = p.number("gain", 0.5, 0.0, 1.0, "(0 low .. 1 high)");
+  e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
+  e.source_level = p.number("source_level", 210.0, 100.0, 260.0, "dB re 1 uPa at 1 m");
+  e.backscatter_strength = p.number("backscatter_strength", -20.0, -100.0, 0.0, "dB");
+  e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
+  e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
+  e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
+  e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
+  e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
   p.finish();
+  // Solid angle of one beam: its share of the fan's azimuth x elevation rectangle.
+  e.beam_solid_angle = fov_h_ / beams_ * 2.0 * std::sin(fov_v_ / 2.0);
+  if (!(e.beam_solid_angle > 0.0)) p.fail("fov_h", formatNumber(fov_h_), "a fan with a solid angle (fov_h, fov_v > 0)");
+  echo_ = EchoModel(e);
 
   for (int k = 0; k < beams_; ++k)
     for (int j = 0; j < rays_per_beam_; ++j) dirs_.push_back(rayDirection(k, j));
@@ -56,10 +73,15 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
 {
   const Eigen::Isometry3d sonar = ctx.state.pose * spec().pose;
   const Eigen::Matrix3d R = sonar.linear();
+  const double surface_z = ctx.world.water().surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
+    const Eigen::Vector3d d = (R * dirs_[i]).normalized();
     rays_[i].origin = sonar.translation().cast<float>();
-    rays_[i].direction = (R * dirs_[i]).normalized().cast<float>();
-    rays_[i].max_range = static_cast<float>(range_max_);
+    rays_[i].direction = d.cast<float>();
+    // Sound does not cross the free surface: a ray stops there (the surface's grazing echo is not a return;
+    // its reflection comes after the direct returns, so the first return keeps to the direct paths).
+    const double to_surface = d.z() > 1e-9 ? (surface_z - sonar.translation().z()) / d.z() : range_max_;
+    rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 0.0, range_max_));
   }
   castRays(ctx, rays_, hits_);
 
@@ -85,8 +107,9 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
       continue;
     }
     out.ranges[k] = static_cast<float>(r);
-    const double c = std::cos(static_cast<double>(hits_[i].incidence));
-    out.intensities[k] = static_cast<float>(std::pow(c, backscatter_exponent_));
+    // The return's level by the sonar equation, the beam's whole footprint at the return's incidence.
+    const Echo echo{hits_[i].range, std::cos(static_cast<double>(hits_[i].incidence))};
+    out.intensities[k] = static_cast<float>(static_cast<double>(echo_.echoCode(echo, 1)) / echo_.params().levels);
   }
 }
 

@@ -8,13 +8,19 @@
 //     (range_noise, 1 sigma; noise = none: off), rounded to range_resolution;
 //   - REP-117: +inf when nothing is within range_max (or the noisy range exceeds it), -inf when the
 //     return is nearer than range_min;
-//   - intensity of the beam: cos(incidence)^backscatter_exponent of its first return, 0 without one.
+//   - rays stop at the free surface (sound does not leave the water; the first return keeps to direct paths);
+//   - intensity of the beam: its first return's echo level by the sonar equation of echo_model.h (the beam's
+//     solid angle fov_h / beams x 2 sin(fov_v / 2) at the return's incidence), receiver gain, TVG and 8-bit
+//     quantisation, 0 without a return.
 // Parameters (defaults in brackets): beams (256), fov_h [rad] (120 deg), fov_v [rad] (3 deg),
 // rays_per_beam (4), range_min [m] (0.2), range_max [m] (150), range_resolution [m] (0.01),
-// range_noise [m] (0), noise gaussian|none (gaussian), backscatter_exponent (2).
+// range_noise [m] (0), noise gaussian|none (gaussian), backscatter_exponent (2), gain (0.5), gain_span [dB] (40),
+// source_level [dB re 1 uPa at 1 m] (210), backscatter_strength [dB] (-20), absorption [dB/m] (0.1),
+// tvg_spreading [dB/decade] (20), display_min [dB re 1 uPa] (125), display_span [dB] (80).
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
+#include <unexmin/sensors/sonar/echo_model.h>
 
 #include <Eigen/Core>
 
@@ -49,6 +55,8 @@ public:
   double rangeMax() const { return range_max_; }                     ///< [m]
   double rangeResolution() const { return resolution_; }             ///< [m]
   int raysPerBeam() const { return rays_per_beam_; }
+  /// The sonar equation of the intensities (one bin over the range window).
+  const EchoModel& echo() const { return echo_; }
   /// Ray j of beam k in the sensor frame (unit).
   Eigen::Vector3d rayDirection(std::size_t k, int j) const;
 
@@ -59,7 +67,8 @@ protected:
 private:
   int beams_ = 256, rays_per_beam_ = 4;
   double fov_h_ = 0.0, fov_v_ = 0.0, range_min_ = 0.0, range_max_ = 0.0, resolution_ = 0.0;
-  double range_noise_ = 0.0, backscatter_exponent_ = 2.0;
+  double range_noise_ = 0.0;
+  EchoModel echo_{EchoParams()};  ///< the intensities' sonar equation
   std::vector<Eigen::Vector3d> dirs_;
   std::vector<raycast::Ray> rays_;
   std::vector<raycast::Hit> hits_;

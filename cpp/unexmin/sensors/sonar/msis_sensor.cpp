@@ -3,6 +3,7 @@
 #include <unexmin/sensors/sensor_params.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -33,6 +34,9 @@ bool parseBool(sensors::SensorParams& p, const std::string& key, bool fallback)
   return v == "true" || v == "True" || v == "1";
 }
 
+/// A draw of the unit-mean exponential distribution: the power of a Rayleigh amplitude.
+double exponential(sensors::Random& random) { return -std::log1p(-random.uniform()); }
+
 double wrap(double a)
 {
   a = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
@@ -40,6 +44,14 @@ double wrap(double a)
 }
 
 }  // namespace
+
+const std::map<std::string, double>& MsisSensor::gainSettings()
+{
+  // The Micron's low / medium / high gain as shares of gain_span: low = the thesis's 0.2 (6.1.1); medium and
+  // high are assumed.
+  static const std::map<std::string, double> settings = {{"low", 0.2}, {"medium", 0.5}, {"high", 0.8}};
+  return settings;
+}
 
 const std::vector<double>& MsisSensor::mechanicalSteps()
 {
@@ -61,13 +73,18 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   const double nbins = p.number("nbins", pre.nbins, 1.0, 10000.0, "bins");
   if (nbins != std::floor(nbins)) p.fail("nbins", formatNumber(nbins), "a whole number of bins");
   e.nbins = static_cast<int>(nbins);
-  e.gain = p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high)");
+  // The gain: a number in [0, 1] or the Micron's named settings.
+  const std::string gain_word = p.text("gain", "");
+  const auto named = gainSettings().find(gain_word);
+  e.gain = named != gainSettings().end() ? named->second : p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high, or low/medium/high)");
   e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
+  e.source_level = p.number("source_level", 200.0, 100.0, 260.0, "dB re 1 uPa at 1 m");
+  e.backscatter_strength = p.number("backscatter_strength", -20.0, -100.0, 0.0, "dB");
   e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
-  e.spreading_exponent = p.number("spreading_exponent", 2.0, 0.0, 4.0, "(-)");
-  e.reference_range = p.number("reference_range", 1.0, 1e-3, 1000.0, "m");
   e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
-  echo_ = EchoModel(e);
+  e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
+  e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
+  e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
 
   const double step_deg = p.number("step", 0.9 * kDeg, 0.0, M_PI, "rad") / kDeg;
   const auto& steps = mechanicalSteps();
@@ -91,6 +108,8 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   if (vpr != std::floor(vpr)) p.fail("vpr", formatNumber(vpr), "a whole number of rays");
   hpr_ = static_cast<int>(hpr);
   vpr_ = static_cast<int>(vpr);
+  e.beam_solid_angle = bw_h * 2.0 * std::sin(bw_v / 2.0);  // the azimuth x elevation rectangle on the sphere
+  echo_ = EchoModel(e);
 
   const double sound_speed = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
   // One ping at a time: the echo from range_max must be back before the next ping.
@@ -102,13 +121,21 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
 
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
   salt_pepper_ = p.number("salt_pepper", 0.0, 0.0, 1.0, "(probability per bin)");
+  salt_level_ = p.number("salt_level", 10.0, 0.0, 100.0, "dB above the noise level");
+  speckle_ = parseBool(p, "speckle", false);
+  noise_floor_ = parseBool(p, "noise_floor", false);
+  noise_power_ = std::pow(10.0, p.number("noise_level", 117.0, 0.0, 300.0, "dB re 1 uPa") / 10.0);
+  multipath_ = parseBool(p, "multipath", true);
+  const double reflection = p.number("surface_reflection", 0.9, 0.0, 1.0, "(amplitude, -)");
+  ghost_extra_ = reflection > 0.0 ? 40.0 * std::log10(reflection) : -std::numeric_limits<double>::infinity();
+  surface_extra_ = p.number("surface_backscatter", -30.0, -100.0, 0.0, "dB") - e.backscatter_strength;
   shadow_ = parseBool(p, "shadow", false);
   shadow_threshold_ = p.number("shadow_threshold", 0.6, 0.0, 1.0, "(intensity)");
   artifacts_ = parseBool(p, "artifacts", false);
   artifacts_gap_ = p.number("artifacts_gap", 0.5, 0.0, 1000.0, "m");
   if (!noise) {
     range_noise_ = salt_pepper_ = 0.0;
-    shadow_ = artifacts_ = false;
+    shadow_ = artifacts_ = speckle_ = noise_floor_ = false;
   }
   threshold_low_ = p.number("threshold_low", 0.05, 0.0, 1.0, "(intensity)");
   threshold_medium_ = p.number("threshold_medium", 0.25, 0.0, 1.0, "(intensity)");
@@ -130,6 +157,12 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
     }
   }
   rays_.resize(dirs_.size());
+  surface_.resize(dirs_.size());
+  // The shadow's least code; per bin, the exponential draw u below which the noise floor alone stays code 0.
+  shadow_code_ = std::max(1, static_cast<int>(std::ceil(shadow_threshold_ * e.levels - 1e-9)));
+  noise_visible_.resize(e.nbins);
+  for (int b = 0; b < e.nbins; ++b)
+    noise_visible_[b] = -std::expm1(-echo_.codePower(1, b) / noise_power_);  // P(noise E >= code-1 power) = 1 - that
   column_.resize(vpr_);
 }
 
@@ -177,26 +210,67 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   const Eigen::Isometry3d head = ctx.state.pose * headPose(angle_);
   const Eigen::Matrix3d R = head.linear();
   const EchoParams& e = echo_.params();
+  const double surface_z = ctx.world.water().surface_z;
+  const Eigen::Vector3d origin = head.translation();
+  const bool submerged = origin.z() < surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
-    rays_[i].origin = head.translation().cast<float>();
-    rays_[i].direction = (R * dirs_[i]).normalized().cast<float>();
+    const Eigen::Vector3d d = (R * dirs_[i]).normalized();
+    rays_[i].origin = origin.cast<float>();
+    rays_[i].direction = d.cast<float>();
     rays_[i].max_range = static_cast<float>(e.range_max);
+    // A ray that reaches the free surface within range stops there (the surface echo, and its reflection).
+    surface_[i] = -1.0;
+    if (multipath_ && submerged && d.z() > 1e-9) {
+      const double s = (surface_z - origin.z()) / d.z();
+      if (s < e.range_max) {
+        surface_[i] = s;
+        rays_[i].max_range = static_cast<float>(s);
+      }
+    }
   }
   castRays(ctx, rays_, hits_);
 
+  // The reflected rays, only for the rays that reached the surface: mirrored about it, for the rest of the range.
+  mirrored_.clear();
+  mirror_of_.clear();
+  for (std::size_t i = 0; i < rays_.size(); ++i) {
+    if (surface_[i] < 0.0 || hits_[i].hit()) continue;
+    raycast::Ray r = rays_[i];
+    r.origin = (origin + surface_[i] * rays_[i].direction.cast<double>()).cast<float>();
+    r.origin.z() = static_cast<float>(surface_z);
+    r.direction.z() = -r.direction.z();
+    r.max_range = static_cast<float>(e.range_max - surface_[i]);
+    mirrored_.push_back(r);
+    mirror_of_.push_back(i);
+  }
+  if (!mirrored_.empty()) castRays(ctx, mirrored_, mirror_hits_);
+  ghost_.assign(rays_.size(), -1);
+  for (std::size_t k = 0; k < mirror_of_.size(); ++k) ghost_[mirror_of_[k]] = static_cast<long>(k);
+
   energy_.assign(e.nbins, 0.0);
   const std::size_t n = rays_.size();
+  const auto noisy = [&](double r) { return std::max(0.0, r + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0)); };
   for (int h = 0; h < hpr_; ++h) {
     for (int v = 0; v < vpr_; ++v) {
       const std::size_t i = static_cast<std::size_t>(h) * vpr_ + v;
       const raycast::Hit& hit = hits_[i];
       Echo& echo = column_[v];
       echo.range = -1.0;
-      if (!hit.hit()) continue;
-      echo.range = hit.range + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0);
-      if (echo.range < 0.0) echo.range = 0.0;
-      echo.cos_incidence = std::cos(static_cast<double>(hit.incidence));
-      if (!artifacts_) echo_.deposit(echo, n, energy_);
+      if (hit.hit()) {
+        echo.range = noisy(hit.range);
+        echo.cos_incidence = std::cos(static_cast<double>(hit.incidence));
+        if (!artifacts_) echo_.deposit(echo, n, energy_);
+        continue;
+      }
+      if (surface_[i] < 0.0) continue;
+      // The surface's own backscatter at its incidence (the vertical is its normal)...
+      echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), surface_extra_}, n, energy_);
+      // ...and the ghost: the echo of what the reflected ray meets, back the same way (two reflections).
+      const long g = ghost_[i];
+      if (g >= 0 && mirror_hits_[g].hit()) {
+        const double cos_incidence = std::cos(static_cast<double>(mirror_hits_[g].incidence));
+        echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, ghost_extra_}, n, energy_);
+      }
     }
     if (artifacts_) echo_.spread(column_, n, artifacts_gap_, energy_);
   }
@@ -204,23 +278,33 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   MsisLine& out = last_;
   out.time = ctx.world.time();
   out.angle = angle_;
-  echo_.finish(energy_, out.intensity);
   out.level.assign(e.nbins, EchoLevel::none);
   std::vector<char> shadowed(e.nbins, 0);
-  if (shadow_) {
-    const auto strong = std::find_if(out.intensity.begin(), out.intensity.end(),
-                                     [&](float i) { return i >= shadow_threshold_; });
-    for (auto it = strong == out.intensity.end() ? strong : strong + 1; it != out.intensity.end(); ++it) {
-      *it = 0.0f;
-      shadowed[it - out.intensity.begin()] = 1;
+  if (shadow_) {  // no echo behind the first strong one (the noise stays)
+    int b = 0;
+    while (b < e.nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b))) ++b;
+    for (++b; b < e.nbins; ++b) {
+      energy_[b] = 0.0;
+      shadowed[b] = 1;
     }
   }
-  if (salt_pepper_ > 0.0) {
-    for (auto& i : out.intensity) {
-      if (random().uniform() >= salt_pepper_) continue;
-      i = random().uniform() < 0.5 ? static_cast<float>(random().uniform()) : 0.0f;
+  // Receiver noise: speckle (Rayleigh amplitude: exponential power) on the echoes, the noise floor (Rayleigh),
+  // then the occasional spike near the noise level (salt) or dropped bin (pepper). The same draws whatever the
+  // geometry; a logarithm only where the draw can change the code (noise_visible_: below it the floor stays 0).
+  for (int b = 0; b < e.nbins; ++b) {
+    double& p = energy_[b];
+    if (speckle_) {
+      const double u = random().uniform();
+      if (p > 0.0) p *= -std::log1p(-u);
     }
+    if (noise_floor_) {
+      const double u = random().uniform();
+      if (p > 0.0 || u >= noise_visible_[b]) p += noise_power_ * -std::log1p(-u);
+    }
+    if (salt_pepper_ > 0.0 && random().uniform() < salt_pepper_)
+      p = random().uniform() < 0.5 ? noise_power_ * std::pow(10.0, salt_level_ * random().uniform() / 10.0) : 0.0;
   }
+  echo_.finish(energy_, out.intensity);
   for (int b = 0; b < e.nbins; ++b) {
     out.level[b] = level(out.intensity[b]);
     if (shadowed[b] && out.level[b] == EchoLevel::none) out.level[b] = EchoLevel::shadow;

@@ -7,19 +7,25 @@
 //   2. a fan of hpr x vpr rays covers the beam: horizontal angles h_i = -bw_h/2 + (i + 1/2) bw_h / hpr
 //      about the head's z, elevations v_j = -bw_v/2 + (j + 1/2) bw_v / vpr, direction
 //      (cos v cos h, cos v sin h, sin v) in the head frame, cast from the head origin up to range_max;
-//   3. the hits become one line of nbins intensities in [0, 1] (EchoModel: area density, backscatter,
-//      spreading and absorption, gain), then the noise models, each switchable:
+//   3. rays that reach the free surface within range stop there: the surface's own echo, and (multipath) a
+//      reflected ray cast from it for the rest of the range, whose hit is a ghost at the unfolded range;
+//      the hits become one line of nbins 8-bit intensities in [0, 1] (EchoModel: the sonar equation per ray,
+//      power summed per bin, gain, TVG, quantisation), with the noise models on the bins' power, each switchable:
 //        range_noise  [m]  Gaussian noise on every ray's range (0: off)
-//        salt_pepper  [-]  probability per bin of a random echo: half uniform intensity (salt), half 0 (pepper)
-//        shadow            true: no return behind the first bin of intensity >= shadow_threshold (bins
+//        speckle           exponential (Rayleigh amplitude) factor on each bin's echo power
+//        noise_floor       + the noise power 10^(noise_level / 10) x an exponential draw per bin
+//        salt_pepper  [-]  probability per bin of a spike up to salt_level dB above the noise level (salt) or a
+//                          dropped bin (pepper), half and half
+//        shadow            true: no echo behind the first bin whose echo reaches shadow_threshold (bins
 //                          flagged shadow)
 //        artifacts         true: echoes between the hits of neighbouring rays of a column that are within
 //                          artifacts_gap of each other (fills the sparse-ray gaps on the ground)
-//      noise = none turns all four off;
+//      noise = none turns them all off;
 //   4. each bin gets a level for the colour map: none (< threshold_low), low, medium (>= threshold_medium),
 //      high (>= threshold_high), shadow (a shadowed bin with no echo).
 // Presets (parameter `preset`): "thesis_tank" = the thesis's tank configuration (6.1.1): range 3 m,
-// 400 bins, continuous, low gain (0.2). Parameters given explicitly override the preset.
+// 400 bins, continuous, low gain (0.2). Parameters given explicitly override the preset. docs/sonars.md lists
+// every parameter with its unit, default and source.
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
@@ -28,6 +34,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,6 +64,8 @@ struct MsisLine
 class MsisSensor : public sensors::Sensor
 {
 public:
+  /// The named gains (low, medium, high) as shares of gain_span [-].
+  static const std::map<std::string, double>& gainSettings();
   /// The mechanical steps of the Micron DST [deg].
   static const std::vector<double>& mechanicalSteps();
 
@@ -94,13 +103,24 @@ private:
   bool continuous_ = true;
   int hpr_ = 1, vpr_ = 1;
   double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
-  bool shadow_ = false, artifacts_ = false;
+  bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false, multipath_ = true;
+  double salt_level_ = 10.0;      ///< [dB] above the noise level: the highest spike
+  double noise_power_ = 0.0;      ///< 10^(noise_level / 10) [uPa^2]
+  double ghost_extra_ = 0.0;      ///< 40 log10 |R|: two surface reflections [dB]
+  double surface_extra_ = 0.0;    ///< surface backscatter - backscatter_strength [dB]
+  int shadow_code_ = 1;           ///< least code of a shadowing echo
+  std::vector<double> noise_visible_;  ///< per bin: uniform draw from which the noise floor alone shows
   double threshold_low_ = 0.05, threshold_medium_ = 0.25, threshold_high_ = 0.6;
   std::vector<Eigen::Vector3d> dirs_;
   double angle_ = 0.0;  ///< head angle of the next ping [rad]
   int dir_ = 1;         ///< +1 / -1: direction of the next step
   std::vector<raycast::Ray> rays_;
   std::vector<raycast::Hit> hits_;
+  std::vector<double> surface_;          ///< per ray: range to the free surface, -1 when not within range
+  std::vector<raycast::Ray> mirrored_;   ///< the reflected rays
+  std::vector<raycast::Hit> mirror_hits_;
+  std::vector<std::size_t> mirror_of_;   ///< primary ray of each reflected ray
+  std::vector<long> ghost_;              ///< per ray: its reflected ray, -1 none
   std::vector<Echo> column_;
   std::vector<double> energy_;
   MsisLine last_;
