@@ -213,9 +213,12 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
       // second simulator) would make the buffer interpolate between two different poses.
       const std::string& owner = tf_state_.publisher.emplace(t.child_frame_id, from).first->second;
       if (owner != from) {
+        // Once per frame and publisher (a throttle runs on ROS time, which a reset sets back).
         ++tf_state_.ignored;
-        ROS_WARN_STREAM_THROTTLE(5.0, "mapper: ignoring tf of '" << t.child_frame_id << "' from " << from
-                                                                  << ": it comes from " << owner);
+        if (tf_state_.warned.insert(t.child_frame_id + " " + from).second) {
+          ROS_WARN_STREAM("mapper: ignoring tf of '" << t.child_frame_id << "' from " << from << ": it comes from "
+                                                     << owner);
+        }
         continue;
       }
       try {
@@ -243,7 +246,11 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
 double MapperRos::tfGap(const std::string& frame, const ros::Time& stamp, std::string* frame_out)
 {
   std::vector<std::string> chain;
-  tf_buffer_._chainAsVector(world_frame_, stamp, frame, stamp, world_frame_, chain);
+  try {
+    tf_buffer_._chainAsVector(world_frame_, stamp, frame, stamp, world_frame_, chain);
+  } catch (const tf2::TransformException&) {
+    return 0.0;  // no chain: lookupTransform reports it
+  }
   std::lock_guard<std::mutex> lock(tf_mutex_);
   double gap = 0.0;
   for (const std::string& f : chain) {
@@ -317,7 +324,12 @@ void MapperRos::drain()
       it = pending_.erase(it);
       continue;
     }
-    const geometry_msgs::TransformStamped tf = tf_buffer_.lookupTransform(world_frame_, it->frame, it->stamp);
+    geometry_msgs::TransformStamped tf;
+    try {
+      tf = tf_buffer_.lookupTransform(world_frame_, it->frame, it->stamp);
+    } catch (const tf2::TransformException&) {
+      break;  // the tf thread cleared the buffer since canTransform (a jump back): the next drain sees it
+    }
     const auto& q = tf.transform.rotation;
     const auto& t = tf.transform.translation;
     const tf2::Matrix3x3 R(tf2::Quaternion(q.x, q.y, q.z, q.w));

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,7 @@ private:
     ros::WallTime jump_wall;                               ///< when the last one was seen
     ros::Time jump_to;                                     ///< the stamp it went back to
     uint64_t ignored = 0;                                  ///< samples from a second publisher of a frame
+    std::set<std::string> warned;                          ///< "frame publisher" pairs warned about
   };
   std::mutex tf_mutex_;
   TfState tf_state_;
