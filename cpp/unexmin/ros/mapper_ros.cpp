@@ -188,51 +188,67 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
 {
   const std::string& from = event.getPublisherName();
   const tf2_msgs::TFMessage& msg = *event.getConstMessage();
-  {
-    std::lock_guard<std::mutex> lock(tf_mutex_);
-    // A dynamic frame's stamps going back: the simulation was reset (or a bag looped). The buffer would
-    // otherwise interpolate between the old and the new run: cleared (static transforms stay), as tf2_ros's
-    // TransformListener does on a jump back of ros::Time.
+  const ros::WallTime now = ros::WallTime::now();
+  // A dynamic frame has one publisher at a time: the first heard, until it has been silent for
+  // kHandoverSilence (then a new one, e.g. a second `rosbag play`, takes over). A second live publisher (a
+  // leftover process on the same master, a second simulator) is ignored: the buffer would interpolate between
+  // two different poses.
+  constexpr double kHandoverSilence = 1.0;  // [s, wall]
+  std::lock_guard<std::mutex> lock(tf_mutex_);
+  if (!is_static) {
+    // A frame's stamps going back (a simulation reset, a bag looping) or a new publisher of it start a new
+    // history: the buffer is cleared (static transforms stay), as tf2_ros's TransformListener does on a jump
+    // back of ros::Time; otherwise it would interpolate between the old and the new run.
+    std::string why;
     for (const geometry_msgs::TransformStamped& t : msg.transforms) {
-      auto stamps = tf_state_.stamps.find(t.child_frame_id);
-      if (is_static || stamps == tf_state_.stamps.end() || stamps->second.empty() ||
-          t.header.stamp >= stamps->second.back() || tf_state_.publisher[t.child_frame_id] != from) {
-        continue;
+      auto owner = tf_state_.publisher.find(t.child_frame_id);
+      if (owner == tf_state_.publisher.end()) continue;
+      if (owner->second.node != from) {
+        if ((now - owner->second.last).toSec() <= kHandoverSilence) continue;  // ignored below
+        why = "'" + t.child_frame_id + "' now comes from " + from + " (" + owner->second.node + " fell silent)";
+        owner->second.node = from;
+        break;
       }
-      ROS_WARN_STREAM("mapper: tf of '" << t.child_frame_id << "' went back in time from "
-                                        << stamps->second.back() << " to " << t.header.stamp
-                                        << " s: clearing the tf buffer and the clouds waiting for it");
+      const std::deque<ros::Time>& stamps = tf_state_.stamps[t.child_frame_id];
+      if (!stamps.empty() && t.header.stamp < stamps.back()) {
+        why = "'" + t.child_frame_id + "' went back in time from " + std::to_string(stamps.back().toSec()) + " to " +
+              std::to_string(t.header.stamp.toSec()) + " s";
+        break;
+      }
+    }
+    if (!why.empty()) {
+      ROS_WARN_STREAM("mapper: tf of " << why << ": clearing the tf buffer and the clouds waiting for it");
       tf_buffer_.clear();
       for (auto& entry : tf_state_.stamps) entry.second.clear();
       ++tf_state_.jumps;
-      tf_state_.jump_wall = ros::WallTime::now();
-      break;
+      tf_state_.jump_wall = now;
     }
-    for (const geometry_msgs::TransformStamped& t : msg.transforms) {
-      // One publisher per frame: the first heard. A second one (a leftover process on the same master, a
-      // second simulator) would make the buffer interpolate between two different poses.
-      const std::string& owner = tf_state_.publisher.emplace(t.child_frame_id, from).first->second;
-      if (owner != from) {
+  }
+  for (const geometry_msgs::TransformStamped& t : msg.transforms) {
+    if (!is_static) {
+      TfState::Owner& owner = tf_state_.publisher.emplace(t.child_frame_id, TfState::Owner{from, now}).first->second;
+      if (owner.node != from) {
         // Once per frame and publisher (a throttle runs on ROS time, which a reset sets back).
         ++tf_state_.ignored;
         if (tf_state_.warned.insert(t.child_frame_id + " " + from).second) {
           ROS_WARN_STREAM("mapper: ignoring tf of '" << t.child_frame_id << "' from " << from << ": it comes from "
-                                                     << owner);
+                                                     << owner.node);
         }
         continue;
       }
-      try {
-        tf_buffer_.setTransform(t, "tf", is_static);
-      } catch (const tf2::TransformException& e) {
-        ROS_WARN_STREAM_THROTTLE(5.0, "mapper: bad transform " << t.header.frame_id << " -> " << t.child_frame_id
-                                                                << ": " << e.what());
-        continue;
-      }
-      if (is_static) continue;
-      std::deque<ros::Time>& stamps = tf_state_.stamps[t.child_frame_id];
-      if (stamps.empty() || t.header.stamp > stamps.back()) stamps.push_back(t.header.stamp);
-      while (stamps.front() + tf_buffer_.getCacheLength() < stamps.back()) stamps.pop_front();
+      owner.last = now;
     }
+    try {
+      tf_buffer_.setTransform(t, "tf", is_static);
+    } catch (const tf2::TransformException& e) {
+      ROS_WARN_STREAM_THROTTLE(5.0, "mapper: bad transform " << t.header.frame_id << " -> " << t.child_frame_id
+                                                              << ": " << e.what());
+      continue;
+    }
+    if (is_static) continue;
+    std::deque<ros::Time>& stamps = tf_state_.stamps[t.child_frame_id];
+    if (stamps.empty() || t.header.stamp > stamps.back()) stamps.push_back(t.header.stamp);
+    while (stamps.front() + tf_buffer_.getCacheLength() < stamps.back()) stamps.pop_front();
   }
   // The clouds waiting for tf are drained on the main thread (one request at a time).
   if (pending_count_ > 0 && !drain_posted_.exchange(true)) {

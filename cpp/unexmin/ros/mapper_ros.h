@@ -61,8 +61,9 @@ private:
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
   void enqueue(Cloud&& cloud);
-  /// On the tf thread: stores the transforms (a child frame's samples from its first publisher only), clears
-  /// the buffer when a frame's stamps go back (simulation reset), and asks the main thread to drain.
+  /// On the tf thread: stores the transforms (a dynamic frame's samples from one publisher at a time), clears
+  /// the buffer when a frame's stamps go back (simulation reset) or its publisher changes, and asks the main
+  /// thread to drain.
   void onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
   /// The largest gap [s] between the stored samples of a dynamic frame of the chain from frame to the map
   /// frame around stamp (0 when the chain is static); the frame's name in *frame_out.
@@ -102,7 +103,13 @@ private:
   /// Shared by the tf thread (writes) and the main thread (reads).
   struct TfState
   {
-    std::map<std::string, std::string> publisher;          ///< child frame -> the node whose samples are used
+    /// The node whose /tf samples of a frame are used, and when it last sent one.
+    struct Owner
+    {
+      std::string node;
+      ros::WallTime last;
+    };
+    std::map<std::string, Owner> publisher;                ///< dynamic child frame -> its owner
     std::map<std::string, std::deque<ros::Time>> stamps;   ///< dynamic child frame -> its sample stamps
     uint64_t jumps = 0;                                    ///< jumps back in time seen
     ros::WallTime jump_wall;                               ///< when the last one was seen
