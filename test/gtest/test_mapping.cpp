@@ -250,10 +250,11 @@ TEST(OccupancyMap, TheCloudsOriginDecidesWhichSpaceIsCarved)
   EXPECT_EQ(right.tree().search(5.5, 4.1, 0.0), nullptr);
 }
 
-TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel)
+/// Inserts the clouds, each from its origin, into our map and into OctoMap's own tree by insertPointCloud, and
+/// expects the same leaves, for a free-space range of 10 m and of 2.5 m (rays cut short).
+void expectSameAsOctoMap(const std::vector<std::vector<octomap::point3d>>& clouds,
+                         const std::vector<octomap::point3d>& origins)
 {
-  const Room room;
-  const auto clouds = turn(room, kCentre, 120);
   for (double max_range : {10.0, 2.5}) {
     MapperParams params;
     params.max_range = max_range;
@@ -263,11 +264,11 @@ TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel)
     theirs.setProbMiss(params.prob_miss);
     theirs.setClampingThresMin(params.clamp_min);
     theirs.setClampingThresMax(params.clamp_max);
-    for (const auto& cloud : clouds) {
-      ours.insertCloud(cloud, kCentre);
+    for (std::size_t k = 0; k < clouds.size(); ++k) {
+      ours.insertCloud(clouds[k], origins[k]);
       octomap::Pointcloud pc;
-      for (const auto& p : cloud) pc.push_back(p);
-      theirs.insertPointCloud(pc, kCentre, max_range, false, false);
+      for (const auto& p : clouds[k]) pc.push_back(p);
+      theirs.insertPointCloud(pc, origins[k], max_range, false, false);
     }
     theirs.updateInnerOccupancy();
     theirs.prune();
@@ -275,6 +276,41 @@ TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel)
     expectSameTree(ours.tree(), theirs);
     EXPECT_GT(ours.occupiedLeafCount(), 500u);
   }
+}
+
+TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel)
+{
+  const Room room;
+  const auto clouds = turn(room, kCentre, 120);
+  expectSameAsOctoMap(clouds, std::vector<octomap::point3d>(clouds.size(), kCentre));
+}
+
+TEST(OccupancyMap, EqualsOctoMapFromMovingOriginsInEveryDirection)
+{
+  // Origins anywhere in the room (either side of the key space's centre at 0), rays in random directions, one
+  // in eight along an axis or in an axis plane (direction components exactly 0: axes the walk never steps).
+  const Room room;
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  std::vector<std::vector<octomap::point3d>> clouds;
+  std::vector<octomap::point3d> origins;
+  for (int k = 0; k < 60; ++k) {
+    const octomap::point3d origin(room.c.x() + static_cast<float>(0.8 * room.h.x() * unit(rng)),
+                                  room.c.y() + static_cast<float>(0.8 * room.h.y() * unit(rng)),
+                                  room.c.z() + static_cast<float>(0.8 * room.h.z() * unit(rng)));
+    std::vector<octomap::point3d> cloud;
+    for (int b = 0; b < 200; ++b) {
+      octomap::point3d d(static_cast<float>(unit(rng)), static_cast<float>(unit(rng)), static_cast<float>(unit(rng)));
+      if (b % 8 == 0) d(b / 8 % 3) = 0.0f;
+      if (b % 16 == 0) d((b / 8 + 1) % 3) = 0.0f;
+      d.normalize();
+      cloud.push_back(origin + d * static_cast<float>(room.range(origin, d) + noise(rng)));
+    }
+    clouds.push_back(cloud);
+    origins.push_back(origin);
+  }
+  expectSameAsOctoMap(clouds, origins);
 }
 
 TEST(OccupancyMap, SavedMapReadsBackWithTheSameOccupiedLeaves)

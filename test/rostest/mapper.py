@@ -8,6 +8,9 @@
   number of occupied leaves the node reports; the one map covers what each robot's own map holds, and each
   robot contributes voxels the other did not see.
 - The outputs (octomap_binary, occupied_cells_vis_array, octomap_point_cloud_centers) carry the same map.
+- A simulation reset (time back to 0) with the robots turning the other way, while a second node publishes
+  UX_1's base_link 50 m away on /tf: the map is still the tank (the mapper clears its tf buffer on the jump back
+  and takes each frame from its first publisher only), and no cloud is dropped.
 - ~reset empties the map; SIGINT to the mapper leaves a valid map in ~map_file.
 """
 
@@ -26,7 +29,9 @@ import rostest
 from octomap_msgs.msg import Octomap
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import PointCloud2
+from geometry_msgs.msg import TransformStamped
 from std_srvs.srv import Empty
+from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
 from unexmin import Simulation
@@ -175,6 +180,36 @@ class Mapper(unittest.TestCase):
         self.assertEqual(got["centers"].width * got["centers"].height, leaves)
         pts = np.array(list(point_cloud2.read_points(got["centers"], field_names=("x", "y", "z"))))
         self.assertTrue(np.all(np.abs(pts[:, 0]) < 3.3) and np.all(np.abs(pts[:, 1]) < 2.3))  # inside the tank
+
+    def test_y_sim_reset_and_a_second_tf_publisher_leave_the_map_right(self):
+        self.reset()
+        wait_for(lambda: self.stats.occupied_leaves == 0, 10.0, "an empty map after ~reset")
+        rogue = rospy.Publisher("/tf", TFMessage, queue_size=100)
+        wait_for(lambda: rogue.get_num_connections() >= 1, 30.0, "the mapper to hear /tf of the test")
+        before = self.stats
+        self.sim.reset()
+        allocator = ThrusterAllocator()
+        for name, n in (("UX_1", -2.0), ("UX_3", 2.0)):  # the other way round than before the reset
+            self.sim.robot(name).thrusts(allocator.allocate((0, 0, 0, 0, 0, n))[0])
+        for k in range(41):  # UX_1 50 m away over the whole run to come, a sample every 0.05 s
+            t = TransformStamped()
+            t.header.frame_id = "world"
+            t.header.stamp = rospy.Time.from_sec(0.05 * k)
+            t.child_frame_id = "UX_1/base_link"
+            t.transform.translation.x = 50.0
+            t.transform.rotation.w = 1.0
+            rogue.publish(TFMessage([t]))
+        self.sim.run_for(2.0)
+        after = self.settled(before.clouds_received + int(round(CLOUDS_PER_S * 2.0)) * len(MAPPED))
+        rogue.unregister()
+        self.assertEqual(after.clouds_dropped, before.clouds_dropped)
+        path = os.path.join(self.tmp, "after_reset.bt")
+        res = self.save(path=path, robot="")
+        self.assertTrue(res.success, res.message)
+        self.assertGreater(res.occupied_leaves, 200)
+        centres, _ = expand(*read_bt(path))
+        self.assertTrue(np.all(np.abs(centres[:, 0]) < 3.3) and np.all(np.abs(centres[:, 1]) < 2.3))
+        self.assertGreaterEqual(precision(centres, world_triangles(world_path("tank")), 0.1), 0.95)
 
     def test_z_reset_then_sigint_leaves_a_valid_map(self):
         self.reset()

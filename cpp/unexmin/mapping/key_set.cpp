@@ -61,28 +61,6 @@ KeySet::KeySet() : slots_(std::size_t(1) << kInitialBits, kEmpty), mask_((uint64
 {
 }
 
-void KeySet::insert(uint64_t code, bool occupied)
-{
-  const uint64_t entry = (code << 1) | (occupied ? 1u : 0u);
-  // Low Morton bits first: voxels near each other (a ray's consecutive voxels) land in nearby slots, so the
-  // walk stays in cache; the high bits are folded in to separate distant blocks.
-  uint64_t i = (code ^ (code >> (64 - shift_)) ^ (code >> 2 * (64 - shift_))) & mask_;
-  for (;;) {
-    uint64_t& slot = slots_[i];
-    if (slot == kEmpty) {
-      slot = entry;
-      used_.push_back(static_cast<uint32_t>(i));
-      if (used_.size() * 2 > slots_.size()) grow();
-      return;
-    }
-    if ((slot >> 1) == code) {
-      slot |= entry & 1u;  // occupied wins
-      return;
-    }
-    i = (i + 1) & mask_;
-  }
-}
-
 void KeySet::grow()
 {
   std::vector<uint64_t> entries;

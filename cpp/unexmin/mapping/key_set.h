@@ -23,6 +23,8 @@ inline uint64_t mortonCode(const octomap::OcTreeKey& key)
 /// The key of a Morton code.
 octomap::OcTreeKey keyOfMorton(uint64_t code);
 
+/// The bits of axis 0's key in a Morton code (axis i: shifted left by i).
+constexpr uint64_t kMortonAxisBits = 0x249249249249ull;
 /// Open-addressing hash set of Morton codes with one "occupied" bit each; clear() costs the number of
 /// entries, not the capacity, so one set serves every cloud.
 class KeySet
@@ -41,7 +43,7 @@ public:
   void clear();
 
 private:
-  void insert(uint64_t code, bool occupied);
+  inline void insert(uint64_t code, bool occupied);
   void grow();
 
   static constexpr uint64_t kEmpty = ~uint64_t(0);
@@ -51,6 +53,28 @@ private:
   uint64_t mask_;
   int shift_;
 };
+
+inline void KeySet::insert(uint64_t code, bool occupied)
+{
+  const uint64_t entry = (code << 1) | (occupied ? 1u : 0u);
+  // Low Morton bits first: voxels near each other (a ray's consecutive voxels) land in nearby slots, so the
+  // walk stays in cache; the high bits are folded in to separate distant blocks.
+  uint64_t i = (code ^ (code >> (64 - shift_)) ^ (code >> 2 * (64 - shift_))) & mask_;
+  for (;;) {
+    uint64_t& slot = slots_[i];
+    if (slot == kEmpty) {
+      slot = entry;
+      used_.push_back(static_cast<uint32_t>(i));
+      if (used_.size() * 2 > slots_.size()) grow();
+      return;
+    }
+    if ((slot >> 1) == code) {
+      slot |= entry & 1u;  // occupied wins
+      return;
+    }
+    i = (i + 1) & mask_;
+  }
+}
 
 }  // namespace mapping
 }  // namespace unexmin

@@ -2,6 +2,7 @@
 
 #include <unexmin/core/error.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -63,9 +64,8 @@ public:
         created[depth + 1] = child_created;
       }
       octomap::OcTreeNode* leaf = path[depth_max];
-      leaf->addValue((entry & 1u) ? hit : miss);
-      if (leaf->getLogOdds() < lo) leaf->setLogOdds(lo);
-      else if (leaf->getLogOdds() > hi) leaf->setLogOdds(hi);
+      const float value = leaf->getLogOdds() + ((entry & 1u) ? hit : miss);  // OcTreeNode::addValue, inlined
+      leaf->setLogOdds(value < lo ? lo : (value > hi ? hi : value));
       previous = code;
       first = false;
     }
@@ -78,7 +78,23 @@ private:
   void finish(octomap::OcTreeNode* node)
   {
     if (!nodeHasChildren(node)) return;
-    if (!pruneNode(node)) node->updateOccupancyChildren();
+    // One pass over the children for both pruneNode's test (8 leaves of equal value) and
+    // updateOccupancyChildren's maximum.
+    bool collapsible = true;
+    float max = -std::numeric_limits<float>::max();
+    const octomap::OcTreeNode* first = nullptr;
+    for (unsigned i = 0; i < 8; ++i) {
+      if (!nodeChildExists(node, i)) {
+        collapsible = false;
+        continue;
+      }
+      const octomap::OcTreeNode* child = getNodeChild(node, i);
+      if (first == nullptr) first = child;
+      collapsible = collapsible && !nodeHasChildren(child) && *child == *first;
+      max = std::max(max, child->getLogOdds());
+    }
+    if (collapsible) pruneNode(node);
+    else node->setLogOdds(max);
   }
 };
 
@@ -102,14 +118,14 @@ void OccupancyMap::reset()
   points_ = 0;
 }
 
-void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::point3d& end)
+void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::OcTreeKey& key_origin, uint64_t code_origin,
+                            const octomap::point3d& end, uint64_t code_end)
 {
   // 3D DDA through the voxels from origin's to end's, both excluded unless distinct (origin included):
-  // the same walk as OctoMap's computeRayKeys, so both mark the same voxels free.
-  octomap::OcTreeKey key_origin, key_end;
-  if (!tree_->coordToKeyChecked(origin, key_origin) || !tree_->coordToKeyChecked(end, key_end)) return;
-  if (key_origin == key_end) return;
-  keys_.addFree(mortonCode(key_origin));
+  // the same walk as OctoMap's computeRayKeys (the same double-precision arithmetic, the same choice of axis
+  // on ties), so both mark the same voxels free. The key is carried as its Morton code, stepped per axis.
+  if (code_origin == code_end) return;
+  keys_.addFree(code_origin);
   octomap::point3d direction = end - origin;
   const float length = static_cast<float>(direction.norm());
   direction /= length;
@@ -128,18 +144,35 @@ void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::point
       t_delta[i] = std::numeric_limits<double>::max();
     }
   }
-  octomap::OcTreeKey key = key_origin;
-  uint64_t spread[3] = {spreadBits(key[0]), spreadBits(key[1]) << 1, spreadBits(key[2]) << 2};
+  // The key is carried as its Morton code and stepped along one axis without decoding it: for +1 the other
+  // axes' bits are set so that the carry runs through them, for -1 they are cleared so that the borrow does
+  // (the key wraps at 16 bits as OctoMap's does).
+  uint64_t axis_bits[3], fill[3], add[3];
+  for (unsigned i = 0; i < 3; ++i) {
+    axis_bits[i] = kMortonAxisBits << i;
+    fill[i] = step[i] > 0 ? ~axis_bits[i] : 0;
+    add[i] = step[i] > 0 ? uint64_t(1) << i : ~(uint64_t(1) << i) + 1;  // +1 or -1 in the axis's field
+  }
+  // The axis to step next: the smallest t_max, ties to the higher axis as computeRayKeys does
+  // (t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2)). The three t_max
+  // are kept in registers; an axis is stepped by a select of masks, not a branch on its sign.
+  double t0 = t_max[0], t1 = t_max[1], t2 = t_max[2];
+  const double d0 = t_delta[0], d1 = t_delta[1], d2 = t_delta[2];
+  uint64_t code = code_origin;
   for (;;) {
     unsigned dim;
-    if (t_max[0] < t_max[1]) dim = t_max[0] < t_max[2] ? 0 : 2;
-    else dim = t_max[1] < t_max[2] ? 1 : 2;
-    key[dim] += step[dim];
-    t_max[dim] += t_delta[dim];
-    if (key == key_end) return;
-    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return;
-    spread[dim] = spreadBits(key[dim]) << dim;  // only the axis that moved
-    keys_.addFree(spread[0] | spread[1] | spread[2]);
+    if (t0 < t1) {
+      if (t0 < t2) { dim = 0; t0 += d0; }
+      else { dim = 2; t2 += d2; }
+    } else {
+      if (t1 < t2) { dim = 1; t1 += d1; }
+      else { dim = 2; t2 += d2; }
+    }
+    const uint64_t moved = ((code & axis_bits[dim]) | fill[dim]) + add[dim];
+    code = (moved & axis_bits[dim]) | (code & ~axis_bits[dim]);
+    if (code == code_end) return;
+    if (std::min(std::min(t0, t1), t2) > length) return;
+    keys_.addFree(code);
   }
 }
 
@@ -151,6 +184,10 @@ CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points
     stats.invalid = points.size();
     return stats;
   }
+  // An origin outside the tree casts no ray (as computeRayKeys refuses it); the endpoints still count.
+  octomap::OcTreeKey key_origin;
+  const bool rays = tree_->coordToKeyChecked(origin, key_origin);
+  const uint64_t code_origin = rays ? mortonCode(key_origin) : 0;
   keys_.clear();
   const double max_range = params_.max_range;
   for (const octomap::point3d& p : points) {
@@ -160,11 +197,13 @@ CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points
       continue;
     }
     if (max_range <= 0.0 || (p - origin).norm() <= max_range) {
-      traceRay(origin, p);
-      keys_.addOccupied(mortonCode(key));
+      const uint64_t code = mortonCode(key);
+      if (rays) traceRay(origin, key_origin, code_origin, p, code);
+      keys_.addOccupied(code);
     } else {
       ++stats.beyond_range;
-      traceRay(origin, origin + (p - origin).normalized() * static_cast<float>(max_range));
+      const octomap::point3d end = origin + (p - origin).normalized() * static_cast<float>(max_range);
+      if (rays && tree_->coordToKeyChecked(end, key)) traceRay(origin, key_origin, code_origin, end, mortonCode(key));
     }
   }
   const std::vector<uint64_t>& entries = keys_.sorted();

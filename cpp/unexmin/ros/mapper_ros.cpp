@@ -9,13 +9,31 @@
 #include <unexmin/MapperStats.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <boost/make_shared.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace unexmin {
 namespace ros_layer {
 
 namespace {
+
+/// A function run by a ros::CallbackQueue.
+class FunctionCallback : public ros::CallbackInterface
+{
+public:
+  explicit FunctionCallback(std::function<void()> f) : f_(std::move(f)) {}
+  CallResult call() override
+  {
+    f_();
+    return Success;
+  }
+
+private:
+  std::function<void()> f_;
+};
 
 void require(bool ok, const std::string& name, double value, const std::string& expected)
 {
@@ -49,12 +67,16 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
 {
   loadParams();
   // Our own /tf subscribers with the clouds' queue depth: in lockstep the simulator publishes tf far faster
-  // than real time, and tf2_ros's TransformListener (queue 100) would drop samples under load.
-  tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf", queue_size_, [this](const tf2_msgs::TFMessageConstPtr& m) {
-    onTf(m, false);
-  }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
-  tf_static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf_static", queue_size_,
-                                                      [this](const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); });
+  // than real time, and tf2_ros's TransformListener (queue 100) would drop samples under load. They run on
+  // their own queue and thread, so that a busy insertion never lets their queue overflow.
+  ros::NodeHandle tf_nh(nh_);
+  tf_nh.setCallbackQueue(&tf_queue_);
+  using TfEvent = ros::MessageEvent<tf2_msgs::TFMessage const>;
+  tf_sub_ = tf_nh.subscribe<tf2_msgs::TFMessage, const TfEvent&>(
+      "/tf", queue_size_, [this](const TfEvent& e) { onTf(e, false); }, ros::VoidConstPtr(),
+      ros::TransportHints().tcpNoDelay());
+  tf_static_sub_ = tf_nh.subscribe<tf2_msgs::TFMessage, const TfEvent&>(
+      "/tf_static", queue_size_, [this](const TfEvent& e) { onTf(e, true); });
   all_ = makeOutput(nh_);
   for (const std::string& robot : robots_) {
     if (per_robot_) robot_maps_.emplace(robot, makeOutput(ros::NodeHandle(nh_, robot)));
@@ -64,6 +86,8 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   save_srv_ = pnh_.advertiseService("save_map", &MapperRos::onSaveMap, this);
   reset_srv_ = pnh_.advertiseService("reset", &MapperRos::onReset, this);
   timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate_), &MapperRos::onTimer, this);
+  tf_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &tf_queue_);
+  tf_spinner_->start();
   ROS_INFO_STREAM("mapper: " << robots_.size() << " robot(s), resolution " << params_.resolution << " m, max range "
                              << params_.max_range << " m, M3 " << (use_m3_ ? "on" : "off") << ", " << sls_units_
                              << " SLS unit(s)" << (map_file_.empty() ? "" : ", saves to " + map_file_));
@@ -84,6 +108,7 @@ void MapperRos::loadParams()
   pnh_.param("per_robot", per_robot_, per_robot_);
   pnh_.param("publish_rate", publish_rate_, publish_rate_);
   pnh_.param("tf_timeout", tf_timeout_, tf_timeout_);
+  pnh_.param("tf_max_gap", tf_max_gap_, tf_max_gap_);
   pnh_.param("queue_size", queue_size_, queue_size_);
   pnh_.param("map_file", map_file_, map_file_);
   double robots_timeout = 30.0;
@@ -91,6 +116,7 @@ void MapperRos::loadParams()
   require(sls_units_ >= 0 && sls_units_ <= 16, "sls_units", sls_units_, "0..16");
   require(publish_rate_ > 0.0 && publish_rate_ <= 100.0, "publish_rate", publish_rate_, "(0, 100] Hz");
   require(tf_timeout_ > 0.0, "tf_timeout", tf_timeout_, "> 0 s");
+  require(tf_max_gap_ > 0.0, "tf_max_gap", tf_max_gap_, "> 0 s");
   require(queue_size_ >= 1, "queue_size", queue_size_, ">= 1");
   require(robots_timeout >= 0.0, "robots_timeout", robots_timeout, ">= 0 s");
   if (world_frame_.empty()) throw ParameterError("mapper: parameter '~frame_id' is empty: expected a frame");
@@ -158,29 +184,134 @@ void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2
   enqueue(std::move(cloud));
 }
 
-void MapperRos::onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static)
+void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static)
 {
-  for (const geometry_msgs::TransformStamped& t : msg->transforms) {
+  const std::string& from = event.getPublisherName();
+  const tf2_msgs::TFMessage& msg = *event.getConstMessage();
+  const ros::WallTime now = ros::WallTime::now();
+  // A dynamic frame has one publisher at a time: the first heard, until it has been silent for
+  // kHandoverSilence (then a new one, e.g. a second `rosbag play`, takes over). A second live publisher (a
+  // leftover process on the same master, a second simulator) is ignored: the buffer would interpolate between
+  // two different poses.
+  constexpr double kHandoverSilence = 1.0;  // [s, wall]
+  std::lock_guard<std::mutex> lock(tf_mutex_);
+  if (!is_static) {
+    // A frame's stamps going back (a simulation reset, a bag looping) or a new publisher of it start a new
+    // history: the buffer is cleared (static transforms stay), as tf2_ros's TransformListener does on a jump
+    // back of ros::Time; otherwise it would interpolate between the old and the new run.
+    std::string why;
+    for (const geometry_msgs::TransformStamped& t : msg.transforms) {
+      auto owner = tf_state_.publisher.find(t.child_frame_id);
+      if (owner == tf_state_.publisher.end()) continue;
+      if (owner->second.node != from) {
+        if ((now - owner->second.last).toSec() <= kHandoverSilence) continue;  // ignored below
+        why = "'" + t.child_frame_id + "' now comes from " + from + " (" + owner->second.node + " fell silent)";
+        owner->second.node = from;
+        break;
+      }
+      const std::deque<ros::Time>& stamps = tf_state_.stamps[t.child_frame_id];
+      if (!stamps.empty() && t.header.stamp < stamps.back()) {
+        why = "'" + t.child_frame_id + "' went back in time from " + std::to_string(stamps.back().toSec()) + " to " +
+              std::to_string(t.header.stamp.toSec()) + " s";
+        break;
+      }
+    }
+    if (!why.empty()) {
+      ROS_WARN_STREAM("mapper: tf of " << why << ": clearing the tf buffer and the clouds waiting for it");
+      tf_buffer_.clear();
+      for (auto& entry : tf_state_.stamps) entry.second.clear();
+      ++tf_state_.jumps;
+      tf_state_.jump_wall = now;
+    }
+  }
+  for (const geometry_msgs::TransformStamped& t : msg.transforms) {
+    if (!is_static) {
+      TfState::Owner& owner = tf_state_.publisher.emplace(t.child_frame_id, TfState::Owner{from, now}).first->second;
+      if (owner.node != from) {
+        // Once per frame and publisher (a throttle runs on ROS time, which a reset sets back).
+        ++tf_state_.ignored;
+        if (tf_state_.warned.insert(t.child_frame_id + " " + from).second) {
+          ROS_WARN_STREAM("mapper: ignoring tf of '" << t.child_frame_id << "' from " << from << ": it comes from "
+                                                     << owner.node);
+        }
+        continue;
+      }
+      owner.last = now;
+    }
     try {
       tf_buffer_.setTransform(t, "tf", is_static);
     } catch (const tf2::TransformException& e) {
       ROS_WARN_STREAM_THROTTLE(5.0, "mapper: bad transform " << t.header.frame_id << " -> " << t.child_frame_id
                                                               << ": " << e.what());
+      continue;
+    }
+    if (is_static) continue;
+    std::deque<ros::Time>& stamps = tf_state_.stamps[t.child_frame_id];
+    if (stamps.empty() || t.header.stamp > stamps.back()) stamps.push_back(t.header.stamp);
+    while (stamps.front() + tf_buffer_.getCacheLength() < stamps.back()) stamps.pop_front();
+  }
+  // The clouds waiting for tf are drained on the main thread (one request at a time).
+  if (pending_count_ > 0 && !drain_posted_.exchange(true)) {
+    ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<FunctionCallback>([this] {
+      drain_posted_ = false;
+      drain();
+    }));
+  }
+}
+
+double MapperRos::tfGap(const std::string& frame, const ros::Time& stamp, std::string* frame_out)
+{
+  std::vector<std::string> chain;
+  try {
+    tf_buffer_._chainAsVector(world_frame_, stamp, frame, stamp, world_frame_, chain);
+  } catch (const tf2::TransformException&) {
+    return 0.0;  // no chain: lookupTransform reports it
+  }
+  std::lock_guard<std::mutex> lock(tf_mutex_);
+  double gap = 0.0;
+  for (const std::string& f : chain) {
+    auto it = tf_state_.stamps.find(f);
+    if (it == tf_state_.stamps.end() || it->second.empty()) continue;
+    const std::deque<ros::Time>& stamps = it->second;
+    auto after = std::lower_bound(stamps.begin(), stamps.end(), stamp);
+    if (after == stamps.end() || *after == stamp) continue;  // beyond the newest: canTransform said no
+    if (after == stamps.begin()) continue;                   // before the oldest kept: the buffer's answer
+    const double g = (*after - *(after - 1)).toSec();
+    if (g > gap) {
+      gap = g;
+      *frame_out = f;
     }
   }
-  if (!pending_.empty()) drain();
+  return gap;
 }
 
 void MapperRos::enqueue(Cloud&& cloud)
 {
   ++received_;
   pending_.push_back(std::move(cloud));
+  pending_count_ = pending_.size();
   drain();
 }
 
 void MapperRos::drain()
 {
   const ros::WallTime now = ros::WallTime::now();
+  uint64_t jumps;
+  ros::WallTime jump_wall;
+  {
+    std::lock_guard<std::mutex> lock(tf_mutex_);
+    jumps = tf_state_.jumps;
+    jump_wall = tf_state_.jump_wall;
+  }
+  if (jumps != jumps_seen_) {
+    // Time went back: the clouds received before are of the old run, their tf is gone.
+    jumps_seen_ = jumps;
+    const std::size_t before = pending_.size();
+    pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
+                                  [&](const Cloud& c) { return c.received <= jump_wall; }),
+                   pending_.end());
+    dropped_ += before - pending_.size();
+  }
   for (auto it = pending_.begin(); it != pending_.end();) {
     std::string error;
     if (!tf_buffer_.canTransform(world_frame_, it->frame, it->stamp, &error)) {
@@ -197,7 +328,24 @@ void MapperRos::drain()
       // per pending cloud, however long the queue).
       break;
     }
-    const geometry_msgs::TransformStamped tf = tf_buffer_.lookupTransform(world_frame_, it->frame, it->stamp);
+    // tf2 interpolates between the samples either side of the stamp however far apart they are: a gap
+    // (samples lost, a publisher stalled) would place the cloud at a pose the robot never had.
+    std::string gap_frame;
+    const double gap = tfGap(it->frame, it->stamp, &gap_frame);
+    if (gap > tf_max_gap_) {
+      ROS_WARN_STREAM_THROTTLE(5.0, "mapper: dropping a cloud of " << it->robot << " at " << it->stamp << ": the tf of '"
+                                                                    << gap_frame << "' has a gap of " << gap
+                                                                    << " s there (~tf_max_gap " << tf_max_gap_ << " s)");
+      ++dropped_;
+      it = pending_.erase(it);
+      continue;
+    }
+    geometry_msgs::TransformStamped tf;
+    try {
+      tf = tf_buffer_.lookupTransform(world_frame_, it->frame, it->stamp);
+    } catch (const tf2::TransformException&) {
+      break;  // the tf thread cleared the buffer since canTransform (a jump back): the next drain sees it
+    }
     const auto& q = tf.transform.rotation;
     const auto& t = tf.transform.translation;
     const tf2::Matrix3x3 R(tf2::Quaternion(q.x, q.y, q.z, q.w));
@@ -223,6 +371,7 @@ void MapperRos::drain()
     newest_stamp_ = std::max(newest_stamp_, it->stamp);
     it = pending_.erase(it);
   }
+  pending_count_ = pending_.size();
 }
 
 void MapperRos::publish(Output& out, const ros::Time& stamp)
@@ -384,6 +533,7 @@ void MapperRos::saveOnShutdown()
 void MapperRos::spin()
 {
   ros::spin();  // returns on SIGINT/SIGTERM (roscpp's handler) or ros::shutdown()
+  tf_spinner_->stop();
   saveOnShutdown();
 }
 

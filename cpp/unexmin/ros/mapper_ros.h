@@ -6,6 +6,7 @@
 
 #include <unexmin/mapping/occupancy_map.h>
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -14,9 +15,12 @@
 #include <tf2_msgs/TFMessage.h>
 #include <unexmin/SaveMap.h>
 
+#include <atomic>
 #include <deque>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -57,9 +61,16 @@ private:
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
   void enqueue(Cloud&& cloud);
-  void onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static);
+  /// On the tf thread: stores the transforms (a dynamic frame's samples from one publisher at a time), clears
+  /// the buffer when a frame's stamps go back (simulation reset) or its publisher changes, and asks the main
+  /// thread to drain.
+  void onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
+  /// The largest gap [s] between the stored samples of a dynamic frame of the chain from frame to the map
+  /// frame around stamp (0 when the chain is static); the frame's name in *frame_out.
+  double tfGap(const std::string& frame, const ros::Time& stamp, std::string* frame_out);
   /// Inserts the pending clouds in arrival order up to the first whose tf has not arrived yet; drops those
-  /// past the timeout.
+  /// past the timeout, those whose tf would be interpolated over a gap longer than ~tf_max_gap and those
+  /// received before a jump back in time that are stamped after it.
   void drain();
   void publish(Output& out, const ros::Time& stamp);
   void onTimer(const ros::WallTimerEvent&);
@@ -76,11 +87,39 @@ private:
   bool per_robot_ = false;
   double publish_rate_ = 1.0;   ///< [Hz, wall]
   double tf_timeout_ = 10.0;    ///< [s, wall]
+  double tf_max_gap_ = 0.5;     ///< [s, sim]
   int queue_size_ = 5000;
   std::string map_file_;
 
   tf2_ros::Buffer tf_buffer_{ros::Duration(120.0)};
+  // /tf and /tf_static on their own queue and thread: tf is never held up behind cloud insertion (a busy
+  // insertion thread let the /tf subscriber queue overflow, its oldest samples dropped, and clouds were then
+  // transformed with poses interpolated over the gap).
+  ros::CallbackQueue tf_queue_;
+  std::unique_ptr<ros::AsyncSpinner> tf_spinner_;
   ros::Subscriber tf_sub_, tf_static_sub_;  ///< deep queues: tf2_ros's listener drops beyond 100 messages
+  std::atomic<bool> drain_posted_{false};
+  std::atomic<std::size_t> pending_count_{0};
+  /// Shared by the tf thread (writes) and the main thread (reads).
+  struct TfState
+  {
+    /// The node whose /tf samples of a frame are used, and when it last sent one.
+    struct Owner
+    {
+      std::string node;
+      ros::WallTime last;
+    };
+    std::map<std::string, Owner> publisher;                ///< dynamic child frame -> its owner
+    std::map<std::string, std::deque<ros::Time>> stamps;   ///< dynamic child frame -> its sample stamps
+    uint64_t jumps = 0;                                    ///< jumps back in time seen
+    ros::WallTime jump_wall;                               ///< when the last one was seen
+    ros::Time jump_to;                                     ///< the stamp it went back to
+    uint64_t ignored = 0;                                  ///< samples from a second publisher of a frame
+    std::set<std::string> warned;                          ///< "frame publisher" pairs warned about
+  };
+  std::mutex tf_mutex_;
+  TfState tf_state_;
+  uint64_t jumps_seen_ = 0;  ///< main thread: jumps already handled
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher stats_pub_;
   ros::ServiceServer save_srv_, reset_srv_;

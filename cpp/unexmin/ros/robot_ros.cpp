@@ -50,7 +50,9 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", streamQueue(rates.odom));
   joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", streamQueue(rates.joint_states));
-  tf_probe_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
+  // One publication per topic and node, its queue set by the first robot: room for every robot's (up to 8)
+  // samples of 20 s of simulated time, like a sensor stream's queue.
+  tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 8 * streamQueue(rates.odom));
   odom_every_ = every(physics_rate, rates.odom);
   joint_every_ = every(physics_rate, rates.joint_states);
   thrust_every_ = every(physics_rate, rates.thrust);
@@ -139,7 +141,7 @@ nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const
   return o;
 }
 
-void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all)
+void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
 {
   now_ = stamp.toSec();
   sensors_->publish(step);  // samples due at this step (nothing extra when `all`)
@@ -150,7 +152,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
     return true;
   };
   if (due(odom_every_, last_odom_)) {
-    const bool tf_wanted = tf_probe_.getNumSubscribers() > 0;
+    const bool tf_wanted = tf_pub_.getNumSubscribers() > 0;
     const bool odom_wanted = wanted(odom_pub_, recorder_);
     if (tf_wanted || odom_wanted) {
       const nav_msgs::Odometry o = odometry(stamp);
@@ -162,7 +164,9 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::Tran
         t.transform.translation.y = o.pose.pose.position.y;
         t.transform.translation.z = o.pose.pose.position.z;
         t.transform.rotation = o.pose.pose.orientation;
-        tf.sendTransform(t);
+        tf2_msgs::TFMessage m;
+        m.transforms.push_back(t);
+        tf_pub_.publish(m);
       }
       if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
     }

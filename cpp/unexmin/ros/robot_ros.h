@@ -8,7 +8,6 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <map>
 #include <string>
@@ -36,7 +35,7 @@ public:
            const SensorRegistry& registry, const sensors::SensorSelection& selection, bool visual = false);
 
   /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
-  void publish(std::uint64_t step, const ros::Time& stamp, tf2_ros::TransformBroadcaster& tf, bool all = false);
+  void publish(std::uint64_t step, const ros::Time& stamp, bool all = false);
 
   /// Ground truth of the base link: pose in `world`, twist in the body frame (REP-105).
   nav_msgs::Odometry odometry(const ros::Time& stamp) const;
@@ -81,7 +80,10 @@ private:
   std::vector<ros::Publisher> thrust_pubs_;
   ros::Publisher odom_pub_;
   ros::Publisher joint_pub_;
-  ros::Publisher tf_probe_;  ///< same topic as the broadcaster: tells whether anyone listens to /tf
+  /// /tf (world -> base_link at the odometry rate). Not tf2_ros's TransformBroadcaster: its queue of 100
+  /// messages overflowed in lockstep when a subscriber (the mapper) read late, and the dropped samples left gaps
+  /// that tf2 interpolated over.
+  ros::Publisher tf_pub_;
   ros::WallTime wall_now_;
   double min_wall_period_ = 0.0;   ///< [s] of wall time between viewer-stream messages (0: none)
   ros::WallTime last_joint_wall_;

@@ -173,7 +173,7 @@ void SimulatorRos::publishNow()
   recorder_->setTime(world_->time());
   publishClock();
   const ros::Time stamp(world_->time());
-  for (auto& r : robots_) r->publish(world_->stepCount(), stamp, tf_, true);
+  for (auto& r : robots_) r->publish(world_->stepCount(), stamp, true);
 }
 
 void SimulatorRos::stepOnce()
@@ -194,7 +194,7 @@ void SimulatorRos::stepOnce()
   }
   for (auto& r : robots_) {
     r->setWallGate(wall_now, min_wall_period);
-    r->publish(n, stamp, tf_);
+    r->publish(n, stamp);
   }
   if (current_every_ && n % current_every_ == 0 && wanted(current_pub_, recorder_.get())) {
     geometry_msgs::Vector3Stamped m;

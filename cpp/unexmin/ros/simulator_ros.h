@@ -14,7 +14,6 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
-#include <tf2_ros/transform_broadcaster.h>
 #include <unexmin/Record.h>
 #include <unexmin/Reset.h>
 #include <unexmin/Step.h>
@@ -76,7 +75,6 @@ private:
   std::unique_ptr<raycast::RayCaster> caster_;  ///< every ray sensor's (null when no sensor runs)
   std::vector<std::unique_ptr<RobotRos>> robots_;
   std::map<std::string, std::uint64_t> received_;  ///< command messages applied, per publishing node
-  tf2_ros::TransformBroadcaster tf_;
   ros::Publisher clock_pub_;
   ros::Publisher current_pub_;
   std::vector<ros::ServiceServer> services_;
