@@ -61,7 +61,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
     rays_[i].direction = (R * dirs_[i]).normalized().cast<float>();
     rays_[i].max_range = static_cast<float>(range_max_);
   }
-  castRays(ctx, rays_, hits_);
+  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // only each beam's first return needs it
 
   M3Scan& out = last_;
   out.time = ctx.world.time();
@@ -85,7 +85,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
       continue;
     }
     out.ranges[k] = static_cast<float>(r);
-    const double c = std::cos(static_cast<double>(hits_[i].incidence));
+    const double c = std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])));
     out.intensities[k] = static_cast<float>(std::pow(c, backscatter_exponent_));
   }
 }

@@ -218,7 +218,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
         rays_[i].max_range = static_cast<float>(clip_far_);
       }
     });
-    castRays(ctx, rays_, hits_);
+    castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // shading uses the normal, not the angle
 
     if (shadows_) {
       lit.assign(n, ~0u);
@@ -243,7 +243,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
           pairs.emplace_back(i, k);
         }
       }
-      castRays(ctx, shadow_rays_, shadow_hits_);
+      castRays(ctx, shadow_rays_, shadow_hits_, raycast::Incidence::skip);
       for (std::size_t s = 0; s < pairs.size(); ++s)
         if (shadow_hits_[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
     }
