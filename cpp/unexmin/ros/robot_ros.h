@@ -78,10 +78,10 @@ private:
   std::map<std::string, std::uint64_t>& received_;
   double now_ = 0.0;  ///< sim time of the last publish call [s]
   std::vector<ros::Subscriber> subs_;
-  std::vector<ros::Publisher> thrust_pubs_;
-  ros::Publisher odom_pub_;
-  ros::Publisher joint_pub_;
-  ros::Publisher tf_probe_;  ///< same topic as the broadcaster: tells whether anyone listens to /tf
+  std::vector<Stream> thrust_pubs_;
+  Stream odom_pub_;
+  Stream joint_pub_;
+  Stream tf_probe_;  ///< same topic as the broadcaster: tells whether anyone listens to /tf
   ros::WallTime wall_now_;
   double min_wall_period_ = 0.0;   ///< [s] of wall time between viewer-stream messages (0: none)
   ros::WallTime last_joint_wall_;
