@@ -435,7 +435,7 @@ TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)
     robot_hits += a.kind == HitKind::robot ? 1 : 0;
   }
   EXPECT_EQ(differ, 0);
-  EXPECT_GT(hits, 3000);
+  EXPECT_GT(hits, 2000) << "most of the 4000 rays should hit something";
   EXPECT_GT(robot_hits, 0) << "the rays should see the other robots too";
 }
 
