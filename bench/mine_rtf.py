@@ -18,14 +18,21 @@ ROS master:
   * RTF: --sim-seconds of sim time divided by the wall time it took;
   * the simulator's CPU use over that span and its resident memory (VmRSS now, VmHWM peak);
   * the topics the simulator publishes under /UX_1 (which sensors existed when the figure was taken).
+With --translations, a C++ sink (bench/topic_counter.cpp, built with g++) subscribes to every robot's
+m3/points and dvl_water_track from the start, so the simulator builds its M3 and DVL translations and sends
+them; the sink's CPU is reported apart, and the share of the translated messages stamped inside the stepped
+span that reached it ("delivered", 1.00 = all).
 """
 
 import argparse
 import json
 import os
+import signal
 import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 from xmlrpc.client import ServerProxy
 
 import numpy as np
@@ -53,13 +60,18 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"):
+TRANSLATIONS = {"m3/points": 40.0, "dvl_water_track": 8.0}  # [Hz of sim time]: the C++ translations
+
+
+def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False):
     t_launch = time.monotonic()
     from unexmin.launcher import WorldProcess, wait_for
     # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
     # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
     world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False,
                          extra_args=(f"sensors:={sensors}",))
+    workdir = tempfile.TemporaryDirectory(prefix="mine_rtf_")
+    sink = None
     try:
         import rosgraph
         import rospy
@@ -73,6 +85,13 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         rospy.init_node("mine_bench", anonymous=True, disable_signals=True)
         t_master = time.monotonic()
         names = [f"UX_{i + 1}" for i in range(robots)]
+        window = Path(workdir.name) / "window"
+        sink_topics = [f"/{n}/{t}" for n in names for t in TRANSLATIONS] if translations else []
+        if sink_topics:
+            sys.path.insert(0, str(Path(__file__).resolve().parent))
+            from sensors_rtf import build_counter
+            sink = subprocess.Popen([str(build_counter(workdir.name)), str(window), "100000"] + sink_topics,
+                                    stdout=subprocess.PIPE, text=True)
         first = {}
         subs = [rospy.Subscriber(f"/{n}/odom", Odometry, lambda m, n=n: first.setdefault(n, time.monotonic()),
                                  queue_size=1, tcp_nodelay=True) for n in names]
@@ -88,10 +107,15 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
                  "the simulator to subscribe to the thrusters")
         master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
+        if sink:
+            wait_for(lambda: sum(any(n.startswith("/topic_counter") for n in subs)
+                                 for t, subs in master.getSystemState()[1] if t in sink_topics) == len(sink_topics),
+                     timeout, "the sink to subscribe to every translation")
         step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         chunk = 10.0  # [s] of sim time per call; `hold` keeps the commands past the 1 s watchdog
         sim0 = step(duration=0.0, steps=1, client="", commands=0, hold=True).time
         wall0, cpu0 = time.monotonic(), cpu_seconds(pid)
+        sink_cpu0 = cpu_seconds(sink.pid) if sink else 0.0
         sim1 = sim0
         while sim1 - sim0 < sim_seconds - 1e-9:
             for n, ps in pubs.items():
@@ -102,12 +126,24 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         mem = proc_status(pid)
         publishers = master.getSystemState()[0]
         topics = sorted(t for t, nodes in publishers if t.startswith("/UX_1/") and "/simulator" in nodes)
-        return {"robots": robots, "master_s": t_master - t_launch, "ready_s": t_ready - t_launch,
-                "first_odom_s": t_odom - t_launch, "rtf": (sim1 - sim0) / (wall1 - wall0),
-                "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
-                "peak_rss_mb": mem["VmHWM"], "sim_seconds": sim1 - sim0, "topics": topics}
+        result = {"robots": robots, "master_s": t_master - t_launch, "ready_s": t_ready - t_launch,
+                  "first_odom_s": t_odom - t_launch, "rtf": (sim1 - sim0) / (wall1 - wall0),
+                  "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
+                  "peak_rss_mb": mem["VmHWM"], "sim_seconds": sim1 - sim0, "topics": topics}
+        if sink:
+            result["sink_cpu_percent"] = 100.0 * (cpu_seconds(sink.pid) - sink_cpu0) / (wall1 - wall0)
+            window.write_text(f"{sim0} {sim1}")
+            sink.send_signal(signal.SIGINT)  # it counts what it got stamped inside the window, then exits
+            counts = dict(line.split() for line in sink.communicate(timeout=timeout)[0].splitlines())
+            result["delivered"] = min(int(counts.get(t, 0)) / round((sim1 - sim0) * TRANSLATIONS[t.split("/", 2)[2]])
+                                      for t in sink_topics)
+        return result
     finally:
+        if sink and sink.poll() is None:
+            sink.kill()
+            sink.wait()
         world.close()
+        workdir.cleanup()
 
 
 def main():
@@ -119,9 +155,12 @@ def main():
     ap.add_argument("--robots", type=int, choices=(1, 2, 3), help="measure this count only (JSON out)")
     ap.add_argument("--world", choices=("mine", "tank"), default="mine", help="tank: the same, for comparison")
     ap.add_argument("--sensors", default="all", help="sensor families that run (the sensors:= launch argument)")
+    ap.add_argument("--translations", action="store_true",
+                    help="a C++ sink subscribes to every robot's m3/points and dvl_water_track (the C++ translations)")
     args = ap.parse_args()
     if args.robots:
-        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors)))
+        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors,
+                                 args.translations)))
         return 0
     cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
     print(f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
@@ -137,7 +176,7 @@ def main():
         for _ in range(args.repeat):
             proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
                                    "--world", args.world, "--sim-seconds", str(args.sim_seconds),
-                                   "--sensors", args.sensors,
+                                   "--sensors", args.sensors, *(["--translations"] if args.translations else []),
                                    "--timeout", str(args.timeout)], capture_output=True, text=True)
             if proc.returncode != 0:
                 print(proc.stderr[-3000:], file=sys.stderr)
@@ -154,7 +193,8 @@ def main():
 
 def row(robots, r):
     return (f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
-            f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}")
+            f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}"
+            + (f"  delivered {r['delivered']:.2f}, sink CPU {r['sink_cpu_percent']:.0f} %" if "delivered" in r else ""))
 
 
 if __name__ == "__main__":

@@ -25,6 +25,21 @@ class MeshFormatError(ValueError):
     """A mesh file this module cannot read (only binary STL and binary little-endian PLY)."""
 
 
+def inside_path(world, base, file, key):
+    """`file` (key `key` of world file `world`, whose folder is `base`) resolved against `base`: a relative path
+    that stays inside that folder once normalised, as the simulator requires (docs/worlds.md, "Paths");
+    ValueError naming the file, the key and the path otherwise."""
+    file = str(file)
+    if os.path.isabs(file):
+        raise ValueError(f"{world}: '{key}' {file} is an absolute path: expected a path relative to the world "
+                         f"file's folder {base} and inside it")
+    norm = os.path.normpath(file)
+    if norm == "." or norm == ".." or norm.startswith("../"):
+        raise ValueError(f"{world}: '{key}' {file} is not inside the world file's folder {base}: expected a "
+                         f"relative path to a file in it or below it (no '..' out of it)")
+    return os.path.join(base, norm)
+
+
 def load_world(path):
     """The world file's name, surface height [m] and mesh entries (absolute file, scale, xyz, rpy, flags)."""
     with open(path) as f:
@@ -36,7 +51,7 @@ def load_world(path):
     for i, m in enumerate(world.get("meshes") or []):
         if "file" not in m:
             raise ValueError(f"{path}: meshes[{i}] has no 'file'")
-        entry = {"name": m.get("name", f"mesh{i}"), "file": os.path.join(base, m["file"]),
+        entry = {"name": m.get("name", f"mesh{i}"), "file": inside_path(path, base, m["file"], f"meshes[{i}].file"),
                  "scale": [float(v) for v in m.get("scale", [1, 1, 1])],
                  "xyz": [float(v) for v in m.get("xyz", [0, 0, 0])],
                  "rpy": [float(v) for v in m.get("rpy", [0, 0, 0])],

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 
@@ -88,6 +89,49 @@ TEST(WorldFile, DefectsAreNamed)
   }
   const std::string missing = errorOf([] { unexmin::sim::loadWorldConfig("/nonexistent/x.world"); });
   EXPECT_NE(missing.find("/nonexistent/x.world: cannot open"), std::string::npos) << missing;
+}
+
+TEST(WorldFile, MeshFilesMustStayInsideTheWorldFilesFolder)
+{
+  // A world file names its meshes relative to its own folder (docs/worlds.md, "Paths"): an absolute path or a
+  // path climbing out with '..' is refused, naming the file, the key and the path, before anything is read.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(unexmin::test::testTempDir()) / "paths" / "world";
+  fs::create_directories(dir / "meshes");
+  const std::string box = std::string(UNEXMIN_SOURCE_DIR) + "/worlds/meshes/test_box.stl";
+  fs::copy_file(box, dir / "meshes" / "box.stl", fs::copy_options::overwrite_existing);
+  fs::copy_file(box, dir.parent_path() / "outside.stl", fs::copy_options::overwrite_existing);
+  auto world = [&](const std::string& name, const std::string& file) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << "name: w\nmeshes:\n  - {name: m, file: '" << file << "'}\nrobots: [{name: A}]\n";
+    return path;
+  };
+  // Inside: plain, with '.' and with a '..' that stays inside; resolved against the world file's folder.
+  for (const std::string file : {"meshes/box.stl", "./meshes/box.stl", "meshes/../meshes/box.stl"}) {
+    const auto w = unexmin::sim::loadWorldConfig(world("inside.world", file));
+    ASSERT_EQ(w.meshes.size(), 1u) << file;
+    EXPECT_EQ(w.meshes[0].file, (dir / "meshes" / "box.stl").string()) << file;
+    EXPECT_GT(unexmin::sim::loadMesh(w.meshes[0]).triangleCount(), 0u) << file;
+  }
+  // Outside: each file exists (or is a real system file), so only the rule can refuse it.
+  struct Case
+  {
+    std::string file, expected;
+  };
+  const std::vector<Case> cases = {
+      {(dir.parent_path() / "outside.stl").string(), "is an absolute path"},
+      {"/etc/passwd", "is an absolute path"},
+      {"../outside.stl", "is not inside the world file's folder"},
+      {"meshes/../../outside.stl", "is not inside the world file's folder"},
+      {"meshes/../../../../../../../../etc/passwd", "is not inside the world file's folder"},
+      {".", "is not inside the world file's folder"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = world("outside" + std::to_string(i) + ".world", cases[i].file);
+    const std::string msg = errorOf([&] { unexmin::sim::loadWorldConfig(path); });
+    EXPECT_EQ(msg.rfind(path + ": 'meshes[0].file' " + cases[i].file + " " + cases[i].expected, 0), 0u)
+        << "case " << i << ": '" << msg << "'";
+  }
 }
 
 TEST(WorldFile, TooManyRobotsIsAnError)

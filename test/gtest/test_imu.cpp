@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <vector>
 
@@ -153,13 +154,15 @@ TEST(Imu, MagnetometerReadsTheWorldFieldInTheImuFrame)
 
 TEST(Imu, MagneticFieldComesFromTheWorldFile)
 {
-  // A copy of the test box world with a field of its own, written by the test.
-  const std::string dir = std::string(UNEXMIN_SOURCE_DIR) + "/worlds/";
+  // A copy of the test box world with a field of its own, written by the test beside a copy of its mesh (a world
+  // file names its meshes inside its own folder).
   const std::string path = testTempDir() + "magnetic.world";
+  std::filesystem::copy_file(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/meshes/test_box.stl",
+                             testTempDir() + "magnetic_box.stl", std::filesystem::copy_options::overwrite_existing);
   auto write = [&](const std::string& field) {
     std::ofstream out(path);
-    out << "name: magnetic\n" << field << "meshes:\n  - {name: box, file: " << dir
-        << "meshes/test_box.stl}\nrobots:\n  - {name: UX_1, xyz: [0, 0, 0]}\n";
+    out << "name: magnetic\n" << field
+        << "meshes:\n  - {name: box, file: magnetic_box.stl}\nrobots:\n  - {name: UX_1, xyz: [0, 0, 0]}\n";
   };
   write("magnetic_field: [100.0, 200.0, -400.0]\n");
   const sim::WorldConfig config = sim::loadWorldConfig(path);

@@ -138,10 +138,10 @@ TEST(Mesh, AWorldFileLoadsTheMeshWhereTheRayCasterSeesItAtTheClosedFormDistance)
   // The unit box scaled (2, 0.5, 3) and posed by a world file; rays from its centre along its own axes meet the
   // faces at half the scaled sizes: 1, 0.25 and 1.5 m.
   const Eigen::Vector3d scale(2.0, 0.5, 3.0), xyz(1.0, -2.0, 3.0), rpy(0.3, -0.2, 1.1);
-  const std::string stl = writeStl("mesh_test_world_box", box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));
+  writeStl("mesh_test_world_box", box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));  // beside the world file
   const std::string world_file = writeFile(
       "mesh_test.world", "name: mesh_test\nwater: {density: 1000.0, surface_z: 100.0}\nmeshes:\n"
-                         "  - {name: posed_box, file: " + stl + ", scale: [2, 0.5, 3], xyz: [1, -2, 3], rpy: [0.3, -0.2, 1.1]}\n"
+                         "  - {name: posed_box, file: mesh_test_world_box.stl, scale: [2, 0.5, 3], xyz: [1, -2, 3], rpy: [0.3, -0.2, 1.1]}\n"
                          "robots:\n  - {name: T, xyz: [50, 50, -50]}\n");
   const sim::WorldConfig config = sim::loadWorldConfig(world_file);
   ASSERT_EQ(config.meshes.size(), 1u);

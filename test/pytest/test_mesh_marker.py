@@ -89,6 +89,28 @@ def test_tank_markers_and_its_six_by_four_metre_water_surface():
     assert len(water) == 1 and len(water[0].points) == 3 * len(tris) and water[0].color.a < 1.0
 
 
+@pytest.mark.parametrize("file, problem", [
+    ("/etc/passwd", "is an absolute path"),
+    ("../outside.stl", "is not inside the world file's folder"),
+    ("meshes/../../outside.stl", "is not inside the world file's folder"),
+    ("..", "is not inside the world file's folder"),
+])
+def test_a_world_file_cannot_name_a_mesh_outside_its_folder(tmp_path, file, problem):
+    # Same rule as the simulator (docs/worlds.md, "Paths"): the node would otherwise read and publish that file.
+    (tmp_path / "w").mkdir()
+    shutil.copy(WORLDS / "meshes/test_box.stl", tmp_path / "outside.stl")
+    world = tmp_path / "w" / "bad.world"
+    world.write_text(f"name: w\nmeshes:\n  - {{name: m, file: '{file}'}}\nrobots: [{{name: UX_1}}]\n")
+    with pytest.raises(ValueError) as err:
+        mm.load_world(world)
+    assert str(err.value).startswith(f"{world}: 'meshes[0].file' {file} {problem}")
+    # Inside its folder, '..' that stays inside included, it loads the file it names.
+    (tmp_path / "w" / "meshes").mkdir()
+    shutil.copy(WORLDS / "meshes/test_box.stl", tmp_path / "w" / "meshes" / "box.stl")
+    world.write_text("name: w\nmeshes:\n  - {name: m, file: meshes/../meshes/box.stl}\nrobots: [{name: UX_1}]\n")
+    assert mm.load_world(world)["meshes"][0]["file"] == str(tmp_path / "w" / "meshes" / "box.stl")
+
+
 def test_mine_water_surface_is_the_entry_shaft_section():
     man = json.loads((WORLDS / "meshes/mine/mine.json").read_text())
     world = mm.load_world(WORLDS / "mine.world")

@@ -142,13 +142,13 @@ RayCaster::~RayCaster() = default;
 
 int RayCaster::threads() const { return pool_->threads(); }
 
-void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot) const
+void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot, Incidence incidence) const
 {
   hits.resize(rays.size());
-  cast(rays.data(), hits.data(), rays.size(), exclude_robot);
+  cast(rays.data(), hits.data(), rays.size(), exclude_robot, incidence);
 }
 
-void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const
+void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, Incidence incidence) const
 {
   if (exclude_robot < -1)
     throw RayCasterError("ray caster: exclude_robot = " + formatNumber(exclude_robot) +
@@ -157,7 +157,10 @@ void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robo
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   const WorkerPool::Job one = [&](std::size_t b) {
     const std::size_t start = b * kBlock;
-    castBlock(rays + start, hits + start, std::min(kBlock, n - start), exclude_robot);
+    const std::size_t m = std::min(kBlock, n - start);
+    castBlock(rays + start, hits + start, m, exclude_robot);
+    if (incidence == Incidence::compute)
+      for (std::size_t i = start; i < start + m; ++i) hits[i].incidence = RayCaster::incidence(rays[i], hits[i]);
   };
   if (n >= kParallelMin && pool_->threads() > 1 && pool_->tryRun(blocks, one)) return;
   for (std::size_t b = 0; b < blocks; ++b) one(b);
@@ -168,29 +171,21 @@ void RayCaster::finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal,
 {
   const float length = surface_normal.norm();
   Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
-  float c = n.dot(ray.direction);
-  if (c > 0.0f) {
-    n = -n;
-    c = -c;
-  }
+  if (n.dot(ray.direction) > 0.0f) n = -n;
   hit.range = range;
   hit.normal = n;
-  // atan2 keeps full precision near head-on incidence, where acos(-c) would not.
-  hit.incidence = ray.incidence ? std::atan2(n.cross(ray.direction).norm(), -c)
-                                : std::numeric_limits<float>::quiet_NaN();
+  hit.incidence = std::numeric_limits<float>::quiet_NaN();
   hit.kind = kind;
   hit.index = index;
 }
 
-bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r, double& t)
+float RayCaster::incidence(const Ray& ray, const Hit& hit)
 {
-  const Eigen::Vector3d oc = c - o;
-  const double b = oc.dot(d);                         // along the ray to the closest approach
-  const double h2 = r * r - (oc - b * d).squaredNorm();  // half chord squared, free of cancellation
-  if (h2 < 0.0) return false;
-  const double h = std::sqrt(h2);
-  t = oc.squaredNorm() < r * r ? b + h : b - h;
-  return t >= 0.0;
+  if (!hit.hit()) return std::numeric_limits<float>::quiet_NaN();
+  // hit.normal faces the ray (finishHit flipped it if needed, which negates this dot product and the cross
+  // product below exactly), so c <= 0. atan2 keeps full precision near head-on incidence, where acos(-c) would not.
+  const float c = hit.normal.dot(ray.direction);
+  return std::atan2(hit.normal.cross(ray.direction).norm(), -c);
 }
 
 std::vector<RobotSphere> robotSpheres(sim::World& world)

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -28,9 +29,6 @@ struct Ray
   Eigen::Vector3f origin{0, 0, 0};     ///< Start point, world frame [m].
   Eigen::Vector3f direction{1, 0, 0};  ///< World frame, unit length (checked to 1e-3).
   float max_range = 1.0f;              ///< Farthest distance that counts as a hit [m], finite and > 0.
-  /// Whether the hit's incidence angle is wanted (an atan2 per hit, ~15 % of a camera ray's cost; a camera
-  /// shades with the normal alone). When false the hit's incidence stays NaN.
-  bool incidence = true;
 };
 
 /// What a ray hit.
@@ -47,8 +45,8 @@ struct Hit
   float range = std::numeric_limits<float>::infinity();
   /// Surface normal at the hit, world frame, unit, facing the ray (normal . direction <= 0); zero on no hit.
   Eigen::Vector3f normal{0, 0, 0};
-  /// Angle between -direction and the normal [rad], 0 (head-on) .. pi/2 (grazing); NaN on no hit, or when the
-  /// ray did not ask for it (Ray::incidence false).
+  /// Angle between -direction and the normal [rad], 0 (head-on) .. pi/2 (grazing); NaN on no hit, and NaN when
+  /// the cast asked for no incidence (Incidence::skip: RayCaster::incidence() gives it for the hits that need it).
   float incidence = std::numeric_limits<float>::quiet_NaN();
   HitKind kind = HitKind::none;
   int index = -1;  ///< Mesh or robot index (see HitKind); -1 on no hit.
@@ -65,10 +63,28 @@ struct RobotSphere
   double radius = 0.0;              ///< [m]
 };
 
+/// Whether RayCaster::cast() fills Hit::incidence. `skip` saves an atan2 per hit (about a tenth of a sonar's cost)
+/// for callers that need the incidence of a few hits only (RayCaster::incidence() gives the same value) or none.
+enum class Incidence : std::uint8_t
+{
+  compute,  ///< every hit's incidence (the default)
+  skip,     ///< left NaN
+};
+
 /// Distance [m] along the ray (origin o, unit direction d) to the sphere (c, r): the entry point, or the exit
 /// point when o is inside (as a ray meets the inside of a closed mesh); false when it misses or is behind.
-/// Exact in double precision; both back ends use it for robot hulls.
-bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r, double& t);
+/// Exact in double precision; both back ends use it for robot hulls (inline: it runs for every ray and robot).
+inline bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r,
+                      double& t)
+{
+  const Eigen::Vector3d oc = c - o;
+  const double b = oc.dot(d);                            // along the ray to the closest approach
+  const double h2 = r * r - (oc - b * d).squaredNorm();  // half chord squared, free of cancellation
+  if (h2 < 0.0) return false;
+  const double h = std::sqrt(h2);
+  t = oc.squaredNorm() < r * r ? b + h : b - h;
+  return t >= 0.0;
+}
 
 /// Fills the robots' current spheres, indexed by robot index (called by update()).
 using RobotSphereSource = std::function<void(std::vector<RobotSphere>&)>;
@@ -116,10 +132,16 @@ public:
   /// distance in [0, max_range], triangles seen from either side (no back-face culling). The robot with index
   /// `exclude_robot` (the sensor's own; -1 = none; an index with no robot excludes nothing) is invisible.
   /// Throws RayCasterError naming the first bad ray (non-finite origin, direction not unit, max_range not
-  /// finite and > 0) before casting any.
-  void cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot = -1) const;
+  /// finite and > 0) before casting any. `incidence`: whether Hit::incidence is filled (Incidence::skip: NaN).
+  void cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot = -1,
+            Incidence incidence = Incidence::compute) const;
   /// Same on raw arrays of n rays and n hits.
-  void cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot = -1) const;
+  void cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot = -1,
+            Incidence incidence = Incidence::compute) const;
+
+  /// The incidence of `hit`, an answer of cast() to `ray` [rad]: the angle between -ray.direction and hit.normal,
+  /// 0 (head-on) .. pi/2 (grazing); NaN on no hit. Bit for bit what cast() writes to Hit::incidence.
+  static float incidence(const Ray& ray, const Hit& hit);
 
   /// Threads in use, the caller included (>= 1).
   int threads() const;
@@ -131,7 +153,8 @@ protected:
   /// threads: must only read shared state. `rays` starts at a multiple of kBlock in the batch.
   virtual void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const = 0;
 
-  /// Fills the normal (unit, facing the ray) and the incidence of a hit from any surface normal.
+  /// Fills the range, kind, index and normal (unit, facing the ray) of a hit from any surface normal (cast() adds
+  /// the incidence when asked).
   static void finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
                         Hit& hit);
 

@@ -5,6 +5,8 @@
 // with the sim time at which they were applied.
 #pragma once
 
+#include <unexmin/ros/stream.h>
+
 #include <rosbag/bag.h>
 #include <ros/ros.h>
 
@@ -88,18 +90,18 @@ private:
   std::map<std::string, std::uint64_t> counts_;
 };
 
-/// Publishes `m` on `pub` and hands it to `recorder` (may be null): the one way out of every simulator stream.
+/// Publishes `m` on `stream` and hands it to `recorder` (may be null): the one way out of every simulator stream.
 template <class M>
-void publishRecorded(const ros::Publisher& pub, BagRecorder* recorder, const M& m)
+void publishRecorded(const Stream& stream, BagRecorder* recorder, const M& m)
 {
-  if (recorder && recorder->active()) recorder->write(pub.getTopic(), m);
-  if (pub.getNumSubscribers() > 0) pub.publish(m);
+  if (recorder && recorder->active()) recorder->write(stream.topic(), m);
+  if (stream.subscribers() > 0) stream.publisher().publish(m);
 }
 
-/// Whether a message for `pub` is needed: someone subscribes or the recorder records its topic.
-inline bool wanted(const ros::Publisher& pub, BagRecorder* recorder)
+/// Whether a message for `stream` is needed: someone subscribes or the recorder records its topic.
+inline bool wanted(const Stream& stream, BagRecorder* recorder)
 {
-  return pub.getNumSubscribers() > 0 || (recorder && recorder->active() && recorder->records(pub.getTopic()));
+  return stream.subscribers() > 0 || (recorder && recorder->active() && recorder->records(stream.topic()));
 }
 
 }  // namespace ros_layer

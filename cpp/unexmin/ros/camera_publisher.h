@@ -29,8 +29,8 @@ public:
 
 private:
   sensors::vision::CameraSensor& sensor_;
-  ros::Publisher image_pub_;  ///< visual mode only
-  ros::Publisher info_pub_;
+  Stream image_pub_;  ///< visual mode only
+  Stream info_pub_;
   sensor_msgs::CameraInfo info_;
 };
 

@@ -26,8 +26,8 @@ public:
 
 private:
   const sensors::DvlSensor& sensor_;
-  ros::Publisher dvl_, twist_, track_;
-  std::array<ros::Publisher, 4> sonar_;
+  Stream dvl_, twist_, track_;
+  std::array<Stream, 4> sonar_;
   std::array<std::string, 4> beam_frames_;
 };
 

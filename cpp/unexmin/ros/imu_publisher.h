@@ -23,7 +23,7 @@ public:
 
 private:
   const sensors::ImuSensor& sensor_;
-  ros::Publisher imu_, mag_, raw_, kvh_;
+  Stream imu_, mag_, raw_, kvh_;
 };
 
 }  // namespace ros_layer

@@ -22,7 +22,7 @@ public:
 
 private:
   const sonar::M3Sensor& sensor_;
-  ros::Publisher pub_, points_;
+  Stream pub_, points_;
 };
 
 }  // namespace ros_layer

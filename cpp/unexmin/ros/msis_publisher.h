@@ -32,7 +32,7 @@ public:
 
 private:
   const sonar::MsisSensor& sensor_;
-  ros::Publisher scan_, angle_;
+  Stream scan_, angle_;
 };
 
 }  // namespace ros_layer

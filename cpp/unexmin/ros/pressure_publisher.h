@@ -16,7 +16,7 @@ public:
 
 private:
   const sensors::PressureSensor& sensor_;
-  ros::Publisher pub_;
+  Stream pub_;
 };
 
 }  // namespace ros_layer

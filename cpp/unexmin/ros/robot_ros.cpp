@@ -152,7 +152,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
     return true;
   };
   if (due(odom_every_, last_odom_)) {
-    const bool tf_wanted = tf_pub_.getNumSubscribers() > 0;
+    const bool tf_wanted = tf_pub_.subscribers() > 0;
     const bool odom_wanted = wanted(odom_pub_, recorder_);
     if (tf_wanted || odom_wanted) {
       const nav_msgs::Odometry o = odometry(stamp);
@@ -166,7 +166,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
         t.transform.rotation = o.pose.pose.orientation;
         tf2_msgs::TFMessage m;
         m.transforms.push_back(t);
-        tf_pub_.publish(m);
+        tf_pub_.publisher().publish(m);
       }
       if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
     }
@@ -180,7 +180,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
     }
   }
   const bool joint_wall_ok = all || (wall_now_ - last_joint_wall_).toSec() >= min_wall_period_;
-  if (joint_wall_ok && due(joint_every_, last_joint_) && joint_pub_.getNumSubscribers() > 0) {
+  if (joint_wall_ok && due(joint_every_, last_joint_) && joint_pub_.subscribers() > 0) {
     last_joint_wall_ = wall_now_;
     sensor_msgs::JointState js;
     js.header.stamp = stamp;

@@ -77,13 +77,13 @@ private:
   std::map<std::string, std::uint64_t>& received_;
   double now_ = 0.0;  ///< sim time of the last publish call [s]
   std::vector<ros::Subscriber> subs_;
-  std::vector<ros::Publisher> thrust_pubs_;
-  ros::Publisher odom_pub_;
-  ros::Publisher joint_pub_;
+  std::vector<Stream> thrust_pubs_;
+  Stream odom_pub_;
+  Stream joint_pub_;
   /// /tf (world -> base_link at the odometry rate). Not tf2_ros's TransformBroadcaster: its queue of 100
   /// messages overflowed in lockstep when a subscriber (the mapper) read late, and the dropped samples left gaps
   /// that tf2 interpolated over.
-  ros::Publisher tf_pub_;
+  Stream tf_pub_;
   ros::WallTime wall_now_;
   double min_wall_period_ = 0.0;   ///< [s] of wall time between viewer-stream messages (0: none)
   ros::WallTime last_joint_wall_;

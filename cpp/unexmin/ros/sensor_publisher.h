@@ -78,10 +78,10 @@ public:
 
 protected:
   /// Whether a message for `pub` must be built: it has a subscriber or its topic is recorded.
-  bool wanted(const ros::Publisher& pub) const { return ros_layer::wanted(pub, recorder_); }
+  bool wanted(const Stream& pub) const { return ros_layer::wanted(pub, recorder_); }
   /// Publishes `m` on `pub` and writes it to the recording when its topic is recorded.
   template <class M>
-  void emit(const ros::Publisher& pub, const M& m) const
+  void emit(const Stream& pub, const M& m) const
   {
     publishRecorded(pub, recorder_, m);
   }

@@ -75,8 +75,8 @@ private:
   std::unique_ptr<raycast::RayCaster> caster_;  ///< every ray sensor's (null when no sensor runs)
   std::vector<std::unique_ptr<RobotRos>> robots_;
   std::map<std::string, std::uint64_t> received_;  ///< command messages applied, per publishing node
-  ros::Publisher clock_pub_;
-  ros::Publisher current_pub_;
+  Stream clock_pub_;
+  Stream current_pub_;
   std::vector<ros::ServiceServer> services_;
   std::uint64_t clock_every_ = 1;
   std::uint64_t current_every_ = 1;

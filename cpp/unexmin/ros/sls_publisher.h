@@ -26,7 +26,7 @@ public:
 
 private:
   const sensors::vision::SlsSensor& sensor_;
-  ros::Publisher points_, scan_;
+  Stream points_, scan_;
 };
 
 }  // namespace ros_layer

@@ -39,9 +39,10 @@ bool Sensor::update(const SensorContext& ctx)
   return true;
 }
 
-void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits)
+void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
+                      raycast::Incidence incidence)
 {
-  if (ctx.rays) ctx.rays->cast(rays, hits, ctx.robot_index);
+  if (ctx.rays) ctx.rays->cast(rays, hits, ctx.robot_index, incidence);
   else hits.assign(rays.size(), raycast::Hit());
 }
 

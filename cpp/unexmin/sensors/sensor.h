@@ -81,9 +81,11 @@ protected:
   virtual void sample(const SensorContext& ctx) = 0;
   Random& random() { return random_; }
   /// Casts `rays` through ctx.rays, the robot's own hull excluded; `hits` answers them one for one (all
-  /// misses when the context has no caster).
+  /// misses when the context has no caster). Incidence::skip: a model that needs the incidence of few hits
+  /// asks raycast::RayCaster::incidence() for those.
   static void castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays,
-                       std::vector<raycast::Hit>& hits);
+                       std::vector<raycast::Hit>& hits,
+                       raycast::Incidence incidence = raycast::Incidence::compute);
   double interval() const { return 1.0 / spec_.rate; }  ///< [s]
 
 private:

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -80,6 +81,22 @@ public:
     } catch (const YAML::Exception&) {
       fail("'" + where + key + "' must be true or false");
     }
+  }
+
+  /// The mesh file `file` (key `key`) of a world file in folder `base`: a relative path that stays inside `base`
+  /// once normalised (docs/worlds.md, "Paths"), returned resolved against it. A world file cannot make the
+  /// simulator read anything else: absolute paths and paths climbing out with '..' are refused.
+  std::string insidePath(const std::string& base, const std::string& file, const std::string& key) const
+  {
+    const std::filesystem::path rel(file);
+    if (rel.is_absolute())
+      fail("'" + key + "' " + file + " is an absolute path: expected a path relative to the world file's folder " +
+           base + " and inside it");
+    const std::filesystem::path norm = rel.lexically_normal();
+    if (norm.empty() || norm == "." || *norm.begin() == "..")
+      fail("'" + key + "' " + file + " is not inside the world file's folder " + base +
+           ": expected a relative path to a file in it or below it (no '..' out of it)");
+    return base + "/" + norm.string();
   }
 
   hydro::GaussMarkovParams channel(const YAML::Node& node, const std::string& key,
@@ -183,7 +200,7 @@ WorldConfig loadWorldConfig(const std::string& path)
       MeshEntry e;
       e.name = r.text(m, "name", where, "mesh" + formatNumber(i));
       const std::string file = r.text(m, "file", where, "", true);
-      e.file = (!file.empty() && file[0] == '/') ? file : base + "/" + file;
+      e.file = r.insidePath(base, file, where + "file");
       if (!std::ifstream(e.file)) r.fail("'" + where + "file' " + e.file + " does not exist");
       e.scale = r.vec3(m, "scale", where, Eigen::Vector3d::Ones());
       if ((e.scale.array() <= 0.0).any()) r.fail("'" + where + "scale' must be > 0 on every axis");

@@ -17,7 +17,8 @@ namespace sim {
 struct MeshEntry
 {
   std::string name;
-  std::string file;                         ///< Absolute path (resolved against the world file).
+  /// Resolved against the world file's folder, inside it (docs/worlds.md, "Paths").
+  std::string file;
   Eigen::Vector3d scale{1, 1, 1};
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< Mesh frame in the world frame.
   bool collision = true;

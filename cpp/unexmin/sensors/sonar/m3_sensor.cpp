@@ -83,7 +83,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
     const double to_surface = d.z() > 1e-9 ? (surface_z - sonar.translation().z()) / d.z() : range_max_;
     rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 0.0, range_max_));
   }
-  castRays(ctx, rays_, hits_);
+  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // only each beam's first return needs it
 
   M3Scan& out = last_;
   out.time = ctx.world.time();
@@ -107,8 +107,10 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
       continue;
     }
     out.ranges[k] = static_cast<float>(r);
-    // The return's level by the sonar equation, the beam's whole footprint at the return's incidence.
-    const Echo echo{hits_[i].range, std::cos(static_cast<double>(hits_[i].incidence))};
+    // The return's level by the sonar equation, the beam's whole footprint at the return's incidence (computed
+    // for the first returns only: the cast skipped it).
+    const double c = std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])));
+    const Echo echo{hits_[i].range, c};
     out.intensities[k] = static_cast<float>(static_cast<double>(echo_.echoCode(echo, 1)) / echo_.params().levels);
   }
 }

@@ -216,10 +216,9 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
         rays_[i].origin = origin;
         rays_[i].direction = rot * dirs_[first + i];
         rays_[i].max_range = static_cast<float>(clip_far_);
-        rays_[i].incidence = false;  // shading uses the normal
       }
     });
-    castRays(ctx, rays_, hits_);
+    castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // shading uses the normal, not the angle
 
     if (shadows_) {
       lit.assign(n, ~0u);
@@ -240,12 +239,11 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
           r.origin = from;
           r.direction = to / len;
           r.max_range = len * 0.999f - 1e-3f;
-          r.incidence = false;
           shadow_rays_.push_back(r);
           pairs.emplace_back(i, k);
         }
       }
-      castRays(ctx, shadow_rays_, shadow_hits_);
+      castRays(ctx, shadow_rays_, shadow_hits_, raycast::Incidence::skip);
       for (std::size_t s = 0; s < pairs.size(); ++s)
         if (shadow_hits_[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
     }

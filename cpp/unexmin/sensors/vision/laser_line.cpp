@@ -50,7 +50,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     rays_[j].direction = (head.linear() * fan_[j]).normalized().cast<float>();
     rays_[j].max_range = static_cast<float>(clip_far_);
   }
-  if (ctx.rays) ctx.rays->cast(rays_, hits_, ctx.robot_index);
+  if (ctx.rays) ctx.rays->cast(rays_, hits_, ctx.robot_index, raycast::Incidence::skip);  // the normal is enough
   else hits_.assign(rays_.size(), raycast::Hit());
 
   const double c = water.c().y();

@@ -105,7 +105,7 @@ void SlsSensor::sample(const SensorContext& ctx)
     rays_[j].direction = (head.linear() * dirs_[j]).normalized().cast<float>();
     rays_[j].max_range = static_cast<float>(range_max_);
   }
-  castRays(ctx, rays_, hits_);
+  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // needed only for the points the camera sees
 
   if (water_world_ != &ctx.world) {  // the water is the world's, fixed while it lives: derive it once
     water_ = WaterOptics::fromVisibility(ctx.world.config().visibility, ctx.world.config().visibility_colour);
@@ -138,7 +138,7 @@ void SlsSensor::sample(const SensorContext& ctx)
     sight_.push_back(sight);
     candidates_.push_back(static_cast<int>(j));
   }
-  castRays(ctx, sight_, sight_hits_);
+  castRays(ctx, sight_, sight_hits_, raycast::Incidence::skip);  // only whether something is in the way
 
   out.points.clear();
   out.intensity.clear();
@@ -152,7 +152,8 @@ void SlsSensor::sample(const SensorContext& ctx)
     const double rc = sight_[k].max_range + kSightSlack;
     double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh) albedo = ctx.world.config().meshes.at(static_cast<std::size_t>(h.index)).albedo.y();
-    const double strength = albedo * std::cos(static_cast<double>(h.incidence)) * std::exp(-c * (rl + rc)) / rl;
+    const double strength =
+        albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) * std::exp(-c * (rl + rc)) / rl;
     if (!(strength >= level) || strength <= 0.0) continue;
     // Triangulated point in the camera frame, its depth off by sigma_Z along the camera ray.
     const Eigen::Vector3d p = cam_inv * h.point(rays_[j]).cast<double>();
