@@ -58,8 +58,9 @@ VBS = ((0.0, 0.0), (36.0, 0.02))                                   # (t [s], mas
 DURATION = 42.0
 
 
-def mission_events(duration):
-    """The mission as replay events [(t, kind, payload)] (kind motors | pendulum | vbs), t [s]."""
+def mission_events(duration, vbs_trim=0.0):
+    """The mission as replay events [(t, kind, payload)] (kind motors | pendulum | vbs), t [s].
+    vbs_trim [kg] is added to every VBS command (an operator's trim of a heavy or light robot)."""
     from unexmin.allocation import ThrusterAllocator
     from unexmin.esc import MODE_RPM, EscConverter
 
@@ -71,7 +72,7 @@ def mission_events(duration):
         thrusts, _ = alloc.allocate(wrench)
         events.append((t, "motors", (MODE_RPM, tuple(float(v) for v in esc.to_command(MODE_RPM, thrusts)))))
     events += [(t, "pendulum", v) for t, v in PENDULUM if t <= duration]
-    events += [(t, "vbs", v) for t, v in VBS if t <= duration]
+    events += [(t, "vbs", v + vbs_trim) for t, v in VBS if t <= duration]
     return sorted(events, key=lambda e: e[0])
 
 
@@ -90,7 +91,7 @@ def perturbed_world_files(tmp, overrides=None):
                              description=PERTURBED_DESCRIPTION)
 
 
-def record(out, nominal=False, duration=DURATION, seed=0, overrides=None):
+def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_trim=0.0):
     """Run the mission and write the bag `out` (the robot: perturbed, nominal, or ux1.urdf.xacro with
     the xacro file `overrides`); returns the number of messages written."""
     import rospy
@@ -109,7 +110,7 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None):
                            timeout=60.0) as sim, BagWriter(out, callerid="/make_sample_bag") as bag:
         runner = LockstepRunner(sim, "UX_1", ESC_COMMAND_TOPIC, sample_period=0.1)
         lead = runner.lead_steps / runner.rate          # mission time 0 is sim time `lead`
-        events = mission_events(duration)
+        events = mission_events(duration, vbs_trim)
         for t, kind, payload in events:
             if kind == "motors":
                 msg = MotorCommand()
@@ -142,12 +143,16 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0, help="simulator seed (default 0)")
     ap.add_argument("--overrides", help="xacro overrides file: record with ux1.urdf.xacro and these properties "
                     "instead of the thesis prototype (spawned at its rest attitude)")
+    ap.add_argument("--vbs-trim", type=float, default=0.0, help="[kg] added to every VBS command: trims a robot "
+                    "of other buoyancy to near neutral so that it stays in mid-water (default 0)")
     args = ap.parse_args(argv)
     if args.overrides and args.nominal:
         ap.error("--overrides and --nominal exclude each other")
     if args.overrides and not Path(args.overrides).is_file():
         ap.error(f"--overrides {args.overrides}: no such file")
-    record(args.out, args.nominal, args.duration, args.seed, args.overrides)
+    if not math.isfinite(args.vbs_trim):
+        ap.error(f"--vbs-trim {args.vbs_trim}: expected a finite mass [kg]")
+    record(args.out, args.nominal, args.duration, args.seed, args.overrides, args.vbs_trim)
     return 0
 
 

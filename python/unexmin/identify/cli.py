@@ -58,7 +58,10 @@ def results(fit, nominal, physics, signals, bag, robot, fixed):
                 "window_s": float(signals.window * (signals.t[1] - signals.t[0])),
                 "residual_rms": dict(zip(DOF, (float(v) for v in fit.rms))),
                 "residual_rms_nominal": dict(zip(DOF, (float(v) for v in fit.rms_nominal))),
-                "residual_units": "N (surge, sway, heave: world frame) and N m (roll, pitch, yaw: body frame)"},
+                "residual_units": "N (surge, sway, heave: world frame) and N m (roll, pitch, yaw: body frame)",
+                "rms_speed": dict(zip(DOF, (float(v) for v in np.sqrt(np.mean(
+                    np.hstack([signals.v, signals.w])[signals.keep] ** 2, axis=0))))),
+                "rms_speed_units": "m/s (surge, sway, heave), rad/s (roll, pitch, yaw), body frame"},
     }
 
 
@@ -79,7 +82,7 @@ def overrides_xacro(fit, physics, water_density):
     return f"""<?xml version="1.0"?>
 <!-- Written by python -m unexmin.identify (docs/identification.md): the identified robot as overrides of
      urdf/properties.xacro. Use: roslaunch unexmin tank_world.launch UX_1_overrides:=<this file>, or
-     python -m unexmin.replay BAG --overrides <this file>. -->
+     python -m unexmin.replay BAG with its overrides option set to this file. -->
 <robot xmlns:xacro="http://www.ros.org/wiki/xacro">
   <!-- [kg] net buoyancy {X['buoyancy_kg']:.6g} kg: vehicle mass = rho V - buoyancy -->
   <xacro:property name="vehicle_mass" value="${{water_density * hull_volume - {X['buoyancy_kg']:.9g}}}"/>

@@ -38,6 +38,7 @@ class Thruster:
     command_max: float
     timeout: float            # [s] watchdog (<= 0: off)
     conversion: str           # identity | table | basic
+    gain: float = 1.0         # thrust gain of a linear table (thruster_gain_*: a two-point table), else 1
 
     @property
     def horizontal(self):
@@ -105,6 +106,20 @@ def _floats(text, n, what):
     return np.array(values)
 
 
+def _table_gain(conversion):
+    """Slope of a `table` conversion that is one straight line through zero (how thruster_gain_* is
+    emitted), else 1."""
+    if conversion is None or conversion.get("type") != "table":
+        return 1.0
+    x = [float(v) for v in conversion.find("param[@name='input']").get("value").split()]
+    y = [float(v) for v in conversion.find("param[@name='output']").get("value").split()]
+    slopes = [b / a for a, b in zip(x, y) if a != 0.0]
+    if slopes and all(abs(k - slopes[0]) < 1e-9 * max(1.0, abs(slopes[0])) for k in slopes) and \
+            all(b == 0.0 for a, b in zip(x, y) if a == 0.0):
+        return slopes[0]
+    return 1.0
+
+
 def parse(urdf):
     """RobotPhysics of an expanded URDF (text)."""
     root = ET.fromstring(urdf)
@@ -138,7 +153,8 @@ def parse(urdf):
             direction=rot @ axis / np.linalg.norm(axis), tau=tau,
             thrust_min=float(el.find("thrust").get("min")), thrust_max=float(el.find("thrust").get("max")),
             command_min=float(el.find("command").get("min")), command_max=float(el.find("command").get("max")),
-            timeout=float(el.find("timeout").get("value")), conversion=el.find("conversion").get("type")))
+            timeout=float(el.find("timeout").get("value")), conversion=el.find("conversion").get("type"),
+            gain=_table_gain(el.find("conversion"))))
     physics = RobotPhysics(
         mass=attr("mass"), volume=attr("volume"), radius=attr("radius"),
         cog_base=attr("center_of_gravity", "xyz", 3), cob=attr("center_of_buoyancy", "xyz", 3),

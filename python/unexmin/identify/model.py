@@ -42,7 +42,8 @@ def nominal_vector(physics):
     x[INDEX["added_mass"]] = float(np.mean(np.diag(physics.added_mass)[:3]))
     for k, d in enumerate(DOF[3:]):
         x[INDEX[f"added_inertia_{d}"]] = physics.added_mass[3 + k, 3 + k]
-    x[INDEX["thrust_gain_horizontal"]] = x[INDEX["thrust_gain_vertical"]] = 1.0
+    for name, ids in physics.groups().items():
+        x[INDEX[f"thrust_gain_{name}"]] = float(np.mean([physics.thrusters[i].gain for i in ids])) if ids else 1.0
     for k, d in enumerate(DOF):
         x[INDEX[f"damping_linear_{d}"]] = physics.linear_damping[k]
         x[INDEX[f"damping_quadratic_{d}"]] = physics.quadratic_damping[k]
