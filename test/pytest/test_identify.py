@@ -146,8 +146,8 @@ def make_bag(bag_dir, name):
     bag = bag_dir / f"{name}.bag"
     if not bag.exists():
         overrides.write_text(robot_overrides(buoyancy, cog_x, cog_y, damping, gain_h, gain_v))
-        # the operator trims the robot with the VBS to 10 % of its buoyancy, so it stays in mid-water
-        out = run([MAKER, "--overrides", overrides, "--out", bag, "--seed", seed, "--vbs-trim", 0.9 * buoyancy],
+        # the operator trims the robot to neutral with the VBS, so it stays in mid-water
+        out = run([MAKER, "--overrides", overrides, "--out", bag, "--seed", seed, "--vbs-trim", buoyancy],
                   bag_dir)
         assert out.returncode == 0, out.stderr[-3000:]
     return bag, overrides

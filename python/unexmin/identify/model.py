@@ -211,6 +211,12 @@ def prepare(mission, physics, window_s=0.7, water_density=1000.0, surface_z=0.0,
     Rht = np.transpose(Rh, (0, 2, 1))
     keep = np.zeros(len(t), bool)
     keep[win:len(t) - win] = True
+    # at the free surface the buoyancy changes by rho g pi R^2 per metre of z: a few mm of navigation
+    # error would be newtons of force; such samples are left out (the hull must be 1 cm under)
+    keep &= sg(pos, 0)[:, 2] + physics.radius < surface_z - 0.01
+    if keep.sum() < 2 * win:
+        raise ValueError(f"{mission.path}: only {int(keep.sum())} navigation samples with the robot submerged "
+                         f"(centre more than {physics.radius + 0.01:.2f} m below the surface z = {surface_z} m)")
     return Signals(
         t=t, R=R, v=v, w=w, acc=sg(pos, 2), dw=np.einsum("nij,nj->ni", Rt, sg(w_world, 1)),
         th=th, Rh=Rh, vh=np.einsum("nij,nj->ni", Rht, _interp_rows(th, t, sg(pos, 1))),
