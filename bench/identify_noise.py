@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-LEVELS = ((0.0, 0.0, 0.7), (0.002, 0.05, 1.5), (0.005, 0.1, 1.5), (0.01, 0.2, 1.5), (0.02, 0.5, 2.5))
+LEVELS = ((0.0, 0.0, 0.7), (0.0, 0.0, 5.0), (0.002, 0.05, 5.0), (0.005, 0.1, 5.0), (0.01, 0.2, 5.0),
+          (0.02, 0.5, 5.0))
 # (position sigma [m], angle sigma [deg], Savitzky-Golay window [s])
 
 

@@ -184,7 +184,7 @@ def main(argv=None):
     ap.add_argument("--vbs-topic", help="Float64 VBS command topic (default /<robot>/vbs if present)")
     ap.add_argument("--nav-topic", help="navigation topic (default /<robot>/odom, else the only Odometry/Pose one)")
     ap.add_argument("--window", type=float, default=0.7, help="[s] Savitzky-Golay window of the derivatives "
-                    "(default 0.7; about 1.5 for noisy navigation)")
+                    "(default 0.7 for ground truth; 5 for a navigation filter's noisy output)")
     ap.add_argument("--water-density", type=float, default=1000.0, help="[kg/m^3] (default 1000, fresh water)")
     ap.add_argument("--surface-z", type=float, default=0.0, help="[m] world z of the free surface (default 0)")
     ap.add_argument("--overrides", help="xacro overrides of the description the fit starts from (its prior)")
