@@ -1,8 +1,10 @@
 """The fit: scipy.optimize.least_squares on the equation error, uncertainties from its Jacobian, and
 the parameters the bag cannot identify (flat directions), which keep their nominal value.
 
-1. Weights: each of the six equations is divided by its residual RMS at the nominal parameters, then
-   by the RMS of a first fit (so forces [N] and moments [N m] count alike).
+1. Weights: each of the six equations is divided by a robust scale of its residual (1.4826 x the
+   median absolute deviation) at the nominal parameters, then after a first fit (so forces [N] and
+   moments [N m] count alike); the loss is soft_l1 with f_scale 3, so a few samples far off the model
+   (a contact with a wall or the anchor, a navigation jump) do not drag the fit.
 2. Uncertainty: covariance s^2 (J^T J)^-1 of the weighted problem, s^2 the residual variance per
    degree of freedom; the residuals of neighbouring samples are correlated by the Savitzky-Golay
    window, so s^2 is multiplied by the window's length in samples (one independent sample per window).
@@ -56,7 +58,15 @@ class Fit:
         self.problem = problem
 
 
-def _solve(problem, x0, free, weights, max_nfev=200):
+F_SCALE = 3.0  # soft_l1 loss: weighted residuals beyond ~3 robust sigmas (a bump, a contact) count less
+
+
+def _robust_scale(r):
+    """Per-column 1.4826 x median absolute deviation of residual rows (a robust standard deviation)."""
+    return np.maximum(1.4826 * np.median(np.abs(r - np.median(r, axis=0)), axis=0), 1e-9)
+
+
+def _solve(problem, x0, free, weights, max_nfev=200, loss="soft_l1"):
     fixed_part = problem.A[:, :, ~free] @ x0[~free] + problem.c
     A_free = (problem.A[:, :, free] * weights[None, :, None]).reshape(-1, free.sum())
 
@@ -65,45 +75,48 @@ def _solve(problem, x0, free, weights, max_nfev=200):
 
     lb, ub = LOWER[free], np.full(free.sum(), np.inf)
     start = np.clip(x0[free], lb + 1e-12, ub)
+    # the plain least-squares solution first (the problem is linear), then the robust loss from there
     sol = least_squares(fun, start, jac=lambda xf: A_free, bounds=(lb, ub), x_scale="jac", max_nfev=max_nfev,
                         method="trf")
+    if loss != "linear":
+        sol = least_squares(fun, np.clip(sol.x, lb + 1e-12, ub), jac=lambda xf: A_free, bounds=(lb, ub),
+                            x_scale="jac", max_nfev=max_nfev, method="trf", loss=loss, f_scale=F_SCALE)
     x = x0.copy()
     x[free] = sol.x
-    return x, sol
+    return x, sol, A_free
 
 
-def _sigma(sol, n_free, window):
+def _sigma(sol, A_free, window):
+    """1-sigma of the free parameters: Gauss-Newton covariance on the samples the robust loss keeps
+    (|weighted residual| <= 3 f_scale), residual variance per degree of freedom x window samples."""
     r = sol.fun
-    dof = max(1, r.size - n_free)
-    s2 = float(r @ r) / dof * window
-    jtj = sol.jac.T @ sol.jac
-    try:
-        cov = np.linalg.pinv(jtj) * s2
-    except np.linalg.LinAlgError:
-        return np.full(n_free, np.inf)
-    return np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    inlier = np.abs(r) <= 3.0 * F_SCALE
+    J = A_free[inlier]
+    dof = max(1, int(inlier.sum()) - A_free.shape[1])
+    s2 = float(r[inlier] @ r[inlier]) / dof * window
+    return np.sqrt(np.clip(np.diag(np.linalg.pinv(J.T @ J)) * s2, 0.0, None))
 
 
 def identify(signals, physics, nominal, fixed=(), progress=None):
     """Fit the parameters (all but `fixed` names) to the signals; returns a Fit."""
     problem = EquationError(signals, physics)
     r0 = problem.residual(nominal)
-    weights = 1.0 / np.maximum(np.sqrt(np.mean(r0 ** 2, axis=0)), 1e-9)
+    weights = 1.0 / _robust_scale(r0)
     free = np.ones(len(PARAMS), bool)
     for name in fixed:
         free[INDEX[name]] = False
-    x, _ = _solve(problem, nominal, free, weights)
+    x, _, _ = _solve(problem, nominal, free, weights)
     if progress:
         progress(1)
     r1 = problem.residual(x)
-    weights = 1.0 / np.maximum(np.sqrt(np.mean(r1 ** 2, axis=0)), 1e-9)
+    weights = 1.0 / _robust_scale(r1)
     unidentifiable, dropped_sigma = [], {}
     while True:
-        x, sol = _solve(problem, nominal, free, weights)
+        x, sol, A_free = _solve(problem, nominal, free, weights)
         if progress:
             progress(1)
         sig = np.full(len(PARAMS), np.nan)
-        sig[free] = _sigma(sol, int(free.sum()), signals.window)
+        sig[free] = _sigma(sol, A_free, signals.window)
         ratio = np.full(len(PARAMS), 0.0)
         for i in np.flatnonzero(free):
             ratio[i] = sig[i] / tolerance(PARAMS[i], x[i], nominal[i], physics, signals)
