@@ -2,7 +2,7 @@
 """How the identification degrades with sensor-grade navigation (docs/identification.md).
 
     source scripts/env.sh
-    python bench/identify_noise.py [--bag worlds/bags/ux1_tank_perturbed.bag] [--seeds 3]
+    python bench/identify_noise.py [--bag worlds/bags/ux1_tank_perturbed.bag] [--seeds 3] [--levels 5:0.1:5,...]
 
 The sample bag's navigation is its robot's ground truth. White Gaussian noise (seeded) is added to
 the position [m] and to roll, pitch and yaw [rad] of every 10 Hz sample, as a stand-in for
@@ -35,10 +35,13 @@ def main(argv=None):
     ap.add_argument("--bag", default=str(REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"))
     ap.add_argument("--truth", default=str(REPO / "urdf" / "ux1_perturbed.xacro"), help="overrides of the bag's robot")
     ap.add_argument("--seeds", type=int, default=3)
+    ap.add_argument("--levels", help="noise levels 'pos_mm:angle_deg:window_s,...' (default: the table LEVELS)")
     args = ap.parse_args(argv)
+    levels = LEVELS if not args.levels else [
+        tuple(float(v) * f for v, f in zip(level.split(":"), (1e-3, 1.0, 1.0))) for level in args.levels.split(",")]
     truth = model.nominal_vector(description.load(overrides=args.truth))
     rows = []
-    for sp, sa, window in LEVELS:
+    for sp, sa, window in levels:
         worst = {}
         flat = []
         t0 = time.monotonic()
