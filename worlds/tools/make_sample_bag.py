@@ -76,7 +76,7 @@ def mission_events(duration, vbs_trim=0.0):
     return sorted(events, key=lambda e: e[0])
 
 
-def perturbed_world_files(tmp, overrides=None):
+def perturbed_world_files(tmp, overrides=None, spawn_xyz=None):
     """A copy of tank.world spawning UX_1 at the perturbed rest attitude, and a launch file that starts
     it with urdf/ux1_perturbed.urdf.xacro as UX_1's description, or with ux1.urdf.xacro and
     `overrides` (spawned at that robot's rest attitude)."""
@@ -86,12 +86,12 @@ def perturbed_world_files(tmp, overrides=None):
         from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
 
         return world_launch_file(tmp, "tank", "UX_1", rest_attitude(load(ROBOT_FILE, "UX_1", overrides)),
-                                 overrides=overrides)
+                                 overrides=overrides, spawn_xyz=spawn_xyz)
     return world_launch_file(tmp, "tank", "UX_1", (math.radians(PERTURBED_ROLL_DEG), math.radians(PERTURBED_PITCH_DEG)),
                              description=PERTURBED_DESCRIPTION)
 
 
-def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_trim=0.0):
+def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_trim=0.0, spawn_xyz=None):
     """Run the mission and write the bag `out` (the robot: perturbed, nominal, or ux1.urdf.xacro with
     the xacro file `overrides`); returns the number of messages written."""
     import rospy
@@ -104,7 +104,7 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_tr
     from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")
-    launch_file = None if nominal else perturbed_world_files(tmp, overrides)
+    launch_file = None if nominal else perturbed_world_files(tmp, overrides, spawn_xyz)
     count = 0
     with Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"), launch_file=launch_file,
                            timeout=60.0) as sim, BagWriter(out, callerid="/make_sample_bag") as bag:
@@ -145,14 +145,18 @@ def main(argv=None):
                     "instead of the thesis prototype (spawned at its rest attitude)")
     ap.add_argument("--vbs-trim", type=float, default=0.0, help="[kg] added to every VBS command: trims a robot "
                     "of other buoyancy to near neutral so that it stays in mid-water (default 0)")
+    ap.add_argument("--spawn-xyz", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="[m] spawn position of UX_1 with --overrides (default the world's: -1.7 -0.85 -1)")
     args = ap.parse_args(argv)
+    if args.spawn_xyz is not None and not args.overrides:
+        ap.error("--spawn-z goes with --overrides")
     if args.overrides and args.nominal:
         ap.error("--overrides and --nominal exclude each other")
     if args.overrides and not Path(args.overrides).is_file():
         ap.error(f"--overrides {args.overrides}: no such file")
     if not math.isfinite(args.vbs_trim):
         ap.error(f"--vbs-trim {args.vbs_trim}: expected a finite mass [kg]")
-    record(args.out, args.nominal, args.duration, args.seed, args.overrides, args.vbs_trim)
+    record(args.out, args.nominal, args.duration, args.seed, args.overrides, args.vbs_trim, args.spawn_xyz)
     return 0
 
 

@@ -13,11 +13,11 @@ REPO = Path(__file__).resolve().parents[3]
 
 
 def world_launch_file(tmp, world="tank", robot="UX_1", roll_pitch=None, overrides=None, description=None,
-                      robots=1, seed=0):
+                      robots=1, seed=0, spawn_xyz=None):
     """Write `<tmp>/<world>_spawn.world` and `.launch`; returns the launch file's path.
 
     world: a shipped world (worlds/<world>.world); roll_pitch: (roll, pitch) [rad] of `robot`'s spawn
-    attitude (its yaw and position are the world's); overrides: xacro overrides file of that robot
+    attitude (its yaw and position are the world's; spawn_xyz [m] replaces its position); overrides: xacro overrides file of that robot
     (UX_k_overrides:=); description: a whole robot file to use instead (with its own overrides).
     The world starts paused in lockstep with `robots` robots and `seed`.
     """
@@ -30,6 +30,8 @@ def world_launch_file(tmp, world="tank", robot="UX_1", roll_pitch=None, override
     entry = next((r for r in data["robots"] if r["name"] == robot), None)
     if entry is None:
         raise ValueError(f"world {world!r} has no robot {robot!r}")
+    if spawn_xyz is not None:
+        entry["xyz"] = [float(v) for v in spawn_xyz]
     if roll_pitch is not None:
         entry["rpy"] = [float(roll_pitch[0]), float(roll_pitch[1]), entry["rpy"][2]]
     world_file = Path(tmp) / f"{world}_spawn.world"
