@@ -18,10 +18,12 @@ DESCRIPTION = "Rosbag mission replay (thesis 6.5): a real robot's motor commands
 
 
 def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0.1, duration=None, align=True,
-           pace=0.0, progress=True, connect=False, timeout=60.0):
+           pace=0.0, progress=True, connect=False, timeout=60.0, overrides=None):
     """Run the replay of `mission` (from read_bag) and write the report, plots and CSV into out_dir;
     returns the report dict (fields: docs/replay.md). duration [s]: mission time to replay (default the
-    bag's); sample_period [s]; pace [x real time], 0 = as fast as possible; timeout [s] of wall time."""
+    bag's); sample_period [s]; pace [x real time], 0 = as fast as possible; timeout [s] of wall time;
+    overrides: xacro overrides file of the replaying robot (e.g. from unexmin.identify); that robot is
+    then spawned at the bag's first roll and pitch (the real robot's trim), not level."""
     from unexmin.replay.runner import LockstepRunner
     from unexmin.simulation import Simulation
 
@@ -31,8 +33,21 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
     if not (math.isfinite(duration) and duration > 0):
         raise ReplayError(f"--duration {duration}: expected a positive number of seconds")
     wall0 = time.monotonic()
+    launch_file = None
+    if overrides:
+        if connect:
+            raise ReplayError("--overrides needs a simulator of its own: not with --connect")
+        if not Path(overrides).is_file():
+            raise ReplayError(f"--overrides {overrides}: no such file")
+        from unexmin.replay.world import world_launch_file
+
+        roll_pitch = None if mission.nav is None else (float(mission.nav[0, 4]), float(mission.nav[0, 5]))
+        try:
+            launch_file = world_launch_file(out_dir, world, robot, roll_pitch, overrides=overrides, seed=seed)
+        except (FileNotFoundError, ValueError) as e:
+            raise ReplayError(str(e)) from None
     sim = Simulation(timeout=timeout) if connect else Simulation.launch(
-        world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout)
+        world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout, launch_file=launch_file)
     bar = None
     with sim:
         if robot not in sim.robots:
@@ -58,6 +73,7 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
         "messages": {"motors": len(mission.motors), "pendulum": len(mission.pendulum), "vbs": len(mission.vbs),
                      "navigation": 0 if mission.nav is None else int(len(mission.nav))},
         "world": "(running simulator)" if connect else world, "robot": robot, "seed": seed,
+        "overrides": str(Path(overrides).resolve()) if overrides else None,
         "physics_rate_hz": sim.physics_rate, "sample_period_s": sample_period,
         "mission_duration_s": duration,
         "replay_wall_time_s": round(sim_wall, 3), "total_wall_time_s": round(time.monotonic() - wall0, 3),
@@ -85,6 +101,12 @@ def summary(report):
              f"in {report['replay_wall_time_s']:.1f} s "
              f"({report['speed_vs_real_time']}x real time), {report['messages']['motors']} motor commands"]
     e = report["errors"]
+    before = report.get("errors_before")
+    if before:
+        p, y = before["position_error_m"], before["yaw_error_deg"]
+        lines.append(f"before (nominal robot): position error final {p['final']:.3f} m, rms {p['rms']:.3f} m; "
+                     f"yaw rms {y['rms']:.2f} deg")
+        lines.append(f"after (--overrides {report['overrides']}):")
     if e:
         p, y = e["position_error_m"], e["yaw_error_deg"]
         lines.append(f"position error: final {p['final']:.3f} m, rms {p['rms']:.3f} m, max {p['max']:.3f} m "
@@ -132,6 +154,8 @@ def main(argv=None):
     ap.add_argument("--no-align", action="store_true", help="compare world coordinates, not start frames")
     ap.add_argument("--pace", type=float, default=0.0, help="0 = as fast as possible (default); 1 = real time")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    ap.add_argument("--overrides", help="xacro overrides of the replaying robot (python -m unexmin.identify writes "
+                    "one): the bag is replayed with the nominal robot, then with this one, and both errors reported")
     args = ap.parse_args(argv)
     try:
         _ensure_rosbags(argv)
@@ -141,8 +165,17 @@ def main(argv=None):
             raise ReplayError(f"--sample-period {args.sample_period}: expected a positive number of seconds")
         mission = read_bag(args.bag, args.robot, args.motors_topic, args.pendulum_topic, args.vbs_topic,
                            args.nav_topic)
+        before = None
+        if args.overrides:
+            before = replay(mission, Path(args.out) / "nominal", args.world, args.seed, args.robot,
+                            args.sample_period, args.duration, not args.no_align, args.pace, not args.quiet,
+                            args.connect)
         report = replay(mission, args.out, args.world, args.seed, args.robot, args.sample_period, args.duration,
-                        not args.no_align, args.pace, not args.quiet, args.connect)
+                        not args.no_align, args.pace, not args.quiet, args.connect, overrides=args.overrides)
+        if before is not None:
+            report["errors_before"] = before["errors"]
+            with open(Path(args.out) / "report.json", "w") as f:
+                json.dump(report, f, indent=2)
     except ReplayError as e:
         print(f"replay_mission: error: {e}", file=sys.stderr)
         return 2

@@ -1,0 +1,264 @@
+"""Dynamics identification from a bag (python/unexmin/identify/, docs/identification.md).
+
+- Pure parts: the thrust and pendulum histories against their closed forms (first-order step
+  T (1 - exp(-t / tau)), the watchdog, the pendulum's constant speed), the rest attitude of the
+  thesis prototype (8 deg roll, 14 deg pitch), and the overrides file round trip (parameters ->
+  xacro -> expanded description -> the same parameters).
+- Known robots: bags recorded with worlds/tools/make_sample_bag.py --overrides from robots whose
+  buoyancy, centre of gravity, damping and thrust gains are set here (different seeds); every
+  identified parameter must be within 10 % of the truth (or 0.02 kg / 2 mm where the truth is near
+  zero), and the parameters the mission does not excite (roll damping) must be reported, at the
+  nominal value.
+- The shipped sample bag: identify, then replay with the result: final position error < 0.15 m
+  (1.42 m with the nominal robot), yaw RMS < 1 deg.
+- Sensor-grade navigation: seeded noise on the pose; the estimates stay within the bounds
+  documented in docs/identification.md.
+
+Bags are made once per session in a temporary folder (each launches its own world on a private
+master, in a subprocess). Run: python -m pytest test/pytest/test_identify.py (after source scripts/env.sh)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from unexmin.esc import MODE_RPM, EscConverter
+from unexmin.identify import description, model
+from unexmin.identify.cli import identify_bag, overrides_xacro
+from unexmin.identify.model import DOF, INDEX, PARAMS
+from unexmin.replay import read_bag
+
+REPO = Path(__file__).resolve().parents[2]
+SAMPLE_BAG = REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"
+MAKER = REPO / "worlds" / "tools" / "make_sample_bag.py"
+RHO_V = 1000.0 * 4.0 / 3.0 * math.pi * 0.3 ** 3
+
+
+def run(args, cwd, timeout=300):
+    env = dict(os.environ, ROS_HOME=str(cwd / "ros_home"), ROS_LOG_DIR=str(cwd / "ros_log"), PYTHONWARNINGS="ignore")
+    return subprocess.run([sys.executable, *map(str, args)], capture_output=True, text=True, timeout=timeout,
+                          env=env, cwd=cwd)
+
+
+# ---------------------------------------------------------------------------------------------
+# pure
+# ---------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def nominal_physics():
+    return description.load()
+
+
+def test_thrust_history_is_the_first_order_step_and_the_watchdog_stops_it(nominal_physics):
+    p = nominal_physics
+    tau = p.thrusters[0].tau
+    rpm = EscConverter().to_command(MODE_RPM, [10.0] * 8)
+    thrust_10 = EscConverter().to_thrust(MODE_RPM, rpm)[0][0]
+    times = np.array([tau, 2 * tau, 0.5, 0.9, 1.0 + 0.002 + 3 * tau])
+    th = model.thrust_history(p, [(0.0, MODE_RPM, tuple(rpm))], times)
+    expected = thrust_10 * (1.0 - np.exp(-times[:4] / tau))
+    assert th[:4, 0] == pytest.approx(expected, rel=1e-9)
+    assert thrust_10 == pytest.approx(10.0, rel=0.02)
+    # no command for 1 s (the watchdog): the thrust decays from its value at 1 s with the same tau
+    at_timeout = thrust_10 * (1.0 - math.exp(-1.0 / tau))
+    assert th[4, 0] == pytest.approx(at_timeout * math.exp(-(times[4] - 1.0) / tau), rel=1e-6)
+
+
+def test_pendulum_turns_at_its_speed_and_locks_on_target(nominal_physics):
+    p = nominal_physics
+    target = math.radians(10.0)
+    times = np.array([1.0, 1.25, 1.5, 3.0])
+    a = model.pendulum_history(p, [(1.0, target)], times)
+    assert a[0] == 0.0
+    assert a[1] == pytest.approx(p.pendulum_speed * 0.25, abs=p.pendulum_speed * 0.002 + 1e-12)
+    assert a[2] == pytest.approx(min(target, p.pendulum_speed * 0.5), abs=p.pendulum_speed * 0.002 + 1e-12)
+    assert a[3] == pytest.approx(target, abs=1e-12)
+
+
+def test_rest_attitude_of_the_thesis_prototype():
+    roll, pitch = description.rest_attitude(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    assert math.degrees(roll) == pytest.approx(8.0, abs=1e-6)
+    assert math.degrees(pitch) == pytest.approx(14.0, abs=1e-6)
+
+
+def test_overrides_round_trip(tmp_path, nominal_physics):
+    """Parameters -> overrides xacro -> expanded description -> the same parameters."""
+    x = model.nominal_vector(nominal_physics)
+    x[INDEX["buoyancy_kg"]] = -0.137
+    x[INDEX["cog_x"]:INDEX["cog_z"] + 1] = [0.011, -0.017, -0.035]
+    x[INDEX["thrust_gain_horizontal"]], x[INDEX["thrust_gain_vertical"]] = 0.83, 1.17
+    for k, d in enumerate(DOF):
+        x[INDEX[f"damping_linear_{d}"]] = 0.5 + k
+        x[INDEX[f"damping_quadratic_{d}"]] = 10.0 * (k + 1)
+    x[INDEX["added_mass"]] = 50.0
+    x[INDEX["added_inertia_yaw"]] = 0.3
+
+    class Result:
+        pass
+
+    fit = Result()
+    fit.x = x
+    path = tmp_path / "ov.xacro"
+    path.write_text(overrides_xacro(fit, nominal_physics, 1000.0))
+    back = model.nominal_vector(description.load(overrides=path))
+    assert back == pytest.approx(x, rel=1e-7, abs=1e-9)
+
+
+# ---------------------------------------------------------------------------------------------
+# bags of known robots
+# ---------------------------------------------------------------------------------------------
+# name: (buoyancy [kg], hull-less-pendulum CG x, y [m], damping factor, thrust gains h, v, seed, spawn xyz [m])
+# (the soft robot runs further: it starts lower and further right, so it meets neither the walls nor the
+# floor nor the surface)
+ROBOTS = {
+    "heavy_stiff": (-0.15, 0.015, -0.010, 2.0, 0.8, 1.2, 1, (-1.7, -0.85, -1.0)),
+    "light_soft": (0.2, -0.004, 0.006, 0.5, 0.8, 1.2, 2, (-1.7, -1.35, -1.3)),
+}
+
+
+def robot_overrides(buoyancy, cog_x, cog_y, damping, gain_h, gain_v):
+    q = model.nominal_vector(description.load())
+    lin = [q[INDEX[f"damping_linear_{d}"]] * damping for d in DOF]
+    quad = [q[INDEX[f"damping_quadratic_{d}"]] * damping for d in DOF]
+    return f"""<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="vehicle_mass" value="${{water_density * hull_volume - {buoyancy}}}"/>
+  <xacro:property name="cog_x" value="{cog_x}"/>
+  <xacro:property name="cog_y" value="{cog_y}"/>
+  <xacro:property name="linear_damping_diagonal" value="{' '.join(map(str, lin))}"/>
+  <xacro:property name="quadratic_damping_diagonal" value="{' '.join(map(str, quad))}"/>
+  <xacro:property name="thruster_gain_horizontal" value="{gain_h}"/>
+  <xacro:property name="thruster_gain_vertical" value="{gain_v}"/>
+</robot>
+"""
+
+
+@pytest.fixture(scope="session")
+def bag_dir(tmp_path_factory):
+    return tmp_path_factory.mktemp("identify_bags")
+
+
+def make_bag(bag_dir, name):
+    buoyancy, cog_x, cog_y, damping, gain_h, gain_v, seed, spawn_xyz = ROBOTS[name]
+    overrides = bag_dir / f"{name}.xacro"
+    bag = bag_dir / f"{name}.bag"
+    if not bag.exists():
+        overrides.write_text(robot_overrides(buoyancy, cog_x, cog_y, damping, gain_h, gain_v))
+        # the operator trims the robot to neutral with the VBS, so it stays in mid-water
+        out = run([MAKER, "--overrides", overrides, "--out", bag, "--seed", seed, "--vbs-trim", buoyancy,
+                   "--spawn-xyz", *spawn_xyz],
+                  bag_dir)
+        assert out.returncode == 0, out.stderr[-3000:]
+    return bag, overrides
+
+
+def check_identified(data, truth_physics):
+    """Every identified parameter within 10 % of the truth, or the near-zero bounds of the issue."""
+    truth = model.nominal_vector(truth_physics)
+    skip = set(data["unidentifiable"]) | set(data["fixed"])
+    got = {"buoyancy_kg": data["buoyancy_kg"]["value"], "added_mass": data["added_mass"]["value"],
+           "thrust_gain_horizontal": data["thrust_gain"]["value"]["horizontal"],
+           "thrust_gain_vertical": data["thrust_gain"]["value"]["vertical"]}
+    for i, a in enumerate("xyz"):
+        got[f"cog_{a}"] = data["cog_m"]["value"][i]
+    for i, d in enumerate(DOF):
+        got[f"damping_linear_{d}"] = data["damping_linear"]["value"][i]
+        got[f"damping_quadratic_{d}"] = data["damping_quadratic"]["value"][i]
+    for i, d in enumerate(DOF[3:]):
+        got[f"added_inertia_{d}"] = data["added_inertia"]["value"][i]
+    errors = []
+    for name in PARAMS:
+        want, have = truth[INDEX[name]], got[name]
+        if name in skip:
+            assert have == pytest.approx(data["nominal"][name]), f"{name} is reported flat but not nominal"
+            continue
+        if name == "buoyancy_kg":
+            bound = max(0.1 * abs(want), 0.02)
+        elif name.startswith("cog_"):
+            bound = max(0.1 * abs(want), 0.002)
+        elif name.startswith("added_inertia"):
+            bound = 0.1 * (truth_physics.inertia[DOF.index(name.split("_")[-1]) - 3] + want)
+        elif name.startswith("damping_linear"):
+            # near zero (Stokes drag): 10 % of the damping force at the mission's RMS speed
+            d = name.split("_")[-1]
+            bound = max(0.1 * want, 0.1 * truth[INDEX[f"damping_quadratic_{d}"]] * data["fit"]["rms_speed"][d])
+        else:
+            bound = 0.1 * abs(want)
+        if not abs(have - want) <= bound:
+            errors.append(f"{name}: identified {have:.6g}, truth {want:.6g}, bound {bound:.3g}")
+    assert not errors, "\n".join(errors)
+    return got
+
+
+@pytest.mark.parametrize("name", sorted(ROBOTS))
+def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
+    bag, overrides = make_bag(bag_dir, name)
+    data = identify_bag(bag, tmp_path / "out", progress=False)
+    check_identified(data, description.load(overrides=overrides))
+    # what the mission cannot excite is reported, not guessed: roll damping (no roll manoeuvre; the
+    # pendulum step excites pitch)
+    assert {"damping_quadratic_roll", "damping_linear_roll"} <= set(data["unidentifiable"])
+    # the runs forward and sideways are identified (heave and yaw may be flat: a tilted robot bumps
+    # the anchor while diving, and the soft_l1 loss only down-weights those samples)
+    for d in ("surge", "sway"):
+        assert f"damping_quadratic_{d}" not in data["unidentifiable"]
+    written = yaml.safe_load((tmp_path / "out" / "identified.yaml").read_text())
+    assert written["buoyancy_kg"]["value"] == pytest.approx(data["buoyancy_kg"]["value"])
+    assert {"value", "sigma"} <= set(written["cog_m"]) and len(written["damping_quadratic"]["value"]) == 6
+    assert (tmp_path / "out" / "report.md").read_text().count("![fit_") == 6
+
+
+def test_sample_bag_identify_then_replay(tmp_path):
+    data = identify_bag(SAMPLE_BAG, tmp_path / "id", progress=False)
+    check_identified(data, description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    for d in ("surge", "sway", "heave", "yaw"):
+        assert f"damping_quadratic_{d}" not in data["unidentifiable"]
+    out = run(["-m", "unexmin.replay", SAMPLE_BAG, "--out", tmp_path / "replay", "--quiet",
+               "--overrides", tmp_path / "id" / "identified_overrides.xacro"], tmp_path)
+    assert out.returncode == 0, out.stderr[-3000:]
+    report = json.loads((tmp_path / "replay" / "report.json").read_text())
+    assert report["errors_before"]["position_error_m"]["final"] > 1.3
+    assert report["errors"]["position_error_m"]["final"] < 0.15
+    assert report["errors"]["yaw_error_deg"]["rms"] < 1.0
+    assert "before (nominal robot)" in out.stdout
+
+
+def noisy(mission, sigma_pos, sigma_ang, seed):
+    rng = np.random.default_rng(seed)
+    nav = mission.nav.copy()
+    nav[:, 1:4] += rng.normal(0.0, sigma_pos, (len(nav), 3))
+    nav[:, 4:7] += rng.normal(0.0, sigma_ang, (len(nav), 3))
+    mission.nav = nav
+    return mission
+
+
+def test_noisy_navigation_degrades_gracefully(tmp_path):
+    """Odometry with 5 mm and 0.1 deg of white noise at 10 Hz, window 5 s: the bounds of
+    docs/identification.md ("Sensor-grade navigation")."""
+    mission = noisy(read_bag(SAMPLE_BAG), 0.005, math.radians(0.1), seed=7)
+    data = identify_bag(SAMPLE_BAG, tmp_path, window_s=5.0, progress=False, mission=mission)
+    assert not {"buoyancy_kg", "cog_x", "cog_y", "thrust_gain_horizontal", "thrust_gain_vertical"} & set(
+        data["unidentifiable"])
+    truth = model.nominal_vector(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    assert data["buoyancy_kg"]["value"] == pytest.approx(truth[INDEX["buoyancy_kg"]], abs=0.02)
+    assert data["cog_m"]["value"] == pytest.approx(list(truth[INDEX["cog_x"]:INDEX["cog_z"] + 1]), abs=0.002)
+    for g in ("horizontal", "vertical"):
+        assert data["thrust_gain"]["value"][g] == pytest.approx(1.0, rel=0.15)
+    for i, d in enumerate(DOF[:3]):
+        if f"damping_quadratic_{d}" not in data["unidentifiable"]:
+            assert data["damping_quadratic"]["value"][i] == pytest.approx(truth[INDEX[f"damping_quadratic_{d}"]],
+                                                                          rel=0.25)
+
+
+def test_bad_input_is_one_error_line(tmp_path):
+    out = run(["-m", "unexmin.identify", tmp_path / "missing.bag", "--out", tmp_path / "o", "--quiet"], tmp_path)
+    assert out.returncode == 2
+    assert out.stderr.strip().startswith("identify: error:") and len(out.stderr.strip().splitlines()) == 1
+    out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--fix", "nonsense", "--quiet"],
+              tmp_path)
+    assert out.returncode == 2 and "--fix nonsense" in out.stderr
