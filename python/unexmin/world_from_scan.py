@@ -24,6 +24,7 @@ from unexmin.mine_generator import write_ply
 
 HULL_RADIUS = 0.3         # [m] the UX-1's sphere (docs/robot_description.md)
 MIN_POINTS = 200          # fewer points after down-sampling: no surface to speak of
+REACH = 20.0              # [m] orientation rays' length
 CONE = ((0.0, 1), (math.radians(30.0), 6), (math.radians(60.0), 6))  # orientation rays: (angle from n, count)
 
 
@@ -136,6 +137,16 @@ def estimate_normals(points, resolution):
     return np.asarray(cloud.normals).copy()
 
 
+def orientation_cell(extent, resolution):
+    """[m] voxel of the orientation grid: 4 resolutions, coarser when the grid would pass ~120M cells."""
+    return max(4.0 * resolution, float(np.prod(extent + 1e-9) / 1.2e8) ** (1 / 3))
+
+
+def orientation_steps(extent, cell, reach=REACH):
+    """Distances [m] along each orientation ray: from 3 cells (off the wall) to `reach`, every 0.8 cell."""
+    return np.arange(3.0 * cell, min(reach, float(np.linalg.norm(extent))) + 0.8 * cell, 0.8 * cell)
+
+
 def _cone(normals):
     """Directions (S x K x 3) in a cone around each normal: the normal, rings at 30 and 60 degrees."""
     n = normals
@@ -151,7 +162,7 @@ def _cone(normals):
     return np.stack(dirs, axis=1)
 
 
-def orient_towards_void(points, normals, resolution, reach=30.0, samples=20000, seed=0, progress=None):
+def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, seed=0, progress=None):
     """Turn each normal towards the void (the water): from a wall, the rays into the void meet the
     other walls, those into the rock meet nothing (or farther walls). A seeded sample of points casts
     a cone of rays both ways through a voxel grid of the scan; the side with more hits within `reach`
@@ -161,7 +172,7 @@ def orient_towards_void(points, normals, resolution, reach=30.0, samples=20000, 
     from scipy.spatial import cKDTree
 
     lo, hi = points.min(axis=0), points.max(axis=0)
-    cell = max(2.0 * resolution, float(np.prod(hi - lo + 1e-9) / 1.2e8) ** (1 / 3))  # at most ~120M cells
+    cell = orientation_cell(hi - lo, resolution)
     pad = 2
     shape = np.ceil((hi - lo) / cell).astype(int) + 1 + 2 * pad
     occ = np.zeros(shape, dtype=bool)
@@ -173,7 +184,7 @@ def orient_towards_void(points, normals, resolution, reach=30.0, samples=20000, 
     p, n = points[pick], normals[pick]
     dirs = _cone(n)                                            # S x K x 3
     step = 0.8 * cell
-    ts = np.arange(3.0 * cell, min(reach, float(np.linalg.norm(hi - lo))) + step, step)
+    ts = orientation_steps(hi - lo, cell, reach)
     hits = np.zeros((2, len(p), dirs.shape[1]), dtype=bool)
     for s, sign in enumerate((1.0, -1.0)):
         for t in ts:
@@ -282,12 +293,17 @@ def close_holes(v, t):
     return np.concatenate(new_v), np.concatenate(new_t), len(loops), area, cap
 
 
-def simplify(v, t, ratio):
-    """Quadric-error decimation (Open3D) to about `ratio` of the triangles: the visual mesh."""
+def simplify(v, t, edge):
+    """Quadric-error decimation (Open3D, Garland & Heckbert) to triangles of about `edge` [m] (equilateral
+    ones of that edge tiling the same area); the mesh as it is when it has fewer already."""
     import open3d as o3d
 
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+    target = max(1000, int(area / (edge ** 2 * math.sqrt(3) / 4)))
+    if target >= len(t):
+        return v, t
     mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(t.astype(np.int32)))
-    target = max(1000, int(len(t) * ratio))
     mesh = mesh.simplify_quadric_decimation(target_number_of_triangles=target)
     mesh.remove_degenerate_triangles()
     mesh.remove_unreferenced_vertices()
@@ -324,7 +340,7 @@ def find_spawns(scene, points, normals, surface_z, clearance, count=3, spacing=1
     within 15 m of the first (the one with the most room). Candidates are scan points moved 0.5..6 m
     along their normal into the void. Returns a list of (xyz, clearance)."""
     rng = np.random.default_rng(seed)
-    pick = rng.choice(len(points), size=min(20000, len(points)), replace=False)
+    pick = rng.choice(len(points), size=min(4000, len(points)), replace=False)
     cand = np.concatenate([points[pick] + d * normals[pick] for d in (0.5, 1.0, 2.0, 3.0, 6.0)])
     cand = cand[cand[:, 2] <= surface_z - HULL_RADIUS - 0.4]
     if len(cand) == 0:
@@ -386,13 +402,23 @@ def world_yaml(name, surface_z, visibility, current_speed, collision_file, visua
     return "\n".join(lines) + "\n"
 
 
+def closed_surface(v, t):
+    """True when the triangles make a closed, consistently wound surface (trimesh, vertices as given)."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(v, t, process=False)
+    return bool(mesh.is_watertight and mesh.is_winding_consistent)
+
+
 def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=1.0, clearance=0.6,
-                visibility="medium", current_speed=0.0, visual_ratio=0.2, seed=0, quiet=False):
+                edge=0.3, visual_edge=1.0, visibility="medium", current_speed=0.0, seed=0, quiet=False):
     """The whole pipeline; returns the report (dict), also written as <out>/<name>.json."""
     from tqdm import tqdm
 
     if not resolution > 0:
         raise ScanError(f"--resolution must be > 0 [m], got {resolution}")
+    if not (edge > 0 and visual_edge > 0):
+        raise ScanError(f"--edge and --visual-edge must be > 0 [m], got {edge} and {visual_edge}")
     if not max_gap > resolution:
         raise ScanError(f"--max-gap must exceed the resolution {resolution} m, got {max_gap}")
     if visibility not in ("none", "low", "medium", "high"):
@@ -420,8 +446,7 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     if normals is None:
         normals = timed("normals", "normals", estimate_normals, points, resolution)
     extent = points.max(axis=0) - points.min(axis=0)
-    cell = max(2.0 * resolution, float(np.prod(extent + 1e-9) / 1.2e8) ** (1 / 3))
-    steps = 2 * len(np.arange(3.0 * cell, min(30.0, float(np.linalg.norm(extent))) + 0.8 * cell, 0.8 * cell))
+    steps = 2 * len(orientation_steps(extent, orientation_cell(extent, resolution)))
     normals, decided = timed("orient", "orient", orient_towards_void, points, normals, resolution, seed=seed,
                              total=steps, unit="ray step")
     depth = poisson_depth(points, resolution)
@@ -434,12 +459,17 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     import trimesh
 
     mesh = trimesh.Trimesh(v, t, process=False)
-    closed = bool(mesh.is_watertight and mesh.is_winding_consistent)
+    wall_area = float(mesh.area_faces[~cap].sum())
+    fine_triangles = len(t)
+    closed = closed_surface(v, t)
     signed = float(mesh.volume) if closed else float("nan")
     if closed and signed > 0:  # faces must point into the void: the enclosed volume is then negative
         t, signed = t[:, ::-1].copy(), -signed
-        mesh = trimesh.Trimesh(v, t, process=False)
-    volume = -signed
+    cv, ct = timed("decimate", "decimate", simplify, v, t, edge)
+    if closed and not closed_surface(cv, ct):  # the decimation opened the surface: keep the fine one
+        cv, ct = v, t
+    v, t = cv, ct
+    volume = -float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
     if closed and volume < (4 / 3) * math.pi * (HULL_RADIUS + clearance) ** 3:
         raise ScanError(f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
                         f"room for one robot (expected walls around a void)")
@@ -453,7 +483,7 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     if not spawns:
         raise ScanError(f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
                         "clearance to the walls: no room for a robot")
-    vv, vt = timed("visual", "visual mesh", simplify, v, t, visual_ratio)
+    vv, vt = timed("visual", "visual mesh", simplify, v, t, visual_edge)
     t0 = time.monotonic()
     with stage("evaluate") as bar:
         rng = np.random.default_rng(seed)
@@ -470,16 +500,16 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     world_path = out / f"{name}.world"
     world_path.write_text(world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file,
                                      spawns, scan.name))
-    areas = mesh.area_faces
     rep = {
         "scan": str(scan), "points_read": int(len(raw)), "points_used": int(len(points)),
         "normals": "read" if raw_normals is not None else "estimated",
         "orientation_samples_decided": round(decided, 3), "resolution": resolution, "poisson_depth": depth,
-        "max_gap": max_gap, "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v))},
-        "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv))},
+        "max_gap": max_gap, "poisson_triangles": int(fine_triangles),
+        "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
+        "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
         "world": world_path.name, "closed": closed, "volume": round(volume, 3) if closed else None,
         "flooded_volume": round(flooded, 3) if flooded is not None else None, "water_level": surface_z,
-        "wall_area": round(float(areas[~cap].sum()), 3), "holes_closed": holes, "holes_area": round(hole_area, 3),
+        "wall_area": round(wall_area, 3), "holes_closed": holes, "holes_area": round(hole_area, 3),
         "scan_to_mesh": {"mean": round(float(d.mean()), 4), "p95": round(float(np.percentile(d, 95)), 4),
                          "max": round(float(d.max()), 4), "points": int(len(d))},
         "bbox_min": [round(x, 3) for x in v.min(axis=0)], "bbox_max": [round(x, 3) for x in v.max(axis=0)],
@@ -499,7 +529,8 @@ def report(rep):
         f"world '{rep['world']}' from {rep['scan']}: {rep['points_read']:,} points read, {rep['points_used']:,} at "
         f"{rep['resolution']} m, normals {rep['normals']}, Poisson depth {rep['poisson_depth']}, "
         f"{rep['total_seconds']} s, peak {rep['peak_rss_mb']:.0f} MB",
-        f"  collision: {rep['collision']['triangles']:,} triangles, {rep['collision']['file']}",
+        f"  collision: {rep['collision']['triangles']:,} triangles (edge {rep['collision']['edge']} m, from Poisson's "
+        f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
         f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
         f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) {flooded} m^3, "
         f"wall area {rep['wall_area']:,.1f} m^2",
@@ -522,14 +553,15 @@ def main(argv=None):
                     help="[m] least distance from a spawn point to the walls (default 0.6: hull 0.3 + 0.3)")
     ap.add_argument("--visibility", default="medium", help="none|low|medium|high (default medium)")
     ap.add_argument("--current-speed", type=float, default=0.0, help="[m/s] mean water current (default 0)")
-    ap.add_argument("--visual-ratio", type=float, default=0.2,
-                    help="visual mesh triangles / collision triangles (default 0.2)")
+    ap.add_argument("--edge", type=float, default=0.3,
+                    help="[m] triangle edge of the collision mesh, decimated from Poisson's (default 0.3)")
+    ap.add_argument("--visual-edge", type=float, default=1.0, help="[m] triangle edge of the visual mesh (default 1.0)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the samplings (default 0)")
     ap.add_argument("--quiet", action="store_true", help="no progress bars")
     args = ap.parse_args(argv)
     try:
         rep = build_world(args.scan, args.out, args.name, args.resolution, args.water_level, args.max_gap,
-                          args.clearance, args.visibility, args.current_speed, args.visual_ratio, args.seed,
+                          args.clearance, args.edge, args.visual_edge, args.visibility, args.current_speed, args.seed,
                           args.quiet)
     except ScanError as e:
         print(f"world_from_scan: error: {e}", file=sys.stderr)
