@@ -402,6 +402,17 @@ def world_yaml(name, surface_z, visibility, current_speed, collision_file, visua
     return "\n".join(lines) + "\n"
 
 
+def scanned_area(mesh, cap, points, reach):
+    """([m^2] of the surface whose triangle centroids lie within `reach` [m] of a scan point: the walls
+    the scan saw; [m^2] of the rest of the Poisson surface: gaps it bridged), hole caps left out."""
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(points).query(mesh.triangles_center, distance_upper_bound=reach, workers=-1)
+    area = mesh.area_faces
+    seen = np.isfinite(d)
+    return float(area[seen & ~cap].sum()), float(area[~seen & ~cap].sum())
+
+
 def closed_surface(v, t):
     """True when the triangles make a closed, consistently wound surface (trimesh, vertices as given)."""
     import trimesh
@@ -459,7 +470,7 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     import trimesh
 
     mesh = trimesh.Trimesh(v, t, process=False)
-    wall_area = float(mesh.area_faces[~cap].sum())
+    wall_area, bridged_area = scanned_area(mesh, cap, points, 3.0 * resolution)
     fine_triangles = len(t)
     closed = closed_surface(v, t)
     signed = float(mesh.volume) if closed else float("nan")
@@ -509,7 +520,7 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
         "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
         "world": world_path.name, "closed": closed, "volume": round(volume, 3) if closed else None,
         "flooded_volume": round(flooded, 3) if flooded is not None else None, "water_level": surface_z,
-        "wall_area": round(wall_area, 3), "holes_closed": holes, "holes_area": round(hole_area, 3),
+        "wall_area": round(wall_area, 3), "bridged_area": round(bridged_area, 3), "holes_closed": holes, "holes_area": round(hole_area, 3),
         "scan_to_mesh": {"mean": round(float(d.mean()), 4), "p95": round(float(np.percentile(d, 95)), 4),
                          "max": round(float(d.max()), 4), "points": int(len(d))},
         "bbox_min": [round(x, 3) for x in v.min(axis=0)], "bbox_max": [round(x, 3) for x in v.max(axis=0)],
@@ -533,7 +544,7 @@ def report(rep):
         f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
         f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
         f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) {flooded} m^3, "
-        f"wall area {rep['wall_area']:,.1f} m^2",
+        f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
         f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
         f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, max {s['max']:.2f} m",
         "  spawns: " + ", ".join(f"{sp['xyz']} (clearance {sp['clearance']:.2f} m)" for sp in rep["spawns"]),
