@@ -219,3 +219,58 @@ def test_a_cloud_with_no_usable_surface_is_one_clear_error_line(tmp_path, case):
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"world_from_scan: error: {scan}: no usable surface"), run.stderr
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
+
+
+def test_the_world_launches_the_robot_moves_and_the_m3_sees_the_scanned_walls(tank, tmp_path):
+    """`roslaunch unexmin world.launch world_file:=...` with the world made from the tank's scan: the
+    M3's ranges at rest are those of rays cast against the true tank, and thrust moves the robot."""
+    import open3d as o3d
+    import rospy
+    import tf2_ros
+
+    from unexmin import Simulation
+    from unexmin.geometry import quaternion_to_rpy, rpy_matrix
+
+    out, rep, _, _ = tank
+    launch = tmp_path / "scan_world.launch"
+    launch.write_text(
+        '<launch><include file="$(find unexmin)/launch/world.launch">'
+        f'<arg name="world_file" value="{out / rep["world"]}"/><arg name="robots" value="1"/>'
+        '<arg name="realtime" value="false"/><arg name="paused" value="true"/><arg name="sensors" value="m3"/>'
+        '</include></launch>\n')
+    tank_mesh = trimesh.load(str(TANK), force="mesh")        # the true walls, whole
+    scene = wfs.raycasting_scene(tank_mesh.vertices, tank_mesh.faces)
+    with Simulation.launch(launch_file=launch, log_dir=tmp_path / "log", timeout=120.0) as sim:
+        ux = sim.robot("UX_1", streams=["m3/scan"])
+        tf = tf2_ros.Buffer()
+        tf2_ros.TransformListener(tf)
+        sim.run_for(0.5)
+        scan = ux.latest("m3/scan")
+        pose = ux.odom().pose.pose
+        mount = tf.lookup_transform("UX_1/base_link", scan.header.frame_id, rospy.Time(0), rospy.Duration(30.0))
+        # world <- m3: the robot's pose then the URDF mount (static)
+        R_b = rpy_matrix(quaternion_to_rpy(pose.orientation.x, pose.orientation.y, pose.orientation.z,
+                                           pose.orientation.w))
+        m = mount.transform
+        R_m = rpy_matrix(quaternion_to_rpy(m.rotation.x, m.rotation.y, m.rotation.z, m.rotation.w))
+        origin = np.array([pose.position.x, pose.position.y, pose.position.z]) + R_b @ [m.translation.x,
+                                                                                        m.translation.y,
+                                                                                        m.translation.z]
+        ranges = np.array(scan.ranges)
+        azimuth = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
+        expected = np.full(len(ranges), np.inf)
+        for elevation in np.radians([-1.5, -0.75, 0.0, 0.75, 1.5]):   # the fan's 3 deg: first echo
+            d = np.column_stack([np.cos(azimuth) * math.cos(elevation), np.sin(azimuth) * math.cos(elevation),
+                                 np.full(len(ranges), math.sin(elevation))]) @ (R_b @ R_m).T
+            rays = o3d.core.Tensor(np.hstack([np.tile(origin, (len(d), 1)), d]).astype(np.float32))
+            expected = np.minimum(expected, scene.cast_rays(rays)["t_hit"].numpy())
+        valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
+        assert valid.sum() >= 0.9 * len(ranges)
+        err = np.abs(ranges[valid] - expected[valid])
+        assert np.median(err) <= 0.05 and np.percentile(err, 95) <= P95_TOL, (np.median(err), np.percentile(err, 95))
+        start = np.array([pose.position.x, pose.position.y, pose.position.z])
+        ux.thrusts(20.0 * np.array([0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5, 0.0]))   # surge (test/rostest/mine_multi.py)
+        sim.run_for(3.0)
+        p = ux.odom().pose.pose.position
+        moved = np.array([p.x, p.y, p.z]) - start
+        assert moved[0] > 0.5 and abs(moved[1]) < 0.2, moved
