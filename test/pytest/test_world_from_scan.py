@@ -240,7 +240,7 @@ def test_the_world_launches_the_robot_moves_and_the_m3_sees_the_scanned_walls(ta
         '</include></launch>\n')
     tank_mesh = trimesh.load(str(TANK), force="mesh")        # the true walls, whole
     scene = wfs.raycasting_scene(tank_mesh.vertices, tank_mesh.faces)
-    with Simulation.launch(launch_file=launch, log_dir=tmp_path / "log", timeout=120.0) as sim:
+    with Simulation.launch(launch_file=launch, log_dir=str(tmp_path / "log"), timeout=120.0) as sim:
         ux = sim.robot("UX_1", streams=["m3/scan"])
         tf = tf2_ros.Buffer()
         tf2_ros.TransformListener(tf)
