@@ -1,6 +1,6 @@
 """Throughput of python -m unexmin.world_from_scan on scans of the Kaatiala-size mine (docs/benchmarks.md).
 
-    python bench/world_from_scan_bench.py --points 1000000 4000000 --resolution 0.25 --out /tmp/wfs_bench
+    python bench/world_from_scan_bench.py --points 1000000 4000000 --out /tmp/wfs_bench
 
 For each size: a seeded scan of the generated mine's collision mesh (worlds/meshes/mine, made by
 scripts/setup.sh) with noise sd 2 cm and 40 missing patches of 0.5 m, written as binary PLY; then the
@@ -27,7 +27,8 @@ REPO = Path(__file__).resolve().parents[1]
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--points", type=int, nargs="+", default=[1_000_000, 4_000_000])
-    ap.add_argument("--resolution", type=float, default=0.25, help="[m] passed to the tool")
+    ap.add_argument("--resolution", type=float, help="[m] passed to the tool (default: 1.25 x the scan's "
+                    "mean point spacing, sqrt(area / points): 0.40 m for 1M points, 0.20 m for 4M)")
     ap.add_argument("--mesh", default=str(REPO / "worlds" / "meshes" / "mine" / "mine_collision.ply"))
     ap.add_argument("--out", default="/tmp/wfs_bench")
     args = ap.parse_args()
@@ -39,13 +40,14 @@ def main():
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for n in args.points:
+        resolution = args.resolution or round(1.25 * math.sqrt(area / n), 2)
         points = sample_scan(tris, math.sqrt(area / n), 0.02, holes=40, hole_radius=0.5, seed=n)
         scan = out / f"mine_{n}.ply"
         o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
         del points
         t0 = time.monotonic()
         child = subprocess.Popen([sys.executable, "-m", "unexmin.world_from_scan", str(scan), "--out",
-                                  str(out / f"world_{n}"), "--resolution", str(args.resolution), "--water-level", "0",
+                                  str(out / f"world_{n}"), "--resolution", str(resolution), "--water-level", "0",
                                   "--quiet"])
         _, status, usage = os.wait4(child.pid, 0)
         wall = time.monotonic() - t0
@@ -53,7 +55,7 @@ def main():
             print(f"{n} points: the tool failed (status {status})")
             continue
         rep = json.loads((out / f"world_{n}" / f"mine_{n}.json").read_text())
-        print(f"{rep['points_read']:,} points ({rep['points_used']:,} at {args.resolution} m, Poisson depth "
+        print(f"{rep['points_read']:,} points ({rep['points_used']:,} at {resolution} m, Poisson depth "
               f"{rep['poisson_depth']}): {wall:.1f} s wall, {rep['points_read'] / wall:,.0f} points/s, "
               f"peak RSS {usage.ru_maxrss / 1024:,.0f} MB, cpu {usage.ru_utime + usage.ru_stime:.1f} s")
         print(f"  stages [s]: {rep['seconds']}")

@@ -206,6 +206,17 @@ def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, 
     return normals * side[:, None], float(np.mean(weight > 0))
 
 
+def point_spacing(points, seed=0, k=8):
+    """[m] typical distance between neighbouring scan points, sqrt(1 / areal density): the density from
+    the radius r of the k nearest neighbours of up to 20 000 seeded samples, k / (pi r^2) (median)."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(seed)
+    probe = points[rng.choice(len(points), size=min(20000, len(points)), replace=False)]
+    r = cKDTree(points).query(probe, k=k + 1, workers=-1)[0][:, -1]
+    return float(np.median(r) * math.sqrt(math.pi / k))
+
+
 def poisson_depth(points, resolution):
     """Octree depth whose finest cell is about `resolution` over the scan's largest extent (x 1.1)."""
     extent = float((points.max(axis=0) - points.min(axis=0)).max()) * 1.1
@@ -460,7 +471,11 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     steps = 2 * len(orientation_steps(extent, orientation_cell(extent, resolution)))
     normals, decided = timed("orient", "orient", orient_towards_void, points, normals, resolution, seed=seed,
                              total=steps, unit="ray step")
-    depth = poisson_depth(points, resolution)
+    spacing = point_spacing(points, seed)
+    if spacing > resolution and not quiet:
+        print(f"world_from_scan: note: the scan's points are {spacing:.3g} m apart, sparser than --resolution "
+              f"{resolution} m: the surface is reconstructed at {spacing:.3g} m", file=sys.stderr)
+    depth = poisson_depth(points, max(resolution, spacing))
     v, t = timed("poisson", "poisson", reconstruct, points, normals, depth)
     v, t = timed("trim", "trim", trim_unsupported, v, t, points, max_gap)
     if len(t) == 0:
@@ -514,7 +529,8 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     rep = {
         "scan": str(scan), "points_read": int(len(raw)), "points_used": int(len(points)),
         "normals": "read" if raw_normals is not None else "estimated",
-        "orientation_samples_decided": round(decided, 3), "resolution": resolution, "poisson_depth": depth,
+        "orientation_samples_decided": round(decided, 3), "resolution": resolution,
+        "point_spacing": round(spacing, 4), "poisson_depth": depth,
         "max_gap": max_gap, "poisson_triangles": int(fine_triangles),
         "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
         "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
