@@ -224,12 +224,15 @@ def poisson_depth(points, resolution):
 
 
 def reconstruct(points, normals, depth):
-    """Screened Poisson (Open3D, Kazhdan & Hoppe 2013): vertices V x 3, triangles T x 3, faces along the
-    normals (towards the void)."""
+    """Screened Poisson (Open3D, Kazhdan & Hoppe 2013) of the void as the solid: `normals` face the void
+    and are reversed, so the indicator's "inside" is the small void and its "outside" the rock that
+    fills the rest of the octree (the other way round, over a long mine's mostly empty box, the solution
+    drifts across the iso-value far from the data and grows spurious sheets). Returns vertices V x 3 and
+    triangles T x 3 facing out of the void (build_world turns them)."""
     import open3d as o3d
 
     cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
-    cloud.normals = o3d.utility.Vector3dVector(normals)
+    cloud.normals = o3d.utility.Vector3dVector(-normals)
     mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(cloud, depth=depth, scale=1.1,
                                                                         linear_fit=False, n_threads=-1)
     return np.asarray(mesh.vertices).copy(), np.asarray(mesh.triangles).astype(np.int64)
