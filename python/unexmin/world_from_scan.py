@@ -25,6 +25,7 @@ from unexmin.mine_generator import write_ply
 HULL_RADIUS = 0.3         # [m] the UX-1's sphere (docs/robot_description.md)
 MIN_POINTS = 200          # fewer points after down-sampling: no surface to speak of
 REACH = 20.0              # [m] orientation rays' length
+SAMPLE_AREA = 1.0         # [m^2] of wall per orientation sample
 CONE = ((0.0, 1), (math.radians(30.0), 6), (math.radians(60.0), 6))  # orientation rays: (angle from n, count)
 
 
@@ -160,6 +161,13 @@ def _cone(normals):
             phi = 2 * math.pi * k / count + angle  # rings staggered
             dirs.append(math.cos(angle) * n + math.sin(angle) * (math.cos(phi) * u + math.sin(phi) * v))
     return np.stack(dirs, axis=1)
+
+
+def orientation_samples(count, spacing):
+    """How many points cast orientation rays: one per SAMPLE_AREA of wall (the area is about count x
+    spacing^2), so that a point's nearest samples lie on its own wall, not across the tunnel (whose
+    votes point the other way); between 5 000 and 300 000."""
+    return int(np.clip(count * spacing ** 2 / SAMPLE_AREA, 5000, 300000))
 
 
 def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, seed=0, progress=None):
@@ -472,9 +480,9 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
         normals = timed("normals", "normals", estimate_normals, points, resolution)
     extent = points.max(axis=0) - points.min(axis=0)
     steps = 2 * len(orientation_steps(extent, orientation_cell(extent, resolution)))
-    normals, decided = timed("orient", "orient", orient_towards_void, points, normals, resolution, seed=seed,
-                             total=steps, unit="ray step")
     spacing = point_spacing(points, seed)
+    normals, decided = timed("orient", "orient", orient_towards_void, points, normals, resolution, seed=seed,
+                             samples=orientation_samples(len(points), spacing), total=steps, unit="ray step")
     if spacing > resolution and not quiet:
         print(f"world_from_scan: note: the scan's points are {spacing:.3g} m apart, sparser than --resolution "
               f"{resolution} m: the surface is reconstructed at {spacing:.3g} m", file=sys.stderr)
