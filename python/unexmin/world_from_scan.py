@@ -234,8 +234,7 @@ def poisson_depth(points, resolution):
 def reconstruct(points, normals, depth):
     """Screened Poisson (Open3D, Kazhdan & Hoppe 2013) of the void as the solid: `normals` face the void
     and are reversed, so the indicator's "inside" is the small void and its "outside" the rock that
-    fills the rest of the octree (the other way round, over a long mine's mostly empty box, the solution
-    drifts across the iso-value far from the data and grows spurious sheets). Returns vertices V x 3 and
+    fills the rest of the octree (a small solid in a large empty box, Poisson's usual case). Returns vertices V x 3 and
     triangles T x 3 facing out of the void (build_world turns them)."""
     import open3d as o3d
 
