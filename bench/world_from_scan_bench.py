@@ -61,7 +61,8 @@ def main():
         print(f"  stages [s]: {rep['seconds']}")
         print(f"  collision {rep['collision']['triangles']:,} triangles (Poisson {rep['poisson_triangles']:,}), "
               f"visual {rep['visual']['triangles']:,}, closed {rep['closed']}, holes closed {rep['holes_closed']}, "
-              f"scan to mesh mean {rep['scan_to_mesh']['mean'] * 100:.1f} cm p95 {rep['scan_to_mesh']['p95'] * 100:.1f} cm, "
+              f"scan to mesh mean {rep['scan_to_mesh']['mean'] * 100:.1f} cm "
+              f"p95 {rep['scan_to_mesh']['p95'] * 100:.1f} cm, "
               f"flooded volume {rep['flooded_volume']} m^3")
         print(f"  load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
 

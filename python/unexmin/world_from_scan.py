@@ -546,7 +546,8 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
         "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
         "world": world_path.name, "closed": closed, "volume": round(volume, 3) if closed else None,
         "flooded_volume": round(flooded, 3) if flooded is not None else None, "water_level": surface_z,
-        "wall_area": round(wall_area, 3), "bridged_area": round(bridged_area, 3), "holes_closed": holes, "holes_area": round(hole_area, 3),
+        "wall_area": round(wall_area, 3), "bridged_area": round(bridged_area, 3), "holes_closed": holes,
+        "holes_area": round(hole_area, 3),
         "scan_to_mesh": {"mean": round(float(d.mean()), 4), "p95": round(float(np.percentile(d, 95)), 4),
                          "max": round(float(d.max()), 4), "points": int(len(d))},
         "bbox_min": [round(x, 3) for x in v.min(axis=0)], "bbox_max": [round(x, 3) for x in v.max(axis=0)],
@@ -569,7 +570,8 @@ def report(rep):
         f"  collision: {rep['collision']['triangles']:,} triangles (edge {rep['collision']['edge']} m, from Poisson's "
         f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
         f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
-        f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) {flooded} m^3, "
+        f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) "
+        f"{flooded} m^3, "
         f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
         f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
         f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, max {s['max']:.2f} m",
