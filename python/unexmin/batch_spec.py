@@ -17,6 +17,7 @@ import numpy as np
 import yaml
 
 from unexmin.map_quality import world_path
+from unexmin.mesh_marker import link_meshes
 
 #: Parameters that change the simulated world or robot rather than (only) the mission function.
 WORLD_PARAMS = {
@@ -237,13 +238,10 @@ def load_mission_function(name):
 
 # -- one mission's files -----------------------------------------------------------------------------------
 def write_world(spec, params, folder):
-    """A copy of the spec's world file with the mission's current, with absolute mesh paths; its path."""
+    """A copy of the spec's world file with the mission's current, its meshes linked beside it; its path."""
     with open(spec["world_file"]) as f:
         world = yaml.safe_load(f)
-    base = os.path.dirname(spec["world_file"])
-    for mesh in world.get("meshes") or []:
-        if "file" in mesh and not os.path.isabs(mesh["file"]):
-            mesh["file"] = os.path.join(base, mesh["file"])
+    link_meshes(world.get("meshes") or [], os.path.dirname(os.path.abspath(spec["world_file"])), folder)
     current = world.setdefault("current", {})
     for name, var in (("current_speed", "speed"), ("current_angle", "horizontal_angle"),
                       ("current_vertical_angle", "vertical_angle")):

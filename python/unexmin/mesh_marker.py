@@ -40,6 +40,23 @@ def inside_path(world, base, file, key):
     return os.path.join(base, norm)
 
 
+def link_meshes(meshes, source_base, target_dir):
+    """Make the mesh entries of a world file in folder `source_base` usable by a copy of it written to
+    `target_dir`: a world file reads only files in its own folder (docs/worlds.md, "Paths"), so each mesh gets a
+    symbolic link `target_dir/meshes/<i>_<name>` to the real file and its `file` becomes that relative path.
+    Changes the entries in place."""
+    folder = os.path.join(target_dir, "meshes")
+    os.makedirs(folder, exist_ok=True)
+    for i, m in enumerate(meshes):
+        source = os.path.realpath(os.path.join(source_base, m["file"]))
+        rel = os.path.join("meshes", f"{i}_{os.path.basename(source)}")
+        link = os.path.join(target_dir, rel)
+        if os.path.lexists(link):
+            os.remove(link)
+        os.symlink(source, link)
+        m["file"] = rel
+
+
 def load_world(path):
     """The world file's name, surface height [m] and mesh entries (absolute file, scale, xyz, rpy, flags)."""
     with open(path) as f:

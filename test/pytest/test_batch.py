@@ -112,7 +112,8 @@ def test_mission_files_carry_the_parameters(tmp_path):
     assert world["current"]["speed"]["mean"] == 0.7 and world["current"]["speed"]["max"] >= 0.7
     assert world["current"]["horizontal_angle"]["mean"] == 1.2
     assert world["visibility"]["level"] == "low"
-    assert all(os.path.isabs(m["file"]) and os.path.exists(m["file"]) for m in world["meshes"])
+    # meshes linked beside the mission's world file: a world file reads only files in its folder
+    assert all(not os.path.isabs(m["file"]) and os.path.exists(tmp_path / "m" / m["file"]) for m in world["meshes"])
     assert 'name="ray_caster_threads" value="1"' in open(launch).read()
 
     def expand_xacro(*args):

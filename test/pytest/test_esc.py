@@ -147,14 +147,14 @@ CLIENT = textwrap.dedent("""
             cond.notify_all()
     subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cb, i) for i in range(8)]
     pub = rospy.Publisher(ESC_COMMAND_TOPIC, MotorCommand, queue_size=10)
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + 60  # a loaded machine starts rospy nodes slowly
     while time.monotonic() < deadline and not (pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
         time.sleep(0.05)
     out = []
     for n, (mode, values) in enumerate(cases, 1):
         pub.publish(MotorCommand(mode=mode, values=values))
         with cond:
-            ok = cond.wait_for(lambda: all(len(got.get(i, [])) >= n for i in range(8)), 10)
+            ok = cond.wait_for(lambda: all(len(got.get(i, [])) >= n for i in range(8)), 30)
         out.append([got[i][n - 1] for i in range(8)] if ok else None)
     print(json.dumps(out))
 """)

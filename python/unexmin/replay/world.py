@@ -9,6 +9,8 @@ from pathlib import Path
 
 import yaml
 
+from unexmin.mesh_marker import link_meshes
+
 REPO = Path(__file__).resolve().parents[3]
 
 
@@ -25,8 +27,7 @@ def world_launch_file(tmp, world="tank", robot="UX_1", roll_pitch=None, override
     if not source.is_file():
         raise FileNotFoundError(f"world {world!r}: no {source}")
     data = yaml.safe_load(source.read_text())
-    for m in data.get("meshes", []):
-        m["file"] = str((source.parent / m["file"]).resolve())
+    link_meshes(data.get("meshes") or [], str(source.parent), str(tmp))
     entry = next((r for r in data["robots"] if r["name"] == robot), None)
     if entry is None:
         raise ValueError(f"world {world!r} has no robot {robot!r}")
