@@ -3,7 +3,7 @@
 cameras rendering, their images subscribed and counted (docs/benchmarks.md, "Cameras").
 
     source scripts/env.sh && python bench/visual_rtf.py [--size 640x480] [--fps 10] [--sim-seconds 10]
-                                                        [--repeat 3] [--visibility LEVEL]
+                                                        [--repeat 3] [--visibility LEVEL] [--sink cpp|python]
 
 Each run, in a fresh process with its own ROS master:
   * writes an overrides file giving every camera the --size and --fps (camera_width, camera_height,
@@ -11,8 +11,11 @@ Each run, in a fresh process with its own ROS master:
   * launches `mine_world.launch robots:=1 realtime:=false mode:=visual sensors:=all
     lockstep_wait_subscribers:=true` (lockstep that waits for its subscribers' queues, so that every
     image reaches the benchmark), UX_1 in the entry shaft, its cameras facing the shaft's walls;
-  * subscribes to the five `camera_<i>/image_raw` topics (every image is received and deserialised),
-    pauses, then steps --sim-seconds through /sim/step in 1 s chunks while UX_1 surges into the wall;
+  * subscribes to the five `camera_<i>/image_raw` topics, every image received: --sink cpp (default) with
+    bench/topic_counter.cpp (a C++ node, as image_view or a user's perception node would be; it copies each
+    image once and counts it), --sink python with rospy subscribers in this process (each image
+    deserialised by rospy, which costs the two cores a few per cent more);
+  * pauses, then steps --sim-seconds through /sim/step in 1 s chunks while UX_1 surges into the wall;
   * RTF: sim time over the wall time it took; images received against 5 x fps x sim time; the
     simulator's CPU use.
 """
@@ -20,6 +23,7 @@ Each run, in a fresh process with its own ROS master:
 import argparse
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -45,7 +49,7 @@ def overrides(path, width, height, fps):
 """)
 
 
-def measure(width, height, fps, sim_seconds, seed, timeout, visibility):
+def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cpp"):
     from unexmin.launcher import WorldProcess, wait_for
 
     tmp = tempfile.mkdtemp(prefix="visual_rtf_")
@@ -66,21 +70,31 @@ def measure(width, height, fps, sim_seconds, seed, timeout, visibility):
 
         rospy.init_node("visual_bench", anonymous=True, disable_signals=True)
         rospy.wait_for_service("/sim/step", timeout)
+        topics = [f"/UX_1/camera_{i}/image_raw" for i in range(CAMERAS)]
         received = [0] * CAMERAS
         sizes = set()
+        master = rosgraph.Master(rospy.get_name())
+        counter = None
+        if sink == "cpp":
+            from sensors_rtf import build_counter
+            window = os.path.join(tmp, "window")
+            counter = subprocess.Popen([str(build_counter(tmp)), window, "1000"] + topics, stdout=subprocess.PIPE,
+                                       text=True)
+            wait_for(lambda: sum(any(n.startswith("/topic_counter") for n in nodes)
+                                 for t, nodes in master.getSystemState()[1] if t in topics) == CAMERAS,
+                     timeout, "the C++ counter to subscribe to the five image_raw topics")
+        else:
+            def on_image(msg, i):
+                received[i] += 1
+                sizes.add((msg.width, msg.height, len(msg.data)))
 
-        def on_image(msg, i):
-            received[i] += 1
-            sizes.add((msg.width, msg.height, len(msg.data)))
-
-        subs = [rospy.Subscriber(f"/UX_1/camera_{i}/image_raw", Image, on_image, callback_args=i,
-                                 queue_size=100, buff_size=2 ** 26, tcp_nodelay=True) for i in range(CAMERAS)]
-        wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), timeout,
-                 "the simulator's five image_raw publishers")
+            subs = [rospy.Subscriber(t, Image, on_image, callback_args=i, queue_size=100, buff_size=2 ** 26,
+                                     tcp_nodelay=True) for i, t in enumerate(topics)]
+            wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), timeout,
+                     "the simulator's five image_raw publishers")
         thrusters = [sync_publisher(f"/UX_1/thrusters/{i}/input", Float64) for i in range(8)]
         wait_for(lambda: all(p.get_num_connections() > 0 for p in thrusters), timeout,
                  "the simulator to subscribe to the thrusters")
-        master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
         step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         sim0 = step(duration=0.0, steps=1, client="", commands=0, hold=True).time
@@ -93,17 +107,28 @@ def measure(width, height, fps, sim_seconds, seed, timeout, visibility):
             sim1 = step(duration=1.0, steps=0, client="", commands=0, hold=True).time
         wall1, cpu1 = time.monotonic(), cpu_seconds(pid)
         expected = round((sim1 - sim0) * fps)
-        # lockstep_wait_subscribers: the last images are on their way when the step returns
-        try:
-            wait_for(lambda: all(r - b >= expected for r, b in zip(received, base)), 30.0, "the last images")
-        except TimeoutError:
-            pass
+        if counter is not None:
+            # lockstep_wait_subscribers: the step returns once the counter's queues have drained
+            with open(window, "w") as f:
+                f.write(f"{sim0} {sim1}")
+            counter.send_signal(signal.SIGINT)  # it counts the images stamped inside the window, then exits
+            counts = dict(line.split() for line in counter.communicate(timeout=timeout)[0].splitlines())
+            received = [int(counts.get(t, 0)) for t in topics]
+            base = [0] * CAMERAS
+        else:
+            try:
+                wait_for(lambda: all(r - b >= expected for r, b in zip(received, base)), 30.0, "the last images")
+            except TimeoutError:
+                pass
         mem = proc_status(pid)
         return {"size": f"{width}x{height}", "fps": fps, "rtf": (sim1 - sim0) / (wall1 - wall0),
                 "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
                 "sim_seconds": sim1 - sim0, "images": [r - b for r, b in zip(received, base)],
-                "expected_per_camera": expected, "image_sizes": sorted(sizes)}
+                "expected_per_camera": expected, "image_sizes": sorted(sizes), "sink": sink}
     finally:
+        if counter is not None and counter.poll() is None:
+            counter.kill()
+            counter.wait()
         world.close()
 
 
@@ -116,23 +141,26 @@ def main():
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--timeout", type=float, default=180.0, help="wall seconds allowed for each wait")
     ap.add_argument("--visibility", default="", help="override the world's visibility (none|low|medium|high)")
+    ap.add_argument("--sink", choices=("cpp", "python"), default="cpp",
+                    help="who subscribes to the images: a C++ counter node (default) or rospy in this process")
     ap.add_argument("--once", action="store_true", help="one run in this process, JSON out")
     args = ap.parse_args()
     width, height = (int(v) for v in args.size.lower().split("x"))
     if args.once:
         print(json.dumps(measure(width, height, args.fps, args.sim_seconds, args.seed, args.timeout,
-                                 args.visibility)))
+                                 args.visibility, args.sink)))
         return 0
     cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
     print(f"mine, 1 robot, mode:=visual, every sensor, 5 cameras at {args.size} and {args.fps:g} fps, images "
-          f"subscribed, lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; nproc "
+          f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; nproc "
           f"{os.cpu_count()}, {' '.join(cpu.split()[2:])}; load average before: {os.getloadavg()[0]:.2f}")
     print(f"{'run':>4} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7}  images per camera (expected)")
     runs = []
     for k in range(args.repeat):
         proc = subprocess.run([sys.executable, __file__, "--once", "--size", args.size, "--fps", str(args.fps),
                                "--sim-seconds", str(args.sim_seconds), "--seed", str(args.seed),
-                               "--timeout", str(args.timeout), "--visibility", args.visibility],
+                               "--timeout", str(args.timeout), "--visibility", args.visibility,
+                               "--sink", args.sink],
                               capture_output=True, text=True)
         if proc.returncode != 0:
             print(proc.stderr[-3000:], file=sys.stderr)
