@@ -1,6 +1,7 @@
 #include <unexmin/sensors/sonar/m3_sensor.h>
 
 #include <unexmin/sensors/sensor_params.h>
+#include <unexmin/sensors/sonar/equation_params.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,14 +42,7 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   e.range_max = range_max_;
   e.nbins = 1;
   e.gain = p.number("gain", 0.5, 0.0, 1.0, "(0 low .. 1 high)");
-  e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
-  e.source_level = p.number("source_level", 210.0, 100.0, 260.0, "dB re 1 uPa at 1 m");
-  e.backscatter_strength = p.number("backscatter_strength", -20.0, -100.0, 0.0, "dB");
-  e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
-  e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
-  e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
-  e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
-  e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
+  readEquationParams(p, e, 210.0);
   p.finish();
   // Solid angle of one beam: its share of the fan's azimuth x elevation rectangle.
   e.beam_solid_angle = fov_h_ / beams_ * 2.0 * std::sin(fov_v_ / 2.0);

@@ -1,6 +1,7 @@
 #include <unexmin/sensors/sonar/msis_sensor.h>
 
 #include <unexmin/sensors/sensor_params.h>
+#include <unexmin/sensors/sonar/equation_params.h>
 
 #include <algorithm>
 #include <limits>
@@ -77,14 +78,7 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   const std::string gain_word = p.text("gain", "");
   const auto named = gainSettings().find(gain_word);
   e.gain = named != gainSettings().end() ? named->second : p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high, or low/medium/high)");
-  e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
-  e.source_level = p.number("source_level", 200.0, 100.0, 260.0, "dB re 1 uPa at 1 m");
-  e.backscatter_strength = p.number("backscatter_strength", -20.0, -100.0, 0.0, "dB");
-  e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
-  e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
-  e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
-  e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
-  e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
+  readEquationParams(p, e, 200.0);
 
   const double step_deg = p.number("step", 0.9 * kDeg, 0.0, M_PI, "rad") / kDeg;
   const auto& steps = mechanicalSteps();

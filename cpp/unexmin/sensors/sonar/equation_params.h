@@ -1,0 +1,26 @@
+// The sonar equation's parameters (echo_model.h, docs/sonars.md) as every echo sounder of the family reads them
+// from its <sensor> element: the same keys, units and bounds for the MSIS and the M3.
+#pragma once
+
+#include <unexmin/sensors/sensor_params.h>
+#include <unexmin/sensors/sonar/echo_model.h>
+
+namespace unexmin {
+namespace sonar {
+
+/// Reads gain_span, source_level (default `source_level` [dB re 1 uPa at 1 m], the sonar's own),
+/// backscatter_strength and _exponent, absorption, tvg_spreading, display_min and display_span into `e`.
+inline void readEquationParams(sensors::SensorParams& p, EchoParams& e, double source_level)
+{
+  e.gain_span = p.number("gain_span", 40.0, 0.0, 120.0, "dB");
+  e.source_level = p.number("source_level", source_level, 100.0, 260.0, "dB re 1 uPa at 1 m");
+  e.backscatter_strength = p.number("backscatter_strength", -20.0, -100.0, 0.0, "dB");
+  e.backscatter_exponent = p.number("backscatter_exponent", 2.0, 0.0, 10.0, "(-)");
+  e.absorption = p.number("absorption", 0.1, 0.0, 10.0, "dB/m");
+  e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
+  e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
+  e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
+}
+
+}  // namespace sonar
+}  // namespace unexmin
