@@ -10,9 +10,7 @@ map against the mine's collision mesh (unexmin.map_quality). Leaves in DIR: mine
 trajectory.csv, map_quality.json, map_quality.png, mission_map.png, summary.json, logs/.
 """
 
-import argparse
 import csv
-import json
 import math
 import os
 import subprocess
@@ -23,7 +21,7 @@ import numpy as np
 
 from unexmin.allocation import ThrusterAllocator
 from unexmin.launcher import WorldProcess, stop_process_group, wait_for
-from unexmin.mission import recorder_connected, wait_until_written, yaw_of
+from unexmin.mission import mission_parser, recorder_connected, wait_until_written, write_summary, yaw_of
 
 ROBOT = "UX_1"
 SPEED = 0.4      # [m/s] cruise speed
@@ -209,15 +207,11 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
                                       "tau_m", "surface_area_m2")},
         "legs": legs,
     }
-    with open(os.path.join(out, "summary.json"), "w") as f:
-        json.dump(summary, f, indent=2)
-    return summary
+    return write_summary(out, summary)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="mission_output", help="output folder (created)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of every random generator")
+    parser = mission_parser(__doc__.splitlines()[0])
     parser.add_argument("--gallery", type=float, default=40.0, help="metres flown along the gallery (default 40)")
     parser.add_argument("--resolution", type=float, default=0.1, help="map voxel edge [m] (default 0.1)")
     args = parser.parse_args(argv)

@@ -175,15 +175,26 @@ def run(out, seed):
         "mean_abs_thrust_N": [round(float(v), 3) for v in mean_thrust],
         "legs": [{"name": n, "wrench": list(w), "seconds": s} for n, w, s in LEGS],
     }
+    return write_summary(out, summary)
+
+
+def write_summary(out, summary):
+    """`summary` as out/summary.json (every mission's machine-readable result); returns it."""
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2)
     return summary
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def mission_parser(description):
+    """The command line every mission shares: --out (the output folder) and --seed."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--out", default="mission_output", help="output folder (created)")
     parser.add_argument("--seed", type=int, default=0, help="seed of every random generator")
+    return parser
+
+
+def main(argv=None):
+    parser = mission_parser(__doc__.splitlines()[0])
     args = parser.parse_args(argv)
     s = run(args.out, args.seed)
     print(f"\nUX_1 went from ({s['start']['x']:.2f}, {s['start']['y']:.2f}, {s['start']['z']:.2f}) "
