@@ -6,7 +6,9 @@
 // machine it stays near what an idle one needs, while wall time (mean, best, fps) grows with the load. Built by catkin (target camera_fps, not a test); docs/benchmarks.md:
 //   xacro urdf/ux1.urdf.xacro name:=UX_1 > /tmp/ux1.urdf
 //   camera_fps /tmp/ux1.urdf worlds/mine.world [--camera camera_4] [--frames 20] [--size 640x480]
-//              [--visibility none|low|medium|high] [--shadows] [--ppm out.ppm] [--pose x y z yaw]
+//              [--visibility none|low|medium|high] [--shadows] [--ppm out.ppm] [--pose x y z yaw] [--threads N]
+// --threads: the caster's threads (default 0 = every hardware thread); --threads 1 under
+// `valgrind --tool=callgrind` counts a frame's instructions, whatever else the machine is doing.
 // --size may be given more than once (default: 640x480 and 2054x1544).
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
@@ -125,12 +127,12 @@ int main(int argc, char** argv)
 {
   if (argc < 3) {
     std::fprintf(stderr, "usage: camera_fps <urdf> <world> [--camera NAME] [--frames N] [--size WxH]... "
-                         "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW]\n");
+                         "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW] [--threads N]\n");
     return 2;
   }
   std::string camera_name = "camera_0", visibility, ppm;
   std::vector<double> pose;  // x y z [m] yaw [rad] of the robot instead of its spawn pose
-  int frames = 20;
+  int frames = 20, threads = 0;
   bool shadows = false;
   std::vector<std::pair<int, int>> sizes;
   for (int i = 3; i < argc; ++i) {
@@ -141,6 +143,7 @@ int main(int argc, char** argv)
     else if (a == "--visibility" && more) visibility = argv[++i];
     else if (a == "--ppm" && more) ppm = argv[++i];
     else if (a == "--shadows") shadows = true;
+    else if (a == "--threads" && more) threads = std::max(0, std::atoi(argv[++i]));
     else if (a == "--pose" && i + 4 < argc)
       for (int k = 0; k < 4; ++k) pose.push_back(std::atof(argv[++i]));
     else if (a == "--size" && more) {
@@ -167,7 +170,9 @@ int main(int argc, char** argv)
   const sim::RobotDescription description = sim::parseRobotDescription(urdf.str(), argv[1]);
   const std::map<std::string, sim::RobotDescription> d{{config.robots.at(0).name, description}};
   sim::World world(config, d, 1, 0.002, 1);
-  auto caster = raycast::makeRayCaster(config.ray_caster, world);
+  raycast::RayCasterOptions options;
+  options.threads = threads;
+  auto caster = raycast::makeRayCaster(config.ray_caster, world, options);
   caster->update();
   const sim::SensorSpec* spec = nullptr;
   for (const auto& s : world.robot(0).description().sensors)

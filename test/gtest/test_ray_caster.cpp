@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -396,6 +397,44 @@ TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
   int robot_hits = 0;
   for (const Hit& h : reference) robot_hits += h.kind == HitKind::robot ? 1 : 0;
   EXPECT_GT(robot_hits, 0) << "the rays should see the other robots too";
+}
+
+TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBatch)
+{
+  // A camera's way of casting: each block of parallelFor casts its own rays (here 300 per block, more than
+  // kParallelMin, so a cast that tried to use the busy workers would deadlock or race) and uses the hits at once.
+  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
+  test::SphereSpec spec;
+  std::map<std::string, sim::RobotDescription> d;
+  for (const auto& spawn : config.robots)
+    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
+  sim::World world(config, d, -1, 0.002, 1);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  constexpr std::size_t kBlocks = 37, kPerBlock = 300;
+  static_assert(kPerBlock > raycast::RayCaster::kParallelMin, "the nested casts must be large enough to want the workers");
+  std::vector<Ray> rays;
+  for (std::size_t i = 0; i < kBlocks * kPerBlock; ++i)
+    rays.push_back(makeRay({2.9 * u(rng), 1.9 * u(rng), -1.5 + 1.4 * u(rng)}, randomUnit(rng), 3.0 + 3.0 * u(rng)));
+  std::vector<Hit> reference;
+  caster(GetParam(), world, 1)->cast(rays, reference, 0);
+  for (int threads : {1, 2, 3}) {
+    auto rc = caster(GetParam(), world, threads);
+    std::vector<Hit> hits(rays.size());
+    std::vector<std::atomic<int>> runs(kBlocks);
+    rc->parallelFor(kBlocks, [&](std::size_t b) {
+      ++runs[b];
+      rc->cast(&rays[b * kPerBlock], &hits[b * kPerBlock], kPerBlock, 0);
+    });
+    for (std::size_t b = 0; b < kBlocks; ++b) EXPECT_EQ(runs[b].load(), 1) << "block " << b << ", " << threads << " threads";
+    int differ = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      differ += std::memcmp(&reference[i].range, &hits[i].range, sizeof(float)) == 0 &&
+                        reference[i].normal == hits[i].normal && reference[i].index == hits[i].index
+                    ? 0
+                    : 1;
+    EXPECT_EQ(differ, 0) << threads << " threads";
+  }
 }
 
 TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)

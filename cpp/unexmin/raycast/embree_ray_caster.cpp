@@ -124,13 +124,13 @@ void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
   int robot[kBlock];
   const Eigen::Vector3f d0 = rays[0].direction.normalized();
   bool coherent = true;
+  // Robots a ray can meet: none when the only one is the excluded (a robot's own sensors, alone in its world).
+  const bool robots = robots_.size() > (exclude_robot >= 0 && static_cast<std::size_t>(exclude_robot) < robots_.size());
   for (std::size_t i = 0; i < n; ++i) {
     const Ray& ray = rays[i];
     const Eigen::Vector3f d = ray.direction.normalized();  // ranges are true distances even if |d| != 1
     float t_far = ray.max_range;
-    robot[i] = robots_.empty()
-                   ? -1
-                   : nearestRobot(ray.origin.cast<double>(), d.cast<double>(), robots_, exclude_robot, t_far);
+    robot[i] = robots ? nearestRobot(ray.origin.cast<double>(), d.cast<double>(), robots_, exclude_robot, t_far) : -1;
     RTCRay& r = rh[i].ray;
     r.org_x = ray.origin.x();
     r.org_y = ray.origin.y();

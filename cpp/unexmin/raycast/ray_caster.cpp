@@ -41,10 +41,12 @@ public:
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
   /// Runs job(b) for every b in [0, blocks) on the workers and the caller; returns when all are done.
-  /// Returns false without running anything when another call is using the workers. Workers that wake
-  /// only after the caller has taken the last block stay out, so a descheduled worker never delays it.
+  /// Returns false without running anything when another call is using the workers, or when called from inside a
+  /// job (a block that casts). Workers that wake only after the caller has taken the last block stay out, so a
+  /// descheduled worker never delays it.
   bool tryRun(std::size_t blocks, const Job& job)
   {
+    if (in_job_) return false;  // the caller's own thread may hold run_mutex_: never lock it twice
     std::unique_lock<std::mutex> busy(run_mutex_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
     {
@@ -67,8 +69,12 @@ public:
 private:
   void drain(const Job& job, std::size_t blocks)
   {
+    in_job_ = true;
     for (std::size_t b = next_.fetch_add(1); b < blocks; b = next_.fetch_add(1)) job(b);
+    in_job_ = false;
   }
+
+  static thread_local bool in_job_;  ///< this thread is running a block of some pool's job
 
   void loop()
   {
@@ -102,6 +108,8 @@ private:
   std::uint64_t generation_ = 0;
   bool stop_ = false;
 };
+
+thread_local bool WorkerPool::in_job_ = false;
 
 namespace {
 
@@ -166,17 +174,10 @@ void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robo
   for (std::size_t b = 0; b < blocks; ++b) one(b);
 }
 
-void RayCaster::finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
-                          Hit& hit)
+void RayCaster::parallelFor(std::size_t blocks, const std::function<void(std::size_t)>& job) const
 {
-  const float length = surface_normal.norm();
-  Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
-  if (n.dot(ray.direction) > 0.0f) n = -n;
-  hit.range = range;
-  hit.normal = n;
-  hit.incidence = std::numeric_limits<float>::quiet_NaN();
-  hit.kind = kind;
-  hit.index = index;
+  if (blocks > 1 && pool_->threads() > 1 && pool_->tryRun(blocks, job)) return;
+  for (std::size_t b = 0; b < blocks; ++b) job(b);
 }
 
 float RayCaster::incidence(const Ray& ray, const Hit& hit)

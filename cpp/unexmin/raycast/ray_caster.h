@@ -146,6 +146,12 @@ public:
   /// Threads in use, the caller included (>= 1).
   int threads() const;
 
+  /// Runs job(b) for every b in [0, blocks) on the caster's threads, the caller included, and returns when all are
+  /// done; which thread runs a block is not fixed. For work that casts small batches and uses their hits at once
+  /// (a camera's tiles: rays, cast, shading): cast() of fewer than kParallelMin rays inside a job casts on that
+  /// job's thread. When another call is using the threads, every block runs on the caller's thread.
+  void parallelFor(std::size_t blocks, const std::function<void(std::size_t)>& job) const;
+
 protected:
   explicit RayCaster(const RayCasterOptions& options);
 
@@ -156,7 +162,17 @@ protected:
   /// Fills the range, kind, index and normal (unit, facing the ray) of a hit from any surface normal (cast() adds
   /// the incidence when asked).
   static void finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
-                        Hit& hit);
+                        Hit& hit)
+  {
+    const float length = surface_normal.norm();
+    Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
+    if (n.dot(ray.direction) > 0.0f) n = -n;
+    hit.range = range;
+    hit.normal = n;
+    hit.incidence = std::numeric_limits<float>::quiet_NaN();
+    hit.kind = kind;
+    hit.index = index;
+  }
 
 private:
   std::unique_ptr<WorkerPool> pool_;

@@ -13,8 +13,9 @@ namespace vision {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-/// Rays cast per batch: bounds the memory of rays and hits whatever the resolution.
-constexpr std::size_t kBandRays = 262144;
+/// Side of a tile [px]: 8 x 8 = 64 rays, one block of the ray caster (raycast::RayCaster::kBlock).
+constexpr int kTile = 8;
+static_assert(kTile * kTile <= static_cast<int>(raycast::RayCaster::kBlock), "a tile is cast as one block");
 /// Entries of the gamma table over [0, 1].
 constexpr int kEncodeEntries = 4096;
 
@@ -203,52 +204,17 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
 {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
-  const Eigen::Matrix3f rot = cam.linear().cast<float>();
-  const Eigen::Vector3f origin = cam.translation().cast<float>();
-  const int band = std::max<int>(1, static_cast<int>(kBandRays / static_cast<std::size_t>(w)));
-  std::vector<unsigned> lit;
-  for (int row0 = 0; row0 < h; row0 += band) {
-    const int rows = std::min(band, h - row0);
-    const std::size_t first = static_cast<std::size_t>(row0) * w, n = static_cast<std::size_t>(rows) * w;
-    rays_.resize(n);
-    parallelRows(rows, [&](int r0, int r1) {
-      for (std::size_t i = static_cast<std::size_t>(r0) * w; i < static_cast<std::size_t>(r1) * w; ++i) {
-        rays_[i].origin = origin;
-        rays_[i].direction = rot * dirs_[first + i];
-        rays_[i].max_range = static_cast<float>(clip_far_);
-      }
-    });
-    castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // shading uses the normal, not the angle
-
-    if (shadows_) {
-      lit.assign(n, ~0u);
-      // One ray from each light towards every surface point it would light; a hit before the point shadows it.
-      shadow_rays_.clear();
-      std::vector<std::pair<std::size_t, int>> pairs;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!hits_[i].hit()) continue;
-        const Eigen::Vector3f p = hits_[i].range * dirs_[first + i];
-        const Eigen::Vector3f nrm = rot.transpose() * hits_[i].normal;
-        for (int k : formation_->activeLights()) {
-          if (!formation_->lights(k, p, nrm)) continue;
-          const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
-          const Eigen::Vector3f to = hits_[i].point(rays_[i]) - from;
-          const float len = to.norm();
-          if (!(len > 2e-3f)) continue;
-          raycast::Ray r;
-          r.origin = from;
-          r.direction = to / len;
-          r.max_range = len * 0.999f - 1e-3f;
-          shadow_rays_.push_back(r);
-          pairs.emplace_back(i, k);
-        }
-      }
-      castRays(ctx, shadow_rays_, shadow_hits_, raycast::Incidence::skip);
-      for (std::size_t s = 0; s < pairs.size(); ++s)
-        if (shadow_hits_[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
-    }
-    shadeRows(row0, rows, cam, shadows_ ? lit.data() : nullptr, seed);
-  }
+  const int tiles_u = (w + kTile - 1) / kTile;
+  const std::size_t tiles = static_cast<std::size_t>(tiles_u) * static_cast<std::size_t>((h + kTile - 1) / kTile);
+  // Every tile alone: its rays, their cast, its pixels' shading and sensor, on whichever thread takes it (the pixels
+  // do not depend on which, nor on the order).
+  const auto tile = [&](std::size_t t) {
+    const int u0 = static_cast<int>(t % static_cast<std::size_t>(tiles_u)) * kTile;
+    const int v0 = static_cast<int>(t / static_cast<std::size_t>(tiles_u)) * kTile;
+    renderTile(ctx, cam, u0, v0, std::min(u0 + kTile, w), std::min(v0 + kTile, h), seed);
+  };
+  if (ctx.rays) ctx.rays->parallelFor(tiles, tile);
+  else for (std::size_t t = 0; t < tiles; ++t) tile(t);
   if (laser_) {
     // The line adds light to a few pixels: encode those again (noise is a function of seed and pixel alone).
     touched_.clear();
@@ -257,40 +223,89 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
   }
 }
 
-void CameraSensor::shadeRows(int row0, int rows, const Eigen::Isometry3d& cam, const unsigned* lit, std::uint64_t seed)
+void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
+                              std::uint64_t seed)
 {
+  constexpr int kMax = kTile * kTile;
   const int w = model_.width();
-  const Eigen::Matrix3f to_camera = cam.linear().cast<float>().transpose();
-  const Eigen::Array4f hull(static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
-                            static_cast<float>(kHullAlbedo.z()), 0.0f);
+  const Eigen::Matrix3f rot = cam.linear().cast<float>();
+  const Eigen::Vector3f origin = cam.translation().cast<float>();
   const float far = static_cast<float>(clip_far_);
-  parallelRows(rows, [&](int r0, int r1) {
-    for (int r = r0; r < r1; ++r) {
-      const int v = row0 + r;
-      for (int u = 0; u < w; ++u) {
-        const std::size_t i = static_cast<std::size_t>(r) * w + u;
-        const std::size_t g = static_cast<std::size_t>(v) * w + u;
-        const raycast::Hit& hit = hits_[i];
-        Eigen::Array4f radiance;
-        if (hit.hit()) {
-          const Eigen::Array4f& albedo =
-              hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)] : hull;
-          radiance = formation_->direct4(hit.range * dirs_[g], hit.range, to_camera * hit.normal, albedo,
-                                                 lit ? lit[i] : ~0u) +
-                     formation_->backscatter4(static_cast<float>(u), static_cast<float>(v), hit.range);
-          frame_.range[g] = hit.range;
-        } else {
-          radiance = formation_->backscatter4(static_cast<float>(u), static_cast<float>(v), far);
-          frame_.range[g] = std::numeric_limits<float>::infinity();
-        }
-        float* out = &frame_.radiance[3 * g];
-        out[0] = radiance[0];
-        out[1] = radiance[1];
-        out[2] = radiance[2];
-        encodePixel(g, radiance, seed);
+  raycast::Ray rays[kMax];
+  raycast::Hit hits[kMax];
+  std::size_t pixel[kMax];
+  float pu[kMax], pv[kMax];  // pixel coordinates [px]
+  int n = 0;
+  for (int v = v0; v < v1; ++v)
+    for (int u = u0; u < u1; ++u, ++n) {
+      pixel[n] = static_cast<std::size_t>(v) * w + u;
+      pu[n] = static_cast<float>(u);
+      pv[n] = static_cast<float>(v);
+      rays[n].origin = origin;
+      rays[n].direction = rot * dirs_[pixel[n]];
+      rays[n].max_range = far;
+    }
+  // Shading uses the normal, not the angle.
+  if (ctx.rays) ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip);
+
+  unsigned lit[kMax];
+  std::fill(lit, lit + n, ~0u);
+  if (shadows_) {
+    // One ray from each light towards every surface point it would light; a hit before the point shadows it.
+    thread_local std::vector<raycast::Ray> shadow_rays;
+    thread_local std::vector<raycast::Hit> shadow_hits;
+    thread_local std::vector<std::pair<int, int>> pairs;  // (pixel of the tile, light)
+    shadow_rays.clear();
+    pairs.clear();
+    for (int i = 0; i < n; ++i) {
+      if (!hits[i].hit()) continue;
+      const Eigen::Vector3f p = hits[i].range * dirs_[pixel[i]];
+      const Eigen::Vector3f nrm = rot.transpose() * hits[i].normal;
+      for (int k : formation_->activeLights()) {
+        if (!formation_->lights(k, p, nrm)) continue;
+        const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
+        const Eigen::Vector3f to = hits[i].point(rays[i]) - from;
+        const float len = to.norm();
+        if (!(len > 2e-3f)) continue;
+        raycast::Ray r;
+        r.origin = from;
+        r.direction = to / len;
+        r.max_range = len * 0.999f - 1e-3f;
+        shadow_rays.push_back(r);
+        pairs.emplace_back(i, k);
       }
     }
-  });
+    if (ctx.rays && !shadow_rays.empty()) {
+      ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip);
+      for (std::size_t s = 0; s < pairs.size(); ++s)
+        if (shadow_hits[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
+    }
+  }
+
+  const Eigen::Matrix3f to_camera = rot.transpose();
+  const Eigen::Array4f hull(static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
+                            static_cast<float>(kHullAlbedo.z()), 0.0f);
+  for (int i = 0; i < n; ++i) {
+    const std::size_t g = pixel[i];
+    const float u = pu[i], v = pv[i];
+    const raycast::Hit& hit = hits[i];
+    Eigen::Array4f radiance;
+    if (hit.hit()) {
+      const Eigen::Array4f& albedo =
+          hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)] : hull;
+      radiance = formation_->direct4(hit.range * dirs_[g], hit.range, to_camera * hit.normal, albedo, lit[i]) +
+                 formation_->backscatter4(u, v, hit.range);
+      frame_.range[g] = hit.range;
+    } else {
+      radiance = formation_->backscatter4(u, v, far);
+      frame_.range[g] = std::numeric_limits<float>::infinity();
+    }
+    float* out = &frame_.radiance[3 * g];
+    out[0] = radiance[0];
+    out[1] = radiance[1];
+    out[2] = radiance[2];
+    encodePixel(g, radiance, seed);
+  }
 }
 
 }  // namespace vision

@@ -95,9 +95,10 @@ private:
   void prepare(const SensorContext& ctx);
   /// Renders frame_ (noise of frame seed `seed`).
   void render(const SensorContext& ctx, std::uint64_t seed);
-  /// Radiance, range and rgb of rows [row0, row0 + rows) from hits_ (the band's hits); `lit`: per pixel of the band,
-  /// the lights that reach it (bit k: light k; null: all of them).
-  void shadeRows(int row0, int rows, const Eigen::Isometry3d& cam, const unsigned* lit, std::uint64_t seed);
+  /// Radiance, range and rgb of the pixels [u0, u1) x [v0, v1) (at most one tile) of the camera at `cam` (world
+  /// frame): their rays, cast on the calling thread, shadow rays if on, shading and sensor.
+  void renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
+                  std::uint64_t seed);
   /// The sensor at pixel i: noise, gain, gamma, 8 bits per channel from its radiance.
   void encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed);
   void encodePixel(std::size_t i, std::uint64_t seed);
@@ -116,10 +117,6 @@ private:
   std::string water_key_;                 ///< visibility level and colour the formation was built for
   std::vector<Eigen::Vector3f> dirs_;     ///< per pixel: unit ray direction in the optical frame
   std::vector<Eigen::Array4f> albedo_;    ///< per world mesh (R, G, B, 0)
-  std::vector<raycast::Ray> rays_;        ///< one band of rows
-  std::vector<raycast::Hit> hits_;
-  std::vector<raycast::Ray> shadow_rays_;
-  std::vector<raycast::Hit> shadow_hits_;
   std::vector<std::uint8_t> encode_;      ///< gamma table: signal in [0, 1] -> 8 bits
   float exposure_f_ = 0.0f, gain_f_ = 0.0f, shot_ = 0.0f, read2_ = 0.0f;
   const float* normal_ = nullptr;         ///< standard normal quantiles (noise draws)

@@ -47,6 +47,7 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
     f.intensity = Eigen::Array4f(static_cast<float>(i0[0]), static_cast<float>(i0[1]), static_cast<float>(i0[2]), 0.0f);
     const double cos_half = std::max(0.0, std::cos(l.cone / 2.0));
     f.cos_half = static_cast<float>(cos_half);
+    f.cos_half2 = f.cos_half * f.cos_half;
     f.pow_m.resize(kPowEntries + 2);
     for (int i = 0; i <= kPowEntries + 1; ++i)
       f.pow_m[i] = static_cast<float>(l.profile(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries)));

@@ -105,7 +105,8 @@ private:
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
     Eigen::Vector3f position, axis;
     Eigen::Array4f intensity;   ///< I0 / pi [W/sr] (4th lane 0)
-    float cos_half = 0.0f;      ///< cos(cone / 2)
+    float cos_half = 0.0f;      ///< cos(cone / 2), >= 0 (a cone is at most a half space)
+    float cos_half2 = 0.0f;     ///< cos_half^2
     std::vector<float> pow_m;   ///< cos^m over cos in [cos_half, 1]
     float pow_scale = 0.0f;     ///< table index per unit of cos
   };
@@ -143,12 +144,14 @@ inline Eigen::Array4f ImageFormation::direct4(const Eigen::Vector3f& p, float ra
     if (!(lit & (1u << k))) continue;
     const Fast& l = fast_[static_cast<std::size_t>(k)];
     const Eigen::Vector3f v = p - l.position;  // light -> surface
-    const float r = std::sqrt(v.squaredNorm());
-    const float ca = l.axis.dot(v);
-    if (!(ca > l.cos_half * r)) continue;  // outside the cone
-    const float cos_phi = -n.dot(v);       // r cos(incidence)
-    if (!(cos_phi > 0.0f)) continue;       // lit from behind
-    const float inv_r = 1.0f / r;
+    const float ca = l.axis.dot(v);            // r cos(theta)
+    const float r2 = v.squaredNorm();
+    // Outside the cone (ca <= cos_half r, with cos_half >= 0), tested without the square root.
+    if (!(ca > 0.0f) || !(ca * ca > l.cos_half2 * r2)) continue;
+    const float cos_phi = -n.dot(v);  // r cos(incidence)
+    if (!(cos_phi > 0.0f)) continue;  // lit from behind
+    const float inv_r = 1.0f / std::sqrt(r2);
+    const float r = r2 * inv_r;
     const float fi = (ca * inv_r - l.cos_half) * l.pow_scale;
     const int i = std::min(static_cast<int>(fi), kPowEntries);
     const float pw = l.pow_m[i] + (fi - static_cast<float>(i)) * (l.pow_m[i + 1] - l.pow_m[i]);
