@@ -132,19 +132,38 @@ void M3Sensor::directAndSurface(int k, double surface_z)
   const std::size_t base = static_cast<std::size_t>(k) * rays_per_beam_;
   const std::size_t end = base + rays_per_beam_;
   Return& best = first_[k];
-  // The direct hits, nearest first: the first detected one (nearly always the nearest, so the incidence is
-  // computed about once per beam).
-  order_.clear();
-  for (std::size_t i = base; i < end; ++i)
-    if (hits_[i].hit()) order_.push_back(i);
-  std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return hits_[a].range < hits_[b].range; });
-  for (const std::size_t i : order_) {
-    const Echo direct{hits_[i].range, std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])))};
-    if (detected(direct)) {
-      best = Return{direct.range, direct};
-      break;
+  // The nearest direct hit is nearly always a detection: its incidence and level only, then.
+  std::size_t nearest = end;
+  bool surface = false;  // some ray meets the surface first
+  for (std::size_t i = base; i < end; ++i) {
+    if (hits_[i].hit()) {
+      if (nearest == end || hits_[i].range < hits_[nearest].range) nearest = i;
+    } else {
+      surface = surface || surface_[i] >= 0.0;
     }
   }
+  if (nearest != end) {
+    const auto direct = [&](std::size_t i) {
+      return Echo{hits_[i].range, std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])))};
+    };
+    const Echo echo = direct(nearest);
+    if (detected(echo)) {
+      best = Return{echo.range, echo};
+    } else {  // the others by range: the first detected one
+      order_.clear();
+      for (std::size_t i = base; i < end; ++i)
+        if (hits_[i].hit() && i != nearest) order_.push_back(i);
+      std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return hits_[a].range < hits_[b].range; });
+      for (const std::size_t i : order_) {
+        const Echo e = direct(i);
+        if (detected(e)) {
+          best = Return{e.range, e};
+          break;
+        }
+      }
+    }
+  }
+  if (!surface) return;
   // The surface's own echo where a ray meets it first (its normal is the vertical: cos(incidence) = d_z).
   for (std::size_t i = base; i < end; ++i) {
     if (surface_[i] < 0.0 || hits_[i].hit() || surface_[i] >= best.range) continue;

@@ -88,7 +88,7 @@ private:
     Echo echo;
   };
   /// Whether an echo of one beam is a detection (EL >= detection level).
-  bool detected(const Echo& e) const { return echo_.strength(e, 1) >= detection_power_; }
+  bool detected(const Echo& e) const { return echo_.reaches(e, 1, detection_power_); }
   /// The beam's nearest detected echo of its direct hits and surface echoes (first_[k]); queues the reflected
   /// rays that could still give a nearer detection.
   void directAndSurface(int k, double surface_z);
