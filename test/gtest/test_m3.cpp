@@ -466,6 +466,22 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
   EXPECT_GT(weak_ghosts, 20);  // the raised threshold removes the weak (long-path) ghosts
 }
 
+TEST(M3, AboveTheWaterTheRaysThatGoUpHearNothing)
+{
+  // The M3 0.2 m above the free surface of open water, its fan pitched 10 deg up (every ray up): a ray that starts
+  // above the surface and goes up never enters the water, so it has no echo (a zero-length ray before, which the
+  // caster refuses). Every beam: +inf; no surface echo or ghost (the sonar is not submerged).
+  const Eigen::Vector3d mount(0.3, 0.0, 0.0), mount_rpy(0.0, -10.0 * kDeg, 0.0);
+  const Eigen::Vector3d robot(0.0, 0.0, 0.2);
+  SonarWorld w(meshWorld({{"plate", plateTarget(robot + mount, 3.0, -1.0, 10.0, 1.0)}}, robot),
+               sensorUrdf(SphereSpec(), mountLink("T/m3_link", mount, mount_rpy),
+                          sensorXml("m3", "m3", "T/m3_link", 40.0, {{"noise", "none"}})));
+  auto& m3 = w.sensor<M3Sensor>("m3");
+  ASSERT_NO_THROW(w.samples(m3, 1));
+  ASSERT_GT((w.robot().state().pose * mount).z(), 0.0);
+  for (int k = 0; k < kBeams; ++k) EXPECT_EQ(m3.last().ranges[k], std::numeric_limits<float>::infinity()) << "beam " << k;
+}
+
 TEST(M3, BadParametersNameTheSensorAndTheParameter)
 {
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
