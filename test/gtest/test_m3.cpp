@@ -370,7 +370,7 @@ Expected firstDetection(const Eigen::Isometry3d& link, int k, const Face& f, dou
 
 TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
 {
-  // Open water; the M3 pitched 5 deg up (its rays 3.9..6.1 deg up in the middle of the fan, 1.9..5.4 deg at its
+  // Open water; the M3 pitched 5 deg up (its rays 3.9..6.1 deg up in the middle of the fan, 1.4..3.6 deg at its
   // edges) looking along +x at a plate whose face is 6 m ahead, 24 m wide, from 0.05 to 1.2 m below the surface;
   // range_max 15 m (a tank setting, the thesis used 5 m). Every beam's first return and intensity against the
   // documented model evaluated here (firstDetection: ray-plane geometry, levels, threshold 82 dB), +-1 cm and
