@@ -28,9 +28,6 @@ Preset preset(const std::string& name)
   return {20.0, 200.0, 0.5, true};                              // none: a medium range, medium gain
 }
 
-/// A draw of the unit-mean exponential distribution: the power of a Rayleigh amplitude.
-double exponential(sensors::Random& random) { return -std::log1p(-random.uniform()); }
-
 double wrap(double a)
 {
   a = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
