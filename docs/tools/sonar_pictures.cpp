@@ -5,7 +5,8 @@
 // physics step). Built by catkin (target sonar_pictures, not a test); run by docs/tools/sonar_pictures.sh:
 //   sonar_pictures <expanded UX-1 URDF> <tank.world> <output directory>
 // Writes msis_long.png, msis_medium.png, msis_close.png (the sonar image: 2 range_max square, 1 px = 1 cm, head
-// at the centre, x up, colour = intensity) and m3_anchor.png (the fan of first returns over 40 pings).
+// at the centre, x up, colour = intensity), m3_anchor.png (the fan of first returns over 40 pings) and
+// m3_surface_shallow.png, m3_surface_deep.png (the robot pitched 5 deg up, the fan 0.4 and 2 m deep: surface multipath).
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/ros/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
@@ -147,17 +148,16 @@ int main(int argc, char** argv)
     std::printf("%s: %d pings from %.1f m\n", path.c_str(), pings, place.distance);
   }
 
-  // M3: the robot 2.2 m deep (the fan 2.33 m), 2 m from the anchor, the fan pitched as mounted; 40 pings (1 s) accumulated.
-  {
+  // M3 scans: 40 pings (1 s) of first returns accumulated, the robot held at `pose`.
+  const auto m3Scan = [&](const Eigen::Isometry3d& pose, const std::string& file) {
     sim::World world(config, d, 1, 0.002, 7);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);
     sensors::SensorSuite suite(world, world.robot(0), caster.get(), registry.models());
     auto* m3 = dynamic_cast<sonar::M3Sensor*>(suite.find("m3"));
     if (!m3) {
       std::fprintf(stderr, "the robot has no M3 named 'm3'\n");
-      return 1;
+      return false;
     }
-    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -2.2), Eigen::Vector3d::Zero());
     const int size = 600;  // 1 px = 1 cm: 6 m square, sonar at the bottom centre, x up
     Image px(static_cast<std::size_t>(size) * size, {0, 0, 0});
     for (int ring = 1; ring <= 5; ++ring) {  // range rings every metre
@@ -186,8 +186,18 @@ int main(int argc, char** argv)
               px[static_cast<std::size_t>(y + dy) * size + x + dx] = palette(0.25f + 0.75f * m3->last().intensities[b]);
       }
     }
-    writePng(out_dir + "/m3_anchor.png", size, size, px);
-    std::printf("%s/m3_anchor.png: 40 pings from 2.0 m\n", out_dir.c_str());
+    writePng(out_dir + "/" + file, size, size, px);
+    const Eigen::Vector3d link = world.robot(0).state().pose * suite.find("m3")->spec().pose.translation();
+    std::printf("%s/%s: 40 pings, the M3 %.2f m deep\n", out_dir.c_str(), file.c_str(), -link.z());
+    return true;
+  };
+  // The robot 2.2 m deep (the fan 2.33 m), 2 m from the anchor, the fan as mounted.
+  if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -2.2), Eigen::Vector3d::Zero()), "m3_anchor.png")) return 1;
+  // Surface multipath: the robot pitched 5 deg up, 2 m from the anchor, with the fan about 0.4 m deep and 2 m deep.
+  for (const auto& [depth, file] : {std::pair<double, const char*>{0.30, "m3_surface_shallow.png"},
+                                    std::pair<double, const char*>{1.90, "m3_surface_deep.png"}}) {
+    if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -depth), Eigen::Vector3d(0.0, -5.0 * M_PI / 180.0, 0.0)), file))
+      return 1;
   }
   return 0;
 }

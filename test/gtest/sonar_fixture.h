@@ -45,6 +45,16 @@ inline std::string msisLinks(const Eigen::Vector3d& base_xyz = Eigen::Vector3d(0
          num(head_height) + "' rpy='0 0 0'/><axis xyz='0 0 1'/></joint>\n";
 }
 
+/// A plate target 1 cm thick facing -x (the multipath tests): its near face `ahead` [m] in front of `sensor` (world
+/// +x), centred on the sensor's y, `width` x `height` [m], its centre `below_surface` [m] below the free surface
+/// (z = 0).
+inline Geometry plateTarget(const Eigen::Vector3d& sensor, double ahead, double below_surface, double width = 0.6,
+                            double height = 0.2)
+{
+  const Eigen::Vector3d c(sensor.x() + ahead, sensor.y(), -below_surface);
+  return box(c + Eigen::Vector3d(0, -width / 2, -height / 2), c + Eigen::Vector3d(0.01, width / 2, height / 2));
+}
+
 /// The sonar tests' world: a SensorWorld (Embree caster).
 using SonarWorld = SensorWorld;
 

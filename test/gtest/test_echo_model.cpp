@@ -117,6 +117,31 @@ TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint)
   EXPECT_NEAR(m.strength(Echo{2.5, 1.0}, 0), m.strength(Echo{2.5, 1.0}, 1), 1e-9 * m.strength(Echo{2.5, 1.0}, 1));
 }
 
+TEST(EchoModel, ReachesIsTheStrengthAgainstAPowerOnEitherSideOfIt)
+{
+  // reaches(e, rays, P) == (strength >= P) for powers just below and above the expected strength computed here
+  // (the linear factors as above, absorption 0.2 dB/m, window 0..20 m): the quick answers without the absorption
+  // must agree with the exact one at every range, including echoes beyond the window.
+  EchoParams p = flat(0.0, 20.0, 10);
+  p.beam_solid_angle = 0.04;
+  p.absorption = 0.2;
+  const EchoModel m(p);
+  for (double r : {0.5, 3.0, 17.0, 19.99, 25.0}) {
+    for (double c : {1.0, 0.3, 0.0}) {
+      for (double extra : {0.0, -1.83}) {
+        const double expected = c > 0.0 ? 1e20 * std::pow(r, -4) * std::pow(10.0, -2 * 0.2 * r / 10) * 0.01 * c * c *
+                                              (r * r * 0.04 / c) * std::pow(10.0, extra / 10)
+                                        : 0.0;
+        const Echo e{r, c, extra};
+        EXPECT_EQ(m.reaches(e, 1, expected * (1 - 1e-6)), c > 0.0) << "r " << r << " c " << c;
+        EXPECT_FALSE(m.reaches(e, 1, expected * (1 + 1e-6) + 1e-300)) << "r " << r << " c " << c;
+        EXPECT_EQ(m.reaches(e, 1, expected * 1e-3), c > 0.0) << "r " << r << " c " << c;  // far below: quick yes
+        EXPECT_FALSE(m.reaches(e, 1, expected * 1e3 + 1e-300)) << "r " << r << " c " << c;   // far above: quick no
+      }
+    }
+  }
+}
+
 TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes)
 {
   EchoParams p = flat(0.0, 10.0, 10);

@@ -559,14 +559,6 @@ TEST(Msis, TheStrongestBinOfAPingLiesOnAWallOrTheAnchorInTheTankAt1MetreDepth)
   }
 }
 
-/// A plate target (0.6 m wide, 0.2 m tall, 1 cm thick) whose near face is `ahead` [m] in front of the head
-/// (world +x) with its centre `below_surface` [m] below the free surface (z = 0).
-Geometry target(const Eigen::Vector3d& head, double ahead, double below_surface)
-{
-  const Eigen::Vector3d c(head.x() + ahead, head.y(), -below_surface);
-  return box(c + Eigen::Vector3d(0, -0.3, -0.1), c + Eigen::Vector3d(0.01, 0.3, 0.1));
-}
-
 TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
 {
   // The head at 0.4 m depth looking along +x at a box target whose face is 2.5 m ahead and 0.1..0.3 m deep: the
@@ -583,7 +575,7 @@ TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
     const double head_depth = deep ? 2.0 : 0.4;
     const Eigen::Vector3d robot(0, 0, -head_depth - kHead.z());
     const Eigen::Vector3d head = robot + kHead;
-    SonarWorld w(meshWorld({{"target", target(head, ahead, head_depth - 0.2)}}, robot),
+    SonarWorld w(meshWorld({{"target", plateTarget(head, ahead, head_depth - 0.2)}}, robot),
                  msisUrdf(params));
     auto& msis = w.sensor<MsisSensor>("msis");
     w.samples(msis, 1);

@@ -113,6 +113,23 @@ TEST(SensorParams, AWordNotAllowedNamesTheAllowedOnes)
               {"parameter 'noise' = '1'", "one of gaussian|none"});
 }
 
+TEST(SensorParams, AFlagIsTrueOrFalseAsWrittenByHandOrByXacro)
+{
+  const sim::SensorSpec s = spec({{"one", {1.0}}, {"zero", {0.0}}},
+                                 {{"a", "true"}, {"b", "True"}, {"c", "false"}, {"d", "False"}, {"e", "yes"}});
+  SensorParams p(s, "UX_2");
+  EXPECT_TRUE(p.flag("a", false));
+  EXPECT_TRUE(p.flag("b", false));
+  EXPECT_FALSE(p.flag("c", true));
+  EXPECT_FALSE(p.flag("d", true));
+  EXPECT_TRUE(p.flag("one", false));
+  EXPECT_FALSE(p.flag("zero", true));
+  EXPECT_TRUE(p.flag("absent", true));  // the fallback
+  EXPECT_FALSE(p.flag("absent_too", false));
+  expectNames(thrownMessage<ConfigError>([&] { p.flag("e", false); }), "UX_2", "nav_dvl", "dvl",
+              {"parameter 'e' = 'yes'", "one of true|false|True|False|1|0"});
+}
+
 TEST(SensorParams, AnUnreadParameterIsATypoExceptTopicNames)
 {
   const sim::SensorSpec s = spec({{"beam_angle", {0.4}}, {"altitud_max", {30.0}}},

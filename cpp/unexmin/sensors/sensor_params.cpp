@@ -89,6 +89,13 @@ std::string SensorParams::text(const std::string& key, const std::string& fallba
   fail(key, "'" + value + "'", "one of " + list);
 }
 
+bool SensorParams::flag(const std::string& key, bool fallback)
+{
+  // xacro writes a Python bool as True/False.
+  const std::string v = text(key, fallback ? "true" : "false", {"true", "false", "True", "False", "1", "0"});
+  return v == "true" || v == "True" || v == "1";
+}
+
 std::vector<std::string> SensorParams::words(const std::string& key)
 {
   std::istringstream in(text(key, ""));

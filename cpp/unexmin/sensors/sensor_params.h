@@ -29,6 +29,8 @@ public:
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback);
   /// Text, `fallback` when absent; when `allowed` is not empty the value must be one of them.
   std::string text(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed = {});
+  /// A switch: true/false (xacro's True/False, 1/0 too), `fallback` when absent.
+  bool flag(const std::string& key, bool fallback);
   /// Whitespace-separated words (e.g. link names); empty when absent.
   std::vector<std::string> words(const std::string& key);
 

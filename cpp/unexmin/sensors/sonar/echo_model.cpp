@@ -42,6 +42,7 @@ EchoModel::EchoModel(const EchoParams& params) : p_(params)
   width_ = (p_.range_max - p_.range_min) / p_.nbins;
   ray_factor_ = std::pow(10.0, (p_.source_level + p_.backscatter_strength) / 10.0) * p_.beam_solid_angle;
   gain_ = std::pow(10.0, gainDb() / 10.0);
+  least_absorption_ = std::exp(-0.2 * M_LN10 * p_.absorption * std::max(p_.range_max, 1e-3));
   bin_gain_.resize(p_.nbins);
   for (int i = 0; i < p_.nbins; ++i) bin_gain_[i] = std::pow(10.0, (gainDb() + tvg(binCenter(i))) / 10.0);
   thresholds_.resize(p_.levels);
@@ -89,6 +90,18 @@ double EchoModel::strength(const Echo& e, std::size_t rays) const
   const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
   return ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence(c) / (r * r) *
          std::exp(-0.2 * M_LN10 * p_.absorption * r) * extra;
+}
+
+bool EchoModel::reaches(const Echo& e, std::size_t rays, double power) const
+{
+  const double c = std::min(1.0, e.cos_incidence);
+  if (!(c > 0.0)) return false;
+  const double r = std::max(e.range, 1e-3);
+  const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
+  const double lossless = ray_factor_ / static_cast<double>(std::max<std::size_t>(1, rays)) * incidence(c) / (r * r) * extra;
+  if (lossless < power) return false;                       // below it even without absorption
+  if (r <= p_.range_max && lossless * least_absorption_ >= power) return true;  // above it with the most absorption
+  return strength(e, rays) >= power;
 }
 
 double EchoModel::incidence(double c) const

@@ -75,6 +75,9 @@ public:
   double echoLevel(const Echo& e, std::size_t rays) const;
   /// Echo power of one ray, 10^(EL / 10) [uPa^2].
   double strength(const Echo& e, std::size_t rays) const;
+  /// Whether strength(e, rays) >= power [uPa^2] (a detection), mostly without the absorption's exponential: the
+  /// strength with the absorption over the whole window (range_max) is a lower bound of it.
+  bool reaches(const Echo& e, std::size_t rays, double power) const;
   /// Output level L of a bin of power P [uPa^2] at range r [m] [dB re 1 uPa] (-inf for P = 0).
   double outputLevel(double power, double r) const;
   /// Input power [uPa^2] whose output level at range r is L [dB re 1 uPa] (the inverse of outputLevel).
@@ -116,6 +119,7 @@ private:
   double width_ = 0.0;
   double ray_factor_ = 0.0;           ///< 10^((SL + BS0) / 10) Omega [uPa^2 m^2 sr]
   double gain_ = 1.0;                 ///< 10^(G / 10)
+  double least_absorption_ = 1.0;     ///< the two-way absorption factor at range_max
   std::vector<double> bin_gain_;      ///< per bin: 10^((G + TVG(r_i)) / 10)
   std::vector<double> thresholds_;    ///< code k >= 1 from 10^((display_min + (k - 1/2) step) / 10) on
 };

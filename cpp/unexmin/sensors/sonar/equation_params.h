@@ -5,6 +5,9 @@
 #include <unexmin/sensors/sensor_params.h>
 #include <unexmin/sensors/sonar/echo_model.h>
 
+#include <cmath>
+#include <limits>
+
 namespace unexmin {
 namespace sonar {
 
@@ -20,6 +23,26 @@ inline void readEquationParams(sensors::SensorParams& p, EchoParams& e, double s
   e.tvg_spreading = p.number("tvg_spreading", 20.0, 0.0, 60.0, "dB per decade");
   e.display_min = p.number("display_min", 125.0, 0.0, 300.0, "dB re 1 uPa");
   e.display_span = p.number("display_span", 80.0, 1.0, 200.0, "dB");
+}
+
+/// The free surface as a reflector (surface multipath, docs/sonars.md): the extra levels X of its echoes.
+struct SurfaceParams
+{
+  bool multipath = true;       ///< rays that reach the surface echo there and are reflected
+  double ghost_extra = 0.0;    ///< 40 log10 |R|: a ghost's two reflections at the surface [dB] (-inf for R = 0)
+  double surface_extra = 0.0;  ///< surface_backscatter - backscatter_strength: the surface's own echo [dB]
+};
+
+/// Reads multipath (true), surface_reflection (|R|, amplitude, 0.9) and surface_backscatter (-30 dB) against the
+/// backscatter_strength already in `e`.
+inline SurfaceParams readSurfaceParams(sensors::SensorParams& p, const EchoParams& e)
+{
+  SurfaceParams s;
+  s.multipath = p.flag("multipath", true);
+  const double reflection = p.number("surface_reflection", 0.9, 0.0, 1.0, "(amplitude, -)");
+  s.ghost_extra = reflection > 0.0 ? 40.0 * std::log10(reflection) : -std::numeric_limits<double>::infinity();
+  s.surface_extra = p.number("surface_backscatter", -30.0, -100.0, 0.0, "dB") - e.backscatter_strength;
+  return s;
 }
 
 }  // namespace sonar

@@ -43,6 +43,13 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   e.nbins = 1;
   e.gain = p.number("gain", 0.5, 0.0, 1.0, "(0 low .. 1 high)");
   readEquationParams(p, e, 210.0);
+  reflector_ = readSurfaceParams(p, e);
+  // Detection: the receiver's noise in its band [dB re 1 uPa] (assumed: with the defaults a wall of
+  // backscatter_strength seen head-on is detected out to the datasheet's 150 m, EL = 82.8 dB there) and the
+  // signal-to-noise ratio of a detection [dB] (Albersheim's equation, one sample, Pd 0.5 at Pfa 1e-5: 10.4 dB).
+  detection_level_ = p.number("noise_level", 72.0, 0.0, 300.0, "dB re 1 uPa") +
+                     p.number("detection_threshold", 10.0, 0.0, 100.0, "dB");
+  detection_power_ = std::pow(10.0, detection_level_ / 10.0);
   p.finish();
   // Solid angle of one beam: its share of the fan's azimuth x elevation rectangle.
   e.beam_solid_angle = fov_h_ / beams_ * 2.0 * std::sin(fov_v_ / 2.0);
@@ -52,6 +59,7 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   for (int k = 0; k < beams_; ++k)
     for (int j = 0; j < rays_per_beam_; ++j) dirs_.push_back(rayDirection(k, j));
   rays_.resize(dirs_.size());
+  surface_.resize(dirs_.size());
 }
 
 Eigen::Vector3d M3Sensor::rayDirection(std::size_t k, int j) const
@@ -67,45 +75,115 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
 {
   const Eigen::Isometry3d sonar = ctx.state.pose * spec().pose;
   const Eigen::Matrix3d R = sonar.linear();
+  const Eigen::Vector3d origin = sonar.translation();
   const double surface_z = ctx.world.water().surface_z;
+  const bool multipath = reflector_.multipath && origin.z() < surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
     const Eigen::Vector3d d = (R * dirs_[i]).normalized();
-    rays_[i].origin = sonar.translation().cast<float>();
+    rays_[i].origin = origin.cast<float>();
     rays_[i].direction = d.cast<float>();
-    // Sound does not cross the free surface: a ray stops there (the surface's grazing echo is not a return;
-    // its reflection comes after the direct returns, so the first return keeps to the direct paths).
-    const double to_surface = d.z() > 1e-9 ? (surface_z - sonar.translation().z()) / d.z() : range_max_;
-    rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 0.0, range_max_));
+    // Sound does not cross the free surface: a ray stops there (its echo and reflection below, with multipath).
+    const double to_surface = d.z() > 1e-9 ? (surface_z - origin.z()) / d.z() : range_max_;
+    rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 1e-6, range_max_));
+    surface_[i] = multipath && d.z() > 1e-9 && to_surface < range_max_ ? to_surface : -1.0;
   }
-  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // only each beam's first return needs it
+  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // the incidence of the few echoes that need it
+
+  mirrored_.clear();
+  mirror_of_.clear();
+  first_.assign(beams_, Return());
+  for (int k = 0; k < beams_; ++k) directAndSurface(k, surface_z);
+  if (!mirrored_.empty()) {
+    castRays(ctx, mirrored_, mirror_hits_, raycast::Incidence::skip);
+    for (std::size_t m = 0; m < mirrored_.size(); ++m) {
+      if (!mirror_hits_[m].hit()) continue;
+      const std::size_t i = mirror_of_[m];
+      Return& best = first_[i / rays_per_beam_];
+      const double range = surface_[i] + mirror_hits_[m].range;  // unfolded: out and back the same way
+      if (range >= best.range) continue;
+      const double c = std::cos(static_cast<double>(raycast::RayCaster::incidence(mirrored_[m], mirror_hits_[m])));
+      const Echo ghost{range, c, reflector_.ghost_extra};
+      if (detected(ghost)) best = Return{range, ghost};
+    }
+  }
 
   M3Scan& out = last_;
   out.time = ctx.world.time();
   out.ranges.assign(beams_, kInf);
   out.intensities.assign(beams_, 0.0f);
   for (int k = 0; k < beams_; ++k) {
-    int first = -1;
-    for (int j = 0; j < rays_per_beam_; ++j) {
-      const std::size_t i = static_cast<std::size_t>(k) * rays_per_beam_ + j;
-      if (hits_[i].hit() && (first < 0 || hits_[i].range < hits_[static_cast<std::size_t>(k) * rays_per_beam_ + first].range))
-        first = j;
-    }
     // One draw per beam, return or not, so the stream does not depend on the geometry.
     const double n = range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0;
-    if (first < 0) continue;
-    const std::size_t i = static_cast<std::size_t>(k) * rays_per_beam_ + first;
-    const double r = std::round((hits_[i].range + n) / resolution_) * resolution_;
+    const Return& first = first_[k];
+    if (!std::isfinite(first.range)) continue;
+    const double r = std::round((first.range + n) / resolution_) * resolution_;
     if (r > range_max_) continue;  // +inf: no detection within range
     if (r < range_min_) {
       out.ranges[k] = -kInf;  // detected, but nearer than the blanking range
       continue;
     }
     out.ranges[k] = static_cast<float>(r);
-    // The return's level by the sonar equation, the beam's whole footprint at the return's incidence (computed
-    // for the first returns only: the cast skipped it).
-    const double c = std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])));
-    const Echo echo{hits_[i].range, c};
-    out.intensities[k] = static_cast<float>(static_cast<double>(echo_.echoCode(echo, 1)) / echo_.params().levels);
+    out.intensities[k] = static_cast<float>(static_cast<double>(echo_.echoCode(first.echo, 1)) / echo_.params().levels);
+  }
+}
+
+void M3Sensor::directAndSurface(int k, double surface_z)
+{
+  const std::size_t base = static_cast<std::size_t>(k) * rays_per_beam_;
+  const std::size_t end = base + rays_per_beam_;
+  Return& best = first_[k];
+  // The nearest direct hit is nearly always a detection: its incidence and level only, then.
+  std::size_t nearest = end;
+  bool surface = false;  // some ray meets the surface first
+  for (std::size_t i = base; i < end; ++i) {
+    if (hits_[i].hit()) {
+      if (nearest == end || hits_[i].range < hits_[nearest].range) nearest = i;
+    } else {
+      surface = surface || surface_[i] >= 0.0;
+    }
+  }
+  if (nearest != end) {
+    const auto direct = [&](std::size_t i) {
+      return Echo{hits_[i].range, std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[i], hits_[i])))};
+    };
+    const Echo echo = direct(nearest);
+    if (detected(echo)) {
+      best = Return{echo.range, echo};
+    } else {  // the others by range: the first detected one
+      order_.clear();
+      for (std::size_t i = base; i < end; ++i)
+        if (hits_[i].hit() && i != nearest) order_.push_back(i);
+      std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return hits_[a].range < hits_[b].range; });
+      for (const std::size_t i : order_) {
+        const Echo e = direct(i);
+        if (detected(e)) {
+          best = Return{e.range, e};
+          break;
+        }
+      }
+    }
+  }
+  if (!surface) return;
+  // The surface's own echo where a ray meets it first (its normal is the vertical: cos(incidence) = d_z).
+  for (std::size_t i = base; i < end; ++i) {
+    if (surface_[i] < 0.0 || hits_[i].hit() || surface_[i] >= best.range) continue;
+    const Echo echo{surface_[i], static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra};
+    if (detected(echo)) best = Return{surface_[i], echo};
+  }
+  // The reflected rays, only where a ghost could still be the first detection: the ray's surface echo is not
+  // one (else best.range <= its surface range) and nothing nearer is; cast no farther than the detection so far.
+  for (std::size_t i = base; i < end; ++i) {
+    const double s = surface_[i];
+    if (s < 0.0 || hits_[i].hit() || s >= best.range) continue;
+    const double reach = std::min(range_max_, best.range) - s;
+    if (reach <= 1e-6) continue;
+    raycast::Ray r = rays_[i];
+    r.origin = (rays_[i].origin.cast<double>() + s * rays_[i].direction.cast<double>()).cast<float>();
+    r.origin.z() = static_cast<float>(surface_z);
+    r.direction.z() = -r.direction.z();
+    r.max_range = static_cast<float>(reach);
+    mirrored_.push_back(r);
+    mirror_of_.push_back(i);
   }
 }
 

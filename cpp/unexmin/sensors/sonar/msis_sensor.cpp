@@ -28,16 +28,6 @@ Preset preset(const std::string& name)
   return {20.0, 200.0, 0.5, true};                              // none: a medium range, medium gain
 }
 
-bool parseBool(sensors::SensorParams& p, const std::string& key, bool fallback)
-{
-  // xacro writes a Python bool as True/False.
-  const std::string v = p.text(key, fallback ? "true" : "false", {"true", "false", "True", "False", "1", "0"});
-  return v == "true" || v == "True" || v == "1";
-}
-
-/// A draw of the unit-mean exponential distribution: the power of a Rayleigh amplitude.
-double exponential(sensors::Random& random) { return -std::log1p(-random.uniform()); }
-
 double wrap(double a)
 {
   a = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
@@ -89,7 +79,7 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   step_ = *match * kDeg;
   left_ = p.number("sector_left", -M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
   right_ = p.number("sector_right", M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
-  continuous_ = parseBool(p, "continuous", pre.continuous);
+  continuous_ = p.flag("continuous", pre.continuous);
   if (!continuous_ && std::abs(right_ - left_) < step_ - 1e-9)
     p.fail("sector_right", formatNumber(right_), "at least one step (" + formatNumber(step_) +
                                                        " rad) away from sector_left for a sector scan");
@@ -116,16 +106,13 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
   salt_pepper_ = p.number("salt_pepper", 0.0, 0.0, 1.0, "(probability per bin)");
   salt_level_ = p.number("salt_level", 10.0, 0.0, 100.0, "dB above the noise level");
-  speckle_ = parseBool(p, "speckle", false);
-  noise_floor_ = parseBool(p, "noise_floor", false);
+  speckle_ = p.flag("speckle", false);
+  noise_floor_ = p.flag("noise_floor", false);
   noise_power_ = std::pow(10.0, p.number("noise_level", 117.0, 0.0, 300.0, "dB re 1 uPa") / 10.0);
-  multipath_ = parseBool(p, "multipath", true);
-  const double reflection = p.number("surface_reflection", 0.9, 0.0, 1.0, "(amplitude, -)");
-  ghost_extra_ = reflection > 0.0 ? 40.0 * std::log10(reflection) : -std::numeric_limits<double>::infinity();
-  surface_extra_ = p.number("surface_backscatter", -30.0, -100.0, 0.0, "dB") - e.backscatter_strength;
-  shadow_ = parseBool(p, "shadow", false);
+  reflector_ = readSurfaceParams(p, e);
+  shadow_ = p.flag("shadow", false);
   shadow_threshold_ = p.number("shadow_threshold", 0.6, 0.0, 1.0, "(intensity)");
-  artifacts_ = parseBool(p, "artifacts", false);
+  artifacts_ = p.flag("artifacts", false);
   artifacts_gap_ = p.number("artifacts_gap", 0.5, 0.0, 1000.0, "m");
   if (!noise) {
     range_noise_ = salt_pepper_ = 0.0;
@@ -214,7 +201,7 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
     rays_[i].max_range = static_cast<float>(e.range_max);
     // A ray that reaches the free surface within range stops there (the surface echo, and its reflection).
     surface_[i] = -1.0;
-    if (multipath_ && submerged && d.z() > 1e-9) {
+    if (reflector_.multipath && submerged && d.z() > 1e-9) {
       const double s = (surface_z - origin.z()) / d.z();
       if (s < e.range_max) {
         surface_[i] = s;
@@ -258,12 +245,12 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
       }
       if (surface_[i] < 0.0) continue;
       // The surface's own backscatter at its incidence (the vertical is its normal)...
-      echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), surface_extra_}, n, energy_);
+      echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra}, n, energy_);
       // ...and the ghost: the echo of what the reflected ray meets, back the same way (two reflections).
       const long g = ghost_[i];
       if (g >= 0 && mirror_hits_[g].hit()) {
         const double cos_incidence = std::cos(static_cast<double>(mirror_hits_[g].incidence));
-        echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, ghost_extra_}, n, energy_);
+        echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, reflector_.ghost_extra}, n, energy_);
       }
     }
     if (artifacts_) echo_.spread(column_, n, artifacts_gap_, energy_);

@@ -30,6 +30,7 @@
 
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/sonar/echo_model.h>
+#include <unexmin/sensors/sonar/equation_params.h>
 
 #include <Eigen/Geometry>
 
@@ -103,11 +104,10 @@ private:
   bool continuous_ = true;
   int hpr_ = 1, vpr_ = 1;
   double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
-  bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false, multipath_ = true;
+  bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false;
   double salt_level_ = 10.0;      ///< [dB] above the noise level: the highest spike
   double noise_power_ = 0.0;      ///< 10^(noise_level / 10) [uPa^2]
-  double ghost_extra_ = 0.0;      ///< 40 log10 |R|: two surface reflections [dB]
-  double surface_extra_ = 0.0;    ///< surface backscatter - backscatter_strength [dB]
+  SurfaceParams reflector_;       ///< the free surface: multipath on/off, its echoes' extra levels
   int shadow_code_ = 1;           ///< least code of a shadowing echo
   std::vector<double> noise_visible_;  ///< per bin: uniform draw from which the noise floor alone shows
   double threshold_low_ = 0.05, threshold_medium_ = 0.25, threshold_high_ = 0.6;
