@@ -2,7 +2,7 @@
 the parameters the bag cannot identify (flat directions), which keep their nominal value.
 
 1. Weights: each of the six equations is divided by a robust scale of its residual (1.4826 x the
-   median absolute deviation) at the nominal parameters, then after a first fit (so forces [N] and
+   median absolute deviation, at least a third of the RMS) at the nominal parameters, then after a first fit (so forces [N] and
    moments [N m] count alike); the loss is soft_l1 with f_scale 3, so a few samples far off the model
    (a contact with a wall or the anchor, a navigation jump) do not drag the fit.
 2. Uncertainty: covariance s^2 (J^T J)^-1 of the weighted problem, s^2 the residual variance per
@@ -13,8 +13,10 @@ the parameters the bag cannot identify (flat directions), which keep their nomin
    is repeated until every free parameter meets its tolerance.
 """
 
+from types import SimpleNamespace
+
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, lsq_linear
 
 from unexmin.identify.model import DOF, INDEX, PARAMS, EquationError
 
@@ -62,8 +64,13 @@ F_SCALE = 3.0  # soft_l1 loss: weighted residuals beyond ~3 robust sigmas (a bum
 
 
 def _robust_scale(r):
-    """Per-column 1.4826 x median absolute deviation of residual rows (a robust standard deviation)."""
-    return np.maximum(1.4826 * np.median(np.abs(r - np.median(r, axis=0)), axis=0), 1e-9)
+    """Per-column 1.4826 x median absolute deviation of residual rows (a robust standard deviation), at
+    least a third of the RMS: a robot at rest for most of a bag has a near-zero median residual in
+    the degrees of freedom that only move now and then (roll and pitch: the pendulum step), and a
+    scale from the quiet samples alone would make every sample of the step an outlier of the robust
+    loss, leaving the centre of gravity's height without support."""
+    mad = 1.4826 * np.median(np.abs(r - np.median(r, axis=0)), axis=0)
+    return np.maximum(np.maximum(mad, np.sqrt(np.mean(r ** 2, axis=0)) / 3.0), 1e-9)
 
 
 def _solve(problem, x0, free, weights, max_nfev=200, loss="soft_l1"):
@@ -74,10 +81,14 @@ def _solve(problem, x0, free, weights, max_nfev=200, loss="soft_l1"):
         return A_free @ xf + (fixed_part * weights).ravel()
 
     lb, ub = LOWER[free], np.full(free.sum(), np.inf)
-    start = np.clip(x0[free], lb + 1e-12, ub)
-    # the plain least-squares solution first (the problem is linear), then the robust loss from there
-    sol = least_squares(fun, start, jac=lambda xf: A_free, bounds=(lb, ub), x_scale="jac", max_nfev=max_nfev,
-                        method="trf")
+    # the plain least-squares solution first, exactly (the problem is linear: bounded-variable least
+    # squares; an iterative trust-region solve can stop far from it on this badly scaled problem),
+    # then the robust loss from there
+    b = -(fixed_part * weights).ravel()
+    norms = np.maximum(np.linalg.norm(A_free, axis=0), 1e-300)
+    lin = lsq_linear(A_free / norms, b, bounds=(lb * norms, ub), method="bvls")
+    x_lin = np.clip(lin.x / norms, lb, ub)
+    sol = SimpleNamespace(x=x_lin, fun=fun(x_lin))
     if loss != "linear":
         sol = least_squares(fun, np.clip(sol.x, lb + 1e-12, ub), jac=lambda xf: A_free, bounds=(lb, ub),
                             x_scale="jac", max_nfev=max_nfev, method="trf", loss=loss, f_scale=F_SCALE)
