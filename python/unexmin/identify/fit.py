@@ -60,6 +60,7 @@ class Fit:
         self.problem = problem
 
 
+SCALE_FLOOR_RATIO = 0.01  # smallest residual scale of a degree of freedom, relative to its siblings' largest
 F_SCALE = 3.0  # soft_l1 loss: weighted residuals beyond ~3 robust sigmas (a bump, a contact) count less
 
 
@@ -70,7 +71,14 @@ def _robust_scale(r):
     scale from the quiet samples alone would make every sample of the step an outlier of the robust
     loss, leaving the centre of gravity's height without support."""
     mad = 1.4826 * np.median(np.abs(r - np.median(r, axis=0)), axis=0)
-    return np.maximum(np.maximum(mad, np.sqrt(np.mean(r ** 2, axis=0)) / 3.0), 1e-9)
+    scale = np.maximum(mad, np.sqrt(np.mean(r ** 2, axis=0)) / 3.0)
+    # a degree of freedom the mission never moves (the roll of a robot with its centre of gravity on
+    # the axis) has a residual of rounding size: its weight is capped at SCALE_FLOOR_RATIO^-1 times that
+    # of the best-fitting sibling (forces among forces, moments among moments), so that its rows do
+    # not make the parameters of that degree of freedom look exactly known
+    for rows in (slice(0, 3), slice(3, 6)):
+        scale[rows] = np.maximum(scale[rows], SCALE_FLOOR_RATIO * scale[rows].max())
+    return np.maximum(scale, 1e-12)
 
 
 def _solve(problem, x0, free, weights, max_nfev=200, loss="soft_l1"):
@@ -105,7 +113,18 @@ def _sigma(sol, A_free, window):
     J = A_free[inlier]
     dof = max(1, int(inlier.sum()) - A_free.shape[1])
     s2 = float(r[inlier] @ r[inlier]) / dof * window
-    return np.sqrt(np.clip(np.diag(np.linalg.pinv(J.T @ J)) * s2, 0.0, None))
+    return np.sqrt(np.clip(np.diag(_inverse(J.T @ J)) * s2, 0.0, None))
+
+
+def _inverse(info, condition=1e12):
+    """Inverse of the information matrix J^T J, computed on its unit-diagonal form (the columns differ
+    by orders of magnitude: N/(N s^2/m^2) beside N/m) with the eigenvalues floored at 1/condition of
+    the largest. A direction the data do not see gets a huge variance, never zero: np.linalg.pinv
+    would drop it and report the parameters along it as exactly known."""
+    d = 1.0 / np.sqrt(np.maximum(np.diag(info), 1e-300))
+    lam, V = np.linalg.eigh(info * d[:, None] * d[None, :])
+    lam = np.maximum(lam, lam.max() / condition)
+    return (V / lam) @ V.T * d[:, None] * d[None, :]
 
 
 def identify(signals, physics, nominal, fixed=(), progress=None):
