@@ -124,6 +124,7 @@ ROBOTS = {
     "cog_xy_2cm": (0.1, (0.01414, 0.01414, 0.0), 1.0, 1.2, 1.2, 3, (-1.7, -0.85, -1.0)),
     "cog_up_2cm": (-0.1, (0.0, 0.0, 0.02), 2.0, 0.8, 0.8, 4, (-1.7, -0.85, -1.0)),
     "cog_down_2cm": (0.05, (0.0, -0.02, -0.02), 0.5, 1.0, 1.2, 5, (-1.7, -1.35, -1.3)),
+    "cog_forward_2cm": (-0.05, (0.02, 0.0, 0.0), 1.5, 0.9, 1.0, 6, (-1.7, -1.35, -1.0)),
 }
 NOMINAL_COG_BASE = (0.0, 0.0, -0.02)   # urdf/properties.xacro cog_x, cog_y, cog_z
 
@@ -209,6 +210,12 @@ def check_identified(data, truth_physics):
 @pytest.mark.parametrize("name", sorted(ROBOTS))
 def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
     bag, overrides = make_bag(bag_dir, name)
+    # the robot stayed in open water (the model has no contacts): 5 cm between the hull and the tank's
+    # walls (x +-3 m, y +-2 m), floor (z = -3 m) and the free surface
+    nav = read_bag(bag).nav
+    clear = 0.3 + 0.05
+    assert np.all(np.abs(nav[:, 1]) <= 3.0 - clear) and np.all(np.abs(nav[:, 2]) <= 2.0 - clear)
+    assert np.all(nav[:, 3] >= -3.0 + clear) and np.all(nav[:, 3] <= -clear)
     data = identify_bag(bag, tmp_path / "out", progress=False)
     check_identified(data, description.load(overrides=overrides))
     # what the mission cannot excite is reported, not guessed: the rotational linear damping (no slow
