@@ -169,10 +169,8 @@ def make_bag(bag_dir, name):
     return bag, overrides
 
 
-def check_identified(data, truth_physics):
-    """Every identified parameter within 10 % of the truth, or the near-zero bounds of the issue."""
-    truth = model.nominal_vector(truth_physics)
-    skip = set(data["unidentifiable"]) | set(data["fixed"])
+def got_values(data):
+    """{parameter name: identified value} of an identified.yaml dict."""
     got = {"buoyancy_kg": data["buoyancy_kg"]["value"], "added_mass": data["added_mass"]["value"],
            "thrust_gain_horizontal": data["thrust_gain"]["value"]["horizontal"],
            "thrust_gain_vertical": data["thrust_gain"]["value"]["vertical"]}
@@ -183,24 +181,37 @@ def check_identified(data, truth_physics):
         got[f"damping_quadratic_{d}"] = data["damping_quadratic"]["value"][i]
     for i, d in enumerate(DOF[3:]):
         got[f"added_inertia_{d}"] = data["added_inertia"]["value"][i]
+    return got
+
+
+def bound_of(name, truth, truth_physics, data):
+    """Accepted error of a parameter: 10 % of the truth, or the issue's near-zero bounds."""
+    want = truth[INDEX[name]]
+    if name == "buoyancy_kg":
+        return max(0.1 * abs(want), 0.02)
+    if name.startswith("cog_"):
+        return max(0.1 * abs(want), 0.002)
+    if name.startswith("added_inertia"):
+        return 0.1 * (truth_physics.inertia[DOF.index(name.split("_")[-1]) - 3] + want)
+    if name.startswith("damping_linear"):
+        # near zero (Stokes drag): 10 % of the damping force at the mission's RMS speed
+        d = name.split("_")[-1]
+        return max(0.1 * want, 0.1 * truth[INDEX[f"damping_quadratic_{d}"]] * data["fit"]["rms_speed"][d])
+    return 0.1 * abs(want)
+
+
+def check_identified(data, truth_physics):
+    """Every identified parameter within 10 % of the truth, or the near-zero bounds of the issue."""
+    truth = model.nominal_vector(truth_physics)
+    skip = set(data["unidentifiable"]) | set(data["fixed"])
+    got = got_values(data)
     errors = []
     for name in PARAMS:
         want, have = truth[INDEX[name]], got[name]
         if name in skip:
             assert have == pytest.approx(data["nominal"][name]), f"{name} is reported flat but not nominal"
             continue
-        if name == "buoyancy_kg":
-            bound = max(0.1 * abs(want), 0.02)
-        elif name.startswith("cog_"):
-            bound = max(0.1 * abs(want), 0.002)
-        elif name.startswith("added_inertia"):
-            bound = 0.1 * (truth_physics.inertia[DOF.index(name.split("_")[-1]) - 3] + want)
-        elif name.startswith("damping_linear"):
-            # near zero (Stokes drag): 10 % of the damping force at the mission's RMS speed
-            d = name.split("_")[-1]
-            bound = max(0.1 * want, 0.1 * truth[INDEX[f"damping_quadratic_{d}"]] * data["fit"]["rms_speed"][d])
-        else:
-            bound = 0.1 * abs(want)
+        bound = bound_of(name, truth, truth_physics, data)
         if not abs(have - want) <= bound:
             errors.append(f"{name}: identified {have:.6g}, truth {want:.6g}, bound {bound:.3g}")
     assert not errors, "\n".join(errors)

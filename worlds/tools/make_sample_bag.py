@@ -24,7 +24,7 @@ Topics (bag time = simulation time [s]; MotorCommand header stamps = bag time):
     /UX_1/odom           nav_msgs/Odometry      10 Hz, "navigation" (perturbed robot's ground truth)
   with --sensors, the robot's navigation sensors as the simulator publishes them (their noise:
   docs/sensors.md), for dead reckoning (python -m unexmin.identify --nav dead-reckoning):
-    /UX_1/imu            sensor_msgs/Imu        every --imu-every-th sample of the 500 Hz IMU (default 5: 100 Hz)
+    /UX_1/imu            sensor_msgs/Imu        every --imu-every-th sample of the 500 Hz IMU (default 10: 50 Hz)
     /UX_1/dvl_twist      geometry_msgs/TwistWithCovarianceStamped  8 Hz, DVL frame, with bottom lock
     /UX_1/pressure       sensor_msgs/FluidPressure                 10 Hz [Pa]
 
@@ -110,7 +110,7 @@ SENSOR_TOPICS = ("imu", "dvl_twist", "pressure")   # under /UX_1/, recorded with
 
 
 def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_trim=0.0, spawn_xyz=None,
-           sensors=False, imu_every=5, level=False):
+           sensors=False, imu_every=10, level=False):
     """Run the mission and write the bag `out` (the robot: perturbed, nominal, or ux1.urdf.xacro with
     the xacro file `overrides`); with `sensors`, the IMU (every imu_every-th sample), DVL twist and
     pressure messages too; with `level` (and `overrides`), the mission's forces in the level frame of
@@ -195,8 +195,8 @@ def main(argv=None):
                     help="[m] spawn position of UX_1 with --overrides (default the world's: -1.7 -0.85 -1)")
     ap.add_argument("--sensors", action="store_true", help="record the IMU, DVL and pressure sensors too "
                     "(/UX_1/imu, /UX_1/dvl_twist, /UX_1/pressure), for dead reckoning")
-    ap.add_argument("--imu-every", type=int, default=5, help="with --sensors: keep every n-th IMU sample of the "
-                    "500 Hz stream (default 5: 100 Hz)")
+    ap.add_argument("--imu-every", type=int, default=10, help="with --sensors: keep every n-th IMU sample of the "
+                    "500 Hz stream (default 10: 50 Hz, which keeps the sample bag under 2 MB)")
     ap.add_argument("--level", action="store_true", help="with --overrides: the mission's forces in the level "
                     "frame of the robot's rest attitude (attitude-compensated teleop), so a tilted robot runs level")
     args = ap.parse_args(argv)
