@@ -44,7 +44,8 @@ def main(argv=None):
               "Dq trans": [f"damping_quadratic_{d}" for d in DOF[:3]],
               "Dq rot": [f"damping_quadratic_{d}" for d in DOF[3:]],
               "D lin": [f"damping_linear_{d}" for d in DOF], "added I": [f"added_inertia_{d}" for d in DOF[3:]]}
-    print(f"{'robot':<16}{'record[s]':>10}{'identify[s]':>12}" + "".join(f"{g:>10}" for g in groups) + "  not identified")
+    print(f"{'robot':<16}{'record[s]':>10}{'identify[s]':>12}" + "".join(f"{g:>10}" for g in groups)
+          + "  not identified")
     for name in names:
         w0 = time.monotonic()
         bag, overrides = t.make_bag(out, name)

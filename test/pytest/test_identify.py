@@ -371,10 +371,18 @@ def test_dead_reckoning_navigation_degrades_gracefully(tmp_path):
     assert got["thrust_gain_horizontal"] == pytest.approx(1.0, abs=0.03)
 
 
-def test_bad_input_is_one_error_line(tmp_path):
+def test_bad_input_is_one_error_line(tmp_path, bag_dir):
     out = run(["-m", "unexmin.identify", tmp_path / "missing.bag", "--out", tmp_path / "o", "--quiet"], tmp_path)
     assert out.returncode == 2
     assert out.stderr.strip().startswith("identify: error:") and len(out.stderr.strip().splitlines()) == 1
     out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--fix", "nonsense", "--quiet"],
               tmp_path)
     assert out.returncode == 2 and "--fix nonsense" in out.stderr
+    out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--nav", "dead-reckoning",
+               "--depth-time-constant", "0", "--quiet"], tmp_path)
+    assert out.returncode == 2 and "--depth-time-constant 0" in out.stderr
+    # dead reckoning from a bag without the navigation sensors (recorded without --sensors)
+    bag, _ = make_bag(bag_dir, "cog_up_2cm")
+    out = run(["-m", "unexmin.identify", bag, "--out", tmp_path / "o", "--nav", "dead-reckoning", "--quiet"], tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1
+    assert "no imu topic (sensor_msgs/msg/Imu) in the bag" in out.stderr

@@ -128,7 +128,8 @@ def test_sample_bag_contents():
     assert types["/UX_1/imu"] == "sensor_msgs/msg/Imu"
     assert types["/UX_1/dvl_twist"] == "geometry_msgs/msg/TwistWithCovarianceStamped"
     assert types["/UX_1/pressure"] == "sensor_msgs/msg/FluidPressure"
-    counts = Counter(topic for topic, *_ in read_messages(SAMPLE_BAG, {"/UX_1/imu", "/UX_1/dvl_twist", "/UX_1/pressure"}))
+    sensors = {"/UX_1/imu", "/UX_1/dvl_twist", "/UX_1/pressure"}
+    counts = Counter(topic for topic, *_ in read_messages(SAMPLE_BAG, sensors))
     assert counts == {"/UX_1/imu": 2101, "/UX_1/dvl_twist": 336, "/UX_1/pressure": 420}
 
 

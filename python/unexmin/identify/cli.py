@@ -120,10 +120,12 @@ def dead_reckoning_nav(bag, mission, robot, overrides, water_density, surface_z,
     o = dict(DR_DEFAULTS, **(options or {}))
     try:
         types = topic_types(bag)
-        topics = {role: pick_topic(types, o[f"{role}_topic"] or (f"/{robot}/{default}" if f"/{robot}/{default}" in types
-                                                                  else None), (kind,), f"{role} topic", True)
-                  for role, default, kind in (("imu", "imu", dr.IMU_TYPE), ("dvl", "dvl_twist", dr.DVL_TYPE),
-                                              ("pressure", "pressure", dr.PRESSURE_TYPE))}
+        topics = {}
+        for role, default, kind in (("imu", "imu", dr.IMU_TYPE), ("dvl", "dvl_twist", dr.DVL_TYPE),
+                                    ("pressure", "pressure", dr.PRESSURE_TYPE)):
+            # the given topic, else /<robot>/<default>, else the bag's only topic of that type
+            wanted = o[f"{role}_topic"] or (f"/{robot}/{default}" if f"/{robot}/{default}" in types else None)
+            topics[role] = pick_topic(types, wanted, (kind,), f"{role} topic", True)
         messages = read_messages(bag, set(topics.values()))
     except BagError as e:
         raise ReplayError(str(e)) from None

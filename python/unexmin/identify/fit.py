@@ -2,10 +2,13 @@
 the parameters the bag cannot identify (flat directions), which keep their nominal value.
 
 1. Weights: each of the six equations is divided by a robust scale of its residual (1.4826 x the
-   median absolute deviation, at least a third of the RMS) at the nominal parameters, then after a first fit (so forces [N] and
-   moments [N m] count alike); the loss is soft_l1 with f_scale 3, so a few samples far off the model
-   (a contact with a wall or the anchor, a navigation jump) do not drag the fit.
-2. Uncertainty: covariance s^2 (J^T J)^-1 of the weighted problem, s^2 the residual variance per
+   median absolute deviation, at least a third of the RMS, at most 100 x the weight of a sibling) at
+   the nominal parameters, then after a first fit (so forces [N] and moments [N m] count alike).
+   The linear least-squares solution is computed exactly (lsq_linear, bvls), then the soft_l1 loss
+   with f_scale 3 is minimised from it, so a few samples far off the model (a contact with a wall or
+   the anchor, a navigation jump) do not drag the fit.
+2. Uncertainty: covariance s^2 (J^T J)^-1 of the weighted problem (inverted on its unit-diagonal form
+   with floored eigenvalues, _inverse), s^2 the residual variance per
    degree of freedom; the residuals of neighbouring samples are correlated by the Savitzky-Golay
    window, so s^2 is multiplied by the window's length in samples (one independent sample per window).
 3. Flat directions: a parameter whose 1-sigma exceeds its tolerance (TOLERANCE below: half of the
