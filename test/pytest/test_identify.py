@@ -236,10 +236,12 @@ def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
     assert "damping_linear_roll" in data["unidentifiable"]
     if ROBOTS[name][1][:2] == (0.0, 0.0):
         assert "damping_quadratic_roll" in data["unidentifiable"]
-    # the runs forward and sideways are identified (heave and yaw may be flat: a tilted robot bumps
-    # the anchor while diving, and the soft_l1 loss only down-weights those samples)
-    for d in ("surge", "sway"):
+    # what the mission does excite is identified: the runs forward, sideways and down, the turn and the
+    # pendulum's pitch swing, the buoyancy, the centre of gravity and both gains
+    for d in ("surge", "sway", "heave", "pitch", "yaw"):
         assert f"damping_quadratic_{d}" not in data["unidentifiable"]
+    assert not {"buoyancy_kg", "cog_x", "cog_y", "cog_z", "thrust_gain_horizontal",
+                "thrust_gain_vertical"} & set(data["unidentifiable"])
     written = yaml.safe_load((tmp_path / "out" / "identified.yaml").read_text())
     assert written["buoyancy_kg"]["value"] == pytest.approx(data["buoyancy_kg"]["value"])
     assert {"value", "sigma"} <= set(written["cog_m"]) and len(written["damping_quadratic"]["value"]) == 6
