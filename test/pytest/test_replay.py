@@ -118,6 +118,19 @@ def test_sample_bag_contents():
     assert math.degrees(m.nav[0, 5]) == pytest.approx(14.0, abs=0.2)
     assert [v for _, v in m.pendulum] == pytest.approx([0.0, math.radians(10), 0.0])
     assert [v for _, v in m.vbs] == pytest.approx([0.0, 0.02])
+    # the navigation sensors for dead reckoning (make_sample_bag.py --sensors): IMU at 50 Hz, DVL at 8 Hz,
+    # pressure at 10 Hz over the 42 s
+    from collections import Counter
+
+    from unexmin.bag import read_messages, topic_types
+
+    types = topic_types(SAMPLE_BAG)
+    assert types["/UX_1/imu"] == "sensor_msgs/msg/Imu"
+    assert types["/UX_1/dvl_twist"] == "geometry_msgs/msg/TwistWithCovarianceStamped"
+    assert types["/UX_1/pressure"] == "sensor_msgs/msg/FluidPressure"
+    sensors = {"/UX_1/imu", "/UX_1/dvl_twist", "/UX_1/pressure"}
+    counts = Counter(topic for topic, *_ in read_messages(SAMPLE_BAG, sensors))
+    assert counts == {"/UX_1/imu": 2101, "/UX_1/dvl_twist": 336, "/UX_1/pressure": 420}
 
 
 def test_mission_events_order():

@@ -369,7 +369,14 @@ def test_hydrodynamic_defaults_match_sphere_formulas():
     assert np.allclose(lin[3:], 8 * math.pi * MU * R_HULL ** 3, rtol=1e-12)
     assert np.allclose(quad[:3], 0.5 * RHO * CD_SPHERE * math.pi * R_HULL ** 2, rtol=1e-12)
     assert quad[0] == pytest.approx(66.44, abs=0.01)
-    assert np.allclose(quad[3:], 8 * 0.5 * RHO * 1.0 * 0.005 * R_HULL ** 3, rtol=1e-12)
+    # rotational: the protrusions' drag 1/2 rho Cd A r^3, itemised (docs/identification.md, "The default
+    # rotational damping"): (count, Cd, area [m^2], arm [m])
+    items = [(4, 1.0, math.pi * 0.035 ** 2, R_HULL), (4, 1.0, 0.07 * 0.08, R_HULL / math.sqrt(2.0)),
+             (4, 1.0, 0.05 * 0.04, 0.32), (4, 1.0, 0.04 * 0.04, 0.32), (1, 1.05, 0.15 * 0.10, R_HULL),
+             (1, 1.0, 0.0034, 0.13)]
+    rotational = sum(n * 0.5 * RHO * cd * a * r ** 3 for n, cd, a, r in items)
+    assert np.allclose(quad[3:], rotational, rtol=1e-12)
+    assert rotational == pytest.approx(0.767, abs=0.001)
     # Terminal speed at full forward thrust lies in a sane range for a 0.6 m sphere.
     thrust_max = float(hydro(robot).find("thruster/thrust").get("max"))
     _, d = thruster_geometry(robot, "UX_1")

@@ -74,7 +74,11 @@ class TankThrust(unittest.TestCase):
         moment = scale * np.abs(A_N).sum() * 0.3
         rho, radius = 1000.0, 0.3
         inertia = 0.4 * rho * 4.0 / 3.0 * math.pi * radius ** 3 * radius ** 2  # solid sphere, no added inertia
-        k_quad = 8 * 0.5 * rho * 1.0 * 0.005 * radius ** 3
+        # the protrusions' drag 1/2 rho Cd A r^3, itemised (docs/identification.md): (count, Cd, A [m^2], r [m])
+        items = [(4, 1.0, math.pi * 0.035 ** 2, radius), (4, 1.0, 0.07 * 0.08, radius / math.sqrt(2.0)),
+                 (4, 1.0, 0.05 * 0.04, 0.32), (4, 1.0, 0.04 * 0.04, 0.32), (1, 1.05, 0.15 * 0.10, radius),
+                 (1, 1.0, 0.0034, 0.13)]
+        k_quad = sum(n * 0.5 * rho * cd * a * r ** 3 for n, cd, a, r in items)
         k_lin = 8.0 * math.pi * 1.0e-3 * radius ** 3
         t = seconds - 1.0 / self.sim.physics_rate
         expected_angle = surge_1d(moment, t, inertia, k_quad, k_lin, tau=0.1)

@@ -104,11 +104,51 @@ def overrides_xacro(fit, physics, water_density):
 """
 
 
+NAV_SOURCES = ("odometry", "dead-reckoning")
+DR_DEFAULTS = {"imu_topic": None, "dvl_topic": None, "pressure_topic": None, "gravity": 9.81,
+               "atmospheric_pressure": 101325.0, "depth_time_constant": 10.0, "level_time": 1.0, "period": 0.1}
+
+
+def dead_reckoning_nav(bag, mission, robot, overrides, water_density, surface_z, options=None):
+    """Navigation rows (t, x, y, z, roll, pitch, yaw) of the bag's IMU, DVL and pressure messages by dead
+    reckoning (unexmin.identify.dead_reckoning) on a uniform grid of options['period'] [s]."""
+    from unexmin.bag import BagError, read_messages, topic_types
+    from unexmin.identify import dead_reckoning as dr
+    from unexmin.identify import description
+    from unexmin.replay.bag_io import pick_topic
+
+    o = dict(DR_DEFAULTS, **(options or {}))
+    try:
+        types = topic_types(bag)
+        topics = {}
+        for role, default, kind in (("imu", "imu", dr.IMU_TYPE), ("dvl", "dvl_twist", dr.DVL_TYPE),
+                                    ("pressure", "pressure", dr.PRESSURE_TYPE)):
+            # the given topic, else /<robot>/<default>, else the bag's only topic of that type
+            wanted = o[f"{role}_topic"] or (f"/{robot}/{default}" if f"/{robot}/{default}" in types else None)
+            topics[role] = pick_topic(types, wanted, (kind,), f"{role} topic", True)
+        messages = read_messages(bag, set(topics.values()))
+    except BagError as e:
+        raise ReplayError(str(e)) from None
+    imu, dvl, prs = dr.sensor_arrays(messages, topics["imu"], topics["dvl"], topics["pressure"], mission.t0)
+    try:
+        mounts = dr.mounts_from_urdf(description.expand(name=robot, overrides=overrides), robot)
+        t_end = min(imu[-1, 0], mission.duration) if len(imu) else 0.0
+        grid = np.arange(max(0.0, imu[0, 0] if len(imu) else 0.0), t_end + 1e-9, o["period"])
+        nav = dr.dead_reckon(imu, dvl, prs, mounts, grid, water_density, o["gravity"], o["atmospheric_pressure"],
+                             surface_z, o["level_time"], depth_time_constant=o["depth_time_constant"])
+    except (ValueError, description.DescriptionError) as e:
+        raise ReplayError(f"{bag}: {e}") from None
+    mission.topics.update({f"dead_reckoning_{k}": v for k, v in topics.items()})
+    return nav
+
+
 def identify_bag(bag, out_dir, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum_topic=None, vbs_topic=None,
                  nav_topic=None, window_s=0.7, water_density=1000.0, surface_z=0.0, fixed=DEFAULT_FIXED,
-                 overrides=None, progress=True, mission=None):
+                 overrides=None, progress=True, mission=None, nav_source="odometry", dead_reckoning=None):
     """Identify from `bag` (or an already read `mission`) and write identified.yaml,
-    identified_overrides.xacro and report.md (+ plots) into out_dir. Returns the identified.yaml dict."""
+    identified_overrides.xacro and report.md (+ plots) into out_dir. Returns the identified.yaml dict.
+    nav_source: "odometry" (the bag's navigation topic) or "dead-reckoning" (its IMU, DVL and pressure
+    messages; `dead_reckoning`: options of DR_DEFAULTS)."""
     from unexmin.identify import description, fit, model, report
 
     out_dir = Path(out_dir)
@@ -116,6 +156,10 @@ def identify_bag(bag, out_dir, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum
     wall0 = time.monotonic()
     if mission is None:
         mission = read_bag(bag, robot, motors_topic, pendulum_topic, vbs_topic, nav_topic)
+    if nav_source not in NAV_SOURCES:
+        raise ReplayError(f"--nav {nav_source}: expected one of {', '.join(NAV_SOURCES)}")
+    if nav_source == "dead-reckoning":
+        mission.nav = dead_reckoning_nav(bag, mission, robot, overrides, water_density, surface_z, dead_reckoning)
     if mission.nav is None:
         raise ReplayError(f"{bag}: no navigation in the bag (nav_msgs/Odometry or a pose topic): nothing to fit")
     for name in fixed:
@@ -143,6 +187,8 @@ def identify_bag(bag, out_dir, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum
         bar.close()
     data = results(result, nominal, physics, signals, bag, robot, fixed)
     data["fit"]["wall_time_s"] = round(time.monotonic() - wall0, 2)
+    data["fit"]["navigation"] = {"source": nav_source, "topics": {k: v for k, v in mission.topics.items()
+                                                                  if k == "nav" or k.startswith("dead_reckoning")}}
     with open(out_dir / "identified.yaml", "w") as f:
         yaml.safe_dump(data, f, sort_keys=False, default_flow_style=None)
     (out_dir / "identified_overrides.xacro").write_text(overrides_xacro(result, physics, water_density))
@@ -183,6 +229,19 @@ def main(argv=None):
     ap.add_argument("--pendulum-topic", help="Float64 pendulum command topic (default /<robot>/pendulum if present)")
     ap.add_argument("--vbs-topic", help="Float64 VBS command topic (default /<robot>/vbs if present)")
     ap.add_argument("--nav-topic", help="navigation topic (default /<robot>/odom, else the only Odometry/Pose one)")
+    ap.add_argument("--nav", choices=NAV_SOURCES, default="odometry", help="navigation: the bag's odometry/pose "
+                    "topic (default), or dead reckoning from its IMU, DVL and pressure messages")
+    ap.add_argument("--imu-topic", help="sensor_msgs/Imu topic for --nav dead-reckoning (default /<robot>/imu)")
+    ap.add_argument("--dvl-topic", help="geometry_msgs/TwistWithCovarianceStamped DVL topic, DVL frame "
+                    "(default /<robot>/dvl_twist)")
+    ap.add_argument("--pressure-topic", help="sensor_msgs/FluidPressure topic (default /<robot>/pressure)")
+    ap.add_argument("--gravity", type=float, default=9.81, help="[m/s^2] for the depth from pressure (default 9.81)")
+    ap.add_argument("--atmospheric-pressure", type=float, default=101325.0,
+                    help="[Pa] at the free surface, for the depth from pressure (default 101325)")
+    ap.add_argument("--depth-time-constant", type=float, default=10.0, help="[s] of the complementary filter of "
+                    "pressure depth and DVL heave (default 10)")
+    ap.add_argument("--level-time", type=float, default=1.0, help="[s] at the start of the bag the robot is at rest: "
+                    "the initial roll and pitch come from the accelerometer over it (default 1)")
     ap.add_argument("--window", type=float, default=0.7, help="[s] Savitzky-Golay window of the derivatives "
                     "(default 0.7 for ground truth; 5 for a navigation filter's noisy output)")
     ap.add_argument("--water-density", type=float, default=1000.0, help="[kg/m^3] (default 1000, fresh water)")
@@ -199,9 +258,18 @@ def main(argv=None):
             raise ReplayError(f"--window {args.window}: expected a positive number of seconds")
         if not (args.water_density > 0 and math.isfinite(args.water_density)):
             raise ReplayError(f"--water-density {args.water_density}: expected a positive density [kg/m^3]")
+        for flag, value in (("--gravity", args.gravity), ("--depth-time-constant", args.depth_time_constant),
+                            ("--level-time", args.level_time)):
+            if not (value > 0 and math.isfinite(value)):
+                raise ReplayError(f"{flag} {value}: expected a positive number")
+        if not (args.atmospheric_pressure >= 0 and math.isfinite(args.atmospheric_pressure)):
+            raise ReplayError(f"--atmospheric-pressure {args.atmospheric_pressure}: expected a pressure >= 0 [Pa]")
+        dr_options = {"imu_topic": args.imu_topic, "dvl_topic": args.dvl_topic, "pressure_topic": args.pressure_topic,
+                      "gravity": args.gravity, "atmospheric_pressure": args.atmospheric_pressure,
+                      "depth_time_constant": args.depth_time_constant, "level_time": args.level_time}
         data = identify_bag(args.bag, args.out, args.robot, args.motors_topic, args.pendulum_topic, args.vbs_topic,
                             args.nav_topic, args.window, args.water_density, args.surface_z, fixed, args.overrides,
-                            not args.quiet)
+                            not args.quiet, nav_source=args.nav, dead_reckoning=dr_options)
     except ReplayError as e:
         print(f"identify: error: {e}", file=sys.stderr)
         return 2
