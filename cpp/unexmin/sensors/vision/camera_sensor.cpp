@@ -204,17 +204,17 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
 {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
-  const int tiles_u = (w + kTile - 1) / kTile;
-  const std::size_t tiles = static_cast<std::size_t>(tiles_u) * static_cast<std::size_t>((h + kTile - 1) / kTile);
-  // Every tile alone: its rays, their cast, its pixels' shading and sensor, on whichever thread takes it (the pixels
-  // do not depend on which, nor on the order).
-  const auto tile = [&](std::size_t t) {
-    const int u0 = static_cast<int>(t % static_cast<std::size_t>(tiles_u)) * kTile;
-    const int v0 = static_cast<int>(t / static_cast<std::size_t>(tiles_u)) * kTile;
-    renderTile(ctx, cam, u0, v0, std::min(u0 + kTile, w), std::min(v0 + kTile, h), seed);
+  const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
+  // Every tile alone: its rays, their cast, its pixels' shading and sensor (the pixels do not depend on which thread
+  // renders them, nor on the order). A thread takes a whole strip of kTile rows at a time: two threads never write
+  // to the same cache line of the image but at a strip's first and last row (neighbouring tiles on two threads
+  // would share one at every row of every tile's edge).
+  const auto strip = [&](std::size_t k) {
+    const int v0 = static_cast<int>(k) * kTile, v1 = std::min(v0 + kTile, h);
+    for (int u0 = 0; u0 < w; u0 += kTile) renderTile(ctx, cam, u0, v0, std::min(u0 + kTile, w), v1, seed);
   };
-  if (ctx.rays) ctx.rays->parallelFor(tiles, tile);
-  else for (std::size_t t = 0; t < tiles; ++t) tile(t);
+  if (ctx.rays) ctx.rays->parallelFor(strips, strip);
+  else for (std::size_t k = 0; k < strips; ++k) strip(k);
   if (laser_) {
     // The line adds light to a few pixels: encode those again (noise is a function of seed and pixel alone).
     touched_.clear();
