@@ -36,6 +36,8 @@ public:
 
   /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
   void publish(std::uint64_t step, const ros::Time& stamp, bool all = false);
+  /// Samples the sensors due at this physics step without publishing (publish() then only publishes them).
+  void sample(std::uint64_t step) { sensors_->sample(step); }
 
   /// Ground truth of the base link: pose in `world`, twist in the body frame (REP-105).
   nav_msgs::Odometry odometry(const ros::Time& stamp) const;

@@ -20,11 +20,18 @@ SensorsRos::SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayC
   last_step_ = world.stepCount();
 }
 
+void SensorsRos::sample(std::uint64_t step)
+{
+  if (step == last_sampled_) return;
+  last_sampled_ = step;
+  suite_->update();
+}
+
 void SensorsRos::publish(std::uint64_t step)
 {
   if (step == last_step_) return;
   last_step_ = step;
-  suite_->update();
+  sample(step);
   for (std::size_t i = 0; i < publishers_.size(); ++i)
     if (suite_->fresh(i)) publishers_[i]->publish();
 }
@@ -37,7 +44,7 @@ void SensorsRos::attach(BagRecorder* recorder)
 void SensorsRos::restart()
 {
   suite_->reset(world_.seed());
-  last_step_ = world_.stepCount();
+  last_step_ = last_sampled_ = world_.stepCount();
 }
 
 }  // namespace ros_layer

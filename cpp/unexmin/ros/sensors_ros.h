@@ -30,6 +30,9 @@ public:
   /// Call after every physics step with the world's step count; a repeated call for the same step
   /// (end of a /sim/step, after a reset) does nothing.
   void publish(std::uint64_t step);
+  /// Samples what is due at this physics step (the cameras render, the ray sensors cast) without publishing it;
+  /// publish() of the same step then only publishes. A repeated call for the same step does nothing.
+  void sample(std::uint64_t step);
   /// The world was reset (new seed, step 0): sensors back to turn-on.
   void restart();
   /// Hands every sensor message to `recorder` too (null: none); it must outlive this.
@@ -42,7 +45,8 @@ private:
   sim::World& world_;
   std::unique_ptr<sensors::SensorSuite> suite_;
   std::vector<std::unique_ptr<SensorPublisher>> publishers_;  ///< one per suite sensor
-  std::uint64_t last_step_ = 0;
+  std::uint64_t last_step_ = 0;     ///< last step published
+  std::uint64_t last_sampled_ = 0;  ///< last step sampled
 };
 
 }  // namespace ros_layer

@@ -152,7 +152,8 @@ void SimulatorRos::loadParams()
   }
   recorder_ = std::make_unique<BagRecorder>(topics);
   pnh_.param("lockstep_wait_subscribers", wait_subscribers_, false);
-  // Before every physics step: one step's messages (one per stream at most) are in flight at a time, so
+  // Before a step's messages go out (after its physics and its sensors' samples, which overlap with the
+  // subscribers' reading): one step's messages (one per stream at most) are in flight at a time, so
   // neither roscpp's queue on our side nor a subscriber's own queue (rosbag record: 100 per topic, a user's
   // node often 10) can overflow. Waiting every 10 ms of sim time instead lost ~0.3 % of a stock rosbag
   // record's IMU messages here (its reader ran ahead of its callbacks), every step lost none
@@ -178,10 +179,15 @@ void SimulatorRos::publishNow()
 
 void SimulatorRos::stepOnce()
 {
-  if (wait_subscribers_ && !realtime_ && world_->stepCount() % pace_every_ == 0) pacer_.waitDrained();  // lockstep
   world_->step();
   if (caster_) caster_->update();  // the robots where the sensors of this step see them
   const std::uint64_t n = world_->stepCount();
+  if (wait_subscribers_ && !realtime_ && n % pace_every_ == 0) {  // lockstep
+    // The sensors sample (the cameras render) while the subscribers are still taking the last step's messages;
+    // nothing of this step goes out before they have taken them all.
+    for (auto& r : robots_) r->sample(n);
+    pacer_.waitDrained();
+  }
   const ros::Time stamp(world_->time());
   recorder_->setTime(world_->time());
   // In real time the sim-time schedules are also wall-time rates. In lockstep, /clock and the

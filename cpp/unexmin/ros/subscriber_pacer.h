@@ -1,4 +1,4 @@
-// lockstep_wait_subscribers (docs/recording.md): lockstep waits, before it steps on, until every TCP
+// lockstep_wait_subscribers (docs/recording.md): lockstep waits, before a step's messages go out, until every TCP
 // subscriber connection of every topic this process publishes has taken its queued messages, so a stock
 // `rosbag record` or a user's node receives everything (at the speed it can take).
 //
