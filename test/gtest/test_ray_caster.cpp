@@ -15,6 +15,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -81,6 +82,17 @@ std::unique_ptr<raycast::RayCaster> caster(const std::string& backend, sim::Worl
   raycast::RayCasterOptions options;
   options.threads = threads;
   return raycast::makeRayCaster(backend, world, options);
+}
+
+/// The shipped tank world (worlds/tank.world) with each of its robots a plain sphere (test::SphereSpec).
+std::unique_ptr<sim::World> tankOfSpheres()
+{
+  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
+  test::SphereSpec spec;
+  std::map<std::string, sim::RobotDescription> d;
+  for (const auto& spawn : config.robots)
+    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
+  return std::make_unique<sim::World>(config, d, -1, 0.002, 1);
 }
 
 class RayCasterBackend : public ::testing::TestWithParam<std::string>
@@ -358,12 +370,8 @@ TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks)
 
 TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
 {
-  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
-  test::SphereSpec spec;
-  std::map<std::string, sim::RobotDescription> d;
-  for (const auto& spawn : config.robots)
-    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
-  sim::World world(config, d, -1, 0.002, 1);
+  const auto world_ptr = tankOfSpheres();
+  sim::World& world = *world_ptr;
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Ray> rays;
@@ -403,12 +411,8 @@ TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBa
 {
   // A camera's way of casting: each block of parallelFor casts its own rays (here 300 per block, more than
   // kParallelMin, so a cast that tried to use the busy workers would deadlock or race) and uses the hits at once.
-  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
-  test::SphereSpec spec;
-  std::map<std::string, sim::RobotDescription> d;
-  for (const auto& spawn : config.robots)
-    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
-  sim::World world(config, d, -1, 0.002, 1);
+  const auto world_ptr = tankOfSpheres();
+  sim::World& world = *world_ptr;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   constexpr std::size_t kBlocks = 37, kPerBlock = 300;
@@ -441,12 +445,8 @@ TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)
 {
   // Incidence::skip leaves Hit::incidence NaN and nothing else changed; RayCaster::incidence() then gives the very
   // float a default cast writes, for mesh hits seen from either side and robot hits.
-  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
-  test::SphereSpec spec;
-  std::map<std::string, sim::RobotDescription> d;
-  for (const auto& spawn : config.robots)
-    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
-  sim::World world(config, d, -1, 0.002, 1);
+  const auto world_ptr = tankOfSpheres();
+  sim::World& world = *world_ptr;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Ray> rays;
@@ -483,12 +483,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, RayCasterBackend, ::testing::Values("embree",
 
 TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
 {
-  const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
-  test::SphereSpec spec;
-  std::map<std::string, sim::RobotDescription> d;
-  for (const auto& spawn : config.robots)
-    d.emplace(spawn.name, sim::parseRobotDescription(test::sphereUrdf(spec), spawn.name));
-  sim::World world(config, d, -1, 0.002, 1);
+  const auto world_ptr = tankOfSpheres();
+  sim::World& world = *world_ptr;
   const auto spheres = raycast::robotSpheres(world);
   // Interior 6 x 4 m, floor at z = -3, rim at +0.3 (worlds/tank.world); origins in the water, outside the hulls.
   std::mt19937_64 rng(2024);
