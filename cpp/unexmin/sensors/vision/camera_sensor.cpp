@@ -80,9 +80,7 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
       p.fail("light_intensity", formatNumber(intensity[k]), "three finite numbers >= 0 W/sr");
   const double cone = p.number("light_cone", 90.0 * kDeg, 1e-3, M_PI, "rad");
   const double exponent = p.number("light_exponent", 1.0, 0.0, 1000.0, "");
-  // xacro writes a Python bool as True/False.
-  const std::string shadows = p.text("shadows", "false", {"true", "false", "True", "False", "1", "0"});
-  shadows_ = shadows == "true" || shadows == "True" || shadows == "1";
+  shadows_ = p.flag("shadows", false);
   const double laser_power = p.number("laser_power", 0.05, 0.0, 1000.0, "W");
   const double laser_width = p.number("laser_width", 1.0, 0.1, 100.0, "px");
   const Eigen::Vector3d laser_colour = p.vec3("laser_colour", Eigen::Vector3d(0.05, 1.0, 0.15));
