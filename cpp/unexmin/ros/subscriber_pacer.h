@@ -5,7 +5,8 @@
 // roscpp 1.15/1.16 has no public call for a subscriber connection's outgoing queue: ros::Publisher only
 // counts subscribers, and a SubscriberStatusCallback sees connects and disconnects. Each connection's queue
 // is TransportSubscriberLink::outbox_ (its messages_sent statistic counts messages queued, not written),
-// which this class reads under the link's own mutex through the standard explicit-instantiation access rule;
+// and before it Publication::publish_queue_ (publish() only appends there; roscpp's poll thread moves it on),
+// which this class reads under their own mutexes through the standard explicit-instantiation access rule;
 // it depends on roscpp's member names, which have not changed since 2010 (checked against the headers at build time).
 // An empty outbox is not enough: the kernel buffers megabytes between two processes, and a subscriber that
 // reads them in a burst overflows its own queue (rosbag record: 100 messages per topic) and drops silently. So
@@ -16,6 +17,7 @@
 #include <ros/publication.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace unexmin {
@@ -52,6 +54,8 @@ private:
   double waited_ = 0.0;
   std::size_t waits_ = 0;
   bool kernel_ok_ = true;
+  bool drained_ = false;          ///< the last backlog() found everything taken ...
+  std::uint64_t drained_at_ = 0;  ///< ... when this many messages had been handed to the open links
 };
 
 }  // namespace ros_layer
