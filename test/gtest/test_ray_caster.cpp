@@ -84,6 +84,13 @@ std::unique_ptr<raycast::RayCaster> caster(const std::string& backend, sim::Worl
   return raycast::makeRayCaster(backend, world, options);
 }
 
+/// Whether two hits are the same bit for bit (range, normal, incidence, kind, index).
+bool sameHit(const Hit& a, const Hit& b)
+{
+  return std::memcmp(&a.range, &b.range, sizeof(float)) == 0 && a.normal == b.normal &&
+         std::memcmp(&a.incidence, &b.incidence, sizeof(float)) == 0 && a.kind == b.kind && a.index == b.index;
+}
+
 /// The shipped tank world (worlds/tank.world) with each of its robots a plain sphere (test::SphereSpec).
 std::unique_ptr<sim::World> tankOfSpheres()
 {
@@ -393,12 +400,7 @@ TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
     rc->cast(rays, hits, 0);
     int differ = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      const Hit& a = reference[i];
-      const Hit& b = hits[i];
-      const bool same = std::memcmp(&a.range, &b.range, sizeof(float)) == 0 && a.normal == b.normal &&
-                        std::memcmp(&a.incidence, &b.incidence, sizeof(float)) == 0 && a.kind == b.kind &&
-                        a.index == b.index;
-      differ += same ? 0 : 1;
+      differ += sameHit(reference[i], hits[i]) ? 0 : 1;
     }
     EXPECT_EQ(differ, 0) << threads << " threads";
   }
@@ -433,10 +435,7 @@ TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBa
     for (std::size_t b = 0; b < kBlocks; ++b) EXPECT_EQ(runs[b].load(), 1) << "block " << b << ", " << threads << " threads";
     int differ = 0;
     for (std::size_t i = 0; i < rays.size(); ++i)
-      differ += std::memcmp(&reference[i].range, &hits[i].range, sizeof(float)) == 0 &&
-                        reference[i].normal == hits[i].normal && reference[i].index == hits[i].index
-                    ? 0
-                    : 1;
+      differ += sameHit(reference[i], hits[i]) ? 0 : 1;
     EXPECT_EQ(differ, 0) << threads << " threads";
   }
 }
