@@ -163,12 +163,14 @@ void CameraSensor::prepare(const SensorContext& ctx)
     frame_.range.assign(n, std::numeric_limits<float>::infinity());
     encode_.resize(kEncodeEntries + 1);
     for (int i = 0; i <= kEncodeEntries; ++i)
-      encode_[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::pow(i / double(kEncodeEntries), 1.0 / gamma_)));
-    exposure_f_ = static_cast<float>(exposure_);
-    gain_f_ = static_cast<float>(gain_);
-    shot_ = static_cast<float>(1.0 / full_well_);
-    read2_ = static_cast<float>((read_noise_ / full_well_) * (read_noise_ / full_well_));
-    normal_ = normalTable().data();
+      encode_[i] = static_cast<std::int32_t>(std::lround(255.0 * std::pow(i / double(kEncodeEntries), 1.0 / gamma_)));
+    sensor_.exposure = static_cast<float>(exposure_);
+    sensor_.gain = static_cast<float>(gain_);
+    sensor_.shot = static_cast<float>(1.0 / full_well_);
+    sensor_.read2 = static_cast<float>((read_noise_ / full_well_) * (read_noise_ / full_well_));
+    sensor_.normal = normalTable().data();
+    sensor_.encode = encode_.data();
+    sensor_.encode_last = static_cast<float>(kEncodeEntries);
   }
   albedo_.clear();
   for (const auto& m : config.meshes)
@@ -176,26 +178,41 @@ void CameraSensor::prepare(const SensorContext& ctx)
                          static_cast<float>(m.albedo.z()), 0.0f);
 }
 
-inline void CameraSensor::encodePixel(std::size_t i, const Eigen::Array4f& radiance, std::uint64_t seed)
+void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd)
 {
-  Eigen::Array4f s = (exposure_f_ * radiance).min(1.0f);
+  constexpr int kMax = PixelBatch::kMax;
+  alignas(32) std::int32_t noise[3][kMax];
+  alignas(32) std::int32_t code[3][kMax];
+  const int lanes = simd ? (n + 7) / 8 * 8 : n;  // the padding's radiance is there (PixelBatch), its codes unused
+  const std::int32_t* draws[3] = {nullptr, nullptr, nullptr};
   if (noise_) {
     // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
     // the image does not depend on the thread count or on how often a pixel is encoded.
-    const std::uint64_t hash = mix(seed + 0x9e3779b97f4a7c15ull * i);
-    const float* normal = normal_;
-    const Eigen::Array4f n(normal[hash & 0xfff], normal[(hash >> 12) & 0xfff], normal[(hash >> 24) & 0xfff], 0.0f);
-    s += (s * shot_ + read2_).sqrt() * n;
+    for (int i = 0; i < n; ++i) {
+      const std::uint64_t hash = mix(seed + 0x9e3779b97f4a7c15ull * pixel[i]);
+      noise[0][i] = static_cast<std::int32_t>(hash & 0xfff);
+      noise[1][i] = static_cast<std::int32_t>((hash >> 12) & 0xfff);
+      noise[2][i] = static_cast<std::int32_t>((hash >> 24) & 0xfff);
+    }
+    for (int c = 0; c < 3; ++c) {
+      std::fill(noise[c] + n, noise[c] + lanes, 0);
+      draws[c] = noise[c];
+    }
   }
-  const Eigen::Array4f out = (gain_f_ * s).max(0.0f).min(1.0f) * static_cast<float>(kEncodeEntries) + 0.5f;
-  std::uint8_t* px = &frame_.rgb[3 * i];
-  for (int k = 0; k < 3; ++k) px[k] = encode_[static_cast<std::size_t>(out[k])];
+  std::int32_t* const codes[3] = {code[0], code[1], code[2]};
+  if (simd) shading::sensorAvx2(sensor_, lanes, radiance, draws, codes);
+  else shading::sensor<lanes::F1>(sensor_, n, radiance, draws, codes);
+  for (int i = 0; i < n; ++i) {
+    std::uint8_t* px = &frame_.rgb[3 * pixel[i]];
+    for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>(code[c][i]);
+  }
 }
 
 void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed)
 {
-  const float* rad = &frame_.radiance[3 * i];
-  encodePixel(i, Eigen::Array4f(rad[0], rad[1], rad[2], 0.0f), seed);
+  float rad[3] = {frame_.radiance[3 * i], frame_.radiance[3 * i + 1], frame_.radiance[3 * i + 2]};
+  float* const channels[3] = {&rad[0], &rad[1], &rad[2]};
+  encode(1, &i, channels, seed, false);
 }
 
 void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
@@ -281,29 +298,30 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   }
 
   const Eigen::Matrix3f to_camera = rot.transpose();
-  const Eigen::Array4f hull(static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
-                            static_cast<float>(kHullAlbedo.z()), 0.0f);
+  const float hull[3] = {static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
+                         static_cast<float>(kHullAlbedo.z())};
+  PixelBatch batch;
+  batch.n = n;
   for (int i = 0; i < n; ++i) {
-    const std::size_t g = pixel[i];
-    const float u = pu[i], v = pv[i];
     const raycast::Hit& hit = hits[i];
-    Eigen::Array4f radiance;
     if (hit.hit()) {
-      const Eigen::Array4f& albedo =
-          hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)] : hull;
-      radiance = formation_->direct4(hit.range * dirs_[g], hit.range, to_camera * hit.normal, albedo, lit[i]) +
-                 formation_->backscatter4(u, v, hit.range);
-      frame_.range[g] = hit.range;
+      const float* albedo = hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)].data()
+                                                                : hull;
+      batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
+      frame_.range[pixel[i]] = hit.range;
     } else {
-      radiance = formation_->backscatter4(u, v, far);
-      frame_.range[g] = std::numeric_limits<float>::infinity();
+      batch.setWater(i, pu[i], pv[i], far);
+      frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
     }
-    float* out = &frame_.radiance[3 * g];
-    out[0] = radiance[0];
-    out[1] = radiance[1];
-    out[2] = radiance[2];
-    encodePixel(g, radiance, seed);
   }
+  const bool simd = ImageFormation::simdAvailable();
+  formation_->radiance(batch, simd);
+  for (int i = 0; i < n; ++i) {
+    float* out = &frame_.radiance[3 * pixel[i]];
+    for (int c = 0; c < 3; ++c) out[c] = batch.out[c][i];
+  }
+  float* const radiance[3] = {batch.out[0], batch.out[1], batch.out[2]};
+  encode(n, pixel, radiance, seed, simd);
 }
 
 }  // namespace vision

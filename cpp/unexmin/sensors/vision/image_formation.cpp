@@ -2,6 +2,7 @@
 
 #include <unexmin/core/error.h>
 #include <unexmin/sensors/vision/parallel_rows.h>
+#include <unexmin/sensors/vision/shading_kernels.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,21 +39,28 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
   if (!(max_range > 0.0) || !std::isfinite(max_range))
     throw ParameterError("image formation: max_range = " + formatNumber(max_range) + " m: expected > 0");
   if (lights_.size() > 32) throw ParameterError("image formation: at most 32 lights");
-  for (auto& l : lights_) {
+  pow_m_.resize(lights_.size());
+  for (std::size_t k = 0; k < lights_.size(); ++k) {
+    LedLight& l = lights_[k];
     l.axis.normalize();
-    Fast f;
-    f.position = l.position.cast<float>();
-    f.axis = l.axis.cast<float>();
+    shading::Light f;
     const Eigen::Vector3d i0 = l.intensity / M_PI;
-    f.intensity = Eigen::Array4f(static_cast<float>(i0[0]), static_cast<float>(i0[1]), static_cast<float>(i0[2]), 0.0f);
+    for (int c = 0; c < 3; ++c) {
+      f.position[c] = static_cast<float>(l.position[c]);
+      f.axis[c] = static_cast<float>(l.axis[c]);
+      f.intensity[c] = static_cast<float>(i0[c]);
+    }
     const double cos_half = std::max(0.0, std::cos(l.cone / 2.0));
     f.cos_half = static_cast<float>(cos_half);
     f.cos_half2 = f.cos_half * f.cos_half;
-    f.pow_m.resize(kPowEntries + 2);
+    std::vector<float>& pow_m = pow_m_[k];
+    pow_m.resize(kPowEntries + 2);
     for (int i = 0; i <= kPowEntries + 1; ++i)
-      f.pow_m[i] = static_cast<float>(l.profile(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries)));
+      pow_m[i] = static_cast<float>(l.profile(std::min(1.0, cos_half + (1.0 - cos_half) * i / kPowEntries)));
     f.pow_scale = static_cast<float>(kPowEntries / std::max(1e-9, 1.0 - cos_half));
-    fast_.push_back(std::move(f));
+    f.pow_m = pow_m.data();
+    f.bit = 1u << k;
+    light_f_.push_back(f);
     reach_cos_.push_back(std::cos(std::min(M_PI, l.cone / 2.0 + kConeMargin)));
   }
   // Longest light path: to the farthest surface and back to a light beside the lens.
@@ -65,14 +73,29 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
     for (int k = 0; k < 3; ++k) exp_[4 * i + k] = static_cast<float>(std::exp(-c[k] * x_max * i / kExpEntries));
   exp_scale_ = static_cast<float>(kExpEntries / x_max);
   buildTable(camera, threads);
+
+  for (int k : active_) kernel_lights_.push_back(light_f_[static_cast<std::size_t>(k)]);
+  tables_.exp = exp_.data();
+  tables_.exp_scale = exp_scale_;
+  tables_.exp_last = static_cast<float>(kExpEntries);
+  tables_.pow_last = static_cast<float>(kPowEntries);
+  backscatter_.table = table_.data();
+  backscatter_.edge = s_.data();
+  backscatter_.inv_bin = inv_bin_.data();
+  backscatter_.nu = nu_;
+  backscatter_.nv = nv_;
+  backscatter_.bins = bins_;
+  backscatter_.inv_step_u = inv_step_u_;
+  backscatter_.inv_step_v = inv_step_v_;
+  backscatter_.inv_range = inv_range_;
 }
 
 bool ImageFormation::lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
 {
-  const Fast& l = fast_[static_cast<std::size_t>(k)];
-  const Eigen::Vector3f v = p - l.position;
+  const shading::Light& l = light_f_[static_cast<std::size_t>(k)];
+  const Eigen::Vector3f v = p - Eigen::Vector3f(l.position[0], l.position[1], l.position[2]);
   const float r = v.norm();
-  return l.axis.dot(v) > l.cos_half * r && n.dot(v) < 0.0f;
+  return Eigen::Vector3f(l.axis[0], l.axis[1], l.axis[2]).dot(v) > l.cos_half * r && n.dot(v) < 0.0f;
 }
 
 Eigen::Array3d ImageFormation::integrand(const Eigen::Vector3d& d, double s, std::vector<char>* reached) const
@@ -88,12 +111,84 @@ Eigen::Array3d ImageFormation::integrand(const Eigen::Vector3d& d, double s, std
     const Eigen::Vector3d dir = w / r;  // the light's direction of travel
     const double cos_theta = l.axis.dot(dir);
     if (reached && cos_theta > reach_cos_[k]) (*reached)[k] = 1;
-    if (!(cos_theta > fast_[k].cos_half) || !(cos_theta > 0.0)) continue;
+    if (!(cos_theta > light_f_[k].cos_half) || !(cos_theta > 0.0)) continue;
     const double p = water_.phase(-dir.dot(d));  // scattered back along -d, towards the lens
     const double geometry = p * l.profile(cos_theta) / (r * r);
     sum += b * l.intensity.array() * geometry * (-c * (s + r)).exp();
   }
   return sum;
+}
+
+bool ImageFormation::simdAvailable()
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool available = shading::avx2Built() && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return available;
+#else
+  return false;
+#endif
+}
+
+namespace {
+
+/// The kernels' view of the first n pixels of `batch`.
+shading::Pixels pixelsOf(PixelBatch& batch, int n)
+{
+  shading::Pixels p;
+  p.n = n;
+  p.u = batch.u;
+  p.v = batch.v;
+  p.range = batch.range;
+  p.px = batch.px;
+  p.py = batch.py;
+  p.pz = batch.pz;
+  p.nx = batch.nx;
+  p.ny = batch.ny;
+  p.nz = batch.nz;
+  p.lit = batch.lit;
+  for (int c = 0; c < 3; ++c) {
+    p.albedo[c] = batch.albedo[c];
+    p.out[c] = batch.out[c];
+  }
+  return p;
+}
+
+}  // namespace
+
+void ImageFormation::radiance(PixelBatch& batch, bool simd) const
+{
+  const int count = static_cast<int>(kernel_lights_.size());
+  if (simd && simdAvailable()) {
+    // Whole groups of 8 lanes: the padding is open water at range 0 (its results are never read).
+    const int padded = (batch.n + 7) / 8 * 8;
+    for (int i = batch.n; i < padded; ++i) batch.setWater(i, 0.0f, 0.0f, 0.0f);
+    const shading::Pixels p = pixelsOf(batch, padded);
+    shading::directAvx2(p, kernel_lights_.data(), count, tables_);
+    shading::backscatterAvx2(p, backscatter_);
+  } else {
+    const shading::Pixels p = pixelsOf(batch, batch.n);
+    shading::direct<lanes::F1>(p, kernel_lights_.data(), count, tables_);
+    shading::backscatter<lanes::F1>(p, backscatter_);
+  }
+}
+
+Eigen::Array3f ImageFormation::direct(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n,
+                                      const Eigen::Array3f& albedo, unsigned lit) const
+{
+  PixelBatch b;
+  b.set(0, 0.0f, 0.0f, range, p, n, albedo.data(), lit);
+  shading::direct<lanes::F1>(pixelsOf(b, 1), kernel_lights_.data(), static_cast<int>(kernel_lights_.size()),
+                                      tables_);
+  return Eigen::Array3f(b.out[0][0], b.out[1][0], b.out[2][0]);
+}
+
+Eigen::Array3f ImageFormation::backscatter(float u, float v, float r) const
+{
+  PixelBatch b;
+  b.setWater(0, u, v, r);
+  for (auto& o : b.out) o[0] = 0.0f;
+  shading::backscatter<lanes::F1>(pixelsOf(b, 1), backscatter_);
+  return Eigen::Array3f(b.out[0][0], b.out[1][0], b.out[2][0]);
 }
 
 void ImageFormation::buildTable(const CameraModel& camera, int threads)

@@ -20,12 +20,14 @@
 #pragma once
 
 #include <unexmin/sensors/vision/camera_model.h>
+#include <unexmin/sensors/vision/shading_kernels.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace unexmin {
@@ -49,6 +51,38 @@ struct LedLight
   double profile(double cos_theta) const;
 };
 
+/// Up to kMax pixels of one tile, structure of arrays so that radiance() runs the pixels side by side in SIMD
+/// lanes. A pixel that sees no surface has range = max_range, albedo 0 and normal 0 (backscatter only).
+struct PixelBatch
+{
+  static constexpr int kMax = 64;
+  int n = 0;                                         ///< pixels in use
+  alignas(32) float u[kMax], v[kMax];                ///< pixel coordinates [px]
+  alignas(32) float range[kMax];                     ///< lens to the surface [m]
+  alignas(32) float px[kMax], py[kMax], pz[kMax];    ///< surface point, camera frame [m]
+  alignas(32) float nx[kMax], ny[kMax], nz[kMax];    ///< unit surface normal towards the lens, camera frame
+  alignas(32) float albedo[3][kMax];                 ///< Lambertian albedo per channel (R, G, B) [-]
+  alignas(32) std::uint32_t lit[kMax];               ///< bit k: light k reaches the point (no shadow)
+  alignas(32) float out[3][kMax];                    ///< radiance() result per channel [W m^-2 sr^-1]
+
+  /// Sets pixel i: (u, v), the surface at `range` (point p, normal n, albedo a), lit by the bits of `lit_mask`.
+  void set(int i, float pu, float pv, float r, const Eigen::Vector3f& p, const Eigen::Vector3f& normal,
+           const float* a, std::uint32_t lit_mask)
+  {
+    u[i] = pu; v[i] = pv; range[i] = r;
+    px[i] = p.x(); py[i] = p.y(); pz[i] = p.z();
+    nx[i] = normal.x(); ny[i] = normal.y(); nz[i] = normal.z();
+    albedo[0][i] = a[0]; albedo[1][i] = a[1]; albedo[2][i] = a[2];
+    lit[i] = lit_mask;
+  }
+  /// Sets pixel i as open water up to `max_range` (no surface).
+  void setWater(int i, float pu, float pv, float max_range)
+  {
+    static const float zero[3] = {0.0f, 0.0f, 0.0f};
+    set(i, pu, pv, max_range, Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), zero, 0u);
+  }
+};
+
 class ImageFormation
 {
 public:
@@ -59,6 +93,8 @@ public:
   /// surface (beyond it a ray sees open water up to max_range). `threads` builds the table (0 = all).
   ImageFormation(const CameraModel& camera, std::vector<LedLight> lights, const WaterOptics& water, double max_range,
                  int threads = 0);
+  ImageFormation(const ImageFormation&) = delete;  // the kernels' views point into its tables
+  ImageFormation& operator=(const ImageFormation&) = delete;
 
   const WaterOptics& water() const { return water_; }
   const std::vector<LedLight>& lights() const { return lights_; }
@@ -68,28 +104,23 @@ public:
 
   /// Direct radiance at the lens [W m^-2 sr^-1] per channel from a surface point `p` [m] (camera frame, at range
   /// |p| from the lens) of unit normal `n` (towards the lens) and albedo `albedo`, lit by the lights whose bit is
-  /// set in `lit` (bit k: light k reaches p; all by default). Per-pixel fast path (tabulated exp and cos^m).
+  /// set in `lit` (bit k: light k reaches p; all by default): one pixel of radiance() (tabulated exp and cos^m).
   Eigen::Array3f direct(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n, const Eigen::Array3f& albedo,
-                        unsigned lit = ~0u) const
-  {
-    return direct4(p, range, n, Eigen::Array4f(albedo[0], albedo[1], albedo[2], 0.0f), lit).head<3>();
-  }
+                        unsigned lit = ~0u) const;
   /// Backscatter radiance [W m^-2 sr^-1] per channel along the ray of pixel (u, v) [px] from the lens to range `r`
-  /// [m] (clamped to [0, max_range]), interpolated from the table.
-  Eigen::Array3f backscatter(float u, float v, float r) const { return backscatter4(u, v, r).head<3>(); }
-  /// The same two with the channels in the first 3 of 4 lanes (SIMD-friendly; the 4th lane is 0).
-  Eigen::Array4f direct4(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n, const Eigen::Array4f& albedo,
-                         unsigned lit = ~0u) const;
-  Eigen::Array4f backscatter4(float u, float v, float r) const;
+  /// [m] (clamped to [0, max_range]), interpolated from the table: one pixel of radiance().
+  Eigen::Array3f backscatter(float u, float v, float r) const;
+  /// Radiance at the lens of every pixel of `batch` (direct + backscatter, into batch.out). `simd` (and
+  /// simdAvailable()): eight pixels side by side in AVX2 lanes; else one at a time. Same kernels either way
+  /// (shading_kernels.h); the results differ only by rounding (FMA), about 1e-7 relative.
+  void radiance(PixelBatch& batch, bool simd = true) const;
+  /// Whether this build and this CPU run the eight-lane kernels (x86-64 with AVX2 and FMA).
+  static bool simdAvailable();
   /// Whether light `k` can light point `p` (camera frame) from the front of a surface of normal `n`: inside its
   /// cone and not behind the surface. Decides which shadow rays are cast.
   bool lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
 
-  /// exp(-c_k x) per channel from the table, x >= 0 [m].
-  Eigen::Array3f transmission(float x) const { return transmission4(x).head<3>(); }
-
 private:
-  Eigen::Array4f transmission4(float x) const;
   /// Sum over active lights of b p(psi) I(theta) exp(-c (s + r)) / r^2 at distance s along unit ray d.
   Eigen::Array3d integrand(const Eigen::Vector3d& d, double s, std::vector<char>* reached) const;
   void buildTable(const CameraModel& camera, int threads);
@@ -99,18 +130,9 @@ private:
   double max_range_;
   std::vector<int> active_;
 
-  // Per-light constants of the fast path (float, camera frame).
-  struct Fast
-  {
-    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    Eigen::Vector3f position, axis;
-    Eigen::Array4f intensity;   ///< I0 / pi [W/sr] (4th lane 0)
-    float cos_half = 0.0f;      ///< cos(cone / 2), >= 0 (a cone is at most a half space)
-    float cos_half2 = 0.0f;     ///< cos_half^2
-    std::vector<float> pow_m;   ///< cos^m over cos in [cos_half, 1]
-    float pow_scale = 0.0f;     ///< table index per unit of cos
-  };
-  std::vector<Fast> fast_;
+  // Per light, as the shading kernels read them (float, camera frame), and its cos^m table over [cos_half, 1].
+  std::vector<shading::Light> light_f_;
+  std::vector<std::vector<float>> pow_m_;
   std::vector<double> reach_cos_;  ///< cos(cone / 2 + margin): a grid ray this close keeps the light active
   // exp(-c x): 4 floats per entry (R, G, B, 0) over [0, x_max].
   std::vector<float> exp_;
@@ -123,64 +145,12 @@ private:
   std::vector<float> s_;      ///< range of each bin edge [m]
   std::vector<float> inv_bin_;  ///< 1 / bin width [1/m]
   std::vector<float> table_;  ///< [(node * (bins + 1) + j) * 4 + channel] (4th lane 0)
+
+  // The active lights and the tables as the shading kernels read them (pointers into the vectors above).
+  std::vector<shading::Light> kernel_lights_;
+  shading::Tables tables_;
+  shading::Backscatter backscatter_;
 };
-
-// ---------------------------------------------------------------- the per-pixel fast path, inline
-
-inline Eigen::Array4f ImageFormation::transmission4(float x) const
-{
-  const float f = std::max(0.0f, x) * exp_scale_;
-  const int i = static_cast<int>(f);
-  if (i >= kExpEntries) return Eigen::Array4f::Zero();
-  const Eigen::Map<const Eigen::Array4f> e0(&exp_[4 * i]), e1(&exp_[4 * i + 4]);
-  return e0 + (f - static_cast<float>(i)) * (e1 - e0);
-}
-
-inline Eigen::Array4f ImageFormation::direct4(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n,
-                                       const Eigen::Array4f& albedo, unsigned lit) const
-{
-  Eigen::Array4f sum = Eigen::Array4f::Zero();
-  for (int k : active_) {
-    if (!(lit & (1u << k))) continue;
-    const Fast& l = fast_[static_cast<std::size_t>(k)];
-    const Eigen::Vector3f v = p - l.position;  // light -> surface
-    const float ca = l.axis.dot(v);            // r cos(theta)
-    const float r2 = v.squaredNorm();
-    // Outside the cone (ca <= cos_half r, with cos_half >= 0), tested without the square root.
-    if (!(ca > 0.0f) || !(ca * ca > l.cos_half2 * r2)) continue;
-    const float cos_phi = -n.dot(v);  // r cos(incidence)
-    if (!(cos_phi > 0.0f)) continue;  // lit from behind
-    const float inv_r = 1.0f / std::sqrt(r2);
-    const float r = r2 * inv_r;
-    const float fi = (ca * inv_r - l.cos_half) * l.pow_scale;
-    const int i = std::min(static_cast<int>(fi), kPowEntries);
-    const float pw = l.pow_m[i] + (fi - static_cast<float>(i)) * (l.pow_m[i + 1] - l.pow_m[i]);
-    sum += l.intensity * (pw * cos_phi * inv_r * inv_r * inv_r) * transmission4(range + r);
-  }
-  return albedo * sum;
-}
-
-inline Eigen::Array4f ImageFormation::backscatter4(float u, float v, float r) const
-{
-  const float fu = std::min(std::max(u * inv_step_u_, 0.0f), static_cast<float>(nu_ - 1));
-  const float fv = std::min(std::max(v * inv_step_v_, 0.0f), static_cast<float>(nv_ - 1));
-  const int iu = std::min(static_cast<int>(fu), nu_ - 2), iv = std::min(static_cast<int>(fv), nv_ - 2);
-  const float wu = fu - static_cast<float>(iu), wv = fv - static_cast<float>(iv);
-  const float rr = std::min(std::max(r, 0.0f), s_.back());
-  int j = std::min(static_cast<int>(std::sqrt(rr * inv_range_) * static_cast<float>(bins_)), bins_ - 1);
-  // Rounding in the square root may land one bin off: step to the bin that holds rr.
-  if (rr < s_[j]) --j;
-  else if (j + 1 < bins_ && rr > s_[j + 1]) ++j;
-  const float wr = (rr - s_[j]) * inv_bin_[j];
-  const std::size_t stride = static_cast<std::size_t>((bins_ + 1) * 4);
-  const float* n00 = &table_[static_cast<std::size_t>(iv * nu_ + iu) * stride + j * 4];
-  using Map = Eigen::Map<const Eigen::Array4f>;
-  const auto at = [&](const float* node) { return Map(node) + wr * (Map(node + 4) - Map(node)); };
-  const Eigen::Array4f top = at(n00) + wu * (at(n00 + stride) - at(n00));
-  const float* n01 = n00 + nu_ * stride;
-  const Eigen::Array4f bottom = at(n01) + wu * (at(n01 + stride) - at(n01));
-  return top + wv * (bottom - top);
-}
 
 }  // namespace vision
 }  // namespace sensors
