@@ -55,7 +55,7 @@ struct LedLight
 /// lanes. A pixel that sees no surface has range = max_range, albedo 0 and normal 0 (backscatter only).
 struct PixelBatch
 {
-  static constexpr int kMax = 64;
+  static constexpr int kMax = shading::kMaxPixels;
   int n = 0;                                         ///< pixels in use
   alignas(32) float u[kMax], v[kMax];                ///< pixel coordinates [px]
   alignas(32) float range[kMax];                     ///< lens to the surface [m]

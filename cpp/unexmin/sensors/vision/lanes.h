@@ -58,6 +58,12 @@ inline I1 min(I1 a, I1 b) { return I1{b.v < a.v ? b.v : a.v}; }
 inline I1 splatInt(std::int32_t x, F1) { return I1{x}; }
 inline M1 operator<(I1 a, I1 b) { return M1{a.v < b.v}; }
 inline M1 anyBit(I1 a, std::uint32_t bit) { return M1{(static_cast<std::uint32_t>(a.v) & bit) != 0u}; }
+/// out[0..8) = wa a[0..8) + wb b[0..8) + wc c[0..8) + wd d[0..8) (any alignment).
+inline void weigh8(const float* a, float wa, const float* b, float wb, const float* c, float wc, const float* d,
+                   float wd, float* out, F1)
+{
+  for (int m = 0; m < 8; ++m) out[m] = wa * a[m] + wb * b[m] + wc * c[m] + wd * d[m];
+}
 
 // ---------------------------------------------------------------- eight lanes (AVX2 + FMA)
 
@@ -109,6 +115,14 @@ inline M8 anyBit(I8 a, std::uint32_t bit)
 {
   const __m256i b = _mm256_set1_epi32(static_cast<std::int32_t>(bit));
   return M8{_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(a.v, b), b))};
+}
+inline void weigh8(const float* a, float wa, const float* b, float wb, const float* c, float wc, const float* d,
+                   float wd, float* out, F8)
+{
+  __m256 r = _mm256_mul_ps(_mm256_set1_ps(wa), _mm256_loadu_ps(a));
+  r = _mm256_fmadd_ps(_mm256_set1_ps(wb), _mm256_loadu_ps(b), r);
+  r = _mm256_fmadd_ps(_mm256_set1_ps(wc), _mm256_loadu_ps(c), r);
+  _mm256_storeu_ps(out, _mm256_fmadd_ps(_mm256_set1_ps(wd), _mm256_loadu_ps(d), r));
 }
 #endif
 

@@ -13,6 +13,9 @@ namespace sensors {
 namespace vision {
 namespace shading {
 
+/// Pixels per call of a kernel at most (a camera tile of 8 x 8).
+constexpr int kMaxPixels = 64;
+
 /// One light of the direct term, camera frame, in the form the kernel reads.
 struct Light
 {
@@ -101,17 +104,22 @@ struct Backscatter
 };
 
 /// out += the backscatter along each pixel's ray to its range (clamped to [0, s_bins]): bilinear in the pixel,
-/// linear in range.
+/// linear in range. First, in lanes, each pixel's cell (first node and bin) and its weights; then per pixel the
+/// 8 floats a node holds for the two bin edges around the range (both edges, all channels: one load in AVX),
+/// weighted over the cell's four nodes, and the range's weight between the two edges.
 template <class F>
 void backscatter(const Pixels& p, const Backscatter& b)
 {
   using I = typename F::Int;
-  const F zero(0.0f), max_u(static_cast<float>(b.nu - 1)), max_v(static_cast<float>(b.nv - 1));
+  alignas(32) std::int32_t cell[kMaxPixels];
+  alignas(32) float weight[5][kMaxPixels];  // the four nodes' (00, 10, 01, 11), then range's
+  const F zero(0.0f), one_f(1.0f), max_u(static_cast<float>(b.nu - 1)), max_v(static_cast<float>(b.nv - 1));
   const F s_max(b.edge[b.bins]), inv_range(b.inv_range), bins_f(static_cast<float>(b.bins));
   const I last_node_u = splatInt(b.nu - 2, zero), last_node_v = splatInt(b.nv - 2, zero);
   const I last_bin = splatInt(b.bins - 1, zero), bins = splatInt(b.bins, zero), one = splatInt(1, zero);
   const I minus_one = splatInt(-1, zero), nu = splatInt(b.nu, zero), four = splatInt(4, zero);
-  const I stride = splatInt((b.bins + 1) * 4, zero);
+  const int stride = (b.bins + 1) * 4;  // floats per node
+  const I node_stride = splatInt(stride, zero);
   for (int i = 0; i < p.n; i += F::kWidth) {
     const F fu = min(max(load(p.u + i, zero) * F(b.inv_step_u), zero), max_u);
     const F fv = min(max(load(p.v + i, zero) * F(b.inv_step_v), zero), max_v);
@@ -123,20 +131,23 @@ void backscatter(const Pixels& p, const Backscatter& b)
     j = select(rr < gather(b.edge, j), j + minus_one, j);
     const I next = j + one;
     j = select((next < bins) & (rr > gather(b.edge, min(next, bins))), next, j);
-    const F wr = (rr - gather(b.edge, j)) * gather(b.inv_bin, j);
-    const I n00 = (iv * nu + iu) * stride + j * four;
-    const I n10 = n00 + stride, n01 = n00 + nu * stride;
-    const I n11 = n01 + stride;
-    for (int c = 0; c < 3; ++c) {
-      const float* t = b.table + c;
-      const auto at = [&](I node) {
-        const F a = gather(t, node);
-        return a + wr * (gather(t + 4, node) - a);
-      };
-      const F a00 = at(n00), a10 = at(n10), a01 = at(n01), a11 = at(n11);
-      const F top = a00 + wu * (a10 - a00), bottom = a01 + wu * (a11 - a01);
-      store(p.out[c] + i, load(p.out[c] + i, zero) + top + wv * (bottom - top));
-    }
+    storeInt(cell + i, (iv * nu + iu) * node_stride + j * four);
+    store(weight[0] + i, (one_f - wu) * (one_f - wv));
+    store(weight[1] + i, wu * (one_f - wv));
+    store(weight[2] + i, (one_f - wu) * wv);
+    store(weight[3] + i, wu * wv);
+    store(weight[4] + i, (rr - gather(b.edge, j)) * gather(b.inv_bin, j));
+  }
+  const int down = b.nu * stride;
+  for (int i = 0; i < p.n; ++i) {
+    const float* n00 = b.table + cell[i];
+    const float* n10 = n00 + stride;
+    const float* n01 = n00 + down;
+    const float* n11 = n01 + stride;
+    const float w00 = weight[0][i], w10 = weight[1][i], w01 = weight[2][i], w11 = weight[3][i], wr = weight[4][i];
+    float at[8];  // bin edge j (R, G, B, 0), then j + 1
+    weigh8(n00, w00, n10, w10, n01, w01, n11, w11, at, zero);
+    for (int c = 0; c < 3; ++c) p.out[c][i] += at[c] + wr * (at[c + 4] - at[c]);
   }
 }
 
