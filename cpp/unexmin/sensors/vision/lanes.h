@@ -46,6 +46,7 @@ inline F1 max(F1 a, F1 b) { return F1(a.v < b.v ? b.v : a.v); }
 inline M1 operator<(F1 a, F1 b) { return M1{a.v < b.v}; }
 inline M1 operator>(F1 a, F1 b) { return M1{a.v > b.v}; }
 inline M1 operator&(M1 a, M1 b) { return M1{a.v && b.v}; }
+inline bool none(M1 m) { return !m.v; }
 inline F1 select(M1 m, F1 a, F1 b) { return m.v ? a : b; }
 inline I1 select(M1 m, I1 a, I1 b) { return m.v ? a : b; }
 inline I1 truncate(F1 a) { return I1{static_cast<std::int32_t>(a.v)}; }
@@ -97,6 +98,7 @@ inline F8 max(F8 a, F8 b) { return F8(_mm256_max_ps(b.v, a.v)); }
 inline M8 operator<(F8 a, F8 b) { return M8{_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
 inline M8 operator>(F8 a, F8 b) { return M8{_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
 inline M8 operator&(M8 a, M8 b) { return M8{_mm256_and_ps(a.v, b.v)}; }
+inline bool none(M8 m) { return _mm256_movemask_ps(m.v) == 0; }
 inline F8 select(M8 m, F8 a, F8 b) { return F8(_mm256_blendv_ps(b.v, a.v, m.v)); }
 inline I8 select(M8 m, I8 a, I8 b)
 {

@@ -69,6 +69,7 @@ void direct(const Pixels& p, const Light* lights, int count, const Tables& t)
       const F cos_phi = zero - (nx * vx + ny * vy + nz * vz);  // r cos(incidence)
       // Inside the cone (ca > cos_half r with cos_half >= 0, tested without the square root), lit from the front.
       const auto on = (ca > zero) & (ca * ca > F(l.cos_half2) * r2) & (cos_phi > zero) & anyBit(lit, l.bit);
+      if (none(on)) continue;  // a light that reaches none of these pixels (most lights, in most tiles)
       const F inv_r = one / sqrt(r2);
       const F r = r2 * inv_r;
       const F fi = min(max((ca * inv_r - F(l.cos_half)) * F(l.pow_scale), zero), pow_last);
