@@ -349,6 +349,40 @@ std::string slsSensor(double fan)
                     {"motor_max", "0.5"}, {"motor_speed", "0"}, {"motor_start", "0"}, {"noise", "none"}});
 }
 
+TEST(Camera, EightLanesAndOneLaneRenderTheSameImage)
+{
+  if (!sensors::vision::ImageFormation::simdAvailable()) GTEST_SKIP() << "this CPU (or build) has no AVX2 and FMA";
+  // 101 x 81 px: the tiles of the right column and bottom row hold 5 x 8, 8 x 1 and 5 x 1 pixels (the lanes' padding);
+  // noise, shadows and two plates of other albedos in medium water.
+  const std::vector<Plate> plates{{"dark", Eigen::Vector3d(1.5, -0.6, -0.3), Eigen::Vector3d(1.55, -0.1, 0.2), 0.1},
+                                  {"bright", Eigen::Vector3d(1.2, 0.1, -0.4), Eigen::Vector3d(1.25, 0.5, 0.0), 0.9}};
+  const std::map<std::string, std::string> common{{"noise", "gaussian"}, {"shadows", "true"}};
+  auto params = [&](const char* simd) {
+    auto p = cameraParams(common);
+    p["simd"] = simd;
+    return p;
+  };
+  CameraWorld eight(box("medium", 0.5, plates), cameraUrdf(params("true")), true, 7);
+  CameraWorld one(box("medium", 0.5, plates), cameraUrdf(params("false")), true, 7);
+  const auto& a = eight.frame();
+  const auto& b = one.frame();
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.range.size(); ++i) {
+    ASSERT_EQ(a.range[i], b.range[i]) << "pixel " << i;
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_NEAR(a.radiance[3 * i + k], b.radiance[3 * i + k], 1e-4 * b.radiance[3 * i + k]) << "pixel " << i;
+      // A code may round the other way where the signal sits on a step's edge.
+      ASSERT_LE(std::abs(int(a.rgb[3 * i + k]) - int(b.rgb[3 * i + k])), 1) << "pixel " << i;
+      differ += a.rgb[3 * i + k] != b.rgb[3 * i + k];
+    }
+  }
+  EXPECT_LE(differ, a.rgb.size() / 1000);
+  double sum = 0.0;
+  for (std::uint8_t x : a.rgb) sum += x;
+  EXPECT_GT(sum / a.rgb.size(), 5.0);  // an image, not a black frame
+}
+
 TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
 {
   const double fan = 60 * kDeg, power = 0.05, rho = 0.5;

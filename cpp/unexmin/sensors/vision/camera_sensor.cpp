@@ -81,6 +81,7 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   const double cone = p.number("light_cone", 90.0 * kDeg, 1e-3, M_PI, "rad");
   const double exponent = p.number("light_exponent", 1.0, 0.0, 1000.0, "");
   shadows_ = p.flag("shadows", false);
+  simd_ = p.flag("simd", true);
   const double laser_power = p.number("laser_power", 0.05, 0.0, 1000.0, "W");
   const double laser_width = p.number("laser_width", 1.0, 0.1, 100.0, "px");
   const Eigen::Vector3d laser_colour = p.vec3("laser_colour", Eigen::Vector3d(0.05, 1.0, 0.15));
@@ -314,7 +315,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
     }
   }
-  const bool simd = ImageFormation::simdAvailable();
+  const bool simd = simd_ && ImageFormation::simdAvailable();
   formation_->radiance(batch, simd);
   for (int i = 0; i < n; ++i) {
     float* out = &frame_.radiance[3 * pixel[i]];

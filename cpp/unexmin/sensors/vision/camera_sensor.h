@@ -24,6 +24,8 @@
 //   lights: links of the robot's LED lights (+x = beam axis; none by default); light_intensity I0 per channel
 //       [W/sr] (1.5 1.5 1.5), light_cone full angle [rad] (90 deg), light_exponent m [-] (1)
 //   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
+//   simd true|false (true): shade and sense eight pixels at a time in AVX2 lanes where the CPU has AVX2 and FMA
+//       (ImageFormation::simdAvailable); false: one at a time. Same kernels, same images up to rounding.
 //   laser_power [W] (0.05), laser_width [px] (1), laser_colour (0.05 1 0.15): the line of the SLS unit whose
 //       <sensor type="sls"> names this camera's link as its camera_frame (none: no line)
 #pragma once
@@ -109,7 +111,7 @@ private:
   CameraModel model_;
   bool visual_ = false;
   double clip_far_ = 20.0, exposure_ = 20.0, gain_ = 1.0, gamma_ = 1.0;
-  bool noise_ = true, shadows_ = false;
+  bool noise_ = true, shadows_ = false, simd_ = true;
   double full_well_ = 10000.0, read_noise_ = 10.0;
   std::vector<LedLight> lights_;
   std::unique_ptr<LaserLine> laser_;
