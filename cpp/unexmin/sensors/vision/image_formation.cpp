@@ -129,32 +129,6 @@ bool ImageFormation::simdAvailable()
 #endif
 }
 
-namespace {
-
-/// The kernels' view of the first n pixels of `batch`.
-shading::Pixels pixelsOf(PixelBatch& batch, int n)
-{
-  shading::Pixels p;
-  p.n = n;
-  p.u = batch.u;
-  p.v = batch.v;
-  p.range = batch.range;
-  p.px = batch.px;
-  p.py = batch.py;
-  p.pz = batch.pz;
-  p.nx = batch.nx;
-  p.ny = batch.ny;
-  p.nz = batch.nz;
-  p.lit = batch.lit;
-  for (int c = 0; c < 3; ++c) {
-    p.albedo[c] = batch.albedo[c];
-    p.out[c] = batch.out[c];
-  }
-  return p;
-}
-
-}  // namespace
-
 void ImageFormation::radiance(PixelBatch& batch, bool simd) const
 {
   const int count = static_cast<int>(kernel_lights_.size());
@@ -162,13 +136,11 @@ void ImageFormation::radiance(PixelBatch& batch, bool simd) const
     // Whole groups of 8 lanes: the padding is open water at range 0 (its results are never read).
     const int padded = (batch.n + 7) / 8 * 8;
     for (int i = batch.n; i < padded; ++i) batch.setWater(i, 0.0f, 0.0f, 0.0f);
-    const shading::Pixels p = pixelsOf(batch, padded);
-    shading::directAvx2(p, kernel_lights_.data(), count, tables_);
-    shading::backscatterAvx2(p, backscatter_);
+    shading::directAvx2(batch, padded, kernel_lights_.data(), count, tables_);
+    shading::backscatterAvx2(batch, padded, backscatter_);
   } else {
-    const shading::Pixels p = pixelsOf(batch, batch.n);
-    shading::direct<lanes::F1>(p, kernel_lights_.data(), count, tables_);
-    shading::backscatter<lanes::F1>(p, backscatter_);
+    shading::direct<lanes::F1>(batch, batch.n, kernel_lights_.data(), count, tables_);
+    shading::backscatter<lanes::F1>(batch, batch.n, backscatter_);
   }
 }
 
@@ -177,8 +149,7 @@ Eigen::Array3f ImageFormation::direct(const Eigen::Vector3f& p, float range, con
 {
   PixelBatch b;
   b.set(0, 0.0f, 0.0f, range, p, n, albedo.data(), lit);
-  shading::direct<lanes::F1>(pixelsOf(b, 1), kernel_lights_.data(), static_cast<int>(kernel_lights_.size()),
-                                      tables_);
+  shading::direct<lanes::F1>(b, 1, kernel_lights_.data(), static_cast<int>(kernel_lights_.size()), tables_);
   return Eigen::Array3f(b.out[0][0], b.out[1][0], b.out[2][0]);
 }
 
@@ -187,7 +158,7 @@ Eigen::Array3f ImageFormation::backscatter(float u, float v, float r) const
   PixelBatch b;
   b.setWater(0, u, v, r);
   for (auto& o : b.out) o[0] = 0.0f;
-  shading::backscatter<lanes::F1>(pixelsOf(b, 1), backscatter_);
+  shading::backscatter<lanes::F1>(b, 1, backscatter_);
   return Eigen::Array3f(b.out[0][0], b.out[1][0], b.out[2][0]);
 }
 

@@ -52,19 +52,11 @@ struct LedLight
   double profile(double cos_theta) const;
 };
 
-/// Up to kMax pixels of one tile, structure of arrays so that radiance() runs the pixels side by side in SIMD
-/// lanes. A pixel that sees no surface has range = max_range, albedo 0 and normal 0 (backscatter only).
-struct PixelBatch
+/// Up to kMax pixels of one tile (shading::Pixels) as the camera fills them. A pixel that sees no surface has
+/// range = max_range, albedo 0 and normal 0 (backscatter only).
+struct PixelBatch : shading::Pixels
 {
   static constexpr int kMax = shading::kMaxPixels;
-  int n = 0;                                         ///< pixels in use
-  alignas(32) float u[kMax], v[kMax];                ///< pixel coordinates [px]
-  alignas(32) float range[kMax];                     ///< lens to the surface [m]
-  alignas(32) float px[kMax], py[kMax], pz[kMax];    ///< surface point, camera frame [m]
-  alignas(32) float nx[kMax], ny[kMax], nz[kMax];    ///< unit surface normal towards the lens, camera frame
-  alignas(32) float albedo[3][kMax];                 ///< Lambertian albedo per channel (R, G, B) [-]
-  alignas(32) std::uint32_t lit[kMax];               ///< bit k: light k reaches the point (no shadow)
-  alignas(32) float out[3][kMax];                    ///< radiance() result per channel [W m^-2 sr^-1]
 
   /// Sets pixel i: (u, v), the surface at `range` (point p, normal n, albedo a), lit by the bits of `lit_mask`.
   void set(int i, float pu, float pv, float r, const Eigen::Vector3f& p, const Eigen::Vector3f& normal,

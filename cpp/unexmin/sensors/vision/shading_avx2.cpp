@@ -9,31 +9,24 @@ namespace vision {
 namespace shading {
 
 #if defined(__AVX2__) && defined(__FMA__)
-void directAvx2(const Pixels& p, const Light* lights, int count, const Tables& t)
-{
-  direct<lanes::F8>(p, lights, count, t);
-}
-void backscatterAvx2(const Pixels& p, const Backscatter& b) { backscatter<lanes::F8>(p, b); }
-void sensorAvx2(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
-                std::int32_t* const code[3])
-{
-  sensor<lanes::F8>(s, n, radiance, noise, code);
-}
-bool avx2Built() { return true; }
+using Lanes = lanes::F8;
+constexpr bool kBuilt = true;
 #else
-// Not an x86-64 build with AVX2: the one-lane kernels, never called (avx2Built() is false).
-void directAvx2(const Pixels& p, const Light* lights, int count, const Tables& t)
+using Lanes = lanes::F1;  // not an x86-64 build with AVX2: one lane, never called (avx2Built() is false)
+constexpr bool kBuilt = false;
+#endif
+
+void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t)
 {
-  direct<lanes::F1>(p, lights, count, t);
+  direct<Lanes>(p, n, lights, count, t);
 }
-void backscatterAvx2(const Pixels& p, const Backscatter& b) { backscatter<lanes::F1>(p, b); }
+void backscatterAvx2(Pixels& p, int n, const Backscatter& b) { backscatter<Lanes>(p, n, b); }
 void sensorAvx2(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
                 std::int32_t* const code[3])
 {
-  sensor<lanes::F1>(s, n, radiance, noise, code);
+  sensor<Lanes>(s, n, radiance, noise, code);
 }
-bool avx2Built() { return false; }
-#endif
+bool avx2Built() { return kBuilt; }
 
 }  // namespace shading
 }  // namespace vision

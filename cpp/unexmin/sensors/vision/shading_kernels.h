@@ -29,14 +29,17 @@ struct Light
   std::uint32_t bit = 0;         ///< this light's bit in the pixels' lit masks
 };
 
-/// Structure of arrays of n pixels (n a multiple of the lane width) and the tables they read.
+/// Up to kMaxPixels pixels as a structure of arrays (one array per quantity, so that lanes load side by side).
 struct Pixels
 {
-  int n = 0;
-  const float *u, *v, *range, *px, *py, *pz, *nx, *ny, *nz;
-  const float* albedo[3];
-  const std::uint32_t* lit;
-  float* out[3];  ///< radiance per channel
+  int n = 0;                                               ///< pixels in use
+  alignas(32) float u[kMaxPixels], v[kMaxPixels];          ///< pixel coordinates [px]
+  alignas(32) float range[kMaxPixels];                     ///< lens to the surface [m]
+  alignas(32) float px[kMaxPixels], py[kMaxPixels], pz[kMaxPixels];  ///< surface point, camera frame [m]
+  alignas(32) float nx[kMaxPixels], ny[kMaxPixels], nz[kMaxPixels];  ///< unit normal towards the lens
+  alignas(32) float albedo[3][kMaxPixels];                 ///< Lambertian albedo per channel (R, G, B) [-]
+  alignas(32) std::uint32_t lit[kMaxPixels];               ///< bit k: light k reaches the point (no shadow)
+  alignas(32) float out[3][kMaxPixels];                    ///< radiance per channel [W m^-2 sr^-1]
 };
 
 /// exp(-c x) per channel, 4 floats an entry (R, G, B, 0) over x in [0, last / scale]; pow tables' last index.
@@ -48,14 +51,14 @@ struct Tables
   float pow_last = 0.0f;   ///< entries of a light's pow_m - 2
 };
 
-/// out = albedo * sum over lights of (I0/pi) cos^m(theta) cos(phi) exp(-c (R_L + R_C)) / R_L^2 (see
+/// For the first n pixels of p (n a multiple of the lane width): out = albedo * sum over lights of (I0/pi) cos^m(theta) cos(phi) exp(-c (R_L + R_C)) / R_L^2 (see
 /// ImageFormation): the direct term, written (not added) to out.
 template <class F>
-void direct(const Pixels& p, const Light* lights, int count, const Tables& t)
+void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
 {
   using I = typename F::Int;
   const F zero(0.0f), one(1.0f), tiny(1e-12f), exp_scale(t.exp_scale), exp_last(t.exp_last), pow_last(t.pow_last);
-  for (int i = 0; i < p.n; i += F::kWidth) {
+  for (int i = 0; i < n; i += F::kWidth) {
     const F px = load(p.px + i, zero), py = load(p.py + i, zero), pz = load(p.pz + i, zero);
     const F nx = load(p.nx + i, zero), ny = load(p.ny + i, zero), nz = load(p.nz + i, zero);
     const F range = load(p.range + i, zero);
@@ -104,12 +107,12 @@ struct Backscatter
   float inv_step_u = 1.0f, inv_step_v = 1.0f, inv_range = 1.0f;  ///< nodes per px, 1 / s_bins
 };
 
-/// out += the backscatter along each pixel's ray to its range (clamped to [0, s_bins]): bilinear in the pixel,
+/// For the first n pixels of p (n a multiple of the lane width): out += the backscatter along each pixel's ray to its range (clamped to [0, s_bins]): bilinear in the pixel,
 /// linear in range. First, in lanes, each pixel's cell (first node and bin) and its weights; then per pixel the
 /// 8 floats a node holds for the two bin edges around the range (both edges, all channels: one load in AVX),
 /// weighted over the cell's four nodes, and the range's weight between the two edges.
 template <class F>
-void backscatter(const Pixels& p, const Backscatter& b)
+void backscatter(Pixels& p, int n, const Backscatter& b)
 {
   using I = typename F::Int;
   alignas(32) std::int32_t cell[kMaxPixels];
@@ -121,7 +124,7 @@ void backscatter(const Pixels& p, const Backscatter& b)
   const I minus_one = splatInt(-1, zero), nu = splatInt(b.nu, zero), four = splatInt(4, zero);
   const int stride = (b.bins + 1) * 4;  // floats per node
   const I node_stride = splatInt(stride, zero);
-  for (int i = 0; i < p.n; i += F::kWidth) {
+  for (int i = 0; i < n; i += F::kWidth) {
     const F fu = min(max(load(p.u + i, zero) * F(b.inv_step_u), zero), max_u);
     const F fv = min(max(load(p.v + i, zero) * F(b.inv_step_v), zero), max_v);
     const I iu = min(truncate(fu), last_node_u), iv = min(truncate(fv), last_node_v);
@@ -140,7 +143,7 @@ void backscatter(const Pixels& p, const Backscatter& b)
     store(weight[4] + i, (rr - gather(b.edge, j)) * gather(b.inv_bin, j));
   }
   const int down = b.nu * stride;
-  for (int i = 0; i < p.n; ++i) {
+  for (int i = 0; i < n; ++i) {
     const float* n00 = b.table + cell[i];
     const float* n10 = n00 + stride;
     const float* n01 = n00 + down;
@@ -182,8 +185,8 @@ void sensor(const Sensor& s, int n, float* const radiance[3], const std::int32_t
 }
 
 /// The AVX2 + FMA builds of the three (shading_avx2.cpp); call only where avx2Built() and the CPU has both.
-void directAvx2(const Pixels& p, const Light* lights, int count, const Tables& t);
-void backscatterAvx2(const Pixels& p, const Backscatter& b);
+void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t);
+void backscatterAvx2(Pixels& p, int n, const Backscatter& b);
 void sensorAvx2(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
                 std::int32_t* const code[3]);
 /// Whether the two above were built for AVX2 + FMA (x86-64 with GCC or Clang).
