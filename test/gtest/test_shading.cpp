@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -105,6 +106,39 @@ TEST(Shading, EightLanesGiveWhatOneLaneGivesForEveryTileSize)
   EXPECT_GT(lit, compared / 10);  // the direct term, not the water alone, is what was compared
   RecordProperty("worst_relative_difference", std::to_string(worst));
   std::printf("worst relative difference, eight lanes vs one: %.3g\n", worst);
+}
+
+TEST(Shading, ANonFiniteInputSpoilsItsOwnPixelOnlyAndReadsNothingOutOfBounds)
+{
+  // Every table index is clamped NaN included: a NaN or infinite range, point or coordinate must not make a lane
+  // read outside a table (it would crash or read garbage), nor change the other pixels.
+  const ImageFormation f(camera(), fiveLights(), WaterOptics::fromVisibility("medium", Eigen::Vector3d::Ones()), 6.0);
+  std::mt19937_64 rng(5);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (bool simd : {false, true}) {
+    if (simd && !ImageFormation::simdAvailable()) continue;
+    PixelBatch clean;
+    randomTile(clean, 24, f.maxRange(), rng);
+    for (int bad = 0; bad < 6; ++bad) {
+      PixelBatch b = clean, ref = clean;
+      const int i = 3 + bad;
+      switch (bad) {
+        case 0: b.range[i] = nan; break;
+        case 1: b.range[i] = inf; break;
+        case 2: b.px[i] = nan; break;
+        case 3: b.u[i] = nan; break;
+        case 4: b.v[i] = -inf; break;
+        case 5: b.nz[i] = nan; break;
+      }
+      f.radiance(b, simd);
+      f.radiance(ref, simd);
+      for (int k = 0; k < b.n; ++k)
+        for (int c = 0; c < 3; ++c)
+          if (k != i) {
+            EXPECT_EQ(b.out[c][k], ref.out[c][k]) << "simd " << simd << " bad input " << bad << " pixel " << k;
+          }
+    }
+  }
 }
 
 TEST(Shading, OneLaneDirectTermMatchesTheClosedFormOfOneLed)

@@ -128,6 +128,13 @@ inline void weigh8(const float* a, float wa, const float* b, float wb, const flo
 }
 #endif
 
+/// max(lo, min(x, hi)) in either lane type: NaN gives lo (the second operand wins in both F1's and F8's min/max).
+template <class F>
+inline F clamp(F x, F lo, F hi)
+{
+  return max(lo, min(x, hi));
+}
+
 }  // namespace lanes
 }  // namespace vision
 }  // namespace sensors

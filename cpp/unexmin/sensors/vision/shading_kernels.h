@@ -1,6 +1,7 @@
 // The per-pixel shading of ImageFormation (image_formation.h has the model), written once over SIMD lanes
 // (lanes.h): F1 runs one pixel at a time, F8 eight side by side (shading_avx2.cpp). No branch per pixel: a light
-// that does not reach a pixel gives a selected 0, and every table index is clamped so that each load is in bounds.
+// that does not reach a pixel gives a selected 0, and every table index is clamped so that each load is in bounds,
+// NaN included (clamp() maps it to the low end: a NaN input gives a wrong pixel, never a read out of bounds).
 // Plain arrays only (no Eigen): this header is compiled with and without AVX2.
 #pragma once
 
@@ -51,8 +52,9 @@ struct Tables
   float pow_last = 0.0f;   ///< entries of a light's pow_m - 2
 };
 
-/// For the first n pixels of p (n a multiple of the lane width): out = albedo * sum over lights of (I0/pi) cos^m(theta) cos(phi) exp(-c (R_L + R_C)) / R_L^2 (see
-/// ImageFormation): the direct term, written (not added) to out.
+/// For the first n pixels of p (n a multiple of the lane width): out = albedo * sum over lights of
+/// (I0/pi) cos^m(theta) cos(phi) exp(-c (R_L + R_C)) / R_L^2 (see ImageFormation): the direct term, written (not
+/// added) to out.
 template <class F>
 void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
 {
@@ -75,12 +77,12 @@ void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
       if (none(on)) continue;  // a light that reaches none of these pixels (most lights, in most tiles)
       const F inv_r = one / sqrt(r2);
       const F r = r2 * inv_r;
-      const F fi = min(max((ca * inv_r - F(l.cos_half)) * F(l.pow_scale), zero), pow_last);
+      const F fi = clamp((ca * inv_r - F(l.cos_half)) * F(l.pow_scale), zero, pow_last);
       const I ip = truncate(fi);
       const F p0 = gather(l.pow_m, ip), p1 = gather(l.pow_m + 1, ip);
       const F pw = p0 + (fi - toFloat(ip)) * (p1 - p0);
       // exp(-c x) at x = R_C + R_L; 0 beyond the table.
-      const F fe = min((range + r) * exp_scale, exp_last);
+      const F fe = clamp((range + r) * exp_scale, zero, exp_last);
       const I ie = truncate(fe);
       const F we = fe - toFloat(ie);
       const I e4 = ie * splatInt(4, zero);
@@ -107,10 +109,11 @@ struct Backscatter
   float inv_step_u = 1.0f, inv_step_v = 1.0f, inv_range = 1.0f;  ///< nodes per px, 1 / s_bins
 };
 
-/// For the first n pixels of p (n a multiple of the lane width): out += the backscatter along each pixel's ray to its range (clamped to [0, s_bins]): bilinear in the pixel,
-/// linear in range. First, in lanes, each pixel's cell (first node and bin) and its weights; then per pixel the
-/// 8 floats a node holds for the two bin edges around the range (both edges, all channels: one load in AVX),
-/// weighted over the cell's four nodes, and the range's weight between the two edges.
+/// For the first n pixels of p (n a multiple of the lane width): out += the backscatter along each pixel's ray to
+/// its range (clamped to [0, s_bins]): bilinear in the pixel, linear in range. First, in lanes, each pixel's cell
+/// (first node and bin) and its weights; then per pixel the 8 floats a node holds for the two bin edges around the
+/// range (both edges, all channels: one load in AVX), weighted over the cell's four nodes, and the range's weight
+/// between the two edges.
 template <class F>
 void backscatter(Pixels& p, int n, const Backscatter& b)
 {
@@ -125,11 +128,11 @@ void backscatter(Pixels& p, int n, const Backscatter& b)
   const int stride = (b.bins + 1) * 4;  // floats per node
   const I node_stride = splatInt(stride, zero);
   for (int i = 0; i < n; i += F::kWidth) {
-    const F fu = min(max(load(p.u + i, zero) * F(b.inv_step_u), zero), max_u);
-    const F fv = min(max(load(p.v + i, zero) * F(b.inv_step_v), zero), max_v);
+    const F fu = clamp(load(p.u + i, zero) * F(b.inv_step_u), zero, max_u);
+    const F fv = clamp(load(p.v + i, zero) * F(b.inv_step_v), zero, max_v);
     const I iu = min(truncate(fu), last_node_u), iv = min(truncate(fv), last_node_v);
     const F wu = fu - toFloat(iu), wv = fv - toFloat(iv);
-    const F rr = min(max(load(p.range + i, zero), zero), s_max);
+    const F rr = clamp(load(p.range + i, zero), zero, s_max);
     I j = min(truncate(sqrt(rr * inv_range) * bins_f), last_bin);
     // Rounding in the square root may land one bin off: step to the bin that holds rr.
     j = select(rr < gather(b.edge, j), j + minus_one, j);
@@ -179,7 +182,7 @@ void sensor(const Sensor& s, int n, float* const radiance[3], const std::int32_t
     for (int i = 0; i < n; i += F::kWidth) {
       F signal = min(exposure * load(radiance[c] + i, zero), one);
       if (noise[c]) signal = signal + sqrt(signal * shot + read2) * gather(s.normal, loadInt(noise[c] + i, zero));
-      const F level = min(max(gain * signal, zero), one) * last + half;
+      const F level = clamp(gain * signal, zero, one) * last + half;
       storeInt(code[c] + i, gatherInt(s.encode, truncate(level)));
     }
 }
