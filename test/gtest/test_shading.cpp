@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace unexmin {
 namespace test {
@@ -137,6 +139,58 @@ TEST(Shading, ANonFiniteInputSpoilsItsOwnPixelOnlyAndReadsNothingOutOfBounds)
           if (k != i) {
             EXPECT_EQ(b.out[c][k], ref.out[c][k]) << "simd " << simd << " bad input " << bad << " pixel " << k;
           }
+    }
+  }
+}
+
+TEST(Shading, EightLanesAreBuiltAndUsedWhereTheCpuHasAvx2AndFma)
+{
+  // A build that silently lost shading_avx2.cpp's -mavx2 -mfma would shade one pixel at a time (and the tests
+  // comparing the two would skip): on a CPU with both, the eight lanes must be there.
+#if defined(__x86_64__) && defined(__GNUC__)
+  const bool cpu = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  EXPECT_EQ(ImageFormation::simdAvailable(), cpu) << "CPU has AVX2 and FMA: " << cpu;
+#else
+  EXPECT_FALSE(ImageFormation::simdAvailable());
+#endif
+}
+
+TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge)
+{
+  // The table's range bins end at s_j = max_range (j / 64)^2; the lookup finds a range's bin from a rounded square
+  // root and steps one bin if that landed wrong. Just below, at and just above every edge, at pixels inside and
+  // outside the image, in both lane widths: the glow never decreases with range, and across an edge it changes by
+  // no more than a float's rounding of the whole sweep (near a light the glow rises by 1e4 per metre: the steps
+  // of one ulp of range are compared with the sweep's largest value, not with their own).
+  const double max_range = 6.0;
+  const ImageFormation f(camera(), fiveLights(), WaterOptics::fromVisibility("high", Eigen::Vector3d::Ones()),
+                         max_range);
+  for (bool simd : {false, true}) {
+    if (simd && !ImageFormation::simdAvailable()) continue;
+    for (const Eigen::Vector2f& uv : {Eigen::Vector2f(80.0f, 60.0f), Eigen::Vector2f(3.3f, 117.9f),
+                                      Eigen::Vector2f(-20.0f, 200.0f)}) {
+      std::vector<std::array<float, 3>> at_edge;  // (below, at, above) per edge
+      std::vector<float> sweep;
+      for (int j = 1; j <= 64; ++j) {
+        const float edge = static_cast<float>(max_range * (j / 64.0) * (j / 64.0));
+        PixelBatch b;
+        b.n = 3;
+        b.setWater(0, uv.x(), uv.y(), std::nextafter(edge, 0.0f));
+        b.setWater(1, uv.x(), uv.y(), edge);
+        b.setWater(2, uv.x(), uv.y(), std::nextafter(edge, 100.0f));
+        f.radiance(b, simd);
+        at_edge.push_back({b.out[1][0], b.out[1][1], b.out[1][2]});
+        for (int i = 0; i < 3; ++i) sweep.push_back(b.out[1][i]);
+      }
+      const float top = *std::max_element(sweep.begin(), sweep.end());
+      ASSERT_GT(top, 0.0f) << "the lights must light the water along this ray";
+      for (std::size_t i = 1; i < sweep.size(); ++i)
+        ASSERT_GE(sweep[i], sweep[i - 1]) << "simd " << simd << " sample " << i << " (edge " << i / 3 + 1 << ")";
+      for (std::size_t e = 0; e < at_edge.size(); ++e) {
+        EXPECT_LE(at_edge[e][2] - at_edge[e][0], 1e-6f * top) << "simd " << simd << " edge " << e + 1;
+      }
+      // Beyond max_range the ray sees open water up to max_range: the same glow.
+      EXPECT_EQ(f.backscatter(uv.x(), uv.y(), 50.0f)[1], f.backscatter(uv.x(), uv.y(), static_cast<float>(max_range))[1]);
     }
   }
 }

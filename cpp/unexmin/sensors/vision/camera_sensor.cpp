@@ -184,7 +184,8 @@ void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance
   constexpr int kMax = PixelBatch::kMax;
   alignas(32) std::int32_t noise[3][kMax];
   alignas(32) std::int32_t code[3][kMax];
-  const int lanes = simd ? (n + 7) / 8 * 8 : n;  // the padding's radiance is there (PixelBatch), its codes unused
+  simd = simd && ImageFormation::simdAvailable();
+  const int padded = simd ? (n + 7) / 8 * 8 : n;  // the padding's radiance is there (PixelBatch), its codes unused
   const std::int32_t* draws[3] = {nullptr, nullptr, nullptr};
   if (noise_) {
     // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
@@ -196,12 +197,12 @@ void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance
       noise[2][i] = static_cast<std::int32_t>((hash >> 24) & 0xfff);
     }
     for (int c = 0; c < 3; ++c) {
-      std::fill(noise[c] + n, noise[c] + lanes, 0);
+      std::fill(noise[c] + n, noise[c] + padded, 0);
       draws[c] = noise[c];
     }
   }
   std::int32_t* const codes[3] = {code[0], code[1], code[2]};
-  if (simd) shading::sensorAvx2(sensor_, lanes, radiance, draws, codes);
+  if (simd) shading::sensorAvx2(sensor_, padded, radiance, draws, codes);
   else shading::sensor<lanes::F1>(sensor_, n, radiance, draws, codes);
   for (int i = 0; i < n; ++i) {
     std::uint8_t* px = &frame_.rgb[3 * pixel[i]];

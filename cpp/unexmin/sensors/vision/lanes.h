@@ -16,6 +16,13 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 namespace lanes {
+// Everything here gets a namespace of its own in the AVX2 translation unit, so that no inline function compiled
+// there can be chosen by the linker for the others (which may run on CPUs without AVX2).
+#if defined(__AVX2__) && defined(__FMA__)
+inline namespace avx2 {
+#else
+inline namespace baseline {
+#endif
 
 // ---------------------------------------------------------------- one lane
 
@@ -115,8 +122,9 @@ inline I8 splatInt(std::int32_t x, F8) { return I8{_mm256_set1_epi32(x)}; }
 inline M8 operator<(I8 a, I8 b) { return M8{_mm256_castsi256_ps(_mm256_cmpgt_epi32(b.v, a.v))}; }
 inline M8 anyBit(I8 a, std::uint32_t bit)
 {
-  const __m256i b = _mm256_set1_epi32(static_cast<std::int32_t>(bit));
-  return M8{_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(a.v, b), b))};
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i none = _mm256_cmpeq_epi32(_mm256_and_si256(a.v, _mm256_set1_epi32(static_cast<std::int32_t>(bit))), zero);
+  return M8{_mm256_castsi256_ps(_mm256_xor_si256(none, _mm256_cmpeq_epi32(zero, zero)))};  // not none
 }
 inline void weigh8(const float* a, float wa, const float* b, float wb, const float* c, float wc, const float* d,
                    float wd, float* out, F8)
@@ -135,6 +143,7 @@ inline F clamp(F x, F lo, F hi)
   return max(lo, min(x, hi));
 }
 
+}  // inline namespace avx2 / baseline
 }  // namespace lanes
 }  // namespace vision
 }  // namespace sensors
