@@ -1,12 +1,20 @@
 """Fixtures shared by the pytest suite."""
 
 import os
+import signal
 import subprocess
 import time
 
 import pytest
 
 from unexmin.launcher import stop_process_group
+
+# The shutdown tests press a terminal's Ctrl-C (SIGINT to a run's process group). A test runner started in the
+# background of a non-interactive shell (`cmd &`) or under nohup inherits SIGINT ignored, and so would every process
+# it starts: Python then never raises KeyboardInterrupt and the runs would ignore the Ctrl-C that a terminal delivers.
+# A handler of our own is reset to the default in every child at exec, as in a terminal.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 class MarkedRuns:
