@@ -611,12 +611,16 @@ TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
   EXPECT_GT(ghost, 0.2f);
   for (int b = 0; b < static_cast<int>(near.size()); ++b) {
     const bool expected = (b >= *dmin - 1 && b <= *dmax + 1) || (b >= *gmin - 1 && b <= *gmax + 1);
-    if (!expected) EXPECT_EQ(near[b], 0.0f) << "bin " << b << " at 0.4 m";
+    if (!expected) {
+      EXPECT_EQ(near[b], 0.0f) << "bin " << b << " at 0.4 m";
+    }
   }
   // 2 m deep: the direct echo the same, code for code; the ghost gone.
   for (int b = *dmin - 1; b <= *dmax + 1; ++b) EXPECT_EQ(deep[b], near[b]) << "bin " << b;
   for (int b = 0; b < static_cast<int>(deep.size()); ++b)
-    if (b < *dmin - 1 || b > *dmax + 1) EXPECT_EQ(deep[b], 0.0f) << "bin " << b << " at 2 m";
+    if (b < *dmin - 1 || b > *dmax + 1) {
+      EXPECT_EQ(deep[b], 0.0f) << "bin " << b << " at 2 m";
+    }
 }
 
 TEST(Msis, TheSurfaceItselfEchoesFromWhereTheTopRaysMeetIt)

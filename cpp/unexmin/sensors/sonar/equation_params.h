@@ -2,6 +2,7 @@
 // from its <sensor> element: the same keys, units and bounds for the MSIS and the M3.
 #pragma once
 
+#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/sensor_params.h>
 #include <unexmin/sensors/sonar/echo_model.h>
 
@@ -43,6 +44,19 @@ inline SurfaceParams readSurfaceParams(sensors::SensorParams& p, const EchoParam
   s.ghost_extra = reflection > 0.0 ? 40.0 * std::log10(reflection) : -std::numeric_limits<double>::infinity();
   s.surface_extra = p.number("surface_backscatter", -30.0, -100.0, 0.0, "dB") - e.backscatter_strength;
   return s;
+}
+
+/// The reflection at the free surface (z = surface_z) of `ray`, which starts at `origin` and meets the surface at
+/// distance s: from the point it meets it, mirrored in the horizontal (d_z -> -d_z), for `reach` metres.
+inline raycast::Ray reflectedRay(const raycast::Ray& ray, const Eigen::Vector3d& origin, double s, double surface_z,
+                                 double reach)
+{
+  raycast::Ray r = ray;
+  r.origin = (origin + s * ray.direction.cast<double>()).cast<float>();
+  r.origin.z() = static_cast<float>(surface_z);
+  r.direction.z() = -r.direction.z();
+  r.max_range = static_cast<float>(reach);
+  return r;
 }
 
 }  // namespace sonar

@@ -177,12 +177,7 @@ void M3Sensor::directAndSurface(int k, double surface_z)
     if (s < 0.0 || hits_[i].hit() || s >= best.range) continue;
     const double reach = std::min(range_max_, best.range) - s;
     if (reach <= 1e-6) continue;
-    raycast::Ray r = rays_[i];
-    r.origin = (rays_[i].origin.cast<double>() + s * rays_[i].direction.cast<double>()).cast<float>();
-    r.origin.z() = static_cast<float>(surface_z);
-    r.direction.z() = -r.direction.z();
-    r.max_range = static_cast<float>(reach);
-    mirrored_.push_back(r);
+    mirrored_.push_back(reflectedRay(rays_[i], rays_[i].origin.cast<double>(), s, surface_z, reach));
     mirror_of_.push_back(i);
   }
 }

@@ -216,12 +216,7 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   mirror_of_.clear();
   for (std::size_t i = 0; i < rays_.size(); ++i) {
     if (surface_[i] < 0.0 || hits_[i].hit()) continue;
-    raycast::Ray r = rays_[i];
-    r.origin = (origin + surface_[i] * rays_[i].direction.cast<double>()).cast<float>();
-    r.origin.z() = static_cast<float>(surface_z);
-    r.direction.z() = -r.direction.z();
-    r.max_range = static_cast<float>(e.range_max - surface_[i]);
-    mirrored_.push_back(r);
+    mirrored_.push_back(reflectedRay(rays_[i], origin, surface_[i], surface_z, e.range_max - surface_[i]));
     mirror_of_.push_back(i);
   }
   if (!mirrored_.empty()) castRays(ctx, mirrored_, mirror_hits_);

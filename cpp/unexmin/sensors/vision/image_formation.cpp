@@ -14,6 +14,7 @@ namespace {
 
 constexpr int kPowEntries = ImageFormation::kPowEntries;
 constexpr int kExpEntries = ImageFormation::kExpEntries;
+constexpr int kBins = 64;            ///< backscatter table: range bins
 constexpr int kSimpson = 4;          ///< Simpson sub-intervals per range bin (even)
 constexpr int kMaxNodesU = 65;       ///< backscatter table: pixel nodes across ...
 constexpr int kMaxNodesV = 49;      ///< ... and down
@@ -71,23 +72,13 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
   const Eigen::Vector3d c = water_.c();
   for (int i = 0; i <= kExpEntries + 1; ++i)
     for (int k = 0; k < 3; ++k) exp_[4 * i + k] = static_cast<float>(std::exp(-c[k] * x_max * i / kExpEntries));
-  exp_scale_ = static_cast<float>(kExpEntries / x_max);
+  tables_.exp = exp_.data();
+  tables_.exp_scale = static_cast<float>(kExpEntries / x_max);
+  tables_.exp_last = static_cast<float>(kExpEntries);
+  tables_.pow_last = static_cast<float>(kPowEntries);
   buildTable(camera, threads);
 
   for (int k : active_) kernel_lights_.push_back(light_f_[static_cast<std::size_t>(k)]);
-  tables_.exp = exp_.data();
-  tables_.exp_scale = exp_scale_;
-  tables_.exp_last = static_cast<float>(kExpEntries);
-  tables_.pow_last = static_cast<float>(kPowEntries);
-  backscatter_.table = table_.data();
-  backscatter_.edge = s_.data();
-  backscatter_.inv_bin = inv_bin_.data();
-  backscatter_.nu = nu_;
-  backscatter_.nv = nv_;
-  backscatter_.bins = bins_;
-  backscatter_.inv_step_u = inv_step_u_;
-  backscatter_.inv_step_v = inv_step_v_;
-  backscatter_.inv_range = inv_range_;
 }
 
 bool ImageFormation::lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
@@ -164,28 +155,35 @@ Eigen::Array3f ImageFormation::backscatter(float u, float v, float r) const
 
 void ImageFormation::buildTable(const CameraModel& camera, int threads)
 {
-  nu_ = std::max(2, std::min(kMaxNodesU, camera.width()));
-  nv_ = std::max(2, std::min(kMaxNodesV, camera.height()));
-  step_u_ = static_cast<float>(std::max(1, camera.width() - 1)) / static_cast<float>(nu_ - 1);
-  step_v_ = static_cast<float>(std::max(1, camera.height() - 1)) / static_cast<float>(nv_ - 1);
-  s_.resize(static_cast<std::size_t>(bins_ + 1));
-  for (int j = 0; j <= bins_; ++j) s_[j] = static_cast<float>(max_range_ * (j / double(bins_)) * (j / double(bins_)));
-  inv_bin_.resize(static_cast<std::size_t>(bins_));
-  for (int j = 0; j < bins_; ++j) inv_bin_[j] = 1.0f / (s_[j + 1] - s_[j]);
-  inv_step_u_ = 1.0f / step_u_;
-  inv_step_v_ = 1.0f / step_v_;
-  inv_range_ = 1.0f / s_.back();
-  table_.assign(static_cast<std::size_t>(nu_ * nv_ * (bins_ + 1) * 4), 0.0f);
-  std::vector<std::vector<char>> reached(static_cast<std::size_t>(nv_), std::vector<char>(lights_.size(), 0));
+  const int nu = std::max(2, std::min(kMaxNodesU, camera.width()));
+  const int nv = std::max(2, std::min(kMaxNodesV, camera.height()));
+  const int bins = kBins;
+  const float step_u = static_cast<float>(std::max(1, camera.width() - 1)) / static_cast<float>(nu - 1);
+  const float step_v = static_cast<float>(std::max(1, camera.height() - 1)) / static_cast<float>(nv - 1);
+  s_.resize(static_cast<std::size_t>(bins + 1));
+  for (int j = 0; j <= bins; ++j) s_[j] = static_cast<float>(max_range_ * (j / double(bins)) * (j / double(bins)));
+  inv_bin_.resize(static_cast<std::size_t>(bins));
+  for (int j = 0; j < bins; ++j) inv_bin_[j] = 1.0f / (s_[j + 1] - s_[j]);
+  table_.assign(static_cast<std::size_t>(nu * nv * (bins + 1) * 4), 0.0f);
+  backscatter_.table = table_.data();
+  backscatter_.edge = s_.data();
+  backscatter_.inv_bin = inv_bin_.data();
+  backscatter_.nu = nu;
+  backscatter_.nv = nv;
+  backscatter_.bins = bins;
+  backscatter_.inv_step_u = 1.0f / step_u;
+  backscatter_.inv_step_v = 1.0f / step_v;
+  backscatter_.inv_range = 1.0f / s_.back();
+  std::vector<std::vector<char>> reached(static_cast<std::size_t>(nv), std::vector<char>(lights_.size(), 0));
 
-  parallelRows(nv_, [&](int v0, int v1) {
+  parallelRows(nv, [&](int v0, int v1) {
     for (int jv = v0; jv < v1; ++jv)
-      for (int iu = 0; iu < nu_; ++iu) {
-        const Eigen::Vector3d d = camera.ray(iu * step_u_, jv * step_v_);
-        float* out = &table_[static_cast<std::size_t>((jv * nu_ + iu) * (bins_ + 1) * 4)];
+      for (int iu = 0; iu < nu; ++iu) {
+        const Eigen::Vector3d d = camera.ray(iu * step_u, jv * step_v);
+        float* out = &table_[static_cast<std::size_t>((jv * nu + iu) * (bins + 1) * 4)];
         Eigen::Array3d total = Eigen::Array3d::Zero();
         Eigen::Array3d f0 = integrand(d, 0.0, &reached[jv]);
-        for (int j = 0; j < bins_; ++j) {
+        for (int j = 0; j < bins; ++j) {
           // Simpson over [s_j, s_j+1] in kSimpson sub-intervals.
           const double a = s_[j], h = (s_[j + 1] - s_[j]) / kSimpson;
           Eigen::Array3d acc = f0;

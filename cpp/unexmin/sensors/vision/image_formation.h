@@ -129,17 +129,13 @@ private:
   std::vector<double> reach_cos_;  ///< cos(cone / 2 + margin): a grid ray this close keeps the light active
   // exp(-c x): 4 floats per entry (R, G, B, 0) over [0, x_max].
   std::vector<float> exp_;
-  float exp_scale_ = 0.0f;  ///< entries per metre
-
-  // Backscatter table: nodes nu_ x nv_ (pixel (i step_u_, j step_v_)), bins_ + 1 ranges, 3 channels.
-  int nu_ = 2, nv_ = 2, bins_ = 64;
-  float step_u_ = 1.0f, step_v_ = 1.0f;
-  float inv_step_u_ = 1.0f, inv_step_v_ = 1.0f, inv_range_ = 1.0f;
-  std::vector<float> s_;      ///< range of each bin edge [m]
+  // Backscatter table (its shape in backscatter_): nu x nv pixel nodes, bins + 1 range edges, 4 floats each.
+  std::vector<float> s_;        ///< range of each bin edge [m]
   std::vector<float> inv_bin_;  ///< 1 / bin width [1/m]
-  std::vector<float> table_;  ///< [(node * (bins + 1) + j) * 4 + channel] (4th lane 0)
+  std::vector<float> table_;    ///< [(node * (bins + 1) + j) * 4 + channel] (4th lane 0)
 
-  // The active lights and the tables as the shading kernels read them (pointers into the vectors above).
+  // The active lights and the tables as the shading kernels read them (pointers into the vectors above, and the
+  // tables' scales and shape).
   std::vector<shading::Light> kernel_lights_;
   shading::Tables tables_;
   shading::Backscatter backscatter_;
