@@ -22,7 +22,12 @@ from pathlib import Path
 # Tests that may legitimately be skipped: {"<classname>.<name>" (fnmatch pattern): "why"}.
 # pytest names a case by module path (test.pytest.test_replay.test_sample_bag_contents), gtest by
 # suite (RayCaster.EmbreeWatertightOptionIsWhatStopsEdgeLeaks).
-ALLOWED_SKIPS = {}
+ALLOWED_SKIPS = {
+    # Eight AVX2 lanes against one: on a CPU without AVX2 and FMA only the one-lane kernels exist (a build that lost
+    # its AVX2 flags on a CPU that has both fails Shading.EightLanesAreBuiltAndUsedWhereTheCpuHasAvx2AndFma instead).
+    "Shading.EightLanesGiveWhatOneLaneGivesForEveryTileSize": "no AVX2 and FMA on this CPU: nothing to compare",
+    "Camera.EightLanesAndOneLaneRenderTheSameImage": "no AVX2 and FMA on this CPU: nothing to compare",
+}
 
 
 def case_id(case):
