@@ -8,7 +8,7 @@
 // at the centre, x up, colour = intensity), m3_anchor.png (the fan of first returns over 40 pings) and
 // m3_surface_shallow.png, m3_surface_deep.png (the robot pitched 5 deg up, the fan 0.4 and 2 m deep: surface multipath).
 #include <unexmin/raycast/ray_caster.h>
-#include <unexmin/ros/sensor_registry.h>
+#include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>

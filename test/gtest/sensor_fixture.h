@@ -77,7 +77,7 @@ inline std::string num(double v)
 }
 
 /// The core's models of the simulator's sensor families (the simulator registers the same ones, with their
-/// publishers, in cpp/unexmin/ros/sensor_families.cpp).
+/// publishers, in cpp/unexmin/ros_layer/sensor_families.cpp).
 inline const sensors::SensorFactory& coreModels()
 {
   static const sensors::SensorFactory factory = [] {

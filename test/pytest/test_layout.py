@@ -1,5 +1,5 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros. No folder
+in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros_layer. No folder
 includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
 with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>."""
 
@@ -10,7 +10,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CPP = REPO / "cpp" / "unexmin"
-LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros"]
+LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros_layer"]
 SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
 ROS_ROOTS = {"ros", "roscpp", "rosbag", "rosconsole", "tf", "tf2", "tf2_ros", "tf2_eigen", "image_transport",
@@ -73,7 +73,7 @@ def test_no_folder_includes_a_folder_above_it():
 
 
 def test_the_core_includes_no_ros_header():
-    bad = [f"{p.relative_to(REPO)}: <{h}>" for p in sources() if folder_of(p) != "ros"
+    bad = [f"{p.relative_to(REPO)}: <{h}>" for p in sources() if folder_of(p) != "ros_layer"
            for _, h in includes(p) if is_ros_header(h)]
     assert not bad, "ROS headers in the ROS-free core:\n" + "\n".join(bad)
 
@@ -94,7 +94,7 @@ def test_each_library_links_only_libraries_below_it_and_only_ros_links_ros():
             if m:
                 assert LAYERS.index(m.group(1)) < LAYERS.index(folder), f"unexmin_{folder} links {dep}"
             if "catkin" in dep or "ros" in dep.lower() and not dep.startswith("unexmin_"):
-                assert folder == "ros", f"unexmin_{folder} links the ROS library {dep}"
+                assert folder == "ros_layer", f"unexmin_{folder} links the ROS library {dep}"
 
 
 @pytest.mark.parametrize("header,expected", [("ros/ros.h", True), ("sensor_msgs/Imu.h", True),

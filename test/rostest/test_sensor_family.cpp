@@ -4,7 +4,7 @@
 // published through ROS; its ranges equal the closed-form distance to the test box's floor. And: the same
 // description on a simulator that does not know the family stops start-up with one ConfigError naming the
 // robot, the sensor and the known types.
-#include <unexmin/ros/simulator_ros.h>
+#include <unexmin/ros_layer/simulator_ros.h>
 #include <unexmin/sensors/sensor_params.h>
 
 #include <gtest/gtest.h>

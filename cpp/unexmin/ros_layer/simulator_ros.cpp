@@ -1,0 +1,359 @@
+#include <unexmin/ros_layer/simulator_ros.h>
+
+#include <unexmin/sim/robot_description.h>
+
+#include <geometry_msgs/Vector3Stamped.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace unexmin {
+namespace ros_layer {
+namespace {
+
+std::uint64_t every(double physics_rate, double rate)
+{
+  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
+}
+
+[[noreturn]] void badParam(const std::string& name, const std::string& value, const std::string& expected)
+{
+  throw ParameterError("parameter ~" + name + " = " + value + ": expected " + expected);
+}
+
+}  // namespace
+
+SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry)
+    : nh_(nh), pnh_(pnh), command_nh_(nh), registry_(std::move(registry))
+{
+  command_nh_.setCallbackQueue(&command_queue_);
+  loadParams();
+
+  sim::WorldConfig config = sim::loadWorldConfig(world_file_);
+  if (!visibility_.empty()) config.visibility = visibility_;  // before the world (and every sensor) sees it
+  if (robot_count_ > static_cast<int>(config.robots.size()))
+    badParam("robots", formatNumber(robot_count_),
+             "at most " + formatNumber(config.robots.size()) + " (spawn poses in " + world_file_ + ")");
+
+  std::map<std::string, sim::RobotDescription> descriptions;
+  for (int i = 0; i < robot_count_; ++i) {
+    const std::string name = config.robots[i].name;
+    const std::string param = "/" + name + "/robot_description";
+    std::string xml;
+    if (!nh_.getParam(param, xml))
+      throw ConfigError("parameter " + param + " is not set: load the robot description (xacro) first");
+    descriptions.emplace(name, sim::parseRobotDescription(xml, param));
+  }
+  world_ = std::make_unique<sim::World>(config, descriptions, robot_count_, 1.0 / physics_rate_,
+                                        static_cast<std::uint64_t>(seed_));
+
+  selection_ = sensors::SensorSelection::parse(sensors_param_, registry_.types(), "parameter ~sensors");
+  if (!selection_.none()) {
+    try {
+      raycast::RayCasterOptions options;
+      options.threads = ray_caster_threads_;
+      caster_ = raycast::makeRayCaster(config.ray_caster, *world_, options);
+    } catch (const RayCasterError& e) {
+      throw ConfigError(world_file_ + ": 'ray_caster': " + e.what());
+    }
+    caster_->update();
+  }
+  for (std::size_t i = 0; i < world_->robotCount(); ++i)
+    robots_.push_back(std::make_unique<RobotRos>(*world_, world_->robot(i), command_nh_, nh_, rates_, physics_rate_,
+                                                 received_, caster_.get(), registry_, selection_, visual_));
+
+  // What scripts and tools learn from the simulator (docs/simulator_node.md): the spawned robots and their
+  // thruster counts.
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < world_->robotCount(); ++i) {
+    names.push_back(world_->robot(i).name());
+    nh_.setParam("/sim/thruster_count/" + world_->robot(i).name(),
+                 static_cast<int>(world_->robot(i).thrusterCount()));
+  }
+  nh_.setParam("/sim/robots", names);
+
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  current_pub_ = nh_.advertise<geometry_msgs::Vector3Stamped>("/current", 10);
+  clock_every_ = every(physics_rate_, clock_rate_);
+  current_every_ = every(physics_rate_, current_rate_);
+  services_.push_back(nh_.advertiseService("/sim/pause", &SimulatorRos::onPause, this));
+  services_.push_back(nh_.advertiseService("/sim/unpause", &SimulatorRos::onUnpause, this));
+  services_.push_back(nh_.advertiseService("/sim/reset", &SimulatorRos::onReset, this));
+  services_.push_back(nh_.advertiseService("/sim/reset_seed", &SimulatorRos::onResetSeed, this));
+  services_.push_back(nh_.advertiseService("/sim/step", &SimulatorRos::onStep, this));
+  services_.push_back(nh_.advertiseService("/sim/record", &SimulatorRos::onRecord, this));
+  for (auto& r : robots_) r->attach(recorder_.get());
+  if (!record_path_.empty()) {
+    try {
+      recorder_->start(record_path_);
+    } catch (const std::exception& e) {
+      badParam("record", record_path_, std::string("a bag file that can be written (") + e.what() + ")");
+    }
+  }
+
+  ROS_INFO_STREAM("unexmin simulator: world '" << config.name << "' (" << world_file_ << "), "
+                  << world_->robotCount() << " robot(s), physics " << physics_rate_ << " Hz, "
+                  << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_ << ", sensors " << selection_.text()
+                  << ", " << (visual_ ? "visual" : "operational") << " mode, visibility " << config.visibility
+                  << (paused_ ? ", paused" : ""));
+}
+
+void SimulatorRos::loadParams()
+{
+  if (!pnh_.getParam("world_file", world_file_) || world_file_.empty())
+    badParam("world_file", "(unset)", "the path of a world file (YAML), e.g. $(find unexmin)/worlds/tank.world");
+  pnh_.param("robots", robot_count_, 1);
+  if (robot_count_ < 1 || robot_count_ > 3) badParam("robots", formatNumber(robot_count_), "1, 2 or 3");
+  pnh_.param("realtime", realtime_, false);
+  pnh_.param("realtime_factor", realtime_factor_, 1.0);
+  if (!(realtime_factor_ > 0.0)) badParam("realtime_factor", formatNumber(realtime_factor_), "> 0");
+  pnh_.param("seed", seed_, 0);
+  if (seed_ < 0) badParam("seed", formatNumber(seed_), "a non-negative integer");
+  pnh_.param("paused", paused_, false);
+  pnh_.param<std::string>("sensors", sensors_param_, "all");
+  std::string mode;
+  nh_.param<std::string>("/sim/mode", mode, "operational");
+  if (mode != "operational" && mode != "visual")
+    throw ParameterError("parameter /sim/mode = '" + mode + "': expected operational|visual");
+  visual_ = mode == "visual";
+  pnh_.param<std::string>("visibility", visibility_, "");
+  if (!visibility_.empty() && visibility_ != "none" && visibility_ != "low" && visibility_ != "medium" &&
+      visibility_ != "high")
+    badParam("visibility", "'" + visibility_ + "'", "none|low|medium|high (or empty: the world file's level)");
+  pnh_.param("ray_caster_threads", ray_caster_threads_, 0);
+  if (ray_caster_threads_ < 0)
+    badParam("ray_caster_threads", formatNumber(ray_caster_threads_), ">= 0 (0 = every hardware thread)");
+  pnh_.param("physics_rate", physics_rate_, 500.0);
+  if (!(physics_rate_ >= 100.0 && physics_rate_ <= 20000.0))
+    badParam("physics_rate", formatNumber(physics_rate_), "[100, 20000] Hz");
+  auto rate = [&](const std::string& name, double& value, double fallback) {
+    pnh_.param(name, value, fallback);
+    if (!std::isfinite(value) || value < 0.0 || value > physics_rate_)
+      badParam(name, formatNumber(value), "[0, physics_rate] Hz (0 = off)");
+  };
+  rate("clock_rate", clock_rate_, 100.0);
+  rate("current_rate", current_rate_, 10.0);
+  pnh_.param("max_wall_rate", max_wall_rate_, 100.0);
+  if (!(max_wall_rate_ > 0.0) || !std::isfinite(max_wall_rate_))
+    badParam("max_wall_rate", formatNumber(max_wall_rate_), "> 0 Hz");
+  rate("odom_rate", rates_.odom, 50.0);
+  rate("joint_state_rate", rates_.joint_states, 50.0);
+  rate("thrust_rate", rates_.thrust, 50.0);
+  pnh_.param<std::string>("record", record_path_, "");
+  std::string topics_text;
+  pnh_.param<std::string>("record_topics", topics_text, "");
+  std::vector<std::string> topics;
+  std::istringstream words(topics_text);
+  for (std::string t; words >> t;) {
+    if (t.empty() || t[0] != '/') badParam("record_topics", topics_text, "absolute topic names separated by spaces");
+    topics.push_back(t);
+  }
+  recorder_ = std::make_unique<BagRecorder>(topics);
+  pnh_.param("lockstep_wait_subscribers", wait_subscribers_, false);
+  // Before a step's messages go out (after its physics and its sensors' samples, which overlap with the
+  // subscribers' reading): one step's messages (one per stream at most) are in flight at a time, so
+  // neither roscpp's queue on our side nor a subscriber's own queue (rosbag record: 100 per topic, a user's
+  // node often 10) can overflow. Waiting every 10 ms of sim time instead lost ~0.3 % of a stock rosbag
+  // record's IMU messages here (its reader ran ahead of its callbacks), every step lost none
+  // (test/pytest/test_recording.py).
+  pace_every_ = 1;
+}
+
+void SimulatorRos::publishClock()
+{
+  rosgraph_msgs::Clock c;
+  c.clock.fromSec(world_->time());
+  recorder_->setTime(world_->time());
+  publishRecorded(clock_pub_, recorder_.get(), c);
+}
+
+void SimulatorRos::publishNow()
+{
+  recorder_->setTime(world_->time());
+  publishClock();
+  const ros::Time stamp(world_->time());
+  for (auto& r : robots_) r->publish(world_->stepCount(), stamp, true);
+}
+
+void SimulatorRos::stepOnce()
+{
+  world_->step();
+  if (caster_) caster_->update();  // the robots where the sensors of this step see them
+  const std::uint64_t n = world_->stepCount();
+  if (wait_subscribers_ && !realtime_ && n % pace_every_ == 0) {  // lockstep
+    // The sensors sample (the cameras render) while the subscribers are still taking the last step's messages;
+    // nothing of this step goes out before they have taken them all.
+    for (auto& r : robots_) r->sample(n);
+    pacer_.waitDrained();
+  }
+  const ros::Time stamp(world_->time());
+  recorder_->setTime(world_->time());
+  // In real time the sim-time schedules are also wall-time rates. In lockstep, /clock and the
+  // viewer streams would otherwise go out RTF times faster and cost more than the physics.
+  const double min_wall_period = realtime_ ? 0.0 : 1.0 / max_wall_rate_;
+  const ros::WallTime wall_now = realtime_ ? ros::WallTime() : ros::WallTime::now();
+  if (clock_every_ && n % clock_every_ == 0 && (wall_now - last_wall_publish_).toSec() >= min_wall_period) {
+    publishClock();
+    last_wall_publish_ = wall_now;
+  }
+  for (auto& r : robots_) {
+    r->setWallGate(wall_now, min_wall_period);
+    r->publish(n, stamp);
+  }
+  if (current_every_ && n % current_every_ == 0 && wanted(current_pub_, recorder_.get())) {
+    geometry_msgs::Vector3Stamped m;
+    m.header.stamp = stamp;
+    m.header.frame_id = "world";
+    const Eigen::Vector3d v = world_->current().velocity();
+    m.vector.x = v.x();
+    m.vector.y = v.y();
+    m.vector.z = v.z();
+    publishRecorded(current_pub_, recorder_.get(), m);
+  }
+}
+
+void SimulatorRos::advance(std::uint64_t steps, bool hold)
+{
+  for (std::uint64_t i = 0; i < steps && ros::ok(); ++i) {
+    command_queue_.callAvailable();
+    if (hold)
+      for (std::size_t r = 0; r < world_->robotCount(); ++r)
+        for (std::size_t k = 0; k < world_->robot(r).thrusterCount(); ++k)
+          world_->robot(r).thruster(k).holdCommand(world_->time());
+    stepOnce();
+  }
+  publishNow();
+}
+
+bool SimulatorRos::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+{
+  paused_ = true;
+  publishClock();
+  return true;
+}
+
+bool SimulatorRos::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+{
+  paused_ = false;
+  pace_wall_ = ros::WallTime::now();
+  pace_sim_ = world_->time();
+  return true;
+}
+
+bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+{
+  world_->reset(world_->seed());
+  pace_wall_ = ros::WallTime::now();
+  pace_sim_ = 0.0;
+  for (auto& r : robots_) r->restart();
+  publishNow();
+  return true;
+}
+
+bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Response& res)
+{
+  if (req.seed < 0) {
+    ROS_WARN_STREAM("/sim/reset_seed: rejected seed " << req.seed << ", expected >= 0");
+    return false;
+  }
+  world_->reset(static_cast<std::uint64_t>(req.seed));
+  pace_wall_ = ros::WallTime::now();
+  pace_sim_ = 0.0;
+  for (auto& r : robots_) r->restart();
+  publishNow();
+  res.time = world_->time();
+  return true;
+}
+
+bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& res)
+{
+  std::uint64_t steps = req.steps;
+  // 1e6 s of sim time at most per call, as `duration` (a uint32 step count reaches 8.6e6 s at 500 Hz).
+  const double max_steps = 1e6 * physics_rate_;
+  if (static_cast<double>(steps) > max_steps) {
+    ROS_WARN_STREAM("/sim/step: rejected " << steps << " steps, expected at most " << max_steps << " (1e6 s)");
+    return false;
+  }
+  if (steps == 0) {
+    if (!std::isfinite(req.duration) || req.duration < 0.0 || req.duration > 1e6) {
+      ROS_WARN_STREAM("/sim/step: rejected duration " << req.duration << " s, expected [0, 1e6]");
+      return false;
+    }
+    steps = static_cast<std::uint64_t>(std::llround(req.duration * physics_rate_));
+  }
+  if (!req.client.empty() && req.commands > 0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (received_[req.client] < req.commands && ros::WallTime::now() < deadline && ros::ok())
+      command_queue_.callAvailable(ros::WallDuration(0.001));
+    if (received_[req.client] < req.commands)
+      ROS_WARN_STREAM("/sim/step: only " << received_[req.client] << " of the " << req.commands
+                                         << " commands from " << req.client << " arrived within 5 s; stepping anyway");
+  }
+  advance(steps, req.hold);
+  res.time = world_->time();
+  res.step = world_->stepCount();
+  const ros::Time stamp(world_->time());
+  for (const auto& r : robots_) res.odometry.push_back(r->odometry(stamp));
+  return true;
+}
+
+bool SimulatorRos::onRecord(unexmin::Record::Request& req, unexmin::Record::Response& res)
+{
+  try {
+    if (req.path.empty()) {
+      if (!recorder_->active()) {
+        res.ok = true;
+        res.message = "not recording";
+        return true;
+      }
+      std::uint64_t total = 0;
+      for (const auto& c : recorder_->counts()) total += c.second;
+      const std::string path = recorder_->path();
+      recorder_->stop();
+      res.message = "closed " + path + ": " + std::to_string(total) + " messages";
+    } else {
+      recorder_->setTime(world_->time());
+      recorder_->start(req.path);
+      res.message = "recording to " + req.path;
+    }
+    res.ok = true;
+  } catch (const std::exception& e) {
+    res.ok = false;
+    res.message = e.what();
+    ROS_WARN_STREAM("/sim/record: " << e.what());
+  }
+  return true;
+}
+
+void SimulatorRos::spin()
+{
+  ros::CallbackQueue* services = ros::getGlobalCallbackQueue();
+  publishClock();
+  pace_wall_ = ros::WallTime::now();
+  pace_sim_ = world_->time();
+  // In lockstep, service/command queues are polled every `poll_every` steps; commands therefore
+  // apply with at most that much sim-time latency when free-running (none through /sim/step).
+  const std::uint64_t poll_every = std::max<std::uint64_t>(1, every(physics_rate_, 1000.0));
+  while (ros::ok()) {
+    if (paused_) {
+      services->callAvailable(ros::WallDuration(0.005));
+      command_queue_.callAvailable();
+      continue;
+    }
+    services->callAvailable();
+    if (paused_) continue;
+    for (std::uint64_t i = 0; i < poll_every; ++i) {
+      command_queue_.callAvailable();
+      stepOnce();
+    }
+    if (realtime_) {
+      const double ahead = (world_->time() - pace_sim_) / realtime_factor_ - (ros::WallTime::now() - pace_wall_).toSec();
+      if (ahead > 0.0) ros::WallDuration(ahead).sleep();
+    }
+  }
+}
+
+}  // namespace ros_layer
+}  // namespace unexmin
