@@ -5,6 +5,7 @@
 - No page of docs/ or the README cites an issue number or a work log: docs describe the product as it is.
 """
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -99,7 +100,7 @@ def test_no_issue_numbers_or_work_log_in_the_docs(page):
 def test_the_checks_find_what_they_are_for(tmp_path, monkeypatch):
     """The link check against a page with a good link, a missing file, a link out of the repository and a wrong
     anchor; the issue and work-log patterns against sentences that must and must not match."""
-    monkeypatch.setattr(__import__(__name__), "REPO", tmp_path)
+    monkeypatch.setattr(sys.modules[__name__], "REPO", tmp_path)
     (tmp_path / "docs").mkdir()
     (tmp_path / "docs" / "b.md").write_text("# Title\n## The rviz configuration (`launch/x.rviz`)\n## Title\n")
     page = tmp_path / "docs" / "a.md"
