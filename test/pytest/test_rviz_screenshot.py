@@ -260,7 +260,6 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
     env = dict(os.environ, DISPLAY=xvfb, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
                ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
     master = rosgraph.Master("/rviz_robots_test", master_uri=env["ROS_MASTER_URI"])
-    shot = tmp_path / "shot.png"
     seen = {}
 
     def rviz_ready(node, proc):
@@ -271,8 +270,9 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
         except (OSError, rosgraph.MasterError):
             return False
 
-    def rows_over(shots, test):
-        """True once `test(error rows)` held on `shots` screenshots in a row with the tree drawn."""
+    def rows_over(shots, test, shot):
+        """True once `test(error rows)` held on `shots` screenshots in a row with the tree drawn (the last in
+        `shot`)."""
         count = [0]
 
         def check():
@@ -288,9 +288,11 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
     try:
         wait_for(lambda: rviz_ready("/rviz", launch), 120, "rviz of tank_world.launch subscribed to its topics")
         try:
-            wait_for(rows_over(3, lambda rows: rows == 0), 60, "a drawn Displays tree without error rows", poll=1.0)
+            wait_for(rows_over(3, lambda rows: rows == 0, tmp_path / "one_robot.png"), 60,
+                     "a drawn Displays tree without error rows", poll=1.0)
         except TimeoutError:
-            pytest.fail(f"one robot, its own config: {seen['rows']} error rows in the Displays tree ({seen}; {shot})")
+            pytest.fail(f"one robot, its own config: {seen['rows']} error rows in the Displays tree ({seen}; "
+                        f"{tmp_path / 'one_robot.png'})")
 
         subprocess.run(["rosnode", "kill", "/rviz"], env=env, capture_output=True, timeout=30)
         wait_for(lambda: not subscribed(master, "/UX_1/odom", "/rviz"), 30, "the launch file's rviz to stop")
@@ -298,9 +300,11 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
                                    env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         wait_for(lambda: rviz_ready("/rviz_three", control), 120, "rviz with the three-robot config subscribed")
         try:
-            wait_for(rows_over(1, lambda rows: rows >= 2), 60, "the missing robots' error rows", poll=1.0)
+            wait_for(rows_over(1, lambda rows: rows >= 2, tmp_path / "three_robot_config.png"), 60,
+                     "the missing robots' error rows", poll=1.0)
         except TimeoutError:
-            pytest.fail(f"three-robot config with one robot: expected >= 2 error rows, saw {seen['rows']} ({seen})")
+            pytest.fail(f"three-robot config with one robot: expected >= 2 error rows, saw {seen['rows']} ({seen}; "
+                        f"{tmp_path / 'three_robot_config.png'})")
     finally:
         if control is not None:
             stop_process_group(control, 30.0)
