@@ -6,7 +6,9 @@ displays, then takes screenshots of the root window (ImageMagick `import`) until
 - three robots in operational mode: the mine's walls (the mesh marker's slate, mesh_marker.ROCK, under
   rviz's shading), the three yellow hulls (urdf/properties.xacro hull_rgba) as three blobs, the MSIS
   images, the M3 fans and the SLS clouds (the config's colours for them);
-- one robot in visual mode with mapping: camera 0's image in the Camera display's panel and the map.
+- one robot in visual mode with mapping: camera 0's image in the Camera display's panel and the map;
+- one robot in the tank: no display in the Displays dock is in error (rviz's red rows), where the three-robot
+  configuration shows UX_2's and UX_3's models in error.
 
     UNEXMIN_DOCS_SCREENSHOT=1 python -m pytest test/pytest/test_rviz_screenshot.py   # also refreshes
                     # docs/images/mine_rviz.png and docs/images/rviz_camera_map.png
@@ -41,6 +43,24 @@ def camera_panel(img):
     config's 1024 x 768 layout."""
     h, w = img.shape[:2]
     return img[int(0.115 * h):int(0.305 * h), 0:int(0.33 * w)].astype(int)
+
+
+def displays_names(img):
+    """The name column of the Displays dock's tree (right of the icons, left of the check boxes) in the shipped
+    config's 1024 x 768 layout."""
+    h, w = img.shape[:2]
+    return img[int(0.34 * h):int(0.66 * h), int(0.043 * w):int(0.165 * w)].astype(int)
+
+
+def error_rows(img):
+    """How many rows of the Displays tree rviz draws in its error red (192, 32, 32: a display in error), and how
+    many pixels of dark text the column holds (the tree is drawn)."""
+    t = displays_names(img)
+    r, g, b = t[..., 0], t[..., 1], t[..., 2]
+    red = (r > 120) & (g < 100) & (b < 110) & (r - g > 60) & (r - b > 50)
+    lines = red.sum(axis=1) >= 3
+    rows = int(lines[0]) + int(np.count_nonzero(lines[1:] & ~lines[:-1]))
+    return rows, int((t.sum(axis=2) < 300).sum())
 
 
 def classify(img):
@@ -226,3 +246,67 @@ def test_classifier_tells_the_displays_and_background_apart():
     g = classify(grey)
     assert g["rock"] == 0.0 and g["hull_blobs"] == 0 and g["camera_lit"] == 0.0
     assert g["sls"] == g["m3"] == g["msis"] == g["map_blue"] == 0
+
+
+def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
+    """`tank_world.launch robots:=1 rviz:=true` opens the one-robot config: the Displays tree is drawn and no row is
+    in rviz's error red. Control, in the same world: the three-robot config shows the missing robots' models in
+    error (at least two red rows), so the check sees an error row when there is one."""
+    import rosgraph
+
+    from unexmin.launcher import free_port, wait_for
+
+    port = free_port()
+    env = dict(os.environ, DISPLAY=xvfb, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
+               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
+    master = rosgraph.Master("/rviz_robots_test", master_uri=env["ROS_MASTER_URI"])
+    seen = {}
+
+    def rviz_ready(node, proc):
+        assert proc.poll() is None, f"exited: see {tmp_path}"
+        try:
+            return all(subscribed(master, t, node) for t in ("/tf", "/world_meshes", "/UX_1/odom",
+                                                               "/UX_1/tritech_micron/scan"))
+        except (OSError, rosgraph.MasterError):
+            return False
+
+    def rows_over(shots, test, shot):
+        """True once `test(error rows)` held on `shots` screenshots in a row with the tree drawn (the last in
+        `shot`)."""
+        count = [0]
+
+        def check():
+            seen["rows"], seen["text"] = error_rows(screenshot(xvfb, shot))
+            count[0] = count[0] + 1 if seen["text"] > 300 and test(seen["rows"]) else 0
+            return count[0] >= shots
+        return check
+
+    log = open(tmp_path / "roslaunch.log", "w")
+    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "robots:=1",
+                               "rviz:=true"], env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    control = None
+    try:
+        wait_for(lambda: rviz_ready("/rviz", launch), 120, "rviz of tank_world.launch subscribed to its topics")
+        try:
+            wait_for(rows_over(3, lambda rows: rows == 0, tmp_path / "one_robot.png"), 60,
+                     "a drawn Displays tree without error rows", poll=1.0)
+        except TimeoutError:
+            pytest.fail(f"one robot, its own config: {seen['rows']} error rows in the Displays tree ({seen}; "
+                        f"{tmp_path / 'one_robot.png'})")
+
+        subprocess.run(["rosnode", "kill", "/rviz"], env=env, capture_output=True, timeout=30)
+        wait_for(lambda: not subscribed(master, "/UX_1/odom", "/rviz"), 30, "the launch file's rviz to stop")
+        control = subprocess.Popen(["rviz", "-d", str(REPO / "launch" / "unexmin.rviz"), "__name:=rviz_three"],
+                                   env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        wait_for(lambda: rviz_ready("/rviz_three", control), 120, "rviz with the three-robot config subscribed")
+        try:
+            wait_for(rows_over(1, lambda rows: rows >= 2, tmp_path / "three_robot_config.png"), 60,
+                     "the missing robots' error rows", poll=1.0)
+        except TimeoutError:
+            pytest.fail(f"three-robot config with one robot: expected >= 2 error rows, saw {seen['rows']} ({seen}; "
+                        f"{tmp_path / 'three_robot_config.png'})")
+    finally:
+        if control is not None:
+            stop_process_group(control, 30.0)
+        stop_process_group(launch, 30.0)
+        log.close()
