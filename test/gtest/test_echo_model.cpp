@@ -21,9 +21,9 @@ namespace unexmin {
 namespace test {
 namespace {
 
-using sonar::Echo;
-using sonar::EchoModel;
-using sonar::EchoParams;
+using sensors::sonar::Echo;
+using sensors::sonar::EchoModel;
+using sensors::sonar::EchoParams;
 
 /// No absorption and no gain.
 EchoParams flat(double range_min, double range_max, int nbins)

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 namespace {
 
@@ -217,4 +218,5 @@ void EchoModel::line(const std::vector<Echo>& echoes, std::size_t rays, std::vec
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

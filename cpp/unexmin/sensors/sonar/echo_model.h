@@ -27,6 +27,7 @@
 #include <vector>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 struct EchoParams
@@ -128,4 +129,5 @@ private:
 };
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 namespace {
 
@@ -289,4 +290,5 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

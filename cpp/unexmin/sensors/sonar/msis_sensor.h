@@ -41,6 +41,7 @@
 #include <vector>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 /// Colour-map class of one bin.
@@ -127,4 +128,5 @@ private:
 };
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin
