@@ -45,7 +45,7 @@ for scene in level tilted ghost; do
   world="$tmp/shallow.world"
   [ "$scene" = level ] && world="$tmp/tank.world"
   if ! LD_LIBRARY_PATH="$libs:$ws/devel/lib:${LD_LIBRARY_PATH:-}" valgrind --tool=callgrind --callgrind-out-file="$tmp/$scene.out" \
-      --toggle-collect='unexmin::sonar::M3Sensor::sample*' "$exe" "$tmp/$scene.urdf" "$world" "$steps" 1 1 >"$tmp/$scene.log" 2>&1; then
+      --toggle-collect='unexmin::sensors::sonar::M3Sensor::sample*' "$exe" "$tmp/$scene.urdf" "$world" "$steps" 1 1 >"$tmp/$scene.log" 2>&1; then
     echo "$scene: does not run ($(grep -m1 -o "parameter '[a-z_]*'[^.]*" "$tmp/$scene.log" || tail -1 "$tmp/$scene.log"))"
     continue
   fi

@@ -102,7 +102,7 @@ int main(int argc, char** argv)
     sim::World world(config, d, 1, 0.002, 7);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);
     sensors::SensorSuite suite(world, world.robot(0), caster.get(), registry.models());
-    auto* msis = dynamic_cast<sonar::MsisSensor*>(suite.find("msis"));
+    auto* msis = dynamic_cast<sensors::sonar::MsisSensor*>(suite.find("msis"));
     if (!msis) {
       std::fprintf(stderr, "the robot has no MSIS named 'msis'\n");
       return 1;
@@ -153,7 +153,7 @@ int main(int argc, char** argv)
     sim::World world(config, d, 1, 0.002, 7);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);
     sensors::SensorSuite suite(world, world.robot(0), caster.get(), registry.models());
-    auto* m3 = dynamic_cast<sonar::M3Sensor*>(suite.find("m3"));
+    auto* m3 = dynamic_cast<sensors::sonar::M3Sensor*>(suite.find("m3"));
     if (!m3) {
       std::fprintf(stderr, "the robot has no M3 named 'm3'\n");
       return false;

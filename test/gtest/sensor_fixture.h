@@ -85,8 +85,8 @@ inline const sensors::SensorFactory& coreModels()
     f.add<sensors::ImuSensor>("imu");
     f.add<sensors::DvlSensor>("dvl");
     f.add<sensors::PressureSensor>("pressure");
-    f.add<sonar::MsisSensor>("msis");
-    f.add<sonar::M3Sensor>("m3");
+    f.add<sensors::sonar::MsisSensor>("msis");
+    f.add<sensors::sonar::M3Sensor>("m3");
     f.add<sensors::vision::SlsSensor>("sls");
     return f;
   }();

@@ -14,16 +14,15 @@
 #include <limits>
 #include <numeric>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace unexmin {
 namespace test {
 namespace {
 
-using sonar::Echo;
-using sonar::EchoModel;
-using sonar::EchoParams;
+using sensors::sonar::Echo;
+using sensors::sonar::EchoModel;
+using sensors::sonar::EchoParams;
 
 /// No absorption and no gain.
 EchoParams flat(double range_min, double range_max, int nbins)
@@ -252,12 +251,6 @@ TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
                                      0, 0, 0, 0, 0};
   for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], three[i], 1e-12 * s0) << "bin " << i;
   EXPECT_NEAR(sum(e), s0 + s1 + s2, 1e-12 * s0);
-}
-
-TEST(EchoModel, ErrorsAreParameterErrorsUnderTheOneErrorRoot)
-{
-  static_assert(std::is_base_of<ConfigError, ParameterError>::value, "ParameterError is a ConfigError");
-  static_assert(std::is_base_of<Error, ParameterError>::value, "ParameterError is an unexmin::Error");
 }
 
 TEST(EchoModel, BadParametersThrowAParameterErrorNamingTheParameterAndItsValue)

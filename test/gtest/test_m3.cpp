@@ -17,8 +17,8 @@ namespace unexmin {
 namespace test {
 namespace {
 
-using sonar::M3Scan;
-using sonar::M3Sensor;
+using sensors::sonar::M3Scan;
+using sensors::sonar::M3Sensor;
 
 constexpr double kDeg = M_PI / 180.0;
 const Eigen::Vector3d kMount(0.3, 0.0, -0.05);           // [m] M3 link in the base frame

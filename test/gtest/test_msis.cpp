@@ -17,8 +17,8 @@ namespace unexmin {
 namespace test {
 namespace {
 
-using sonar::EchoLevel;
-using sonar::MsisSensor;
+using sensors::sonar::EchoLevel;
+using sensors::sonar::MsisSensor;
 
 constexpr double kDeg = M_PI / 180.0;
 // The documented sonar equation (echo_model.h, docs/sonars.md) with the MSIS defaults, evaluated here:
@@ -287,7 +287,7 @@ TEST(Msis, GaussianRangeNoiseSpreadsTheEchoWithItsStandardDeviation)
       if (v[b] <= 0.0f) continue;
       const double r = echo.binCenter(b);
       const double level = echo.params().display_min + v[b] * echo.params().display_span;
-      const double weight = echo.inputPower(level, r) / echo.strength(sonar::Echo{r, 1.0}, msis.raysPerPing());
+      const double weight = echo.inputPower(level, r) / echo.strength(sensors::sonar::Echo{r, 1.0}, msis.raysPerPing());
       s0 += weight;
       s1 += weight * r;
       s2 += weight * r * r;

@@ -70,7 +70,7 @@ TEST(SensorRays, OwnHullIsInvisibleOtherRobotsAreSeenWhereTheyAreNow)
   sim::World world(config, d, -1, 0.002, 1);
   const auto caster = raycast::makeRayCaster("embree", world);
   sensors::SensorSuite suite(world, world.robot(0), caster.get(), coreModels());
-  const auto& m3 = dynamic_cast<const sonar::M3Sensor&>(*suite.find("m3"));
+  const auto& m3 = dynamic_cast<const sensors::sonar::M3Sensor&>(*suite.find("m3"));
   auto step = [&] {
     world.robot(0).setPose(sim::poseFromXyzRpy(Eigen::Vector3d(0, 0, -50), Eigen::Vector3d::Zero()));
     world.step();

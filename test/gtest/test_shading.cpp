@@ -85,7 +85,7 @@ TEST(Shading, EightLanesGiveWhatOneLaneGivesForEveryTileSize)
   for (const char* level : {"none", "medium", "high"}) {
     const ImageFormation f(camera(), fiveLights(), WaterOptics::fromVisibility(level, Eigen::Vector3d::Ones()), 6.0);
     ASSERT_EQ(f.activeLights().size(), 5u) << level;
-    for (int n = 1; n <= PixelBatch::kMax; ++n) {
+    for (int n = 1; n <= static_cast<int>(raycast::kBlock); ++n) {
       PixelBatch eight, one;
       randomTile(eight, n, f.maxRange(), rng);
       one = eight;

@@ -1,7 +1,12 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
 in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros_layer. No folder
 includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
-with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>."""
+with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>.
+
+Names follow folders: every file of cpp/unexmin/<a>/<b> declares its code in namespace unexmin::<a>::<b> (or in
+namespaces nested inside it: anonymous ones, detail helpers such as vision::shading), and opens no other namespace
+but forward declarations. The one root is core: cpp/unexmin/core is namespace unexmin itself (the error types
+and formatNumber every library shares, as grid_map_core is namespace grid_map)."""
 
 import re
 from pathlib import Path
@@ -102,3 +107,136 @@ def test_each_library_links_only_libraries_below_it_and_only_ros_links_ros():
                                              ("Eigen/Core", False), ("embree3/rtcore.h", False)])
 def test_ros_headers_are_recognised(header, expected):
     assert is_ros_header(header) is expected
+
+
+# ---------------------------------------------------------------- namespaces follow folders
+
+ROOT_FOLDER = "core"  # its namespace is unexmin itself
+NAMESPACE_OR_BRACE = re.compile(r"\b(?:inline\s+)?namespace(?:\s+([A-Za-z_]\w*(?:\s*::\s*[A-Za-z_]\w*)*))?\s*\{|[{}]")
+FORWARD_DECLARATIONS = re.compile(r"^(\s*(?:class|struct)\s+[A-Za-z_]\w*\s*;)*\s*$")
+
+
+def namespace_of(folder):
+    """The namespace of a library folder, as a tuple of names."""
+    return ("unexmin",) if folder == ROOT_FOLDER else ("unexmin",) + tuple(folder.split("/"))
+
+
+def code_only(text):
+    """The text without comments, string and character literals, and preprocessor lines; of each #if/#else, the
+    first branch only (lanes.h opens one of two inline namespaces so)."""
+    text = re.sub(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'',
+                  lambda m: re.sub(r"[^\n]", " ", m.group(0)), text, flags=re.S)
+    kept, skipping = [], []  # skipping: per open #if, whether its current branch is dropped
+    for line in re.sub(r"\\\n", " ", text).split("\n"):
+        directive = re.match(r"\s*#\s*(\w+)", line)
+        if not directive:
+            kept.append("" if any(skipping) else line)
+            continue
+        word = directive.group(1)
+        if word in ("if", "ifdef", "ifndef"):
+            skipping.append(False)
+        elif word in ("else", "elif") and skipping:
+            skipping[-1] = True
+        elif word == "endif" and skipping:
+            skipping.pop()
+        kept.append("")
+    return "\n".join(kept)
+
+
+def namespace_blocks(text):
+    """[(namespace, direct code)] of every namespace block of a C++ source, the file scope first as (); a
+    namespace is a tuple of names ("" for an anonymous one); the direct code of a block is its text outside the
+    namespace blocks it holds ("{}" stands for each other braced block)."""
+    code = code_only(text)
+    blocks = [((), [])]
+    stack = [0]  # index into blocks of each open namespace, None for another brace
+    pos = 0
+    for m in NAMESPACE_OR_BRACE.finditer(code):
+        inner = blocks[next(i for i in reversed(stack) if i is not None)]
+        if stack[-1] is not None:
+            inner[1].append(code[pos:m.start()])
+        pos = m.end()
+        if m.group(0).startswith(("namespace", "inline")):
+            names = tuple(n.strip() for n in m.group(1).split("::")) if m.group(1) else ("",)
+            path = blocks[stack[-1]][0] + names if stack[-1] is not None else None
+            assert path is not None, "a namespace inside a class or function"
+            blocks.append((path, []))
+            stack.append(len(blocks) - 1)
+        elif m.group(0) == "{":
+            if stack[-1] is not None:
+                inner[1].append("{}")
+            stack.append(None)
+        else:
+            assert len(stack) > 1, "unbalanced braces"
+            stack.pop()
+    blocks[0][1].append(code[pos:])
+    assert stack == [0], "unbalanced braces"
+    return [(path, "".join(parts)) for path, parts in blocks]
+
+
+def namespace_errors(name, text, expected, main=False):
+    """Why the source `name` is not in namespace `expected` (a tuple), one line each; none if it is. Forward
+    declarations (class X;) may stand in any namespace, the file scope included. `main`: a program's file, whose
+    main() and its anonymous helpers stand at file scope; it need not open `expected`."""
+    bad = []
+    opened = False
+    for path, code in namespace_blocks(text):
+        shown = "::".join(n or "(anonymous)" for n in path)
+        if main and path[:1] in ((), ("",)):
+            continue
+        if path == ():
+            if not FORWARD_DECLARATIONS.match(code):
+                bad.append(f"{name}: code at file scope (expected it in namespace {'::'.join(expected)})")
+        elif path[:len(expected)] == expected:
+            opened = True
+        elif path == expected[:len(path)]:
+            if code.strip():
+                bad.append(f"{name}: code in namespace {shown}, above {'::'.join(expected)}")
+        elif "" in path or not FORWARD_DECLARATIONS.match(code):
+            bad.append(f"{name}: namespace {shown} (expected {'::'.join(expected)} or a namespace inside it)")
+    if not opened and not main:
+        bad.append(f"{name}: never opens namespace {'::'.join(expected)}")
+    return bad
+
+
+def test_every_file_declares_its_code_in_its_folders_namespace():
+    bad = []
+    for path in sources():
+        expected = namespace_of(folder_of(path))
+        bad += namespace_errors(path.relative_to(REPO).as_posix(), path.read_text(), expected,
+                                main=path.name.endswith("_main.cpp"))
+    assert not bad, "namespaces that do not follow folders:\n" + "\n".join(bad)
+
+
+SONAR = ("unexmin", "sensors", "sonar")
+
+
+@pytest.mark.parametrize("text,errors", [
+    ("namespace unexmin {\nnamespace sensors {\nnamespace sonar {\nclass M3 {};\n}\n}\n}\n", 0),
+    ("namespace unexmin::sensors::sonar {\nnamespace {\nint f() { return 1; }\n}\n}\n", 0),
+    ("namespace unexmin {\nnamespace sim {\nclass World;\n}\nnamespace sensors::sonar {\nstruct A {};\n}\n}\n", 0),
+    ('namespace unexmin {\nnamespace sensors {\nnamespace sonar {\n#if X\ninline namespace a {\n#else\n'
+     'inline namespace b {\n#endif\nint g(char c = \'{\') { return "}"[0]; }  // {\n}\n}\n}\n}\n', 0),
+    ("namespace unexmin {\nnamespace sonar {\nclass M3 {};\n}\n}\n", 2),          # the folder's old namespace
+    ("namespace unexmin {\nnamespace sensors {\nclass M3 {};\n}\n}\n", 2),        # the parent folder's
+    ("namespace unexmin {\nnamespace sensors {\nint x;\nnamespace sonar {\n}\n}\n}\n", 1),  # code above it
+    ("namespace unexmin {\nnamespace sim {\nclass World { int x; };\n}\nnamespace sensors::sonar {\n}\n}\n", 1),
+    ("class M3 {};\nnamespace unexmin::sensors::sonar {\n}\n", 1),                # code at file scope
+    ("namespace {\nint f();\n}\nnamespace unexmin::sensors::sonar {\n}\n", 1),     # anonymous, outside it
+    ("class btRigidBody;\nnamespace unexmin::sensors::sonar {\n}\n", 0),           # forward declaration
+])
+def test_the_namespace_check_tells_right_from_wrong(text, errors):
+    assert len(namespace_errors("x.h", text, SONAR)) == errors, namespace_errors("x.h", text, SONAR)
+
+
+def test_a_programs_main_may_stand_at_file_scope_but_its_namespaces_follow_the_folder():
+    text = "namespace {\nvoid stop(int) {}\n}\nint main() { return 0; }\n"
+    assert namespace_errors("x_main.cpp", text, SONAR, main=True) == []
+    assert len(namespace_errors("x_main.cpp", text, SONAR)) == 3
+    assert len(namespace_errors("x_main.cpp", "namespace unexmin::sonar {\nint x;\n}\n", SONAR, main=True)) == 1
+
+
+def test_the_core_is_the_root_namespace_and_every_other_folder_its_path():
+    assert namespace_of("core") == ("unexmin",)
+    assert namespace_of("sensors/sonar") == SONAR
+    assert namespace_of("ros_layer") == ("unexmin", "ros_layer")

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <unexmin/core/error.h>
+#include <unexmin/raycast/block.h>
 
 #include <Eigen/Core>
 
@@ -112,9 +113,6 @@ class WorkerPool;
 class RayCaster
 {
 public:
-  /// Rays per work block: blocks start at multiples of it whatever the thread count, so every ray is cast
-  /// in the same packet with the same neighbours and results are identical for any number of threads.
-  static constexpr std::size_t kBlock = 64;
   /// Batches shorter than this are cast on the calling thread alone (waking workers costs more).
   static constexpr std::size_t kParallelMin = 256;
 

@@ -6,7 +6,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-M3Publisher::M3Publisher(const sonar::M3Sensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
+M3Publisher::M3Publisher(const sensors::sonar::M3Sensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
 {
   pub_ = ctx.nh.advertise<sensor_msgs::LaserScan>(resolve(ctx.ns, topicParam(sensor, "topic", "m3/scan")),
                                               queueSize(sensor.rate()));
@@ -21,7 +21,7 @@ void M3Publisher::publish()
 {
   const bool points = points_ && wanted(points_);
   if (!wanted(pub_) && !points) return;
-  const sonar::M3Scan& s = sensor_.last();
+  const sensors::sonar::M3Scan& s = sensor_.last();
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
   m.header.frame_id = sensor_.frame();

@@ -17,11 +17,11 @@ namespace ros_layer {
 class M3Publisher : public SensorPublisher
 {
 public:
-  M3Publisher(const sonar::M3Sensor& sensor, const PublisherContext& ctx);
+  M3Publisher(const sensors::sonar::M3Sensor& sensor, const PublisherContext& ctx);
   void publish() override;
 
 private:
-  const sonar::M3Sensor& sensor_;
+  const sensors::sonar::M3Sensor& sensor_;
   Stream pub_, points_;
 };
 

@@ -20,7 +20,7 @@ const std::array<std::uint32_t, 5>& MsisPublisher::colours()
   return rgb;
 }
 
-MsisPublisher::MsisPublisher(const sonar::MsisSensor& sensor, const PublisherContext& ctx)
+MsisPublisher::MsisPublisher(const sensors::sonar::MsisSensor& sensor, const PublisherContext& ctx)
     : sensor_(sensor)
 {
   const int queue = queueSize(sensor.rate());
@@ -30,7 +30,7 @@ MsisPublisher::MsisPublisher(const sonar::MsisSensor& sensor, const PublisherCon
 
 sensor_msgs::PointCloud2 MsisPublisher::cloud() const
 {
-  const sonar::MsisLine& line = sensor_.last();
+  const sensors::sonar::MsisLine& line = sensor_.last();
   sensor_msgs::PointCloud2 m;
   m.header.stamp.fromSec(line.time);
   m.header.frame_id = sensor_.frame();

@@ -22,16 +22,16 @@ namespace ros_layer {
 class MsisPublisher : public SensorPublisher
 {
 public:
-  /// RGB of each sonar::EchoLevel (none, low, medium, high, shadow), packed 0x00RRGGBB.
+  /// RGB of each sensors::sonar::EchoLevel (none, low, medium, high, shadow), packed 0x00RRGGBB.
   static const std::array<std::uint32_t, 5>& colours();
 
-  MsisPublisher(const sonar::MsisSensor& sensor, const PublisherContext& ctx);
+  MsisPublisher(const sensors::sonar::MsisSensor& sensor, const PublisherContext& ctx);
   void publish() override;
   /// The cloud of the sensor's latest ping.
   sensor_msgs::PointCloud2 cloud() const;
 
 private:
-  const sonar::MsisSensor& sensor_;
+  const sensors::sonar::MsisSensor& sensor_;
   Stream scan_, angle_;
 };
 

@@ -19,8 +19,8 @@ SensorRegistry SensorRegistry::builtin()
   r.add<sensors::ImuSensor, ImuPublisher>("imu");                  // docs/sensors.md
   r.add<sensors::DvlSensor, DvlPublisher>("dvl");                  // docs/sensors.md
   r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
-  r.add<sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
-  r.add<sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
+  r.add<sensors::sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
+  r.add<sensors::sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
   r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/sls.md
   r.add<sensors::vision::CameraSensor, CameraPublisher>("camera");  // docs/vision.md
   return r;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 namespace {
 
@@ -81,7 +82,7 @@ double EchoModel::echoLevel(const Echo& e, std::size_t rays) const
          10.0 * p_.backscatter_exponent * std::log10(c) + 10.0 * std::log10(area) + e.extra;
 }
 
-double EchoModel::spread(const Echo& e, std::size_t rays, double& r) const
+double EchoModel::strengthWithoutAbsorption(const Echo& e, std::size_t rays, double& r) const
 {
   const double c = std::min(1.0, e.cos_incidence);
   r = std::max(e.range, 1e-3);
@@ -93,7 +94,7 @@ double EchoModel::strength(const Echo& e, std::size_t rays) const
 {
   // echoLevel in linear form: SL BS0 Omega / N  cos^(n - 1)  r^-2  10^(-2 alpha r / 10)  10^(X / 10).
   double r;
-  const double s = spread(e, rays, r);
+  const double s = strengthWithoutAbsorption(e, rays, r);
   if (!(s > 0.0)) return 0.0;
   const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
   return s * std::exp(-0.2 * M_LN10 * p_.absorption * r) * extra;
@@ -102,7 +103,7 @@ double EchoModel::strength(const Echo& e, std::size_t rays) const
 bool EchoModel::reaches(const Echo& e, std::size_t rays, double power) const
 {
   double r;
-  const double s = spread(e, rays, r);
+  const double s = strengthWithoutAbsorption(e, rays, r);
   if (!(s > 0.0)) return false;
   const double extra = e.extra == 0.0 ? 1.0 : std::pow(10.0, e.extra / 10.0);
   const double lossless = s * extra;
@@ -217,4 +218,5 @@ void EchoModel::line(const std::vector<Echo>& echoes, std::size_t rays, std::vec
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

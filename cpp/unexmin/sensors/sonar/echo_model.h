@@ -27,6 +27,7 @@
 #include <vector>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 struct EchoParams
@@ -114,7 +115,7 @@ private:
   double incidence(double c) const;
   /// strength() before absorption and the extra level X: SL BS0 Omega / N cos^(n - 1) r^-2 (0 at grazing or
   /// behind); r = the echo's range, at least 1 mm.
-  double spread(const Echo& e, std::size_t rays, double& r) const;
+  double strengthWithoutAbsorption(const Echo& e, std::size_t rays, double& r) const;
   /// Adds `amount` spread evenly over the range interval [a, b] (clipped to the window).
   void spreadOver(double a, double b, double amount, std::vector<double>& energy) const;
 
@@ -128,4 +129,5 @@ private:
 };
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

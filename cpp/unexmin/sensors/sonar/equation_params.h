@@ -10,6 +10,7 @@
 #include <limits>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 /// Reads gain_span, source_level (default `source_level` [dB re 1 uPa at 1 m], the sonar's own),
@@ -60,4 +61,5 @@ inline raycast::Ray reflectedRay(const raycast::Ray& ray, const Eigen::Vector3d&
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

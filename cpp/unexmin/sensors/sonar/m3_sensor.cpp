@@ -8,6 +8,7 @@
 #include <limits>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 namespace {
 
@@ -183,4 +184,5 @@ void M3Sensor::directAndSurface(int k, double surface_z)
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

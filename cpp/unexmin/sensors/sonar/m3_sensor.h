@@ -38,6 +38,7 @@
 #include <vector>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 struct M3Scan
@@ -110,4 +111,5 @@ private:
 };
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

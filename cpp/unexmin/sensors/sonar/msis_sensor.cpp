@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 namespace {
 
@@ -19,13 +20,12 @@ constexpr double kDeg = M_PI / 180.0;
 struct Preset
 {
   double range_max, nbins, gain;
-  bool continuous;
 };
 
 Preset preset(const std::string& name)
 {
-  if (name == "thesis_tank") return {3.0, 400.0, 0.2, true};  // thesis 6.1.1: 3 m, 400 bins, 360 deg, gain "Low"
-  return {20.0, 200.0, 0.5, true};                              // none: a medium range, medium gain
+  if (name == "thesis_tank") return {3.0, 400.0, 0.2};  // thesis 6.1.1: 3 m, 400 bins, gain "Low"
+  return {20.0, 200.0, 0.5};                           // none: a medium range, medium gain
 }
 
 double wrap(double a)
@@ -79,7 +79,7 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   step_ = *match * kDeg;
   left_ = p.number("sector_left", -M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
   right_ = p.number("sector_right", M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
-  continuous_ = p.flag("continuous", pre.continuous);
+  continuous_ = p.flag("continuous", true);
   if (!continuous_ && std::abs(right_ - left_) < step_ - 1e-9)
     p.fail("sector_right", formatNumber(right_), "at least one step (" + formatNumber(step_) +
                                                        " rad) away from sector_left for a sector scan");
@@ -289,4 +289,5 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
 }
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

@@ -24,8 +24,8 @@
 //   4. each bin gets a level for the colour map: none (< threshold_low), low, medium (>= threshold_medium),
 //      high (>= threshold_high), shadow (a shadowed bin with no echo).
 // Presets (parameter `preset`): "thesis_tank" = the thesis's tank configuration (6.1.1): range 3 m,
-// 400 bins, continuous, low gain (0.2). Parameters given explicitly override the preset. docs/sonars.md lists
-// every parameter with its unit, default and source.
+// 400 bins, low gain (0.2). Parameters given explicitly override the preset. Scanning is continuous (360 deg)
+// unless `continuous` is false. docs/sonars.md lists every parameter with its unit, default and source.
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
@@ -41,6 +41,7 @@
 #include <vector>
 
 namespace unexmin {
+namespace sensors {
 namespace sonar {
 
 /// Colour-map class of one bin.
@@ -127,4 +128,5 @@ private:
 };
 
 }  // namespace sonar
+}  // namespace sensors
 }  // namespace unexmin

@@ -13,9 +13,10 @@ namespace vision {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-/// Side of a tile [px]: 8 x 8 = 64 rays, one block of the ray caster (raycast::RayCaster::kBlock).
+/// Side of a tile [px]: a tile's 8 x 8 pixels are one block of the ray caster.
 constexpr int kTile = 8;
-static_assert(kTile * kTile <= static_cast<int>(raycast::RayCaster::kBlock), "a tile is cast as one block");
+static_assert(static_cast<std::size_t>(kTile * kTile) == raycast::kBlock,
+              "a tile is cast, shaded and encoded as one block");
 /// Entries of the gamma table over [0, 1].
 constexpr int kEncodeEntries = 4096;
 
@@ -165,13 +166,13 @@ void CameraSensor::prepare(const SensorContext& ctx)
     encode_.resize(kEncodeEntries + 1);
     for (int i = 0; i <= kEncodeEntries; ++i)
       encode_[i] = static_cast<std::int32_t>(std::lround(255.0 * std::pow(i / double(kEncodeEntries), 1.0 / gamma_)));
-    sensor_.exposure = static_cast<float>(exposure_);
-    sensor_.gain = static_cast<float>(gain_);
-    sensor_.shot = static_cast<float>(1.0 / full_well_);
-    sensor_.read2 = static_cast<float>((read_noise_ / full_well_) * (read_noise_ / full_well_));
-    sensor_.normal = normalTable().data();
-    sensor_.encode = encode_.data();
-    sensor_.encode_last = static_cast<float>(kEncodeEntries);
+    response_.exposure = static_cast<float>(exposure_);
+    response_.gain = static_cast<float>(gain_);
+    response_.shot = static_cast<float>(1.0 / full_well_);
+    response_.read2 = static_cast<float>((read_noise_ / full_well_) * (read_noise_ / full_well_));
+    response_.normal = normalTable().data();
+    response_.encode = encode_.data();
+    response_.encode_last = static_cast<float>(kEncodeEntries);
   }
   albedo_.clear();
   for (const auto& m : config.meshes)
@@ -181,9 +182,8 @@ void CameraSensor::prepare(const SensorContext& ctx)
 
 void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd)
 {
-  constexpr int kMax = PixelBatch::kMax;
-  alignas(32) std::int32_t noise[3][kMax];
-  alignas(32) std::int32_t code[3][kMax];
+  alignas(32) std::int32_t noise[3][raycast::kBlock];
+  alignas(32) std::int32_t code[3][raycast::kBlock];
   simd = simd && ImageFormation::simdAvailable();
   const int padded = simd ? (n + 7) / 8 * 8 : n;  // the padding's radiance is there (PixelBatch), its codes unused
   const std::int32_t* draws[3] = {nullptr, nullptr, nullptr};
@@ -202,8 +202,8 @@ void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance
     }
   }
   std::int32_t* const codes[3] = {code[0], code[1], code[2]};
-  if (simd) shading::sensorAvx2(sensor_, padded, radiance, draws, codes);
-  else shading::sensor<lanes::F1>(sensor_, n, radiance, draws, codes);
+  if (simd) shading::sensorResponseAvx2(response_, padded, radiance, draws, codes);
+  else shading::sensorResponse<lanes::F1>(response_, n, radiance, draws, codes);
   for (int i = 0; i < n; ++i) {
     std::uint8_t* px = &frame_.rgb[3 * pixel[i]];
     for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>(code[c][i]);
@@ -243,15 +243,14 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
 void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
                               std::uint64_t seed)
 {
-  constexpr int kMax = kTile * kTile;
   const int w = model_.width();
   const Eigen::Matrix3f rot = cam.linear().cast<float>();
   const Eigen::Vector3f origin = cam.translation().cast<float>();
   const float far = static_cast<float>(clip_far_);
-  raycast::Ray rays[kMax];
-  raycast::Hit hits[kMax];
-  std::size_t pixel[kMax];
-  float pu[kMax], pv[kMax];  // pixel coordinates [px]
+  raycast::Ray rays[raycast::kBlock];
+  raycast::Hit hits[raycast::kBlock];
+  std::size_t pixel[raycast::kBlock];
+  float pu[raycast::kBlock], pv[raycast::kBlock];  // pixel coordinates [px]
   int n = 0;
   for (int v = v0; v < v1; ++v)
     for (int u = u0; u < u1; ++u, ++n) {
@@ -265,7 +264,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   // Shading uses the normal, not the angle.
   if (ctx.rays) ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip);
 
-  unsigned lit[kMax];
+  unsigned lit[raycast::kBlock];
   std::fill(lit, lit + n, ~0u);
   if (shadows_) {
     // One ray from each light towards every surface point it would light; a hit before the point shadows it.
@@ -279,7 +278,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       const Eigen::Vector3f p = hits[i].range * dirs_[pixel[i]];
       const Eigen::Vector3f nrm = rot.transpose() * hits[i].normal;
       for (int k : formation_->activeLights()) {
-        if (!formation_->lights(k, p, nrm)) continue;
+        if (!formation_->canLight(k, p, nrm)) continue;
         const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
         const Eigen::Vector3f to = hits[i].point(rays[i]) - from;
         const float len = to.norm();

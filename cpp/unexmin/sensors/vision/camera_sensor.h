@@ -101,7 +101,7 @@ private:
   /// frame): their rays, cast on the calling thread, shadow rays if on, shading and sensor.
   void renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
                   std::uint64_t seed);
-  /// The sensor at the n <= PixelBatch::kMax pixels `pixel` whose radiance per channel is radiance[c][0..n): noise,
+  /// The sensor at the n <= raycast::kBlock pixels `pixel` whose radiance per channel is radiance[c][0..n): noise,
   /// gain, gamma, 8 bits per channel into the image. `simd`: in AVX2 lanes (then radiance[c] holds n rounded up to
   /// a multiple of 8 finite values).
   void encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd);
@@ -123,7 +123,7 @@ private:
   std::vector<Eigen::Vector3f> dirs_;     ///< per pixel: unit ray direction in the optical frame
   std::vector<Eigen::Array4f> albedo_;    ///< per world mesh (R, G, B, 0)
   std::vector<std::int32_t> encode_;      ///< gamma table: signal in [0, 1] -> 8 bits
-  shading::Sensor sensor_;                ///< the sensor's constants as the kernel reads them
+  shading::SensorResponse response_;      ///< the sensor's constants as the kernel reads them
   std::vector<std::size_t> touched_;      ///< pixels the laser line lit this frame
   CameraFrame frame_;
 };

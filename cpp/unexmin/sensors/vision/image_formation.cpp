@@ -81,7 +81,7 @@ ImageFormation::ImageFormation(const CameraModel& camera, std::vector<LedLight> 
   for (int k : active_) kernel_lights_.push_back(light_f_[static_cast<std::size_t>(k)]);
 }
 
-bool ImageFormation::lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
+bool ImageFormation::canLight(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const
 {
   const shading::Light& l = light_f_[static_cast<std::size_t>(k)];
   const Eigen::Vector3f v = p - Eigen::Vector3f(l.position[0], l.position[1], l.position[2]);

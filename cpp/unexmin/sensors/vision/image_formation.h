@@ -16,7 +16,8 @@
 // bins (64 bins, s_j = max_range (j / 64)^2, finer near the lens) and interpolated (bilinear in the pixel,
 // linear in range). The direct term is evaluated per pixel with tabulated exp(-c x) and cos^m (relative error
 // below 1e-3). Lights that cannot reach anything the camera sees within max_range are skipped. Both terms run in
-// the kernels of shading_kernels.h, on a PixelBatch of up to 64 pixels, eight at a time where the CPU has AVX2.
+// the kernels of shading_kernels.h, on a PixelBatch of up to raycast::kBlock = 64 pixels, eight at a time where the
+// CPU has AVX2.
 // Everything here is in the camera's optical frame (z forward). Knows no ROS.
 #pragma once
 
@@ -52,12 +53,10 @@ struct LedLight
   double profile(double cos_theta) const;
 };
 
-/// Up to kMax pixels of one tile (shading::Pixels) as the camera fills them. A pixel that sees no surface has
-/// range = max_range, albedo 0 and normal 0 (backscatter only).
+/// Up to raycast::kBlock pixels of one tile (shading::Pixels) as the camera fills them. A pixel that sees no surface
+/// has range = max_range, albedo 0 and normal 0 (backscatter only).
 struct PixelBatch : shading::Pixels
 {
-  static constexpr int kMax = shading::kMaxPixels;
-
   /// Sets pixel i: (u, v), the surface at `range` (point p, normal n, albedo a), lit by the bits of `lit_mask`.
   void set(int i, float pu, float pv, float r, const Eigen::Vector3f& p, const Eigen::Vector3f& normal,
            const float* a, std::uint32_t lit_mask)
@@ -111,7 +110,7 @@ public:
   static bool simdAvailable();
   /// Whether light `k` can light point `p` (camera frame) from the front of a surface of normal `n`: inside its
   /// cone and not behind the surface. Decides which shadow rays are cast.
-  bool lights(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
+  bool canLight(int k, const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
 
 private:
   /// Sum over active lights of b p(psi) I(theta) exp(-c (s + r)) / r^2 at distance s along unit ray d.

@@ -21,10 +21,10 @@ void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& 
   direct<Lanes>(p, n, lights, count, t);
 }
 void backscatterAvx2(Pixels& p, int n, const Backscatter& b) { backscatter<Lanes>(p, n, b); }
-void sensorAvx2(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
-                std::int32_t* const code[3])
+void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3],
+                        const std::int32_t* const noise[3], std::int32_t* const code[3])
 {
-  sensor<Lanes>(s, n, radiance, noise, code);
+  sensorResponse<Lanes>(s, n, radiance, noise, code);
 }
 bool avx2Built() { return kBuilt; }
 

@@ -5,6 +5,7 @@
 // Plain arrays only (no Eigen): this header is compiled with and without AVX2.
 #pragma once
 
+#include <unexmin/raycast/block.h>
 #include <unexmin/sensors/vision/lanes.h>
 
 #include <cstdint>
@@ -13,9 +14,6 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 namespace shading {
-
-/// Pixels per call of a kernel at most (a camera tile of 8 x 8).
-constexpr int kMaxPixels = 64;
 
 /// One light of the direct term, camera frame, in the form the kernel reads.
 struct Light
@@ -30,17 +28,18 @@ struct Light
   std::uint32_t bit = 0;         ///< this light's bit in the pixels' lit masks
 };
 
-/// Up to kMaxPixels pixels as a structure of arrays (one array per quantity, so that lanes load side by side).
+/// Up to raycast::kBlock pixels (a camera tile) as a structure of arrays (one array per quantity, so that lanes
+/// load side by side).
 struct Pixels
 {
-  int n = 0;                                               ///< pixels in use
-  alignas(32) float u[kMaxPixels], v[kMaxPixels];          ///< pixel coordinates [px]
-  alignas(32) float range[kMaxPixels];                     ///< lens to the surface [m]
-  alignas(32) float px[kMaxPixels], py[kMaxPixels], pz[kMaxPixels];  ///< surface point, camera frame [m]
-  alignas(32) float nx[kMaxPixels], ny[kMaxPixels], nz[kMaxPixels];  ///< unit normal towards the lens
-  alignas(32) float albedo[3][kMaxPixels];                 ///< Lambertian albedo per channel (R, G, B) [-]
-  alignas(32) std::uint32_t lit[kMaxPixels];               ///< bit k: light k reaches the point (no shadow)
-  alignas(32) float out[3][kMaxPixels];                    ///< radiance per channel [W m^-2 sr^-1]
+  int n = 0;                                                                       ///< pixels in use
+  alignas(32) float u[raycast::kBlock], v[raycast::kBlock];                        ///< pixel coordinates [px]
+  alignas(32) float range[raycast::kBlock];                                        ///< lens to the surface [m]
+  alignas(32) float px[raycast::kBlock], py[raycast::kBlock], pz[raycast::kBlock];  ///< surface point, camera frame [m]
+  alignas(32) float nx[raycast::kBlock], ny[raycast::kBlock], nz[raycast::kBlock];  ///< unit normal towards the lens
+  alignas(32) float albedo[3][raycast::kBlock];     ///< Lambertian albedo per channel (R, G, B) [-]
+  alignas(32) std::uint32_t lit[raycast::kBlock];   ///< bit k: light k reaches the point (no shadow)
+  alignas(32) float out[3][raycast::kBlock];        ///< radiance per channel [W m^-2 sr^-1]
 };
 
 /// exp(-c x) per channel, 4 floats an entry (R, G, B, 0) over x in [0, last / scale]; pow tables' last index.
@@ -118,8 +117,8 @@ template <class F>
 void backscatter(Pixels& p, int n, const Backscatter& b)
 {
   using I = typename F::Int;
-  alignas(32) std::int32_t cell[kMaxPixels];
-  alignas(32) float weight[5][kMaxPixels];  // the four nodes' (00, 10, 01, 11), then range's
+  alignas(32) std::int32_t cell[raycast::kBlock];
+  alignas(32) float weight[5][raycast::kBlock];  // the four nodes' (00, 10, 01, 11), then range's
   const F zero(0.0f), one_f(1.0f), max_u(static_cast<float>(b.nu - 1)), max_v(static_cast<float>(b.nv - 1));
   const F s_max(b.edge[b.bins]), inv_range(b.inv_range), bins_f(static_cast<float>(b.bins));
   const I last_node_u = splatInt(b.nu - 2, zero), last_node_v = splatInt(b.nv - 2, zero);
@@ -158,8 +157,8 @@ void backscatter(Pixels& p, int n, const Backscatter& b)
   }
 }
 
-/// The camera's sensor (CameraSensor has the model): radiance -> 8-bit code per channel.
-struct Sensor
+/// The response of the camera's image sensor (CameraSensor has the model): radiance -> 8-bit code per channel.
+struct SensorResponse
 {
   float exposure = 0.0f;        ///< fraction of full well per unit radiance
   float gain = 1.0f;
@@ -173,8 +172,8 @@ struct Sensor
 /// code[c][i] = encode[round(encode_last * clamp(gain * (s + sqrt(s shot + read2) N), 0, 1))] with
 /// s = min(1, exposure radiance[c][i]) and N = normal[noise[c][i]] (noise null: no noise), for i in [0, n).
 template <class F>
-void sensor(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
-            std::int32_t* const code[3])
+void sensorResponse(const SensorResponse& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
+                    std::int32_t* const code[3])
 {
   const F zero(0.0f), one(1.0f), half(0.5f), exposure(s.exposure), gain(s.gain), shot(s.shot), read2(s.read2);
   const F last(s.encode_last);
@@ -190,8 +189,8 @@ void sensor(const Sensor& s, int n, float* const radiance[3], const std::int32_t
 /// The AVX2 + FMA builds of the three (shading_avx2.cpp); call only where avx2Built() and the CPU has both.
 void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t);
 void backscatterAvx2(Pixels& p, int n, const Backscatter& b);
-void sensorAvx2(const Sensor& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
-                std::int32_t* const code[3]);
+void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3],
+                        const std::int32_t* const noise[3], std::int32_t* const code[3]);
 /// Whether the two above were built for AVX2 + FMA (x86-64 with GCC or Clang).
 bool avx2Built();
 
