@@ -24,6 +24,8 @@ apt_packages=(
   # tests, viewer, Python
   libgtest-dev googletest rviz xvfb xauth x11-apps imagemagick tmux python3-venv python3-numpy python3-yaml
   build-essential cmake
+  # test/pytest/test_loopback.py: ss and ip netns (not in a minimal Debian 12 image)
+  iproute2
   # teleop:=keyboard opens the keyboard teleop in a terminal window of its own (launch/teleop.launch)
   xterm
 )

@@ -9,6 +9,8 @@ import subprocess
 import time
 import uuid
 
+from unexmin.bind_shim import advertised_host, ros_environment
+
 
 def free_port():
     """A TCP port on the loopback that nothing listens on now."""
@@ -139,11 +141,11 @@ class WorldProcess:
         arguments); port: the master's port (default: a free one); log_dir: roslaunch.log and the
         nodes' logs (ROS_LOG_DIR)."""
         self.port = port or free_port()
-        self.uri = f"http://127.0.0.1:{self.port}"
+        # Loopback unless the user chose an address (ROS_IP or ROS_HOSTNAME), every process of the world and those
+        # this process starts later kept on it by the bind shim: docs/reliability.md "Safe by default".
+        ros_environment(os.environ)
+        self.uri = f"http://{advertised_host()}:{self.port}"
         os.environ["ROS_MASTER_URI"] = self.uri
-        # Loopback unless the user chose an address (ROS_IP or ROS_HOSTNAME): docs/reliability.md.
-        if not os.environ.get("ROS_IP") and not os.environ.get("ROS_HOSTNAME"):
-            os.environ["ROS_IP"] = "127.0.0.1"
         if log_dir:
             os.makedirs(log_dir, exist_ok=True)
             os.environ["ROS_LOG_DIR"] = log_dir
