@@ -4,6 +4,8 @@
 // the samples tf2 refuses.
 #include <unexmin/mapping/tf_history.h>
 
+#include "expect_error.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,6 +41,13 @@ TfHistory robot()
   tf.add({sample("world", "base", 1.0, 0.0, 0.0, 0.0)}, "sim", 0.0, false);
   tf.add({sample("world", "base", 2.0, 2.0, 0.0, kPi / 2)}, "sim", 0.1, false);
   return tf;
+}
+
+TEST(TfHistory, ChecksItsParameters)
+{
+  EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(0.0, 1.0); }), "cache_length = 0"));
+  EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(120.0, -1.0); }), "handover_silence = -1"));
+  EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(std::nan(""), 1.0); }), "cache_length = nan"));
 }
 
 TEST(TfHistory, ComposesTheChainAndInterpolatesItsDynamicFrame)

@@ -1,5 +1,7 @@
 #include <unexmin/mapping/tf_history.h>
 
+#include <unexmin/core/error.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,8 +42,15 @@ TfLookup::Status statusOf(FrameAnswer::Status s)
 }  // namespace
 
 TfHistory::TfHistory(double cache_length, double handover_silence)
-    : cache_length_(static_cast<Stamp>(std::llround(cache_length * 1e9))), handover_silence_(handover_silence)
+    : cache_length_(0), handover_silence_(handover_silence)
 {
+  if (!(cache_length > 0.0 && cache_length < 1e9)) {
+    throw ParameterError("TfHistory: cache_length = " + formatNumber(cache_length) + ": expected (0, 1e9) s");
+  }
+  if (!(handover_silence >= 0.0) || !std::isfinite(handover_silence)) {
+    throw ParameterError("TfHistory: handover_silence = " + formatNumber(handover_silence) + ": expected >= 0 s");
+  }
+  cache_length_ = static_cast<Stamp>(std::llround(cache_length * 1e9));
 }
 
 FrameHistory& TfHistory::frame(const std::string& child, bool is_static)

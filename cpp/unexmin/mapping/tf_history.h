@@ -60,7 +60,8 @@ class TfHistory
 {
 public:
   /// cache_length [s]: how long a dynamic frame's samples are kept behind its newest; handover_silence [s, wall]:
-  /// how long an owner must have been silent before another publisher takes its frame over.
+  /// how long an owner must have been silent before another publisher takes its frame over. ParameterError when
+  /// cache_length is not in (0, 1e9) or handover_silence is negative or not finite.
   explicit TfHistory(double cache_length = 120.0, double handover_silence = 1.0);
 
   /// Stores one /tf (is_static false) or /tf_static (true) message's samples from publisher, received at wall
