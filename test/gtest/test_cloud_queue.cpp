@@ -17,10 +17,11 @@ namespace {
 constexpr Stamp kSec = 1000000000;
 using Kind = CloudStep::Kind;
 
-Stamp sec(double t) { return static_cast<Stamp>(std::llround(t * kSec)); }
+Stamp sec(double t) {
+  return static_cast<Stamp>(std::llround(t * kSec));
+}
 
-TfSample base(double t, double x)
-{
+TfSample base(double t, double x) {
   TfSample s;
   s.parent = "world";
   s.child = "base";
@@ -29,20 +30,17 @@ TfSample base(double t, double x)
   return s;
 }
 
-PendingCloud cloud(double t, double received, const std::string& frame = "base")
-{
+PendingCloud cloud(double t, double received, const std::string& frame = "base") {
   return PendingCloud{"UX_1", frame, sec(t), {octomap::point3d(1.0f, 0.0f, 0.0f)}, received};
 }
 
-TEST(CloudQueue, ChecksItsParameters)
-{
+TEST(CloudQueue, ChecksItsParameters) {
   EXPECT_TRUE(test::contains(test::thrownMessage([] { CloudQueue("", 1.0, 1.0); }), "map frame"));
   EXPECT_TRUE(test::contains(test::thrownMessage([] { CloudQueue("world", 0.0, 1.0); }), "tf_timeout = 0"));
   EXPECT_TRUE(test::contains(test::thrownMessage([] { CloudQueue("world", 1.0, -1.0); }), "tf_max_gap = -1"));
 }
 
-TEST(CloudQueue, ACloudWaitsForItsTfThenGoesInPlacedByIt)
-{
+TEST(CloudQueue, ACloudWaitsForItsTfThenGoesInPlacedByIt) {
   TfHistory tf;
   CloudQueue q("world", 10.0, 0.5);
   tf.add({base(1.0, 0.0)}, "sim", 0.0, false);
@@ -63,8 +61,7 @@ TEST(CloudQueue, ACloudWaitsForItsTfThenGoesInPlacedByIt)
   EXPECT_EQ(q.dropped(), 0u);
 }
 
-TEST(CloudQueue, DropsACloudOlderThanTheTfKept)
-{
+TEST(CloudQueue, DropsACloudOlderThanTheTfKept) {
   TfHistory tf;
   CloudQueue q("world", 10.0, 0.5);
   tf.add({base(1.0, 0.0)}, "sim", 0.0, false);
@@ -77,8 +74,7 @@ TEST(CloudQueue, DropsACloudOlderThanTheTfKept)
   EXPECT_EQ(q.size(), 0u);
 }
 
-TEST(CloudQueue, GivesUpOnATfThatDoesNotComeWithinTheTimeout)
-{
+TEST(CloudQueue, GivesUpOnATfThatDoesNotComeWithinTheTimeout) {
   TfHistory tf;
   CloudQueue q("world", 2.0, 0.5);
   q.push(cloud(1.0, 100.0, "sensor"));
@@ -89,11 +85,11 @@ TEST(CloudQueue, GivesUpOnATfThatDoesNotComeWithinTheTimeout)
   EXPECT_TRUE(test::contains(s.why, "no chain at 'sensor'"));
 }
 
-TEST(CloudQueue, DropsACloudWhosePoseWouldBeInterpolatedOverAGap)
-{
+TEST(CloudQueue, DropsACloudWhosePoseWouldBeInterpolatedOverAGap) {
   TfHistory tf;
   CloudQueue q("world", 10.0, 0.5);
-  for (double t : {0.0, 0.1, 0.8, 0.9}) tf.add({base(t, t)}, "sim", 0.0, false);
+  for (double t : {0.0, 0.1, 0.8, 0.9})
+    tf.add({base(t, t)}, "sim", 0.0, false);
   q.push(cloud(0.5, 0.0));   // between 0.1 and 0.8: a gap of 0.7 s
   q.push(cloud(0.85, 0.0));  // between 0.8 and 0.9
   const CloudStep gap = q.next(tf, 0.0);
@@ -102,8 +98,7 @@ TEST(CloudQueue, DropsACloudWhosePoseWouldBeInterpolatedOverAGap)
   EXPECT_EQ(q.next(tf, 0.0).kind, Kind::kInsert);
 }
 
-TEST(CloudQueue, ForgetsTheCloudsReceivedBeforeAJumpBack)
-{
+TEST(CloudQueue, ForgetsTheCloudsReceivedBeforeAJumpBack) {
   TfHistory tf;
   CloudQueue q("world", 10.0, 0.5);
   tf.add({base(5.0, 0.0)}, "sim", 0.0, false);

@@ -11,8 +11,7 @@ namespace {
 
 constexpr Stamp kSec = 1000000000;
 
-FrameSample at(double seconds, double x, const std::string& parent = "world")
-{
+FrameSample at(double seconds, double x, const std::string& parent = "world") {
   FrameSample s;
   s.stamp = static_cast<Stamp>(seconds * kSec);
   s.parent = parent;
@@ -20,15 +19,13 @@ FrameSample at(double seconds, double x, const std::string& parent = "world")
   return s;
 }
 
-TEST(FrameHistory, SecondsOfStampsRoundAsRosDurations)
-{
+TEST(FrameHistory, SecondsOfStampsRoundAsRosDurations) {
   EXPECT_EQ(toSeconds(1500000000), 1.5);
   EXPECT_EQ(toSeconds(-1500000000), -2.0 + 0.5);  // -2 s + 0.5e9 ns
   EXPECT_EQ(toSeconds(3 * kSec + 7), 3.0 + 1e-9 * 7.0);
 }
 
-TEST(FrameHistory, InterpolatesBetweenTwoSamplesAndReportsTheirGap)
-{
+TEST(FrameHistory, InterpolatesBetweenTwoSamplesAndReportsTheirGap) {
   FrameHistory h(false, 120 * kSec);
   EXPECT_EQ(h.insert(at(1.0, 0.0)), FrameHistory::Insert::kStored);
   EXPECT_EQ(h.insert(at(3.0, 4.0)), FrameHistory::Insert::kStored);
@@ -43,8 +40,7 @@ TEST(FrameHistory, InterpolatesBetweenTwoSamplesAndReportsTheirGap)
   EXPECT_EQ(exact.gap, 0.0);
 }
 
-TEST(FrameHistory, TypesTimesOutsideItsSamples)
-{
+TEST(FrameHistory, TypesTimesOutsideItsSamples) {
   FrameHistory h(false, 120 * kSec);
   EXPECT_EQ(h.at(kSec).status, FrameAnswer::Status::kEmpty);
   h.insert(at(2.0, 0.0));
@@ -57,8 +53,7 @@ TEST(FrameHistory, TypesTimesOutsideItsSamples)
   EXPECT_EQ(h.at(0).transform.translation.x(), 1.0);  // time 0: the newest
 }
 
-TEST(FrameHistory, KeepsSamplesInStampOrderAndRefusesRepeatedOnes)
-{
+TEST(FrameHistory, KeepsSamplesInStampOrderAndRefusesRepeatedOnes) {
   FrameHistory h(false, 120 * kSec);
   h.insert(at(1.0, 1.0));
   h.insert(at(3.0, 3.0));
@@ -70,10 +65,10 @@ TEST(FrameHistory, KeepsSamplesInStampOrderAndRefusesRepeatedOnes)
   EXPECT_EQ(h.newest(), 3 * kSec);
 }
 
-TEST(FrameHistory, ForgetsSamplesOlderThanTheCacheLength)
-{
+TEST(FrameHistory, ForgetsSamplesOlderThanTheCacheLength) {
   FrameHistory h(false, 10 * kSec);
-  for (int s = 0; s <= 30; ++s) h.insert(at(s, s));
+  for (int s = 0; s <= 30; ++s)
+    h.insert(at(s, s));
   EXPECT_EQ(h.oldest(), 20 * kSec);  // 30 - 10: kept while no more than the cache length behind the newest
   EXPECT_EQ(h.size(), 11u);
   EXPECT_EQ(h.insert(at(20.5, 0.0)), FrameHistory::Insert::kStored);  // within 10 s of the newest
@@ -81,8 +76,7 @@ TEST(FrameHistory, ForgetsSamplesOlderThanTheCacheLength)
   EXPECT_EQ(h.at(15 * kSec).status, FrameAnswer::Status::kTooOld);
 }
 
-TEST(FrameHistory, KeepsTheOlderSampleWhenTheParentChangesBetweenTwo)
-{
+TEST(FrameHistory, KeepsTheOlderSampleWhenTheParentChangesBetweenTwo) {
   FrameHistory h(false, 120 * kSec);
   h.insert(at(1.0, 1.0, "a"));
   h.insert(at(2.0, 5.0, "b"));
@@ -91,8 +85,7 @@ TEST(FrameHistory, KeepsTheOlderSampleWhenTheParentChangesBetweenTwo)
   EXPECT_EQ(mid.transform.translation.x(), 1.0);
 }
 
-TEST(FrameHistory, AStaticFrameAnswersEveryTimeAndSurvivesClear)
-{
+TEST(FrameHistory, AStaticFrameAnswersEveryTimeAndSurvivesClear) {
   FrameHistory h(true, 120 * kSec);
   h.insert(at(5.0, 1.0));
   h.insert(at(1.0, 2.0));  // replaces, whatever the stamp

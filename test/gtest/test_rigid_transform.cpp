@@ -14,37 +14,32 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-RigidTransform make(double x, double y, double z, double angle, const Eigen::Vector3d& axis)
-{
+RigidTransform make(double x, double y, double z, double angle, const Eigen::Vector3d& axis) {
   RigidTransform t;
   t.translation = Eigen::Vector3d(x, y, z);
   t.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized()));
   return t;
 }
 
-void expectNear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol)
-{
+void expectNear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {
   EXPECT_NEAR(a.x(), b.x(), tol);
   EXPECT_NEAR(a.y(), b.y(), tol);
   EXPECT_NEAR(a.z(), b.z(), tol);
 }
 
 /// The angle [rad] between two rotations.
-double angleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b)
-{
+double angleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return 2.0 * std::acos(std::min(1.0, std::abs(a.dot(b))));
 }
 
-TEST(RigidTransform, RotatesAboutZByAQuarterTurn)
-{
+TEST(RigidTransform, RotatesAboutZByAQuarterTurn) {
   const RigidTransform t = make(1.0, 2.0, 3.0, kPi / 2, Eigen::Vector3d::UnitZ());
   expectNear(t.rotate(Eigen::Vector3d(1, 0, 0)), Eigen::Vector3d(0, 1, 0), 1e-15);
   expectNear(t.rotate(Eigen::Vector3d(0, 1, 0)), Eigen::Vector3d(-1, 0, 0), 1e-15);
   expectNear(t.rotate(Eigen::Vector3d(0, 0, 1)), Eigen::Vector3d(0, 0, 1), 1e-15);
 }
 
-TEST(RigidTransform, ComposesParentAfterChild)
-{
+TEST(RigidTransform, ComposesParentAfterChild) {
   // base 2 m ahead of the world origin turned a quarter turn left; the sensor 1 m ahead of base.
   const RigidTransform world_base = make(2.0, 0.0, 0.0, kPi / 2, Eigen::Vector3d::UnitZ());
   const RigidTransform base_sensor = make(1.0, 0.0, 0.5, 0.0, Eigen::Vector3d::UnitZ());
@@ -53,12 +48,12 @@ TEST(RigidTransform, ComposesParentAfterChild)
   EXPECT_NEAR(angleBetween(world_sensor.rotation, world_base.rotation), 0.0, 1e-7);
 }
 
-TEST(RigidTransform, InverseUndoesIt)
-{
+TEST(RigidTransform, InverseUndoesIt) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 100; ++i) {
-    const RigidTransform t = make(u(rng) * 5, u(rng) * 5, u(rng) * 5, u(rng) * kPi, Eigen::Vector3d(u(rng), u(rng), 1.0));
+    const RigidTransform t =
+        make(u(rng) * 5, u(rng) * 5, u(rng) * 5, u(rng) * kPi, Eigen::Vector3d(u(rng), u(rng), 1.0));
     const RigidTransform id = t.inverse() * t;
     expectNear(id.translation, Eigen::Vector3d::Zero(), 1e-14);
     EXPECT_NEAR(angleBetween(id.rotation, Eigen::Quaterniond::Identity()), 0.0, 1e-7);
@@ -67,8 +62,7 @@ TEST(RigidTransform, InverseUndoesIt)
   }
 }
 
-TEST(RigidTransform, InterpolatesLinearlyAndAlongTheShortestArc)
-{
+TEST(RigidTransform, InterpolatesLinearlyAndAlongTheShortestArc) {
   const RigidTransform a = make(0.0, 0.0, 0.0, 0.0, Eigen::Vector3d::UnitZ());
   const RigidTransform b = make(4.0, -2.0, 1.0, kPi / 2, Eigen::Vector3d::UnitZ());
   const RigidTransform q = RigidTransform::interpolate(a, b, 0.25);
@@ -84,13 +78,13 @@ TEST(RigidTransform, InterpolatesLinearlyAndAlongTheShortestArc)
   EXPECT_EQ(RigidTransform::interpolate(a, a, 0.3).rotation.coeffs(), a.rotation.coeffs());
 }
 
-TEST(RigidTransform, MovesCloudsLikeRotateAndTranslate)
-{
+TEST(RigidTransform, MovesCloudsLikeRotateAndTranslate) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const RigidTransform t = make(3.0, -1.0, 0.5, 2.0, Eigen::Vector3d(0.3, -0.2, 1.0));
   std::vector<octomap::point3d> cloud;
-  for (int i = 0; i < 50; ++i) cloud.emplace_back(u(rng) * 10, u(rng) * 10, u(rng) * 10);
+  for (int i = 0; i < 50; ++i)
+    cloud.emplace_back(u(rng) * 10, u(rng) * 10, u(rng) * 10);
   const std::vector<octomap::point3d> moved = t.apply(cloud);
   ASSERT_EQ(moved.size(), cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {

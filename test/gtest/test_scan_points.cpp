@@ -14,12 +14,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-TEST(ScanPoints, PlacesEachBeamAtItsAngle)
-{
+TEST(ScanPoints, PlacesEachBeamAtItsAngle) {
   const ScanGeometry g{static_cast<float>(-kPi / 2), static_cast<float>(kPi / 4), 0.1f, 30.0f};
   const std::vector<octomap::point3d> p = scanPoints(g, {1.0f, 2.0f, 3.0f, 4.0f, 5.0f});
   ASSERT_EQ(p.size(), 5u);
-  const double expected[5][2] = {{0, -1}, {std::sqrt(2.0), -std::sqrt(2.0)}, {3, 0}, {2 * std::sqrt(2.0), 2 * std::sqrt(2.0)}, {0, 5}};
+  const double expected[5][2] = {
+      {0, -1}, {std::sqrt(2.0), -std::sqrt(2.0)}, {3, 0}, {2 * std::sqrt(2.0), 2 * std::sqrt(2.0)}, {0, 5}};
   for (int k = 0; k < 5; ++k) {
     EXPECT_NEAR(p[k].x(), expected[k][0], 1e-6) << k;
     EXPECT_NEAR(p[k].y(), expected[k][1], 1e-6) << k;
@@ -27,8 +27,7 @@ TEST(ScanPoints, PlacesEachBeamAtItsAngle)
   }
 }
 
-TEST(ScanPoints, LeavesOutTheBeamsWithoutAnEcho)
-{
+TEST(ScanPoints, LeavesOutTheBeamsWithoutAnEcho) {
   const float inf = std::numeric_limits<float>::infinity();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const ScanGeometry g{0.0f, 0.5f, 0.5f, 10.0f};
@@ -43,8 +42,7 @@ TEST(ScanPoints, LeavesOutTheBeamsWithoutAnEcho)
   EXPECT_TRUE(scanPoints(g, {}).empty());
 }
 
-TEST(ScanPoints, ComputesTheAngleInDoubleFromTheFloatFields)
-{
+TEST(ScanPoints, ComputesTheAngleInDoubleFromTheFloatFields) {
   // 1000 beams of a fine increment: the angle of beam k is angle_min + k * increment in double, not in float.
   const ScanGeometry g{-2.0f, 0.00123f, 0.0f, 100.0f};
   const std::vector<float> ranges(1000, 50.0f);

@@ -20,8 +20,7 @@ using Status = TfLookup::Status;
 
 /// child in parent at t [s]: at (x, y, 0), turned by yaw [rad] about z.
 TfSample sample(const std::string& parent, const std::string& child, double t, double x, double y = 0.0,
-                double yaw = 0.0)
-{
+                double yaw = 0.0) {
   TfSample s;
   s.parent = parent;
   s.child = child;
@@ -31,11 +30,12 @@ TfSample sample(const std::string& parent, const std::string& child, double t, d
   return s;
 }
 
-Stamp sec(double t) { return static_cast<Stamp>(std::llround(t * kSec)); }
+Stamp sec(double t) {
+  return static_cast<Stamp>(std::llround(t * kSec));
+}
 
 /// A robot: base in world (dynamic, from "sim"), sensor 1 m ahead of base (static).
-TfHistory robot()
-{
+TfHistory robot() {
   TfHistory tf;
   tf.add({sample("base", "sensor", 0.0, 1.0)}, "rsp", 0.0, true);
   tf.add({sample("world", "base", 1.0, 0.0, 0.0, 0.0)}, "sim", 0.0, false);
@@ -43,15 +43,13 @@ TfHistory robot()
   return tf;
 }
 
-TEST(TfHistory, ChecksItsParameters)
-{
+TEST(TfHistory, ChecksItsParameters) {
   EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(0.0, 1.0); }), "cache_length = 0"));
   EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(120.0, -1.0); }), "handover_silence = -1"));
   EXPECT_TRUE(test::contains(test::thrownMessage([] { TfHistory(std::nan(""), 1.0); }), "cache_length = nan"));
 }
 
-TEST(TfHistory, ComposesTheChainAndInterpolatesItsDynamicFrame)
-{
+TEST(TfHistory, ComposesTheChainAndInterpolatesItsDynamicFrame) {
   const TfHistory tf = robot();
   const TfLookup at2 = tf.lookup("world", "sensor", sec(2.0));
   ASSERT_EQ(at2.status, Status::kOk);
@@ -76,8 +74,7 @@ TEST(TfHistory, ComposesTheChainAndInterpolatesItsDynamicFrame)
   EXPECT_EQ(tf.lookup("sensor", "sensor", sec(9.0)).status, Status::kOk);
 }
 
-TEST(TfHistory, TypesWhatItCannotAnswer)
-{
+TEST(TfHistory, TypesWhatItCannotAnswer) {
   const TfHistory tf = robot();
   const TfLookup old = tf.lookup("world", "sensor", sec(0.5));
   EXPECT_EQ(old.status, Status::kTooOld);
@@ -88,8 +85,7 @@ TEST(TfHistory, TypesWhatItCannotAnswer)
   EXPECT_EQ(tf.lookup("world", "/sensor", sec(1.5)).status, Status::kNoChain);
 }
 
-TEST(TfHistory, TimeZeroIsTheNewestCommonTime)
-{
+TEST(TfHistory, TimeZeroIsTheNewestCommonTime) {
   const TfHistory tf = robot();
   const TfLookup latest = tf.lookup("world", "sensor", 0);
   ASSERT_EQ(latest.status, Status::kOk);
@@ -97,8 +93,7 @@ TEST(TfHistory, TimeZeroIsTheNewestCommonTime)
   EXPECT_NEAR(latest.transform.translation.y(), 1.0, 1e-12);
 }
 
-TEST(TfHistory, ADynamicFrameHasOneOwnerUntilItFallsSilent)
-{
+TEST(TfHistory, ADynamicFrameHasOneOwnerUntilItFallsSilent) {
   TfHistory tf(120.0, 1.0);
   tf.add({sample("world", "base", 1.0, 1.0)}, "sim", 10.0, false);
   // A second publisher while the first is alive: ignored, warned about once.
@@ -121,8 +116,7 @@ TEST(TfHistory, ADynamicFrameHasOneOwnerUntilItFallsSilent)
   EXPECT_EQ(tf.add({sample("world", "base", 6.0, 0.0)}, "sim", 12.1, false).newly_ignored.size(), 1u);
 }
 
-TEST(TfHistory, AJumpBackInTimeClearsTheDynamicFramesAndKeepsTheStaticOnes)
-{
+TEST(TfHistory, AJumpBackInTimeClearsTheDynamicFramesAndKeepsTheStaticOnes) {
   TfHistory tf = robot();
   const TfUpdate jump = tf.add({sample("world", "base", 0.5, 5.0)}, "sim", 3.0, false);
   EXPECT_NE(jump.jump.find("went back in time"), std::string::npos);
@@ -138,11 +132,12 @@ TEST(TfHistory, AJumpBackInTimeClearsTheDynamicFramesAndKeepsTheStaticOnes)
   EXPECT_NEAR(tf.lookup("world", "base", sec(0.5)).transform.translation.x(), 5.0, 1e-12);
 }
 
-TEST(TfHistory, ReportsTheLargestGapAlongTheChain)
-{
+TEST(TfHistory, ReportsTheLargestGapAlongTheChain) {
   TfHistory tf;
-  for (double t : {0.0, 0.1, 0.2, 1.0, 1.1}) tf.add({sample("world", "base", t, t)}, "sim", t, false);
-  for (double t : {0.0, 0.5, 1.0}) tf.add({sample("base", "arm", t, 1.0)}, "sim", t, false);
+  for (double t : {0.0, 0.1, 0.2, 1.0, 1.1})
+    tf.add({sample("world", "base", t, t)}, "sim", t, false);
+  for (double t : {0.0, 0.5, 1.0})
+    tf.add({sample("base", "arm", t, 1.0)}, "sim", t, false);
   const TfLookup in_gap = tf.lookup("world", "arm", sec(0.6));
   ASSERT_EQ(in_gap.status, Status::kOk);
   EXPECT_NEAR(in_gap.gap, 0.8, 1e-12);
@@ -152,8 +147,7 @@ TEST(TfHistory, ReportsTheLargestGapAlongTheChain)
   EXPECT_EQ(before.frame, "arm");
 }
 
-TEST(TfHistory, RefusesWhatTf2Refuses)
-{
+TEST(TfHistory, RefusesWhatTf2Refuses) {
   TfHistory tf;
   TfSample bad_q = sample("world", "a", 1.0, 0.0);
   bad_q.transform.rotation = Eigen::Quaterniond(0.5, 0.0, 0.0, 0.0);

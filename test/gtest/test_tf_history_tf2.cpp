@@ -16,15 +16,15 @@ namespace unexmin {
 namespace mapping {
 namespace {
 
-bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (a == 0.0 && b == 0.0); }
+bool sameBits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0 || (a == 0.0 && b == 0.0);
+}
 
-struct Twin
-{
+struct Twin {
   tf2::BufferCore tf2{ros::Duration(120.0)};
   TfHistory ours{120.0, 1.0};
 
-  void add(const std::string& parent, const std::string& child, Stamp stamp, const RigidTransform& t, bool is_static)
-  {
+  void add(const std::string& parent, const std::string& child, Stamp stamp, const RigidTransform& t, bool is_static) {
     geometry_msgs::TransformStamped m;
     m.header.frame_id = parent;
     m.child_frame_id = child;
@@ -41,8 +41,7 @@ struct Twin
   }
 };
 
-RigidTransform randomPose(std::mt19937& rng)
-{
+RigidTransform randomPose(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   RigidTransform t;
   t.translation = Eigen::Vector3d(u(rng) * 20, u(rng) * 20, u(rng) * 5);
@@ -50,8 +49,7 @@ RigidTransform randomPose(std::mt19937& rng)
   return t;
 }
 
-TEST(TfHistoryAgainstTf2, SameTransformsBitForBit)
-{
+TEST(TfHistoryAgainstTf2, SameTransformsBitForBit) {
   std::mt19937 rng(2024);
   Twin twin;
   // world -> base_i (dynamic) -> arm_i (dynamic, its own stamps) -> m3_i (static); world -> map (static).
@@ -64,7 +62,8 @@ TEST(TfHistoryAgainstTf2, SameTransformsBitForBit)
       t += std::uniform_int_distribution<Stamp>(1000000, 300000000)(rng);
       twin.add("world", "base" + id, t, randomPose(rng), false);
       times.push_back(t);
-      if (k % 3 != 1) twin.add("base" + id, "arm" + id, t + 500000, randomPose(rng), false);
+      if (k % 3 != 1)
+        twin.add("base" + id, "arm" + id, t + 500000, randomPose(rng), false);
     }
   }
   twin.add("world", "map", 0, randomPose(rng), true);
@@ -82,7 +81,8 @@ TEST(TfHistoryAgainstTf2, SameTransformsBitForBit)
     const bool tf2_can = twin.tf2.canTransform(target, source, stamp);
     const TfLookup ours = twin.ours.lookup(target, source, t);
     ASSERT_EQ(tf2_can, ours.status == TfLookup::Status::kOk) << target << " <- " << source << " at " << t;
-    if (!tf2_can) continue;
+    if (!tf2_can)
+      continue;
     const geometry_msgs::TransformStamped ref = twin.tf2.lookupTransform(target, source, stamp);
     const auto& rt = ref.transform.translation;
     const auto& rq = ref.transform.rotation;

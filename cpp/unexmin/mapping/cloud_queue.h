@@ -18,20 +18,17 @@ namespace unexmin {
 namespace mapping {
 
 /// A cloud as received.
-struct PendingCloud
-{
+struct PendingCloud {
   std::string robot;
-  std::string frame;  ///< the sensor frame
-  Stamp stamp = 0;    ///< [ns]
+  std::string frame;                     ///< the sensor frame
+  Stamp stamp = 0;                       ///< [ns]
   std::vector<octomap::point3d> points;  ///< [m, sensor frame]
-  double received = 0.0;  ///< [s, wall]
+  double received = 0.0;                 ///< [s, wall]
 };
 
 /// The fate of the front cloud.
-struct CloudStep
-{
-  enum class Kind
-  {
+struct CloudStep {
+  enum class Kind {
     kWait,    ///< no cloud, or the front one waits for tf
     kInsert,  ///< cloud and sensor_in_map are set
     kDrop,    ///< cloud and why are set
@@ -42,8 +39,7 @@ struct CloudStep
   std::string why;
 };
 
-class CloudQueue
-{
+class CloudQueue {
 public:
   /// map_frame: the frame clouds are placed in; tf_timeout [s, wall] > 0; tf_max_gap [s] > 0 (ParameterError
   /// otherwise).

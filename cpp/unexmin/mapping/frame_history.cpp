@@ -5,8 +5,7 @@
 namespace unexmin {
 namespace mapping {
 
-double toSeconds(Stamp ns)
-{
+double toSeconds(Stamp ns) {
   constexpr Stamp kSecond = 1000000000;
   Stamp sec = ns / kSecond, rest = ns % kSecond;
   if (rest < 0) {
@@ -16,35 +15,35 @@ double toSeconds(Stamp ns)
   return static_cast<double>(sec) + 1e-9 * static_cast<double>(rest);
 }
 
-FrameHistory::FrameHistory(bool is_static, Stamp cache_length) : is_static_(is_static), cache_length_(cache_length)
-{
-}
+FrameHistory::FrameHistory(bool is_static, Stamp cache_length) : is_static_(is_static), cache_length_(cache_length) {}
 
-FrameHistory::Insert FrameHistory::insert(const FrameSample& sample)
-{
+FrameHistory::Insert FrameHistory::insert(const FrameSample& sample) {
   if (is_static_) {
     samples_.assign(1, sample);
     return Insert::kStored;
   }
-  if (!samples_.empty() && samples_.back().stamp > sample.stamp + cache_length_) return Insert::kTooOld;
+  if (!samples_.empty() && samples_.back().stamp > sample.stamp + cache_length_)
+    return Insert::kTooOld;
   auto it = std::lower_bound(samples_.begin(), samples_.end(), sample.stamp,
                              [](const FrameSample& s, Stamp t) { return s.stamp < t; });
-  if (it != samples_.end() && it->stamp == sample.stamp) return Insert::kRepeated;
+  if (it != samples_.end() && it->stamp == sample.stamp)
+    return Insert::kRepeated;
   samples_.insert(it, sample);
   const Stamp newest = samples_.back().stamp;
-  while (samples_.front().stamp + cache_length_ < newest) samples_.pop_front();
+  while (samples_.front().stamp + cache_length_ < newest)
+    samples_.pop_front();
   return Insert::kStored;
 }
 
-void FrameHistory::clear()
-{
-  if (!is_static_) samples_.clear();
+void FrameHistory::clear() {
+  if (!is_static_)
+    samples_.clear();
 }
 
-FrameAnswer FrameHistory::at(Stamp time) const
-{
+FrameAnswer FrameHistory::at(Stamp time) const {
   FrameAnswer answer;
-  if (samples_.empty()) return answer;
+  if (samples_.empty())
+    return answer;
   const FrameSample* one = nullptr;
   const FrameSample* two = nullptr;
   bool on_sample = false;

@@ -20,35 +20,30 @@ using Stamp = std::int64_t;
 double toSeconds(Stamp ns);
 
 /// One transform sample: child frame in parent frame at stamp.
-struct FrameSample
-{
+struct FrameSample {
   Stamp stamp = 0;     ///< [ns]
   std::string parent;  ///< the parent frame
   RigidTransform transform;
 };
 
 /// What a frame answers for a time.
-struct FrameAnswer
-{
-  enum class Status
-  {
+struct FrameAnswer {
+  enum class Status {
     kOk,
     kTooOld,  ///< before the oldest sample kept: that time will never be answered
     kTooNew,  ///< after the newest sample: a later sample may answer it
     kEmpty,   ///< no sample (never received, or cleared)
   };
   Status status = Status::kEmpty;
-  std::string parent;          ///< kOk: the parent frame at that time
-  RigidTransform transform;    ///< kOk: child in parent
-  double gap = 0.0;            ///< kOk: [s] between the two samples interpolated (0: a sample at that very time)
+  std::string parent;        ///< kOk: the parent frame at that time
+  RigidTransform transform;  ///< kOk: child in parent
+  double gap = 0.0;          ///< kOk: [s] between the two samples interpolated (0: a sample at that very time)
 };
 
-class FrameHistory
-{
+class FrameHistory {
 public:
   /// What insert() did with a sample.
-  enum class Insert
-  {
+  enum class Insert {
     kStored,
     kRepeated,  ///< a sample of that stamp is kept already: ignored (tf2's TF_REPEATED_DATA)
     kTooOld,    ///< older than the newest by more than the cache length: ignored (tf2's TF_OLD_DATA)

@@ -11,17 +11,15 @@ namespace unexmin {
 namespace mapping {
 
 /// An RGBA colour, each channel in [0, 1].
-struct Colour
-{
+struct Colour {
   float r = 0.0f, g = 0.0f, b = 0.0f, a = 1.0f;
 };
 
 /// The occupied leaves of one size.
-struct CubeList
-{
-  double size = 0.0;             ///< edge of the cubes [m]
-  std::vector<Voxel> cells;      ///< their centres [m, map frame]
-  std::vector<Colour> colours;   ///< one per cell
+struct CubeList {
+  double size = 0.0;            ///< edge of the cubes [m]
+  std::vector<Voxel> cells;     ///< their centres [m, map frame]
+  std::vector<Colour> colours;  ///< one per cell
 };
 
 /// The colour of height z [m] in [lo, hi]: hue from blue (lo) through cyan, green and yellow to red (hi); 0.5 of the

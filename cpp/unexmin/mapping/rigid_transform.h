@@ -14,9 +14,8 @@ namespace unexmin {
 namespace mapping {
 
 /// x_parent = rotation * x_child + translation: the pose of a child frame in its parent frame.
-struct RigidTransform
-{
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();        ///< child origin in the parent frame [m]
+struct RigidTransform {
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();         ///< child origin in the parent frame [m]
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  ///< child axes in the parent frame (unit)
 
   /// The transform at ratio (0: a, 1: b) between two samples: translation (1 - ratio) a + ratio b, rotation

@@ -13,8 +13,7 @@ namespace unexmin {
 namespace mapping {
 
 /// The fields of a LaserScan that place its beams.
-struct ScanGeometry
-{
+struct ScanGeometry {
   float angle_min = 0.0f;        ///< angle of beam 0 [rad]
   float angle_increment = 0.0f;  ///< angle between beams [rad]
   float range_min = 0.0f;        ///< shortest valid range [m]

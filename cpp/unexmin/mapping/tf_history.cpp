@@ -12,29 +12,38 @@ namespace {
 
 constexpr std::size_t kMaxDepth = 1000;  // a longer chain is a loop
 
-std::string stripSlash(const std::string& frame) { return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame; }
+std::string stripSlash(const std::string& frame) {
+  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
 
 /// Why tf2 would refuse a sample (empty: it is fine).
-std::string refusal(const TfSample& s)
-{
-  if (s.child.empty()) return "no child frame";
-  if (s.parent.empty()) return "'" + s.child + "': no parent frame";
-  if (s.child == s.parent) return "'" + s.child + "': its own parent";
+std::string refusal(const TfSample& s) {
+  if (s.child.empty())
+    return "no child frame";
+  if (s.parent.empty())
+    return "'" + s.child + "': no parent frame";
+  if (s.child == s.parent)
+    return "'" + s.child + "': its own parent";
   const Eigen::Vector3d& t = s.transform.translation;
   const Eigen::Quaterniond& q = s.transform.rotation;
   const double norm2 = q.w() * q.w() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z();
-  if (!t.allFinite() || !q.coeffs().allFinite()) return "'" + s.child + "': not a finite transform";
-  if (!(std::abs(norm2 - 1.0) < 1e-2)) return "'" + s.child + "': a quaternion of squared norm " + std::to_string(norm2);
+  if (!t.allFinite() || !q.coeffs().allFinite())
+    return "'" + s.child + "': not a finite transform";
+  if (!(std::abs(norm2 - 1.0) < 1e-2))
+    return "'" + s.child + "': a quaternion of squared norm " + std::to_string(norm2);
   return "";
 }
 
-TfLookup::Status statusOf(FrameAnswer::Status s)
-{
+TfLookup::Status statusOf(FrameAnswer::Status s) {
   switch (s) {
-    case FrameAnswer::Status::kOk: return TfLookup::Status::kOk;
-    case FrameAnswer::Status::kTooOld: return TfLookup::Status::kTooOld;
-    case FrameAnswer::Status::kTooNew: return TfLookup::Status::kTooNew;
-    case FrameAnswer::Status::kEmpty: break;
+    case FrameAnswer::Status::kOk:
+      return TfLookup::Status::kOk;
+    case FrameAnswer::Status::kTooOld:
+      return TfLookup::Status::kTooOld;
+    case FrameAnswer::Status::kTooNew:
+      return TfLookup::Status::kTooNew;
+    case FrameAnswer::Status::kEmpty:
+      break;
   }
   return TfLookup::Status::kNoChain;
 }
@@ -42,8 +51,7 @@ TfLookup::Status statusOf(FrameAnswer::Status s)
 }  // namespace
 
 TfHistory::TfHistory(double cache_length, double handover_silence)
-    : cache_length_(0), handover_silence_(handover_silence)
-{
+    : cache_length_(0), handover_silence_(handover_silence) {
   if (!(cache_length > 0.0 && cache_length < 1e9)) {
     throw ParameterError("TfHistory: cache_length = " + formatNumber(cache_length) + ": expected (0, 1e9) s");
   }
@@ -53,20 +61,19 @@ TfHistory::TfHistory(double cache_length, double handover_silence)
   cache_length_ = static_cast<Stamp>(std::llround(cache_length * 1e9));
 }
 
-FrameHistory& TfHistory::frame(const std::string& child, bool is_static)
-{
+FrameHistory& TfHistory::frame(const std::string& child, bool is_static) {
   auto it = frames_.find(child);
-  if (it == frames_.end()) it = frames_.emplace(child, FrameHistory(is_static, cache_length_)).first;
+  if (it == frames_.end())
+    it = frames_.emplace(child, FrameHistory(is_static, cache_length_)).first;
   return it->second;
 }
 
-void TfHistory::clearDynamic()
-{
-  for (auto& entry : frames_) entry.second.clear();
+void TfHistory::clearDynamic() {
+  for (auto& entry : frames_)
+    entry.second.clear();
 }
 
-TfUpdate TfHistory::add(const std::vector<TfSample>& raw, const std::string& publisher, double now, bool is_static)
-{
+TfUpdate TfHistory::add(const std::vector<TfSample>& raw, const std::string& publisher, double now, bool is_static) {
   TfUpdate update;
   std::vector<TfSample> samples;
   samples.reserve(raw.size());
@@ -85,17 +92,20 @@ TfUpdate TfHistory::add(const std::vector<TfSample>& raw, const std::string& pub
     // A hand-over or a frame's stamps going back start a new history.
     for (const TfSample& s : samples) {
       auto owner = owners_.find(s.child);
-      if (owner == owners_.end()) continue;
+      if (owner == owners_.end())
+        continue;
       if (owner->second.node != publisher) {
-        if (now - owner->second.last <= handover_silence_) continue;  // a second live publisher: ignored below
+        if (now - owner->second.last <= handover_silence_)
+          continue;  // a second live publisher: ignored below
         update.jump = "'" + s.child + "' now comes from " + publisher + " (" + owner->second.node + " fell silent)";
         owner->second.node = publisher;
         break;
       }
       auto history = frames_.find(s.child);
       if (history != frames_.end() && !history->second.empty() && s.stamp < history->second.newest()) {
-        update.jump = "'" + s.child + "' went back in time from " + std::to_string(toSeconds(history->second.newest())) +
-                      " to " + std::to_string(toSeconds(s.stamp)) + " s";
+        update.jump = "'" + s.child + "' went back in time from " +
+                      std::to_string(toSeconds(history->second.newest())) + " to " +
+                      std::to_string(toSeconds(s.stamp)) + " s";
         break;
       }
     }
@@ -119,42 +129,43 @@ TfUpdate TfHistory::add(const std::vector<TfSample>& raw, const std::string& pub
     }
     if (frame(s.child, is_static).insert(FrameSample{s.stamp, s.parent, s.transform}) ==
         FrameHistory::Insert::kTooOld) {
-      update.refused.push_back("'" + s.child + "': older than the tf kept (" + std::to_string(toSeconds(s.stamp)) + " s)");
+      update.refused.push_back("'" + s.child + "': older than the tf kept (" + std::to_string(toSeconds(s.stamp)) +
+                               " s)");
     }
   }
   return update;
 }
 
-FrameAnswer TfHistory::at(const std::string& name, Stamp time) const
-{
+FrameAnswer TfHistory::at(const std::string& name, Stamp time) const {
   auto it = frames_.find(name);
   return it == frames_.end() ? FrameAnswer{} : it->second.at(time);
 }
 
-Stamp TfHistory::commonTime(const std::string& target, const std::string& source) const
-{
+Stamp TfHistory::commonTime(const std::string& target, const std::string& source) const {
   Stamp common = 0;
   for (const std::string& start : {source, target}) {
     std::string f = start;
     for (std::size_t depth = 0; depth < kMaxDepth; ++depth) {
       auto it = frames_.find(f);
-      if (it == frames_.end() || it->second.empty()) break;
+      if (it == frames_.end() || it->second.empty())
+        break;
       const Stamp newest = it->second.newest();
-      if (newest != 0 && (common == 0 || newest < common)) common = newest;
+      if (newest != 0 && (common == 0 || newest < common))
+        common = newest;
       f = it->second.at(0).parent;
     }
   }
   return common;
 }
 
-TfLookup TfHistory::lookup(const std::string& target, const std::string& source, Stamp time) const
-{
+TfLookup TfHistory::lookup(const std::string& target, const std::string& source, Stamp time) const {
   TfLookup result;
   if (source == target) {
     result.status = TfLookup::Status::kOk;
     return result;
   }
-  if (time == 0) time = commonTime(target, source);
+  if (time == 0)
+    time = commonTime(target, source);
   const auto loop = [](const std::string& f) {
     TfLookup l;
     l.frame = f;  // kNoChain: the parents form a loop
@@ -192,13 +203,15 @@ TfLookup TfHistory::lookup(const std::string& target, const std::string& source,
     source_in_top = a.transform * source_in_top;
     top = frame;
     frame = a.parent;
-    if (depth > kMaxDepth) return loop(frame);
+    if (depth > kMaxDepth)
+      return loop(frame);
   }
   // Up from the target to the same top.
   RigidTransform target_in_top;
   frame = target;
   for (std::size_t depth = 0; frame != top; ++depth) {
-    if (frames_.find(frame) == frames_.end()) break;
+    if (frames_.find(frame) == frames_.end())
+      break;
     const FrameAnswer a = at(frame, time);
     if (a.status != FrameAnswer::Status::kOk) {
       result.status = statusOf(a.status);
@@ -214,7 +227,8 @@ TfLookup TfHistory::lookup(const std::string& target, const std::string& source,
     noteGap(a, frame);
     target_in_top = a.transform * target_in_top;
     frame = a.parent;
-    if (depth > kMaxDepth) return loop(frame);
+    if (depth > kMaxDepth)
+      return loop(frame);
   }
   if (frame != top) {
     // The source's walk stopped short (a frame could not answer) or the two walks never meet.

@@ -22,16 +22,14 @@ namespace unexmin {
 namespace mapping {
 
 /// One sample as /tf carries it (frame names with or without a leading '/').
-struct TfSample
-{
+struct TfSample {
   std::string parent, child;
-  Stamp stamp = 0;  ///< [ns]
+  Stamp stamp = 0;           ///< [ns]
   RigidTransform transform;  ///< child in parent
 };
 
 /// What TfHistory::add() did with one message.
-struct TfUpdate
-{
+struct TfUpdate {
   /// Why the dynamic history was cleared (empty: it was not).
   std::string jump;
   /// "frame from publisher (it comes from owner)" for each frame and second publisher ignored for the first time.
@@ -41,10 +39,8 @@ struct TfUpdate
 };
 
 /// The answer of TfHistory::lookup().
-struct TfLookup
-{
-  enum class Status
-  {
+struct TfLookup {
+  enum class Status {
     kOk,
     kTooOld,   ///< before the oldest sample kept of a frame of the chain: it will never be answered
     kTooNew,   ///< after the newest sample of a frame of the chain: wait for tf
@@ -56,8 +52,7 @@ struct TfLookup
   std::string frame;         ///< kOk: the frame with that gap (empty when 0); otherwise the frame that failed
 };
 
-class TfHistory
-{
+class TfHistory {
 public:
   /// cache_length [s]: how long a dynamic frame's samples are kept behind its newest; handover_silence [s, wall]:
   /// how long an owner must have been silent before another publisher takes its frame over. ParameterError when
@@ -78,8 +73,7 @@ public:
   std::uint64_t ignored() const { return ignored_; }
 
 private:
-  struct Owner
-  {
+  struct Owner {
     std::string node;
     double last = 0.0;  ///< [s, wall] its last sample of the frame
   };

@@ -14,8 +14,7 @@
 
 namespace {
 
-float parseFloat(const std::string& token, int line)
-{
+float parseFloat(const std::string& token, int line) {
   char* end = nullptr;
   const float v = std::strtof(token.c_str(), &end);
   if (token.empty() || *end != '\0') {
@@ -27,15 +26,15 @@ float parseFloat(const std::string& token, int line)
 
 }  // namespace
 
-int main()
-{
+int main() {
   std::string text;
   int line = 0;
   while (std::getline(std::cin, text)) {
     ++line;
     std::istringstream in(text);
     std::vector<float> values;
-    for (std::string token; in >> token;) values.push_back(parseFloat(token, line));
+    for (std::string token; in >> token;)
+      values.push_back(parseFloat(token, line));
     if (values.size() < 4) {
       std::cerr << "scan_points_twin: line " << line << ": expected angle_min angle_increment range_min range_max "
                 << "and the ranges, got " << values.size() << " numbers\n";
@@ -44,7 +43,8 @@ int main()
     const unexmin::mapping::ScanGeometry g{values[0], values[1], values[2], values[3]};
     const std::vector<octomap::point3d> points = unexmin::mapping::scanPoints(g, {values.begin() + 4, values.end()});
     std::printf("%zu", points.size());
-    for (const octomap::point3d& p : points) std::printf(" %.9g %.9g %.9g", p.x(), p.y(), p.z());
+    for (const octomap::point3d& p : points)
+      std::printf(" %.9g %.9g %.9g", p.x(), p.y(), p.z());
     std::printf("\n");
   }
   return 0;
