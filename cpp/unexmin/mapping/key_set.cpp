@@ -18,16 +18,6 @@ uint64_t spread(uint64_t v)
   return v;
 }
 
-uint16_t compact(uint64_t v)
-{
-  v &= 0x249249249249ull;
-  v = (v | (v >> 2)) & 0x0C30C30C30C3ull;
-  v = (v | (v >> 4)) & 0x00F00F00F00Full;
-  v = (v | (v >> 8)) & 0x0000FF0000FFull;
-  v = (v | (v >> 16)) & 0xFFFF;
-  return static_cast<uint16_t>(v);
-}
-
 constexpr int kInitialBits = 16;
 
 }  // namespace
@@ -49,11 +39,6 @@ const SpreadTable kSpread;
 uint64_t spreadBits(uint16_t v)
 {
   return kSpread.byte[v & 0xFF] | (kSpread.byte[v >> 8] << 24);
-}
-
-octomap::OcTreeKey keyOfMorton(uint64_t code)
-{
-  return octomap::OcTreeKey(compact(code), compact(code >> 1), compact(code >> 2));
 }
 
 KeySet::KeySet() : slots_(std::size_t(1) << kInitialBits, kEmpty), mask_((uint64_t(1) << kInitialBits) - 1),

@@ -20,8 +20,6 @@ inline uint64_t mortonCode(const octomap::OcTreeKey& key)
 {
   return spreadBits(key[0]) | (spreadBits(key[1]) << 1) | (spreadBits(key[2]) << 2);
 }
-/// The key of a Morton code.
-octomap::OcTreeKey keyOfMorton(uint64_t code);
 
 /// The bits of axis 0's key in a Morton code (axis i: shifted left by i).
 constexpr uint64_t kMortonAxisBits = 0x249249249249ull;

@@ -74,7 +74,6 @@ private:
   /// Adds the voxels a ray crosses from origin (its key and Morton code) to end (its Morton code) as free.
   void traceRay(const octomap::point3d& origin, const octomap::OcTreeKey& key_origin, uint64_t code_origin,
                 const octomap::point3d& end, uint64_t code_end);
-  void applyKeys();
 
   class Tree;
   MapperParams params_;

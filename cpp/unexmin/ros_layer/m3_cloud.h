@@ -1,8 +1,8 @@
 // The M3 translation of python/unexmin/m3_translator.py (scan_to_cloud), in C++ so that it keeps up in lockstep:
 // sensor_msgs/LaserScan of first echoes -> sensor_msgs/PointCloud2 (x y z FLOAT32, the real M3 driver's
-// PointCloudXYZ), header kept. Beam k at a_k = angle_min + k * angle_increment and range r_k gives
-// (r_k cos a_k, r_k sin a_k, 0) [m]; beams with no echo (+-inf, NaN, outside [range_min, range_max]) are left
-// out. test/pytest/test_cpp_translations.py compares it with the Python function on the simulator's messages.
+// PointCloudXYZ), header kept; the points are mapping::scanPoints' (cpp/unexmin/mapping/scan_points.h), the
+// valid beams only. test/pytest/test_cpp_translations.py compares it with the Python function on the simulator's
+// messages.
 #pragma once
 
 #include <sensor_msgs/LaserScan.h>

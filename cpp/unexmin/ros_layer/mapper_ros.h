@@ -1,26 +1,27 @@
-// The mapper node: every robot's M3 scans and SLS clouds, each transformed to the world frame through tf at its
-// own stamp and ray-cast from its own sensor origin into one OctoMap (and per-robot maps on request); the map
-// published on a timer to whoever subscribes, saved on request and at shutdown. Parameters, topics and
-// services: docs/mapping.md. The maths is in cpp/unexmin/mapping (no ROS).
+// The mapper node: every robot's M3 scans and SLS clouds, each placed in the world frame through tf at its own
+// stamp and ray-cast from its own sensor origin into one OctoMap (and per-robot maps on request); the map published
+// on a timer to whoever subscribes, saved on request and at shutdown. Parameters, topics and services:
+// docs/mapping.md. ROS plumbing only: the tf history and its rules (mapping::TfHistory), the clouds waiting for tf
+// (mapping::CloudQueue), scan -> points (mapping::scanPoints), the map and what is shown of it
+// (mapping::OccupancyMap, mapping::occupiedCubes) are in cpp/unexmin/mapping (no ROS).
 #pragma once
 
+#include <unexmin/mapping/cloud_queue.h>
 #include <unexmin/mapping/occupancy_map.h>
+#include <unexmin/mapping/tf_history.h>
 
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Empty.h>
-#include <tf2_ros/buffer.h>
 #include <tf2_msgs/TFMessage.h>
 #include <unexmin/SaveMap.h>
 
 #include <atomic>
-#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -37,15 +38,6 @@ public:
   void spin();
 
 private:
-  /// One received cloud, in its sensor frame [m].
-  struct Cloud
-  {
-    std::string robot;
-    std::string frame;
-    ros::Time stamp;
-    std::vector<octomap::point3d> points;
-    ros::WallTime received;
-  };
   /// One map with its output publishers.
   struct Output
   {
@@ -53,6 +45,7 @@ private:
     ros::Publisher binary, markers, centers;
     bool changed_binary = false, changed_markers = false, changed_centers = false;
     uint32_t subs_binary = 0, subs_markers = 0, subs_centers = 0;
+    void changed() { changed_binary = changed_markers = changed_centers = true; }
   };
 
   void loadParams();
@@ -60,17 +53,10 @@ private:
   Output makeOutput(ros::NodeHandle nh);
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
-  void enqueue(Cloud&& cloud);
-  /// On the tf thread: stores the transforms (a dynamic frame's samples from one publisher at a time), clears
-  /// the buffer when a frame's stamps go back (simulation reset) or its publisher changes, and asks the main
-  /// thread to drain.
+  void enqueue(const std::string& robot, const std_msgs::Header& header, std::vector<octomap::point3d>&& points);
+  /// On the tf thread: hands the samples to the tf history, logs what it reports and asks the main thread to drain.
   void onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
-  /// The largest gap [s] between the stored samples of a dynamic frame of the chain from frame to the map
-  /// frame around stamp (0 when the chain is static); the frame's name in *frame_out.
-  double tfGap(const std::string& frame, const ros::Time& stamp, std::string* frame_out);
-  /// Inserts the pending clouds in arrival order up to the first whose tf has not arrived yet; drops those
-  /// past the timeout, those whose tf would be interpolated over a gap longer than ~tf_max_gap and those
-  /// received before a jump back in time that are stamped after it.
+  /// Inserts the pending clouds whose tf has come, drops those the queue gives up on (mapping::CloudQueue).
   void drain();
   void publish(Output& out, const ros::Time& stamp);
   void onTimer(const ros::WallTimerEvent&);
@@ -91,7 +77,6 @@ private:
   int queue_size_ = 5000;
   std::string map_file_;
 
-  tf2_ros::Buffer tf_buffer_{ros::Duration(120.0)};
   // /tf and /tf_static on their own queue and thread: tf is never held up behind cloud insertion (a busy
   // insertion thread let the /tf subscriber queue overflow, its oldest samples dropped, and clouds were then
   // transformed with poses interpolated over the gap).
@@ -100,26 +85,9 @@ private:
   ros::Subscriber tf_sub_, tf_static_sub_;  ///< deep queues: tf2_ros's listener drops beyond 100 messages
   std::atomic<bool> drain_posted_{false};
   std::atomic<std::size_t> pending_count_{0};
-  /// Shared by the tf thread (writes) and the main thread (reads).
-  struct TfState
-  {
-    /// The node whose /tf samples of a frame are used, and when it last sent one.
-    struct Owner
-    {
-      std::string node;
-      ros::WallTime last;
-    };
-    std::map<std::string, Owner> publisher;                ///< dynamic child frame -> its owner
-    std::map<std::string, std::deque<ros::Time>> stamps;   ///< dynamic child frame -> its sample stamps
-    uint64_t jumps = 0;                                    ///< jumps back in time seen
-    ros::WallTime jump_wall;                               ///< when the last one was seen
-    ros::Time jump_to;                                     ///< the stamp it went back to
-    uint64_t ignored = 0;                                  ///< samples from a second publisher of a frame
-    std::set<std::string> warned;                          ///< "frame publisher" pairs warned about
-  };
-  std::mutex tf_mutex_;
-  TfState tf_state_;
-  uint64_t jumps_seen_ = 0;  ///< main thread: jumps already handled
+  std::mutex tf_mutex_;         ///< guards tf_: written on the tf thread, read on the main thread
+  mapping::TfHistory tf_;       ///< 120 s of samples; a frame handed over after 1 s of silence
+  std::unique_ptr<mapping::CloudQueue> queue_;  ///< main thread only
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher stats_pub_;
   ros::ServiceServer save_srv_, reset_srv_;
@@ -127,9 +95,8 @@ private:
 
   Output all_;
   std::map<std::string, Output> robot_maps_;
-  std::deque<Cloud> pending_;
   ros::Time newest_stamp_;
-  uint64_t received_ = 0, inserted_ = 0, dropped_ = 0, points_ = 0;
+  uint64_t inserted_ = 0, points_ = 0;
   double insert_seconds_ = 0.0;
 };
 
