@@ -1,13 +1,12 @@
-// The worked example of docs/adding_a_thruster.md: a dynamics family and a conversion family defined only here
-// (a slew-rate limited rotor and a conversion with a dead band) are registered on a copy of the built-in
-// factory, named in a robot description, built with the robot and flown in open water; the thrust follows their
+// The worked example of docs/adding_a_thruster.md: a dynamics family and a conversion family that exist only in
+// the tests (thruster_family_fixture.h: a slew-rate limited rotor, a conversion with a dead band) are registered on
+// a copy of the built-in factory, named in a robot description, built with the robot and flown in open water; the thrust follows their
 // closed form step by step and the robot reaches the terminal speed of that thrust. And: the same description
 // parsed with the built-in families stops with one error naming the thruster, the unknown type and the known
 // ones; the families' parameters are checked with errors naming the parameter, its value and the range.
 #include "expect_error.h"
 #include "sphere_fixture.h"
-
-#include <unexmin/hydro/thruster_factory.h>
+#include "thruster_family_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -18,61 +17,23 @@ namespace unexmin {
 namespace {
 
 using test::contains;
+using test::deadbandParams;
+using test::deadbandThrust;
+using test::kDeadbandGain;
+using test::kDeadbandWidth;
+using test::kSlewRate;
+using test::slewParams;
+using test::slewState;
 using test::thrownMessage;
-
-// ---------------------------------------------------------------- the families (ROS-free models)
-/// "slew": the state moves towards the command at `rate` [command unit/s] at most:
-/// x += clamp(u - x, -rate dt, +rate dt).
-class SlewDynamics : public hydro::ThrusterDynamics {
-public:
-  explicit SlewDynamics(hydro::ThrusterFamilyParams& params) : rate_(params.scalar("rate", 1e-6, 1e6, "[unit/s]")) {}
-  double update(double command, double dt) override {
-    const double step = rate_ * dt;
-    state_ += std::clamp(command - state_, -step, step);
-    return state_;
-  }
-  double state() const override { return state_; }
-  void reset() override { state_ = 0.0; }
-
-private:
-  double rate_;
-  double state_ = 0.0;
-};
-
-/// "deadband": no thrust within `width` [command unit] of zero, `gain` [N per unit] beyond it:
-/// T = gain (x - width sign(x)).
-class DeadbandConversion : public hydro::ThrustConversion {
-public:
-  explicit DeadbandConversion(hydro::ThrusterFamilyParams& params)
-      : gain_(params.scalar("gain", -1e3, 1e3, "[N per unit]")), width_(params.scalar("width", 0.0, 1e3, "[unit]")) {}
-  double thrust(double x) const override {
-    return std::abs(x) <= width_ ? 0.0 : gain_ * (x - std::copysign(width_, x));
-  }
-
-private:
-  double gain_;
-  double width_;
-};
-
-hydro::ThrusterFactory withTestFamilies() {
-  hydro::ThrusterFactory families = hydro::ThrusterFactory::builtin();
-  families.dynamics.add<SlewDynamics>("slew");  // the registration lines
-  families.conversion.add<DeadbandConversion>("deadband");
-  return families;
-}
-
-constexpr double kRate = 20.0;   // [unit/s]
-constexpr double kGain = 0.5;    // [N per unit]
-constexpr double kWidth = 2.0;   // [unit]
+using test::withTestFamilies;
 
 /// The test sphere (sphere_fixture.h) whose two thrusters use the test families.
 test::SphereSpec slewDeadbandSphere() {
   test::SphereSpec s;
   s.thruster_dynamics = "slew";
-  s.thruster_params = "<param name='rate' value='" + formatNumber(kRate) + "'/>";
+  s.thruster_params = slewParams();
   s.thruster_conversion = "deadband";
-  s.conversion_params =
-      "<param name='gain' value='" + formatNumber(kGain) + "'/><param name='width' value='" + formatNumber(kWidth) + "'/>";
+  s.conversion_params = deadbandParams();
   return s;
 }
 
@@ -86,11 +47,11 @@ TEST(ThrusterFamily, ARegisteredFamilyIsNamedInTheDescriptionBuiltAndFlown) {
 
   const double command = 30.0;  // [unit]: the slew reaches it after command / rate = 1.5 s
   ASSERT_TRUE(robot.thruster(0).setCommand(command, 0.0));
-  const int ramp_steps = static_cast<int>(std::lround(command / kRate / dt));
+  const int ramp_steps = static_cast<int>(std::lround(command / kSlewRate / dt));
   for (int k = 1; k <= ramp_steps + 50; ++k) {
     world->step();
-    const double x = std::min(kRate * k * dt, command);
-    const double expected = x <= kWidth ? 0.0 : kGain * (x - kWidth);
+    const double x = slewState(command, k * dt);
+    const double expected = deadbandThrust(x);
     ASSERT_NEAR(robot.thruster(0).state(), x, 1e-9) << "step " << k;
     ASSERT_NEAR(robot.thruster(0).thrust(), expected, 1e-9) << "step " << k;
     ASSERT_NEAR(robot.thrustWrench()[0], expected, 1e-9) << "thruster 0 pushes along body +x";
@@ -99,7 +60,7 @@ TEST(ThrusterFamily, ARegisteredFamilyIsNamedInTheDescriptionBuiltAndFlown) {
 
   // Flown at the plateau thrust F = gain (command - width) = 14 N: terminal speed d_q v^2 + d_l v = F.
   test::runFor(*world, 60.0);
-  const double F = kGain * (command - kWidth);
+  const double F = kDeadbandGain * (command - kDeadbandWidth);
   const double dq = s.quad[0], dl = s.lin[0];
   const double expected = (-dl + std::sqrt(dl * dl + 4.0 * dq * F)) / (2.0 * dq);
   EXPECT_NEAR(robot.state().linear_velocity.x(), expected, 0.001 * expected);
@@ -117,7 +78,7 @@ TEST(ThrusterFamily, AnUnknownTypeStopsParsingNamingThrusterTypeAndKnownTypes) {
                "first_order, zero_order");
 
   hydro::ThrusterFactory dynamics_only = hydro::ThrusterFactory::builtin();
-  dynamics_only.dynamics.add<SlewDynamics>("slew");
+  dynamics_only.dynamics.add<test::SlewDynamics>("slew");
   const std::string c =
       thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf, "(test sphere)", dynamics_only); });
   EXPECT_EQ(c, "(test sphere): <thruster id=0>: thrust conversion: unknown type 'deadband'; expected one of: "

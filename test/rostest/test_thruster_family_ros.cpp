@@ -1,10 +1,11 @@
-// docs/adding_a_thruster.md through ROS: a thruster dynamics family and a conversion family defined only here
-// are registered on a copy of ThrusterFactory::builtin(), named in thruster 0 of the UX-1's description, built
-// by SimulatorRos in the test process, commanded on /UX_1/thrusters/0/input and stepped through /sim/step; the
-// thrust published on /UX_1/thrusters/0/thrust equals the families' closed form. And: the same description on a
-// simulator that does not know the families stops start-up with one ConfigError naming the thruster, the unknown
-// type and the known ones.
-#include <unexmin/hydro/thruster_factory.h>
+// docs/adding_a_thruster.md through ROS: a thruster dynamics family and a conversion family that exist only in the
+// tests (test/gtest/thruster_family_fixture.h) are registered on a copy of ThrusterFactory::builtin(), named in
+// thruster 0 of the UX-1's description, built by SimulatorRos in the test process, commanded on
+// /UX_1/thrusters/0/input and stepped through /sim/step; the thrust published on /UX_1/thrusters/0/thrust equals
+// the families' closed form. And: the same description on a simulator that does not know the families stops
+// start-up with one ConfigError naming the thruster, the unknown type and the known ones.
+#include "../gtest/thruster_family_fixture.h"
+
 #include <unexmin/ros_layer/simulator_ros.h>
 
 #include <gtest/gtest.h>
@@ -20,47 +21,6 @@
 namespace unexmin {
 namespace {
 
-// ---------------------------------------------------------------- the families (ROS-free models)
-/// "slew": the state moves towards the command at `rate` [command unit/s] at most.
-class SlewDynamics : public hydro::ThrusterDynamics {
-public:
-  explicit SlewDynamics(hydro::ThrusterFamilyParams& params) : rate_(params.scalar("rate", 1e-6, 1e6, "[unit/s]")) {}
-  double update(double command, double dt) override {
-    state_ += std::clamp(command - state_, -rate_ * dt, rate_ * dt);
-    return state_;
-  }
-  double state() const override { return state_; }
-  void reset() override { state_ = 0.0; }
-
-private:
-  double rate_;
-  double state_ = 0.0;
-};
-
-/// "deadband": T = gain (x - width sign(x)) beyond `width` [command unit], 0 within it; gain [N per unit].
-class DeadbandConversion : public hydro::ThrustConversion {
-public:
-  explicit DeadbandConversion(hydro::ThrusterFamilyParams& params)
-      : gain_(params.scalar("gain", -1e3, 1e3, "[N per unit]")), width_(params.scalar("width", 0.0, 1e3, "[unit]")) {}
-  double thrust(double x) const override {
-    return std::abs(x) <= width_ ? 0.0 : gain_ * (x - std::copysign(width_, x));
-  }
-
-private:
-  double gain_;
-  double width_;
-};
-
-constexpr double kRate = 20.0;  // [unit/s]
-constexpr double kGain = 0.5;   // [N per unit]
-constexpr double kWidth = 2.0;  // [unit]
-
-/// Closed form of the two families for a step command `u` at t = 0, at sim time `t` [s]: thrust [N].
-double closedForm(double u, double t) {
-  const double x = std::min(kRate * t, u);
-  return x <= kWidth ? 0.0 : kGain * (x - kWidth);
-}
-
 /// UX_1's description (loaded by the .test file) with thruster 0's <dynamics> and <conversion> replaced by the
 /// test families.
 std::string describedWithTestFamilies(const std::string& urdf) {
@@ -69,10 +29,8 @@ std::string describedWithTestFamilies(const std::string& urdf) {
   const std::size_t to = urdf.find("<thrust ", thruster);
   EXPECT_NE(thruster, std::string::npos);
   EXPECT_LT(from, to);
-  const std::string families = "<dynamics type='slew'><param name='rate' value='" + formatNumber(kRate) +
-                               "'/></dynamics><conversion type='deadband'><param name='gain' value='" +
-                               formatNumber(kGain) + "'/><param name='width' value='" + formatNumber(kWidth) +
-                               "'/></conversion>";
+  const std::string families = "<dynamics type='slew'>" + test::slewParams() +
+                               "</dynamics><conversion type='deadband'>" + test::deadbandParams() + "</conversion>";
   return urdf.substr(0, from) + families + urdf.substr(to);
 }
 
@@ -102,9 +60,7 @@ TEST_F(ThrusterFamily, AnUnknownTypeStopsStartUpNamingThrusterTypeAndKnownTypes)
 }
 
 TEST_F(ThrusterFamily, ARegisteredFamilyIsBuiltCommandedAndSteppedThroughRos) {
-  hydro::ThrusterFactory thrusters = hydro::ThrusterFactory::builtin();
-  thrusters.dynamics.add<SlewDynamics>("slew");  // the registration lines
-  thrusters.conversion.add<DeadbandConversion>("deadband");
+  const hydro::ThrusterFactory thrusters = test::withTestFamilies();  // built-in + slew + deadband
   auto sim = std::make_unique<ros_layer::SimulatorRos>(ros::NodeHandle(), ros::NodeHandle("~"),
                                                        ros_layer::SensorRegistry::builtin(), thrusters);
 
@@ -148,6 +104,7 @@ TEST_F(ThrusterFamily, ARegisteredFamilyIsBuiltCommandedAndSteppedThroughRos) {
     EXPECT_NEAR(last(), expected, 1e-9) << "thrust at t = " << srv.response.time << " s";
     return srv.response.time;
   };
+  const auto closedForm = [](double u, double t) { return test::deadbandThrust(test::slewState(u, t)); };
   const double t1 = stepTo(0.5, 1, closedForm(command, 0.5));  // ramp: x = 10, T = 0.5 (10 - 2) = 4 N
   EXPECT_NEAR(t1, 0.5, 1e-9);
   const double t2 = stepTo(1.0, 1, closedForm(command, 1.5));  // plateau: x = 30, T = 14 N
