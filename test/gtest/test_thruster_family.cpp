@@ -1,9 +1,9 @@
 // The worked example of docs/adding_a_thruster.md: a dynamics family and a conversion family that exist only in
 // the tests (thruster_family_fixture.h: a slew-rate limited rotor, a conversion with a dead band) are registered on
-// a copy of the built-in factory, named in a robot description, built with the robot and flown in open water; the thrust follows their
-// closed form step by step and the robot reaches the terminal speed of that thrust. And: the same description
-// parsed with the built-in families stops with one error naming the thruster, the unknown type and the known
-// ones; the families' parameters are checked with errors naming the parameter, its value and the range.
+// a copy of the built-in factory, named in a robot description, built with the robot and flown in open water; the
+// thrust follows their closed form step by step and the robot reaches the terminal speed of that thrust. And: the same
+// description parsed with the built-in families stops with one error naming the thruster, the unknown type and the
+// known ones; the families' parameters are checked with errors naming the parameter, its value and the range.
 #include "expect_error.h"
 #include "sphere_fixture.h"
 #include "thruster_family_fixture.h"
@@ -72,17 +72,18 @@ TEST(ThrusterFamily, ARegisteredFamilyIsNamedInTheDescriptionBuiltAndFlown) {
 
 TEST(ThrusterFamily, AnUnknownTypeStopsParsingNamingThrusterTypeAndKnownTypes) {
   const std::string urdf = test::sphereUrdf(slewDeadbandSphere());
-  const std::string m =
-      thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf, "(test sphere)"); });
-  EXPECT_EQ(m, "(test sphere): <thruster id=0>: thruster dynamics: unknown type 'slew'; expected one of: "
-               "first_order, zero_order");
+  const std::string m = thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf, "(test sphere)"); });
+  EXPECT_EQ(m,
+            "(test sphere): <thruster id=0>: thruster dynamics: unknown type 'slew'; expected one of: "
+            "first_order, zero_order");
 
   hydro::ThrusterFactory dynamics_only = hydro::ThrusterFactory::builtin();
   dynamics_only.dynamics.add<test::SlewDynamics>("slew");
   const std::string c =
       thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf, "(test sphere)", dynamics_only); });
-  EXPECT_EQ(c, "(test sphere): <thruster id=0>: thrust conversion: unknown type 'deadband'; expected one of: "
-               "basic, identity, table");
+  EXPECT_EQ(c,
+            "(test sphere): <thruster id=0>: thrust conversion: unknown type 'deadband'; expected one of: "
+            "basic, identity, table");
 }
 
 TEST(ThrusterFamily, TheFamilyChecksItsParametersNamingParameterValueAndRange) {
@@ -101,8 +102,9 @@ TEST(ThrusterFamily, TheFamilyChecksItsParametersNamingParameterValueAndRange) {
 
   s = slewDeadbandSphere();
   s.conversion_params += "<param name='offset' value='1'/>";
-  EXPECT_EQ(parse(s), "(s): <thruster id=0>: thrust conversion 'deadband': unknown parameter 'offset' "
-                      "(accepted: gain, width)");
+  EXPECT_EQ(parse(s),
+            "(s): <thruster id=0>: thrust conversion 'deadband': unknown parameter 'offset' "
+            "(accepted: gain, width)");
 
   s = slewDeadbandSphere();
   s.conversion_params = "<param name='gain' value='0.5 0.6'/><param name='width' value='2'/>";

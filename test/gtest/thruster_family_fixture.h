@@ -53,12 +53,14 @@ inline hydro::ThrusterFactory withTestFamilies() {
   return families;
 }
 
-constexpr double kSlewRate = 20.0;     // [unit/s]
-constexpr double kDeadbandGain = 0.5;  // [N per unit]
+constexpr double kSlewRate = 20.0;      // [unit/s]
+constexpr double kDeadbandGain = 0.5;   // [N per unit]
 constexpr double kDeadbandWidth = 2.0;  // [unit]
 
 /// <param> elements of the two families with the values above.
-inline std::string slewParams() { return "<param name='rate' value='" + formatNumber(kSlewRate) + "'/>"; }
+inline std::string slewParams() {
+  return "<param name='rate' value='" + formatNumber(kSlewRate) + "'/>";
+}
 inline std::string deadbandParams() {
   return "<param name='gain' value='" + formatNumber(kDeadbandGain) + "'/><param name='width' value='" +
          formatNumber(kDeadbandWidth) + "'/>";
@@ -66,7 +68,9 @@ inline std::string deadbandParams() {
 
 /// Closed form of the two families for a step command `u` [unit] at t = 0: the state [unit] and the thrust [N]
 /// at sim time `t` [s].
-inline double slewState(double u, double t) { return std::min(kSlewRate * t, u); }
+inline double slewState(double u, double t) {
+  return std::min(kSlewRate * t, u);
+}
 inline double deadbandThrust(double x) {
   return std::abs(x) <= kDeadbandWidth ? 0.0 : kDeadbandGain * (x - std::copysign(kDeadbandWidth, x));
 }

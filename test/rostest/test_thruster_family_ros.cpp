@@ -67,11 +67,11 @@ TEST_F(ThrusterFamily, ARegisteredFamilyIsBuiltCommandedAndSteppedThroughRos) {
   ros::NodeHandle nh;
   std::mutex mutex;
   std::vector<double> thrust;
-  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>("/UX_1/thrusters/0/thrust", 1000,
-                                                         [&](const std_msgs::Float64ConstPtr& m) {
-                                                           std::lock_guard<std::mutex> lock(mutex);
-                                                           thrust.push_back(m->data);
-                                                         });
+  ros::Subscriber sub =
+      nh.subscribe<std_msgs::Float64>("/UX_1/thrusters/0/thrust", 1000, [&](const std_msgs::Float64ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        thrust.push_back(m->data);
+      });
   ros::Publisher input = nh.advertise<std_msgs::Float64>("/UX_1/thrusters/0/input", 10);
   std::thread spin([&] { sim->spin(); });  // serves /sim/step and runs our callbacks (global queue)
 
@@ -100,7 +100,8 @@ TEST_F(ThrusterFamily, ARegisteredFamilyIsBuiltCommandedAndSteppedThroughRos) {
       std::lock_guard<std::mutex> lock(mutex);
       return thrust.empty() ? NAN : thrust.back();
     };
-    while (!(std::abs(last() - expected) < 1e-9) && ros::WallTime::now() < until) ros::WallDuration(0.01).sleep();
+    while (!(std::abs(last() - expected) < 1e-9) && ros::WallTime::now() < until)
+      ros::WallDuration(0.01).sleep();
     EXPECT_NEAR(last(), expected, 1e-9) << "thrust at t = " << srv.response.time << " s";
     return srv.response.time;
   };

@@ -7,7 +7,8 @@ namespace hydro {
 
 void throwUnknownFamily(const std::string& kind, const std::string& type, const std::vector<std::string>& known) {
   std::string list;
-  for (const auto& t : known) list += (list.empty() ? "" : ", ") + t;
+  for (const auto& t : known)
+    list += (list.empty() ? "" : ", ") + t;
   throw ParameterError(kind + ": unknown type '" + type + "'; expected one of: " + (list.empty() ? "none" : list));
 }
 

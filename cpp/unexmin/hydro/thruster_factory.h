@@ -33,8 +33,10 @@ public:
 
   /// Registers (or replaces) family `type`, built by `creator`. Throws ConfigError on an empty name or creator.
   void add(const std::string& type, Creator creator) {
-    if (type.empty()) throw ConfigError(kind_ + ": a family needs a non-empty type name");
-    if (!creator) throw ConfigError(kind_ + ": family '" + type + "' has no creator");
+    if (type.empty())
+      throw ConfigError(kind_ + ": a family needs a non-empty type name");
+    if (!creator)
+      throw ConfigError(kind_ + ": family '" + type + "' has no creator");
     creators_[type] = std::move(creator);
   }
   /// Registers `Model` as family `type`: built as Model(ThrusterFamilyParams&), which reads and checks its
@@ -55,7 +57,8 @@ public:
   /// Family names, sorted.
   std::vector<std::string> types() const {
     std::vector<std::string> out;
-    for (const auto& kv : creators_) out.push_back(kv.first);
+    for (const auto& kv : creators_)
+      out.push_back(kv.first);
     return out;
   }
 
@@ -63,7 +66,8 @@ public:
   /// ones), a parameter the family rejects (naming it, its value and the accepted range) or one it does not read.
   std::unique_ptr<Base> create(const std::string& type, const ParamMap& params) const {
     const auto it = creators_.find(type);
-    if (it == creators_.end()) throwUnknownFamily(kind_, type, types());
+    if (it == creators_.end())
+      throwUnknownFamily(kind_, type, types());
     ThrusterFamilyParams reader(kind_ + " '" + type + "'", params);
     std::unique_ptr<Base> model = it->second(reader);
     reader.finish();

@@ -36,11 +36,13 @@ const std::vector<double>& ThrusterFamilyParams::list(const std::string& key) {
 
 void ThrusterFamilyParams::finish() const {
   for (const auto& kv : params_) {
-    if (read_.count(kv.first)) continue;
+    if (read_.count(kv.first))
+      continue;
     std::string accepted;
-    for (const auto& key : read_) accepted += (accepted.empty() ? "" : ", ") + key;
-    throw ParameterError(family_ + ": unknown parameter '" + kv.first + "' (accepted: " +
-                         (accepted.empty() ? "none" : accepted) + ")");
+    for (const auto& key : read_)
+      accepted += (accepted.empty() ? "" : ", ") + key;
+    throw ParameterError(family_ + ": unknown parameter '" + kv.first +
+                         "' (accepted: " + (accepted.empty() ? "none" : accepted) + ")");
   }
 }
 
