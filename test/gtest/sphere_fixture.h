@@ -28,6 +28,8 @@ struct SphereSpec
   double pendulum_speed = 0.2;
   std::string thruster_dynamics = "zero_order";
   std::string thruster_params;          // <param .../> lines
+  std::string thruster_conversion = "identity";
+  std::string conversion_params;        // <param .../> lines
   double thrust_limit = 100.0;
 
   double volume() const { return 4.0 / 3.0 * M_PI * radius * radius * radius; }
@@ -61,7 +63,8 @@ inline std::string sphereUrdf(const SphereSpec& s)
   o << "'/></hydrodynamics>\n";
   for (int id = 0; id < 2; ++id)
     o << "<thruster id='" << id << "' joint='T/t" << id << "_joint'><dynamics type='" << s.thruster_dynamics << "'>"
-      << s.thruster_params << "</dynamics><conversion type='identity'/><thrust min='" << -s.thrust_limit
+      << s.thruster_params << "</dynamics><conversion type='" << s.thruster_conversion << "'>" << s.conversion_params
+      << "</conversion><thrust min='" << -s.thrust_limit
       << "' max='" << s.thrust_limit << "'/><timeout value='0'/></thruster>\n";
   o << "<pendulum joint='T/pendulum_joint' mass='" << s.pendulum_mass << "' arm='" << s.pendulum_arm << "' speed='"
     << s.pendulum_speed << "' min='-0.6' max='0.6'/>\n"
@@ -88,11 +91,13 @@ inline sim::WorldConfig openWater(const SphereSpec& s, const Eigen::Vector3d& xy
   return w;
 }
 
+/// The world of `w` with the sphere of `s`, its thrusters' families looked up in `families`.
 inline std::unique_ptr<sim::World> makeWorld(const sim::WorldConfig& w, const SphereSpec& s, std::uint64_t seed = 1,
-                                             double dt = 0.002)
+                                             double dt = 0.002,
+                                             const hydro::ThrusterFactory& families = hydro::ThrusterFactory::builtin())
 {
   std::map<std::string, sim::RobotDescription> d;
-  d.emplace("T", sim::parseRobotDescription(sphereUrdf(s), "(test sphere)"));
+  d.emplace("T", sim::parseRobotDescription(sphereUrdf(s), "(test sphere)", families));
   return std::make_unique<sim::World>(w, d, 1, dt, seed);
 }
 

@@ -1,6 +1,7 @@
 // Thruster dynamics, thrust conversions, their factories and the Thruster (saturation, command
 // guard, watchdog, wrench). No ROS: links the hydro core, Eigen and gtest only.
 #include <unexmin/hydro/thruster.h>
+#include <unexmin/hydro/thruster_factory.h>
 
 #include "expect_error.h"
 
@@ -21,6 +22,14 @@ using unexmin::test::thrownMessage;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A model of the simulator's families, by the name the robot description gives.
+std::unique_ptr<ThrusterDynamics> builtinDynamics(const std::string& type, const ParamMap& params) {
+  return ThrusterFactory::builtin().dynamics.create(type, params);
+}
+std::unique_ptr<ThrustConversion> builtinConversion(const std::string& type, const ParamMap& params) {
+  return ThrusterFactory::builtin().conversion.create(type, params);
+}
 
 // -------------------------------------------------------------------------------------- dynamics
 
@@ -146,25 +155,25 @@ TEST(ThrustConversion, TableRejectsBadTables)
 
 TEST(ThrusterFactories, BuildEachFamilyByName)
 {
-  auto zero = makeThrusterDynamics("zero_order", {});
+  auto zero = builtinDynamics("zero_order", {});
   EXPECT_EQ(zero->update(2.0, 0.01), 2.0);
-  auto first = makeThrusterDynamics("first_order", {{"tau", {0.1}}});
+  auto first = builtinDynamics("first_order", {{"tau", {0.1}}});
   EXPECT_NEAR(first->update(1.0, 0.1), 1.0 - std::exp(-1.0), 1e-12);
 
-  EXPECT_NEAR(makeThrustConversion("identity", {})->thrust(7.5), 7.5, 1e-15);
-  EXPECT_NEAR(makeThrustConversion("basic", {{"gain", {0.01}}})->thrust(-20.0), -4.0, 1e-12);
-  auto table = makeThrustConversion("table", {{"input", {0.0, 10.0}}, {"output", {0.0, 5.0}}});
+  EXPECT_NEAR(builtinConversion("identity", {})->thrust(7.5), 7.5, 1e-15);
+  EXPECT_NEAR(builtinConversion("basic", {{"gain", {0.01}}})->thrust(-20.0), -4.0, 1e-12);
+  auto table = builtinConversion("table", {{"input", {0.0, 10.0}}, {"output", {0.0, 5.0}}});
   EXPECT_NEAR(table->thrust(4.0), 2.0, 1e-12);
 }
 
 TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes)
 {
-  const std::string d = thrownMessage([] { makeThrusterDynamics("second_order", {}); });
+  const std::string d = thrownMessage([] { builtinDynamics("second_order", {}); });
   EXPECT_TRUE(contains(d, "'second_order'")) << d;
   EXPECT_TRUE(contains(d, "zero_order")) << d;
   EXPECT_TRUE(contains(d, "first_order")) << d;
 
-  const std::string c = thrownMessage([] { makeThrustConversion("cubic", {}); });
+  const std::string c = thrownMessage([] { builtinConversion("cubic", {}); });
   EXPECT_TRUE(contains(c, "'cubic'")) << c;
   EXPECT_TRUE(contains(c, "identity")) << c;
   EXPECT_TRUE(contains(c, "basic")) << c;
@@ -173,19 +182,68 @@ TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes)
 
 TEST(ThrusterFactories, BadParametersNameTheParameter)
 {
-  EXPECT_THROW(makeThrusterDynamics("first_order", {}), ParameterError);
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {}); }), "'tau'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {{"tau", {0.1, 0.2}}}); }),
+  EXPECT_THROW(builtinDynamics("first_order", {}), ParameterError);
+  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {}); }), "'tau'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {0.1, 0.2}}}); }),
                        "'tau'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {{"tau", {-1.0}}}); }),
+  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {-1.0}}}); }),
                        "'tau' = -1 must be > 0 [s]"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrusterDynamics("first_order", {{"tau", {kNaN}}}); }), "'tau'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrustConversion("basic", {{"k", {0.1}}}); }), "'gain'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrustConversion("basic", {{"gain", {}}}); }), "'gain'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrustConversion("table", {{"input", {0.0, 1.0}}}); }),
+  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {kNaN}}}); }), "'tau'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("basic", {{"k", {0.1}}}); }), "'gain'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("basic", {{"gain", {}}}); }), "'gain'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"input", {0.0, 1.0}}}); }),
                        "'output'"));
-  EXPECT_TRUE(contains(thrownMessage([] { makeThrustConversion("table", {{"output", {0.0, 1.0}}}); }),
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"output", {0.0, 1.0}}}); }),
                        "'input'"));
+}
+
+TEST(ThrusterFactories, TheBuiltinFamiliesAreRegisteredByNameAndListedSorted)
+{
+  const ThrusterFactory f = ThrusterFactory::builtin();
+  EXPECT_EQ(f.dynamics.types(), (std::vector<std::string>{"first_order", "zero_order"}));
+  EXPECT_EQ(f.conversion.types(), (std::vector<std::string>{"basic", "identity", "table"}));
+  EXPECT_TRUE(f.conversion.has("table"));
+  EXPECT_FALSE(f.conversion.has("zero_order"));
+  EXPECT_EQ(thrownMessage([] { builtinDynamics("second_order", {}); }),
+            "thruster dynamics: unknown type 'second_order'; expected one of: first_order, zero_order");
+  EXPECT_EQ(thrownMessage([] { builtinConversion("cubic", {}); }),
+            "thrust conversion: unknown type 'cubic'; expected one of: basic, identity, table");
+  EXPECT_EQ(thrownMessage([] { ThrusterFactory{}.dynamics.create("zero_order", {}); }),
+            "thruster dynamics: unknown type 'zero_order'; expected one of: none");
+}
+
+TEST(ThrusterFactories, AParameterTheFamilyDoesNotReadIsRejected)
+{
+  EXPECT_EQ(thrownMessage([] { builtinDynamics("first_order", {{"tau", {0.1}}, {"taus", {0.2}}}); }),
+            "thruster dynamics 'first_order': unknown parameter 'taus' (accepted: tau)");
+  EXPECT_EQ(thrownMessage([] { builtinDynamics("zero_order", {{"tau", {0.1}}}); }),
+            "thruster dynamics 'zero_order': unknown parameter 'tau' (accepted: none)");
+  EXPECT_EQ(thrownMessage([] { builtinConversion("table", {{"input", {0, 1}}, {"output", {0, 1}}, {"gain", {1}}}); }),
+            "thrust conversion 'table': unknown parameter 'gain' (accepted: input, output)");
+}
+
+TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne)
+{
+  ThrusterFactory f = ThrusterFactory::builtin();
+  // "scaled": the basic law k w |w| under another name, k in [0, 2]: a family registered by a creator.
+  f.conversion.add("scaled", [](ThrusterFamilyParams& p) -> std::unique_ptr<ThrustConversion> {
+    return std::make_unique<BasicConversion>(p.scalar("k", 0.0, 2.0, "[N per unit]"));
+  });
+  EXPECT_EQ(f.conversion.types(), (std::vector<std::string>{"basic", "identity", "scaled", "table"}));
+  EXPECT_NEAR(f.conversion.create("scaled", {{"k", {0.5}}})->thrust(4.0), 8.0, 1e-12);  // 0.5 * 4 * |4|
+  EXPECT_EQ(thrownMessage([&] { f.conversion.create("scaled", {{"k", {3.0}}}); }),
+            "thrust conversion 'scaled': parameter 'k' = 3 must be in [0, 2] [N per unit]");
+  EXPECT_EQ(thrownMessage([&] { f.conversion.create("scaled", {}); }),
+            "thrust conversion 'scaled': missing parameter 'k' (expected one number)");
+
+  f.dynamics.add<ZeroOrderDynamics>("first_order");  // replaces the built-in family of that name
+  EXPECT_EQ(f.dynamics.create("first_order", {})->update(3.0, 0.01), 3.0);
+  EXPECT_EQ(ThrusterFactory::builtin().dynamics.create("first_order", {{"tau", {0.1}}})->update(3.0, 0.0), 0.0)
+      << "a copy's registrations leave builtin() as it is";
+
+  EXPECT_THROW(f.dynamics.add("", [](ThrusterFamilyParams&) { return std::make_unique<ZeroOrderDynamics>(); }),
+               ConfigError);
+  EXPECT_THROW(f.dynamics.add("none", ThrusterFamilyFactory<ThrusterDynamics>::Creator()), ConfigError);
 }
 
 TEST(RequireScalar, ReturnsTheValueOrNamesTheKey)
@@ -381,6 +439,23 @@ TEST(Thruster, ConstructorValidatesGeometryLimitsAndFamilies)
   Thruster ok(identityThruster());
   EXPECT_THROW(ok.update(kNaN, 0.01), ParameterError);
   EXPECT_THROW(ok.update(1.0, -0.01), ParameterError);
+}
+
+TEST(Thruster, BuildsItsModelsFromTheGivenFactory)
+{
+  ThrusterFactory f = ThrusterFactory::builtin();
+  f.dynamics.add<ZeroOrderDynamics>("instant");
+  ThrusterParams p = identityThruster();
+  p.dynamics = "instant";
+  EXPECT_TRUE(contains(thrownMessage([&] { Thruster t(p); }), "unknown type 'instant'"));
+  Thruster t(p, f);
+  ASSERT_TRUE(t.setCommand(12.0, 0.0));
+  EXPECT_EQ(t.update(0.01, 0.01), 12.0);
+  EXPECT_FALSE(t.stateIsRotorSpeed());
+  p.dynamics = "zero_order";
+  p.conversion = "basic";
+  p.conversion_params = {{"gain", {0.01}}};
+  EXPECT_TRUE(Thruster(p).stateIsRotorSpeed()) << "the basic conversion reads a rotor speed";
 }
 
 }  // namespace

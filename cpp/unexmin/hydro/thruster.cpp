@@ -1,5 +1,7 @@
 #include <unexmin/hydro/thruster.h>
 
+#include <unexmin/hydro/thruster_factory.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -30,16 +32,6 @@ void requireTimeStep(double dt, const char* what)
   }
 }
 
-const std::vector<double>& requireVector(const ParamMap& params, const std::string& key, const std::string& what)
-{
-  const auto it = params.find(key);
-  if (it == params.end())
-  {
-    throw ParameterError(what + ": missing parameter '" + key + "' (expected a list of numbers)");
-  }
-  return it->second;
-}
-
 }  // namespace
 
 // ------------------------------------------------------------------------------------------ dynamics
@@ -64,6 +56,8 @@ FirstOrderDynamics::FirstOrderDynamics(double tau) : tau_(tau)
   }
 }
 
+FirstOrderDynamics::FirstOrderDynamics(ThrusterFamilyParams& params) : FirstOrderDynamics(params.scalar("tau")) {}
+
 double FirstOrderDynamics::update(double command, double dt)
 {
   requireTimeStep(dt, kFirstOrder);
@@ -82,6 +76,8 @@ BasicConversion::BasicConversion(double gain) : gain_(gain)
                                 " must be finite and non-zero [N per unit^2]");
   }
 }
+
+BasicConversion::BasicConversion(ThrusterFamilyParams& params) : BasicConversion(params.scalar("gain")) {}
 
 double BasicConversion::thrust(double state) const
 {
@@ -124,6 +120,9 @@ TableConversion::TableConversion(std::vector<double> input, std::vector<double> 
   }
 }
 
+TableConversion::TableConversion(ThrusterFamilyParams& params)
+    : TableConversion(params.list("input"), params.list("output")) {}
+
 double TableConversion::thrust(double state) const
 {
   if (state <= input_.front())
@@ -142,44 +141,11 @@ double TableConversion::thrust(double state) const
   return output_[lo] + s * (output_[hi] - output_[lo]);
 }
 
-// ----------------------------------------------------------------------------------------- factories
-
-std::unique_ptr<ThrusterDynamics> makeThrusterDynamics(const std::string& type, const ParamMap& params)
-{
-  if (type == "zero_order")
-  {
-    return std::make_unique<ZeroOrderDynamics>();
-  }
-  if (type == "first_order")
-  {
-    return std::make_unique<FirstOrderDynamics>(requireScalar(params, "tau", kFirstOrder));
-  }
-  throw ParameterError("thruster dynamics: unknown type '" + type +
-                              "'; expected one of: zero_order, first_order");
-}
-
-std::unique_ptr<ThrustConversion> makeThrustConversion(const std::string& type, const ParamMap& params)
-{
-  if (type == "identity")
-  {
-    return std::make_unique<IdentityConversion>();
-  }
-  if (type == "basic")
-  {
-    return std::make_unique<BasicConversion>(requireScalar(params, "gain", kBasic));
-  }
-  if (type == "table")
-  {
-    return std::make_unique<TableConversion>(requireVector(params, "input", kTable),
-                                             requireVector(params, "output", kTable));
-  }
-  throw ParameterError("thrust conversion: unknown type '" + type +
-                              "'; expected one of: identity, basic, table");
-}
-
 // ------------------------------------------------------------------------------------------ thruster
 
-Thruster::Thruster(const ThrusterParams& params) : params_(params)
+Thruster::Thruster(const ThrusterParams& params) : Thruster(params, ThrusterFactory::builtin()) {}
+
+Thruster::Thruster(const ThrusterParams& params, const ThrusterFactory& families) : params_(params)
 {
   const std::string what = "thruster " + formatNumber(params_.id);
   if (!params_.position.allFinite())
@@ -215,8 +181,8 @@ Thruster::Thruster(const ThrusterParams& params) : params_(params)
     throw ParameterError(what + ": parameter 'timeout' = nan must be a number [s] (<= 0: off)");
   }
 
-  dynamics_ = makeThrusterDynamics(params_.dynamics, params_.dynamics_params);
-  conversion_ = makeThrustConversion(params_.conversion, params_.conversion_params);
+  dynamics_ = families.dynamics.create(params_.dynamics, params_.dynamics_params);
+  conversion_ = families.conversion.create(params_.conversion, params_.conversion_params);
 }
 
 bool Thruster::setCommand(double command, double t)

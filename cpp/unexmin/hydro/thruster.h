@@ -1,8 +1,9 @@
 // Thruster model: command -> dynamics -> conversion -> saturation, with a command watchdog.
-// Dynamics and conversion are families chosen by the name written in the robot description, so a
-// new model is one class and one line in its factory.
+// Dynamics and conversion are families chosen by the name written in the robot description: a new
+// model is one class and one line in a ThrusterFactory (thruster_factory.h, docs/adding_a_thruster.md).
 #pragma once
 
+#include <unexmin/hydro/thruster_family_params.h>
 #include <unexmin/hydro/types.h>
 
 #include <memory>
@@ -39,6 +40,7 @@ class FirstOrderDynamics : public ThrusterDynamics
 {
 public:
   explicit FirstOrderDynamics(double tau);
+  explicit FirstOrderDynamics(ThrusterFamilyParams& params);
   double update(double command, double dt) override;
   double state() const override { return state_; }
   void reset() override { state_ = 0.0; }
@@ -54,6 +56,9 @@ class ThrustConversion
 public:
   virtual ~ThrustConversion() = default;
   virtual double thrust(double state) const = 0;
+  /// Whether the state it reads is a rotor speed [rad/s] (the propeller visual then turns at it; otherwise at a
+  /// speed derived from the thrust).
+  virtual bool stateIsRotorSpeed() const { return false; }
 };
 
 /// "identity": the command is thrust [N]. No parameters.
@@ -69,7 +74,9 @@ class BasicConversion : public ThrustConversion
 {
 public:
   explicit BasicConversion(double gain);
+  explicit BasicConversion(ThrusterFamilyParams& params);
   double thrust(double state) const override;
+  bool stateIsRotorSpeed() const override { return true; }
 
 private:
   double gain_;
@@ -81,6 +88,7 @@ class TableConversion : public ThrustConversion
 {
 public:
   TableConversion(std::vector<double> input, std::vector<double> output);
+  explicit TableConversion(ThrusterFamilyParams& params);
   double thrust(double state) const override;
 
 private:
@@ -88,10 +96,7 @@ private:
   std::vector<double> output_;
 };
 
-/// Factories keyed by the robot description's names; throw ParameterError naming the
-/// unknown type or the missing/invalid parameter and the accepted values.
-std::unique_ptr<ThrusterDynamics> makeThrusterDynamics(const std::string& type, const ParamMap& params);
-std::unique_ptr<ThrustConversion> makeThrustConversion(const std::string& type, const ParamMap& params);
+struct ThrusterFactory;
 
 struct ThrusterParams
 {
@@ -112,7 +117,11 @@ struct ThrusterParams
 class Thruster
 {
 public:
-  explicit Thruster(const ThrusterParams& params);  // throws ParameterError
+  /// Dynamics and conversion built by `families` (by the names in `params`). Throws ParameterError naming the
+  /// thruster, the parameter, its value and the accepted range, or an unknown family and the registered ones.
+  Thruster(const ThrusterParams& params, const ThrusterFactory& families);
+  /// With the simulator's families (ThrusterFactory::builtin()).
+  explicit Thruster(const ThrusterParams& params);
 
   const ThrusterParams& params() const { return params_; }
 
@@ -128,6 +137,8 @@ public:
   double command() const { return command_; }
   double thrust() const { return thrust_; }        ///< Achieved thrust [N].
   double state() const { return dynamics_->state(); }
+  /// Whether state() is a rotor speed [rad/s] (ThrustConversion::stateIsRotorSpeed).
+  bool stateIsRotorSpeed() const { return conversion_->stateIsRotorSpeed(); }
   /// Body force [N] and moment about the body origin [N m] of the current thrust.
   Vector6d wrench() const;
   void reset();

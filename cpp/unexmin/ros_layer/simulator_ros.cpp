@@ -25,7 +25,8 @@ std::uint64_t every(double physics_rate, double rate)
 
 }  // namespace
 
-SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry)
+SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry,
+                           const hydro::ThrusterFactory& thrusters)
     : nh_(nh), pnh_(pnh), command_nh_(nh), registry_(std::move(registry))
 {
   command_nh_.setCallbackQueue(&command_queue_);
@@ -44,7 +45,7 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
     std::string xml;
     if (!nh_.getParam(param, xml))
       throw ConfigError("parameter " + param + " is not set: load the robot description (xacro) first");
-    descriptions.emplace(name, sim::parseRobotDescription(xml, param));
+    descriptions.emplace(name, sim::parseRobotDescription(xml, param, thrusters));
   }
   world_ = std::make_unique<sim::World>(config, descriptions, robot_count_, 1.0 / physics_rate_,
                                         static_cast<std::uint64_t>(seed_));

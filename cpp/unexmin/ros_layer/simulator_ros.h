@@ -3,6 +3,7 @@
 // Parameters are documented in docs/simulator_node.md.
 #pragma once
 
+#include <unexmin/hydro/thruster_factory.h>
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/ros_layer/bag_recorder.h>
 #include <unexmin/ros_layer/robot_ros.h>
@@ -27,9 +28,10 @@ class SimulatorRos
 {
 public:
   /// Loads parameters, the world and the robot descriptions; throws ConfigError with a message naming the
-  /// file/parameter and the problem. `registry`: the sensor families it knows (the built-in ones by default;
-  /// a test or a user program may add its own).
-  SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry = SensorRegistry::builtin());
+  /// file/parameter and the problem. `registry`: the sensor families it knows, `thrusters`: the thruster
+  /// dynamics and conversion families (the built-in ones by default; a test or a user program may add its own).
+  SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry = SensorRegistry::builtin(),
+               const hydro::ThrusterFactory& thrusters = hydro::ThrusterFactory::builtin());
   /// Runs until shutdown.
   void spin();
 

@@ -26,9 +26,11 @@ Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
     : name_(spawn.name), description_(description), spawn_pose_(spawn.pose), model_(description.hydro),
       vbs_(description.vbs)
 {
-  for (const auto& tp : description.thrusters) thrusters_.push_back(std::make_unique<hydro::Thruster>(tp));
+  for (const auto& tp : description.thrusters) {
+    thrusters_.push_back(std::make_unique<hydro::Thruster>(tp, description.thruster_families));
+    rotor_speed_state_.push_back(thrusters_.back()->stateIsRotorSpeed());
+  }
   propeller_angle_.assign(thrusters_.size(), 0.0);
-  for (const auto& tp : description.thrusters) rotor_speed_state_.push_back(tp.conversion == "basic");
   if (!description.pendulum_joint.empty()) pendulum_ = std::make_unique<hydro::Pendulum>(description.pendulum);
 
   const double radius = description.hydro.radius > 0.0 ? description.hydro.radius

@@ -93,7 +93,7 @@ private:
   hydro::FossenModel model_;
   std::vector<std::unique_ptr<hydro::Thruster>> thrusters_;
   std::vector<double> propeller_angle_;
-  /// Per thruster: its dynamics state is a rotor speed ("basic" conversion), decided once.
+  /// Per thruster: its dynamics state is a rotor speed (hydro::ThrustConversion::stateIsRotorSpeed), decided once.
   std::vector<bool> rotor_speed_state_;
   std::unique_ptr<hydro::Pendulum> pendulum_;
   hydro::Vbs vbs_;

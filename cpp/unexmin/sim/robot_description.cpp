@@ -116,6 +116,12 @@ std::vector<std::string> RobotDescription::movableJoints() const
 
 RobotDescription parseRobotDescription(const std::string& xml, const std::string& source)
 {
+  return parseRobotDescription(xml, source, hydro::ThrusterFactory::builtin());
+}
+
+RobotDescription parseRobotDescription(const std::string& xml, const std::string& source,
+                                       const hydro::ThrusterFactory& thruster_families)
+{
   Parser p(source);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
@@ -125,6 +131,7 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
 
   RobotDescription d;
   d.source = source;
+  d.thruster_families = thruster_families;
   d.name = robot->Attribute("name") ? robot->Attribute("name") : "";
 
   std::map<std::string, bool> links;
@@ -217,7 +224,7 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     tp.max_command = p.attrOr(cmd, "max", tw + "/command", tp.max_thrust);
     if (const auto* to = t->FirstChildElement("timeout")) tp.timeout = p.attr(to, "value", tw + "/timeout");
     try {
-      hydro::Thruster check(tp);  // validates dynamics/conversion names and parameters
+      hydro::Thruster check(tp, thruster_families);  // validates dynamics/conversion names and parameters
     } catch (const ParameterError& e) {
       p.fail(tw + ": " + e.what());
     }

@@ -6,6 +6,7 @@
 #include <unexmin/hydro/fossen_model.h>
 #include <unexmin/hydro/pendulum.h>
 #include <unexmin/hydro/thruster.h>
+#include <unexmin/hydro/thruster_factory.h>
 
 #include <map>
 #include <string>
@@ -48,6 +49,8 @@ struct RobotDescription
   hydro::HydroParams hydro;
   std::vector<hydro::ThrusterParams> thrusters;  ///< Sorted by id 0..n-1.
   std::vector<std::string> thruster_joints;      ///< Same order as `thrusters`.
+  /// The families that know the thrusters' <dynamics type> and <conversion type> (the parser's), and build them.
+  hydro::ThrusterFactory thruster_families = hydro::ThrusterFactory::builtin();
   hydro::PendulumParams pendulum;
   std::string pendulum_joint;                    ///< Empty when the robot has no pendulum.
   hydro::VbsParams vbs;
@@ -60,8 +63,11 @@ struct RobotDescription
   std::vector<std::string> movableJoints() const;
 };
 
-/// Parses URDF XML; throws ConfigError("<source>: <problem>") naming the element and attribute.
+/// Parses URDF XML; throws ConfigError("<source>: <problem>") naming the element and attribute. The thrusters'
+/// families are looked up in `thruster_families` (ThrusterFactory::builtin() unless given).
 RobotDescription parseRobotDescription(const std::string& xml, const std::string& source);
+RobotDescription parseRobotDescription(const std::string& xml, const std::string& source,
+                                       const hydro::ThrusterFactory& thruster_families);
 
 }  // namespace sim
 }  // namespace unexmin

@@ -1,0 +1,26 @@
+// The simulator's thruster families: one line each (docs/hydrodynamics.md). Adding a family:
+// docs/adding_a_thruster.md.
+#include <unexmin/hydro/thruster_factory.h>
+
+namespace unexmin {
+namespace hydro {
+
+void throwUnknownFamily(const std::string& kind, const std::string& type, const std::vector<std::string>& known) {
+  std::string list;
+  for (const auto& t : known)
+    list += (list.empty() ? "" : ", ") + t;
+  throw ParameterError(kind + ": unknown type '" + type + "'; expected one of: " + (list.empty() ? "none" : list));
+}
+
+ThrusterFactory ThrusterFactory::builtin() {
+  ThrusterFactory f;
+  f.dynamics.add<ZeroOrderDynamics>("zero_order");
+  f.dynamics.add<FirstOrderDynamics>("first_order");
+  f.conversion.add<IdentityConversion>("identity");
+  f.conversion.add<BasicConversion>("basic");
+  f.conversion.add<TableConversion>("table");
+  return f;
+}
+
+}  // namespace hydro
+}  // namespace unexmin
