@@ -107,9 +107,9 @@ def check_link(motor_topic=ESC_COMMAND_TOPIC, timeout=3.0, max_stamp_age=0.05, e
         raise LinkProblem(f"{motor_topic} arrives {age * 1e3:+.1f} ms after its stamps (median of {len(ages)}): the "
                           f"clocks of the two hosts differ by about that much; synchronise them (chrony)")
     rate = (len(ages) - 1) / span if span > 0 else float("nan")
-    esc = ", ".join(subscribers) if subscribers else "no subscriber yet (start the ESC driver)"
+    esc = f"subscribed by {', '.join(subscribers)}" if subscribers else "no subscriber yet (start the ESC driver)"
     return (f"link OK: master {master}, {motor_topic} from {', '.join(publishers)} at {rate:.1f} Hz, stamp age "
-            f"{age * 1e3:+.1f} ms (latency + clock offset), subscribed by {esc}")
+            f"{age * 1e3:+.1f} ms (latency + clock offset), {esc}")
 
 
 def receive(topic, timeout, own, publishers, count=10):
