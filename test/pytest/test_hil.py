@@ -187,6 +187,18 @@ def test_clocks_of_two_namespaces_of_one_machine_agree(rig):
     assert 0 < rig.offset["delay"] < 0.02, rig.offset
 
 
+def test_every_process_of_both_hosts_listens_on_its_link_address_only(rig):
+    from unexmin.hil.rig import ROBOT_ADDRESS, SIM_ADDRESS
+
+    # The master, the stand-in (its XML-RPC, TCPROS and UDP time servers) and the probes were started without the
+    # bind shim: they load it themselves (unexmin.hil.listen); the simulator's processes get it from roslaunch.
+    for ns, address in ((rig.robot_ns, ROBOT_ADDRESS), (rig.sim_ns, SIM_ADDRESS)):
+        sockets = rig.listening(ns)
+        assert len(sockets) >= 6, sockets
+        assert all(a == address for a, _, _ in sockets), [s for s in sockets if s[0] != address]
+    assert any(p == 11399 and "python" in who for _, p, who in rig.listening(rig.robot_ns))  # the time server
+
+
 def test_robot_commands_cross_the_link_and_the_simulator_thrust_follows(rig):
     start = rig.wait_steps(0)
     rig.wait_steps(4)

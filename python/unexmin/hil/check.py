@@ -18,6 +18,7 @@ import time
 import xmlrpc.client
 from urllib.parse import urlparse
 
+from unexmin.hil.listen import with_bind_shim
 from unexmin.topics import ESC_COMMAND_TOPIC
 
 
@@ -148,6 +149,7 @@ def main(argv=None):
         p.error(f"--timeout {args.timeout:g}: expected a time in (0, 60] s")
     if not args.max_stamp_age > 0:
         p.error(f"--max-stamp-age {args.max_stamp_age:g}: expected a time > 0 s")
+    with_bind_shim("unexmin.hil.check", argv)
     try:
         print(check_link(args.motor_topic, args.timeout, args.max_stamp_age), flush=True)
         status = 0

@@ -15,6 +15,7 @@ import json
 import statistics
 import threading
 
+from unexmin.hil.listen import with_bind_shim
 from unexmin.topics import ESC_COMMAND_TOPIC
 
 #: The kinds of event of a record.
@@ -158,6 +159,7 @@ def main(argv=None):
     p.add_argument("--nav-topic", default=None, help="the robot's navigation topic (default: the stand-in's)")
     p.add_argument("--sensor-topic", default=None, help="a topic whose arrivals are recorded (default: none)")
     args = p.parse_args(argv)
+    with_bind_shim("unexmin.hil.probe", argv)
     import rospy
 
     rospy.init_node("hil_probe", anonymous=True)

@@ -72,16 +72,21 @@ class HilRig:
                    UNEXMIN_RUN=self.marker, PYTHONUNBUFFERED="1")
         return ros_environment(env)
 
-    def start(self, ns, address, name, *command):
-        """Start `command` in the namespace `ns` (output in <folder>/<name>.out)."""
+    def start(self, ns, address, name, *command, preload=True):
+        """Start `command` in the namespace `ns` (output in <folder>/<name>.out); without the bind shim preloaded
+        when not `preload` (the hil tools load it themselves)."""
         out = open(self.folder / f"{name}.out", "w")
-        proc = subprocess.Popen(["ip", "netns", "exec", ns, *command], env=self.environment(address), stdout=out,
+        env = self.environment(address)
+        if not preload:
+            del env["LD_PRELOAD"]
+        proc = subprocess.Popen(["ip", "netns", "exec", ns, *command], env=env, stdout=out,
                                 stderr=subprocess.STDOUT, start_new_session=True)
         self.procs.append((name, proc))
         return proc
 
     def python(self, ns, address, name, module, *args):
-        return self.start(ns, address, name, sys.executable, "-m", module, *map(str, args))
+        """Start a hil tool as a user would: `python -m module args`, the bind shim not preloaded."""
+        return self.start(ns, address, name, sys.executable, "-m", module, *map(str, args), preload=False)
 
     def _start(self):
         self.start(self.robot_ns, ROBOT_ADDRESS, "roscore", "roscore", "-p", "11311")
@@ -126,6 +131,16 @@ class HilRig:
         run = subprocess.run(["ip", "netns", "exec", ns, sys.executable, "-m", module, *map(str, args)],
                              env=self.environment(address), capture_output=True, text=True, timeout=timeout)
         return run.returncode, run.stdout + run.stderr, time.monotonic() - start
+
+    def listening(self, ns):
+        """[(local address, port, process)] of every TCP and UDP socket listening in the namespace `ns`."""
+        run = subprocess.run(["ip", "netns", "exec", ns, "ss", "-ltunpH"], capture_output=True, text=True, timeout=30)
+        found = []
+        for line in run.stdout.splitlines():
+            fields = line.split()
+            address, port = fields[4].rsplit(":", 1)
+            found.append((address.strip("[]"), int(port), fields[-1]))
+        return found
 
     def clock_offset(self, samples=20):
         """The four-timestamp exchange from the simulator's host with the stand-in's time server: {offset, delay}

@@ -16,6 +16,7 @@ import os
 import threading
 import time
 
+from unexmin.hil.listen import with_bind_shim
 from unexmin.topics import ESC_COMMAND_TOPIC
 
 #: Where the stand-in publishes its navigation (the real robot's navigation topic is not part of the simulator).
@@ -109,6 +110,7 @@ class RobotStandIn:
 
 def main(argv=None):
     args = parse_args(argv)
+    with_bind_shim("unexmin.hil.robot_standin", argv)
     import rospy
 
     from unexmin.hil.clock_sync import TimeServer
