@@ -96,10 +96,14 @@ class RobotStandIn:
     def run(self):
         import rospy
 
-        threads = [threading.Thread(target=self.loop, args=(self.args.rate, lambda t: self.motors.publish(
-                       self.command(t))), daemon=True),
-                   threading.Thread(target=self.loop, args=(self.args.nav_rate, lambda t: self.nav.publish(
-                       self.navigation(t))), daemon=True)]
+        def commands(t):
+            self.motors.publish(self.command(t))
+
+        def navigation(t):
+            self.nav.publish(self.navigation(t))
+
+        threads = [threading.Thread(target=self.loop, args=(self.args.rate, commands), daemon=True),
+                   threading.Thread(target=self.loop, args=(self.args.nav_rate, navigation), daemon=True)]
         for t in threads:
             t.start()
         rospy.spin()
