@@ -14,6 +14,7 @@ running; the link then recovers on its own and the thrust follows the robot agai
 
 import math
 import os
+import re
 import socket
 import subprocess
 import sys
@@ -231,6 +232,32 @@ def test_checker_says_the_link_is_good_in_one_line(rig):
     line = out.strip().splitlines()[-1]
     assert line.startswith("link OK: master http://169.254.73.2:11311, /ux1/command/motors from /robot_standin"), out
     assert "/UX_1/esc_driver" in line, out
+
+
+def test_checker_names_what_is_wrong_on_the_robot_side(rig):
+    from unexmin.hil.rig import SIM_ADDRESS
+    from unexmin.launcher import wait_for
+
+    def check_line(*args):
+        status, out, took = rig.run_in(rig.sim_ns, SIM_ADDRESS, "unexmin.hil.check", "--timeout", 2, *args)
+        assert took < 10, (took, out)
+        return status, out.strip().splitlines()[-1]
+
+    status, line = check_line("--motor-topic", "/hil_test/motors")
+    assert status == 1 and line == ("link problem: nobody publishes /hil_test/motors on the master "
+                                    "http://169.254.73.2:11311: is the robot's software running?"), line
+    # Stamps 1 us old at most: no real link is that fast, so the clocks are blamed.
+    status, line = check_line("--max-stamp-age", 1e-6)
+    assert status == 1 and re.fullmatch(r"link problem: /ux1/command/motors arrives \+\d+\.\d ms after its stamps "
+                                        r"\(median of 10\): the clocks .* \(chrony\)", line), line
+    # A robot node that advertises its loopback address (ROS_IP=127.0.0.1 on the robot) cannot be reached.
+    rig.python(rig.robot_ns, "127.0.0.1", "loopback_standin", "unexmin.hil.robot_standin", "--node-name",
+               "loopback_standin", "--motor-topic", "/hil_test/motors", "--nav-topic", "/hil_test/nav")
+    status, line = wait_for(lambda: (lambda r: r if "nobody publishes" not in r[1] else None)(
+        check_line("--motor-topic", "/hil_test/motors")), 30, "the second stand-in to register", poll=0.2)
+    assert status == 1 and re.fullmatch(r"link problem: /loopback_standin \(publisher of /hil_test/motors\) advertises "
+                                        r"http://127\.0\.0\.1:\d+/, which this host cannot reach \(.*\): set "
+                                        r"ROS_IP on the robot to its address on this link", line), line
 
 
 def test_a_5_s_link_drop_zeroes_the_thrust_after_the_watchdog_and_the_link_recovers(rig):

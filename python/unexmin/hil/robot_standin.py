@@ -30,6 +30,7 @@ def level_at(levels, period, elapsed):
 
 def parse_args(argv=None):
     p = argparse.ArgumentParser(prog="python -m unexmin.hil.robot_standin", description=__doc__.split("\n\n")[0])
+    p.add_argument("--node-name", default="robot_standin", help="the node's name (default %(default)s)")
     p.add_argument("--motor-topic", default=ESC_COMMAND_TOPIC, help="ESC command topic (default %(default)s)")
     p.add_argument("--rate", type=float, default=10.0, help="ESC command rate [Hz] (default %(default)s)")
     p.add_argument("--levels", type=float, nargs="+", default=[2129.0, -2140.0],
@@ -119,7 +120,7 @@ def main(argv=None):
 
     from unexmin.hil.clock_sync import TimeServer
 
-    rospy.init_node("robot_standin")
+    rospy.init_node(args.node_name)
     server = None
     if args.time_port is not None:
         server = TimeServer(os.environ.get("ROS_IP", "127.0.0.1"), args.time_port)
