@@ -118,6 +118,7 @@ class Probe:
         import time
 
         import rospy
+        from nav_msgs.msg import Odometry
         from rosgraph_msgs.msg import Clock
         from std_msgs.msg import Float64
         from ux1_msgs.msg import MotorCommand
@@ -132,16 +133,11 @@ class Probe:
             rospy.Subscriber(ns + "input", Float64, lambda m: self.write("in", v=m.data), tcp_nodelay=True),
             rospy.Subscriber(ns + "thrust", Float64, lambda m: self.write("thrust", v=m.data), tcp_nodelay=True),
             rospy.Subscriber("/clock", Clock, lambda m: self.write("clock", sim=m.clock.to_sec()), tcp_nodelay=True),
-            rospy.Subscriber(nav_topic or NAV_TOPIC, rospy.AnyMsg, self.on_nav),
+            rospy.Subscriber(nav_topic or NAV_TOPIC, Odometry, lambda m: self.write(
+                "nav", stamp=m.header.stamp.to_sec())),
         ]
         if sensor_topic:
             self.subs.append(rospy.Subscriber(sensor_topic, rospy.AnyMsg, lambda m: self.write("sensor")))
-
-    def on_nav(self, raw):
-        import struct
-
-        secs, nsecs = struct.unpack_from("<II", raw._buff, 4)  # std_msgs/Header: seq, then the stamp
-        self.write("nav", stamp=secs + nsecs * 1e-9)
 
     def write(self, kind, **fields):
         t = self.clock()
@@ -156,7 +152,8 @@ def main(argv=None):
     p.add_argument("--robot", default="UX_1", help="the simulated robot (default %(default)s)")
     p.add_argument("--thruster", type=int, default=0, choices=range(8), help="thruster watched (default 0)")
     p.add_argument("--motor-topic", default=ESC_COMMAND_TOPIC)
-    p.add_argument("--nav-topic", default=None, help="the robot's navigation topic (default: the stand-in's)")
+    p.add_argument("--nav-topic", default=None,
+                   help="the robot's navigation topic, nav_msgs/Odometry (default: the stand-in's)")
     p.add_argument("--sensor-topic", default=None, help="a topic whose arrivals are recorded (default: none)")
     args = p.parse_args(argv)
     with_bind_shim("unexmin.hil.probe", argv)
