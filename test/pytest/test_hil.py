@@ -16,8 +16,6 @@ import math
 import os
 import re
 import socket
-import subprocess
-import sys
 import time
 
 import pytest
