@@ -25,7 +25,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def main(argv=None):
     from unexmin.batch import run_batch
-    from unexmin.batch_spec import load_spec
+    from unexmin.batch.spec import load_spec
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spec", default=os.path.join(HERE, "..", "examples", "batch", "tank_currents.yaml"))

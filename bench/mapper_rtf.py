@@ -11,10 +11,10 @@ import time
 
 import rospy
 
-from unexmin.allocation import ThrusterAllocator
-from unexmin.launcher import WorldProcess, wait_for
+from unexmin.control.allocation import ThrusterAllocator
+from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.msg import MapperStats
-from unexmin.simulation import Simulation
+from unexmin.scripting.simulation import Simulation
 
 
 def main():

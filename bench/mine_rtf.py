@@ -65,7 +65,7 @@ TRANSLATIONS = {"m3/points": 40.0, "dvl_water_track": 8.0}  # [Hz of sim time]: 
 
 def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False):
     t_launch = time.monotonic()
-    from unexmin.launcher import WorldProcess, wait_for
+    from unexmin.scripting.launcher import WorldProcess, wait_for
     # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
     # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
     world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False,

@@ -70,9 +70,40 @@ def node_pids(caller, names):
     return {n: ServerProxy(master.lookupNode(n)).getPid(caller)[2] for n in names}
 
 
+def stop_bench(counter, proc, log):
+    """Stop the topic counter (if still running) and the launched world's process group; close its log."""
+    from unexmin.scripting.launcher import stop_process_group
+
+    if counter and counter.poll() is None:
+        counter.kill()
+    stop_process_group(proc, 30.0)
+    log.close()
+
+
+def counter_counts(counter, window_file, sim_t0, sim_t1):
+    """{topic: messages} the running topic_counter received stamped in (sim_t0, sim_t1] [s]; stops it."""
+    window_file.write_text(f"{sim_t0} {sim_t1}\n")
+    counter.send_signal(signal.SIGINT)
+    out = counter.communicate(timeout=30)[0]
+    return dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+
+
+def timed_window(sim, pids, window):
+    """Run the paused simulator for `window` s of wall time: (sim time at start, at end [s], wall time [s],
+    {node: CPU cores used}) of the processes `pids` ({node: pid})."""
+    cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
+    sim_t0 = sim.time
+    sim.unpause()
+    t0 = time.perf_counter()
+    time.sleep(window)  # a benchmark window, not a test wait
+    sim.pause()
+    wall = time.perf_counter() - t0
+    return sim_t0, sim.time, wall, {n: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+
+
 def measure(sink_name, pace, window, workdir):
     from unexmin import Simulation
-    from unexmin.launcher import free_port, stop_process_group, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
 
     cfg = SINKS[sink_name]
     topics = cfg["topics"]
@@ -109,22 +140,12 @@ def measure(sink_name, pace, window, workdir):
         pids = node_pids("/sensors_bench", nodes)
         if counter:
             pids["topic_counter"] = counter.pid
-        cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
-        sim_t0 = sim.time
-        sim.unpause()
-        t0 = time.perf_counter()
-        time.sleep(window)  # a benchmark window, not a test wait
-        sim.pause()
-        wall = time.perf_counter() - t0
-        sim_t1 = sim.time
-        cpu = {n.split("/")[-1]: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+        sim_t0, sim_t1, wall, cpu = timed_window(sim, pids, window)
+        cpu = {n.split("/")[-1]: c for n, c in cpu.items()}
         result = {"sink": sink_name, "pace": pace, "rtf": (sim_t1 - sim_t0) / wall, "cpu": cpu, "delivered": {}}
         time.sleep(3.0)  # let the translators and the sink drain their queues (benchmark only)
         if counter:
-            window_file.write_text(f"{sim_t0} {sim_t1}\n")
-            counter.send_signal(signal.SIGINT)
-            out = counter.communicate(timeout=30)[0]
-            counts = dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+            counts = counter_counts(counter, window_file, sim_t0, sim_t1)
             result["delivered"] = {t: counts.get(t, 0) / max(1, round(RATES[t] * (sim_t1 - sim_t0))) for t in topics}
         if cfg["sink"] == "rosbag":
             os.killpg(proc.pid, signal.SIGINT)
@@ -132,10 +153,7 @@ def measure(sink_name, pace, window, workdir):
             result["delivered"] = count_bag(bag, sim_t0, sim_t1, topics)
         return result
     finally:
-        if counter and counter.poll() is None:
-            counter.kill()
-        stop_process_group(proc, 30.0)
-        log.close()
+        stop_bench(counter, proc, log)
 
 
 def count_bag(path, t0, t1, topics):

@@ -112,7 +112,7 @@ def main():
 
     import rospy
     from unexmin import Simulation
-    from unexmin.launcher import WorldProcess
+    from unexmin.scripting.launcher import WorldProcess
     from unexmin.srv import Record
 
     world = WorldProcess(world=args.world, robots=args.robots, paused=True, log_dir=str(out / "logs"),
@@ -163,7 +163,7 @@ def main():
 
 
 def _pid_of(marker, name):
-    from unexmin.launcher import marked_processes
+    from unexmin.scripting.launcher import marked_processes
     for pid in marked_processes(marker):
         try:
             cmd = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")[0]

@@ -16,7 +16,6 @@ the window (1.00 = the sink got all), CPU of the simulator and the M3 translator
 import argparse
 import json
 import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -25,7 +24,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from sensors_rtf import build_counter, cpu_seconds, node_pids  # noqa: E402
+from sensors_rtf import build_counter, counter_counts, node_pids, stop_bench, timed_window  # noqa: E402
 
 ROBOTS = ["UX_1", "UX_2", "UX_3"]
 RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
@@ -33,7 +32,7 @@ RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
 
 def measure(robots, window, sink, workdir):
     from unexmin import Simulation
-    from unexmin.launcher import free_port, stop_process_group, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
     import rosgraph
     import rospy
 
@@ -62,30 +61,16 @@ def measure(robots, window, sink, workdir):
                      30.0, "the sink to subscribe to every topic")
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sonar_bench", nodes)
-        cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
-        t_sim0 = sim.time
-        sim.unpause()
-        t0 = time.perf_counter()
-        time.sleep(window)  # a benchmark window, not a test wait
-        sim.pause()
-        wall = time.perf_counter() - t0
-        t_sim1 = sim.time
-        cpu = {n: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+        t_sim0, t_sim1, wall, cpu = timed_window(sim, pids, window)
         result = {"robots": robots, "rtf": (t_sim1 - t_sim0) / wall, "cpu": cpu, "delivered": None}
         if counter:
             time.sleep(3.0)  # let the translators and the sink drain (benchmark only)
-            window_file.write_text(f"{t_sim0} {t_sim1}\n")
-            counter.send_signal(signal.SIGINT)
-            out = counter.communicate(timeout=30)[0]
-            counts = dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+            counts = counter_counts(counter, window_file, t_sim0, t_sim1)
             result["delivered"] = min(counts.get(t, 0) / max(1, round(RATES[t.split("/", 2)[2]] * (t_sim1 - t_sim0)))
                                       for t in topics)
         return result
     finally:
-        if counter and counter.poll() is None:
-            counter.kill()
-        stop_process_group(proc, 30.0)
-        log.close()
+        stop_bench(counter, proc, log)
 
 
 def main():

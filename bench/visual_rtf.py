@@ -50,7 +50,7 @@ def overrides(path, width, height, fps):
 
 
 def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cpp"):
-    from unexmin.launcher import WorldProcess, wait_for
+    from unexmin.scripting.launcher import WorldProcess, wait_for
 
     tmp = tempfile.mkdtemp(prefix="visual_rtf_")
     xacro = os.path.join(tmp, "cameras.xacro")

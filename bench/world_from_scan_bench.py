@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.mesh_marker import read_mesh
+from unexmin.worlds.meshes import read_mesh
 from unexmin.world_from_scan import sample_scan
 
 REPO = Path(__file__).resolve().parents[1]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Coast-down of a yaw turn: the main job's yaw leg (python -m unexmin.mission: N = 2 for 2 s from rest,
+"""Coast-down of a yaw turn: the main job's yaw leg (python -m unexmin.missions.tank: N = 2 for 2 s from rest,
 thesis allocation), then no thrust; prints the peak yaw rate and the time it takes to halve, measured
 in the simulator and from the closed form of quadratic damping.
 
@@ -27,11 +27,11 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
 
-    from unexmin.allocation import ThrusterAllocator
+    from unexmin.control.allocation import ThrusterAllocator
     from unexmin.geometry import yaw_of
     from unexmin.identify import description
-    from unexmin.replay.world import world_launch_file
-    from unexmin.simulation import Simulation
+    from unexmin.worlds.spawn import world_launch_file
+    from unexmin.scripting.simulation import Simulation
 
     physics = description.load(overrides=args.overrides)
     inertia = physics.inertia[2] + physics.added_mass[5, 5]

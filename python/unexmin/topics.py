@@ -57,3 +57,15 @@ def run_node(name, make, errors=(ValueError,)):
         rospy.logfatal(f"{name}: {e}")
         raise SystemExit(1)
     rospy.spin()
+
+
+def node_command_line(name, doc, argv=None):
+    """The command line of the node nodes/<name>: `--help` prints its usage and `doc` and exits 0; ROS
+    arguments (topic:=other, _param:=value, __name:=...) and anything else are left to rospy."""
+    import argparse
+    import sys
+
+    parser = argparse.ArgumentParser(
+        prog=f"rosrun unexmin {name}", usage=f"rosrun unexmin {name} [_param:=value ...] [topic:=other_topic ...]",
+        description=doc, epilog="Parameters and topics: see the doc page named above.")
+    parser.parse_known_args([a for a in (sys.argv[1:] if argv is None else argv) if ":=" not in a])

@@ -1,4 +1,4 @@
-"""Thruster allocation (python/unexmin/allocation.py): the thesis matrix, m = A^T tau, saturation.
+"""Thruster allocation (python/unexmin/control/allocation.py): the thesis matrix, m = A^T tau, saturation.
 
 Pure maths: no roscore. Expected values are written out from the thesis (eq. 5.12) and computed
 here from the definition, never taken from a previous run. The last test checks the allocation
@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from unexmin.allocation import (DEFAULT_MAX_THRUST, DOF, THESIS_MATRIX, AllocationError, ThrusterAllocator,
+from unexmin.control.allocation import (DEFAULT_MAX_THRUST, DOF, THESIS_MATRIX, AllocationError, ThrusterAllocator,
                                 validate_matrix, validate_max_thrust, validate_wrench)
 from unexmin.geometry import rpy_matrix
 

@@ -1,4 +1,4 @@
-"""Batches of missions on Dask distributed (python/unexmin/batch*.py, docs/batch.md).
+"""Batches of missions on Dask distributed (python/unexmin/batch/, docs/batch.md).
 
 - A spec expands the same way every time: seeds outermost, then the sweep's cartesian product; sampled
   values come from (sample_seed, index) and follow their distribution; --limit keeps the first N; a bad
@@ -23,8 +23,8 @@ import threading
 import numpy as np
 import pytest
 
-from unexmin.batch_spec import SpecError, check_spec, expand, write_launch
-from unexmin.launcher import free_port, stop_process_group, wait_for
+from unexmin.batch.spec import SpecError, check_spec, expand, write_launch
+from unexmin.scripting.launcher import free_port, stop_process_group, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -44,7 +44,7 @@ def spec_of(text, folder):
 
 def test_expansion_is_a_function_of_the_spec(tmp_path):
     text = """
-        mission: unexmin.batch_missions:tank_survey
+        mission: unexmin.batch.missions:tank_survey
         seeds: {start: 5, count: 3}
         sweep: {visibility: [none, high], current_angle: [0.0, 1.0]}
         sample: {current_speed: {uniform: [0.1, 0.3]}, sensor_noise_scale: {choice: [0.5, 2.0]}}
@@ -69,7 +69,7 @@ def test_expansion_is_a_function_of_the_spec(tmp_path):
 
 def test_sampled_values_follow_their_distribution(tmp_path):
     spec = spec_of("""
-        mission: unexmin.batch_missions:tank_survey
+        mission: unexmin.batch.missions:tank_survey
         seeds: 2000
         sample: {buoyancy_offset: {normal: [0.2, 0.5]}, n: {integers: [1, 3]}, v: {loguniform: [0.01, 1.0]}}
     """, tmp_path)
@@ -102,7 +102,7 @@ def test_mission_files_carry_the_parameters(tmp_path):
     import yaml
 
     spec = spec_of("""
-        mission: unexmin.batch_missions:tank_survey
+        mission: unexmin.batch.missions:tank_survey
         params: {current_speed: 0.7, current_angle: 1.2, visibility: low, buoyancy_offset: 0.5,
                  sensor_noise_scale: 2.0}
     """, tmp_path)
@@ -134,7 +134,7 @@ def test_mission_files_carry_the_parameters(tmp_path):
         assert new == pytest.approx(2.0 * ref, rel=1e-12), name
 
 
-def six_missions(folder, mission="unexmin.batch_missions:tank_survey", extra=""):
+def six_missions(folder, mission="unexmin.batch.missions:tank_survey", extra=""):
     return spec_of(f"""
         world: tank
         mission: {mission}

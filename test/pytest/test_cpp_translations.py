@@ -1,5 +1,5 @@
 """The simulator's C++ M3 and DVL translations (cpp/unexmin/ros_layer/m3_cloud.cpp, dvl_water_track.cpp) against the
-rospy translators they replace in simulation (python/unexmin/m3_translator.py scan_to_cloud,
+rospy translators they replace in simulation (python/unexmin/translators/m3.py scan_to_cloud,
 dvl_translator.py dvl_to_water_track): the simulator records its own m3/scan, m3/points, dvl and
 dvl_water_track while the robot moves (record:=, every message kept); each C++ output must equal the Python
 translation of the input message of the same stamp, field by field, and the rospy nodes do not run."""
@@ -48,7 +48,7 @@ def test_rospy_translators_do_not_run_by_default(bag):
 
 def test_m3_cloud_equals_the_python_translation(bag):
     from sensor_msgs import point_cloud2
-    from unexmin.m3_translator import scan_to_cloud
+    from unexmin.translators.m3 import scan_to_cloud
     got, _, _ = bag
     scans, clouds = got["/UX_1/m3/scan"], got["/UX_1/m3/points"]
     assert len(scans) == len(clouds) == round(40 * (SECONDS + 1.0))
@@ -69,7 +69,7 @@ def test_m3_cloud_equals_the_python_translation(bag):
 
 
 def test_dvl_water_track_equals_the_python_translation(bag):
-    from unexmin.dvl_translator import dvl_to_water_track
+    from unexmin.translators.dvl import dvl_to_water_track
     got, _, _ = bag
     pings, tracks = got["/UX_1/dvl"], got["/UX_1/dvl_water_track"]
     assert len(pings) == len(tracks) == round(8 * (SECONDS + 1.0))

@@ -1,4 +1,4 @@
-"""ESC table (python/unexmin/esc.py) and the simulated ESC driver node (nodes/esc_driver).
+"""ESC table (python/unexmin/control/esc.py) and the simulated ESC driver node (nodes/esc_driver).
 
 The table tests need no roscore. Expected thrusts are computed here from the T200 16 V rows typed in
 again from Blue Robotics' published sheet (PWM [us], RPM, force [kgf]) and the definition of linear
@@ -17,7 +17,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from unexmin.esc import (DEFAULT_DUTY_TABLE, DEFAULT_RPM_TABLE, KGF, MODE_DUTY_CYCLE, MODE_RPM, EscConverter,
+from unexmin.control.esc import (DEFAULT_DUTY_TABLE, DEFAULT_RPM_TABLE, KGF, MODE_DUTY_CYCLE, MODE_RPM, EscConverter,
                          EscTableError, ThrustTable, converter_from_params, parse_mode)
 
 G = 9.80665
@@ -164,7 +164,7 @@ CLIENT = textwrap.dedent("""
 def master(tmp_path):
     if not shutil.which("rosmaster"):
         pytest.skip("rosmaster not installed")
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",

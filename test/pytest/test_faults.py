@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, wait_for
+from unexmin.scripting.launcher import free_port, marked_processes, wait_for
 
 def pids_of(marker, name):
     out = []

@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 import yaml
 
-from unexmin.esc import MODE_RPM, EscConverter
+from unexmin.control.esc import MODE_RPM, EscConverter
 from unexmin.identify import description, model
 from unexmin.identify.cli import identify_bag, overrides_xacro
 from unexmin.identify.model import DOF, INDEX, PARAMS

@@ -1,4 +1,4 @@
-"""Joystick teleop (python/unexmin/joystick.py, nodes/joystick, config/joystick.yaml), without hardware.
+"""Joystick teleop (python/unexmin/control/joystick.py, nodes/joystick, config/joystick.yaml), without hardware.
 
 - The logic (no ROS): js_event records, the dead zone, the shipped mapping (sticks -> wrench, buttons ->
   pendulum, VBS, speed), the dead-man button, init events, mapping errors, an unplugged device (ENODEV).
@@ -21,9 +21,9 @@ from pathlib import Path
 import pytest
 
 from test_teleop import Rig
-from unexmin.joystick import (EVENT, JS_EVENT_AXIS, JS_EVENT_BUTTON, JS_EVENT_INIT, DeviceLost, JoystickDevice,
+from unexmin.control.joystick import (EVENT, JS_EVENT_AXIS, JS_EVENT_BUTTON, JS_EVENT_INIT, DeviceLost, JoystickDevice,
                               JoystickMapping, JoystickState, apply_dead_zone, pack_event, unpack_events)
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 
 MAPPING = Path(__file__).resolve().parents[2] / "config" / "joystick.yaml"
 DEG = math.pi / 180.0
@@ -132,7 +132,7 @@ def test_an_unplugged_device_is_lost(tmp_path, monkeypatch):
 
         def unplugged(fd, n):
             raise OSError(errno.ENODEV, os.strerror(errno.ENODEV))
-        monkeypatch.setattr("unexmin.joystick.os.read", unplugged)
+        monkeypatch.setattr("unexmin.control.joystick.os.read", unplugged)
         with pytest.raises(DeviceLost, match="No such device"):
             dev.read()
         dev.close()

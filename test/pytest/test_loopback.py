@@ -9,7 +9,7 @@ import subprocess
 from pathlib import Path
 from urllib.parse import urlparse
 
-from unexmin.launcher import free_port, marked_processes, stop_process_group, wait_for
+from unexmin.scripting.launcher import free_port, marked_processes, stop_process_group, wait_for
 
 
 def listening(pids):

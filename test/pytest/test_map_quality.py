@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from unexmin import map_quality
+from unexmin.worlds.files import world_path
 
 RES = 0.1
 needs_tools = pytest.mark.skipif(shutil.which("binvox2bt") is None, reason="octomap-tools missing")
@@ -93,4 +94,4 @@ def test_recall_counts_only_the_surface_within_range_of_the_path(case):
 
 def test_unknown_world_is_named():
     with pytest.raises(FileNotFoundError, match="--world nowhere"):
-        map_quality.world_path("nowhere")
+        world_path("nowhere")

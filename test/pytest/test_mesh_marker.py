@@ -1,4 +1,4 @@
-"""The mesh marker (python/unexmin/mesh_marker.py, nodes/mesh_marker, launch/mesh_marker.launch).
+"""The mesh marker (python/unexmin/worlds/mesh_marker.py, nodes/mesh_marker, launch/mesh_marker.launch).
 
 Geometry against closed forms (rotation conventions, a cube's and the tank's water surface: the
 tank's interior is 6 m x 4 m, docs/worlds.md), then the real node through roslaunch on a private
@@ -18,7 +18,9 @@ import numpy as np
 import pytest
 import trimesh
 
-from unexmin import mesh_marker as mm
+from unexmin.worlds import mesh_marker as mm
+from unexmin.worlds.files import load_world
+from unexmin.worlds.meshes import MeshFormatError, read_mesh
 
 REPO = Path(__file__).resolve().parents[2]
 WORLDS = REPO / "worlds"
@@ -38,12 +40,12 @@ def test_read_mesh_gives_the_same_triangles_from_stl_and_ply(tmp_path):
     box.export(tmp_path / "b.ply")
     tri_sets = []
     for name in ("b.stl", "b.ply"):
-        v, t = mm.read_mesh(tmp_path / name)
+        v, t = read_mesh(tmp_path / name)
         tri_sets.append(sorted(tuple(map(tuple, np.round(v[tri], 6))) for tri in t))
     assert tri_sets[0] == tri_sets[1] and len(tri_sets[0]) == 12
     (tmp_path / "a.stl").write_text("solid x\nendsolid x\n")
-    with pytest.raises(mm.MeshFormatError, match="not a binary STL"):
-        mm.read_mesh(tmp_path / "a.stl")
+    with pytest.raises(MeshFormatError, match="not a binary STL"):
+        read_mesh(tmp_path / "a.stl")
 
 
 def test_cube_section_is_one_square_loop_whose_faces_point_out():
@@ -72,7 +74,7 @@ def test_ear_clipping_covers_a_non_convex_polygon_exactly():
 
 
 def test_tank_markers_and_its_six_by_four_metre_water_surface():
-    world = mm.load_world(WORLDS / "tank.world")
+    world = load_world(WORLDS / "tank.world")
     tris = mm.water_surface(world)
     assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)      # interior 6 m x 4 m
     np.testing.assert_allclose(tris[..., 2], 0.0, atol=1e-9)
@@ -102,18 +104,18 @@ def test_a_world_file_cannot_name_a_mesh_outside_its_folder(tmp_path, file, prob
     world = tmp_path / "w" / "bad.world"
     world.write_text(f"name: w\nmeshes:\n  - {{name: m, file: '{file}'}}\nrobots: [{{name: UX_1}}]\n")
     with pytest.raises(ValueError) as err:
-        mm.load_world(world)
+        load_world(world)
     assert str(err.value).startswith(f"{world}: 'meshes[0].file' {file} {problem}")
     # Inside its folder, '..' that stays inside included, it loads the file it names.
     (tmp_path / "w" / "meshes").mkdir()
     shutil.copy(WORLDS / "meshes/test_box.stl", tmp_path / "w" / "meshes" / "box.stl")
     world.write_text("name: w\nmeshes:\n  - {name: m, file: meshes/../meshes/box.stl}\nrobots: [{name: UX_1}]\n")
-    assert mm.load_world(world)["meshes"][0]["file"] == str(tmp_path / "w" / "meshes" / "box.stl")
+    assert load_world(world)["meshes"][0]["file"] == str(tmp_path / "w" / "meshes" / "box.stl")
 
 
 def test_mine_water_surface_is_the_entry_shaft_section():
     man = json.loads((WORLDS / "meshes/mine/mine.json").read_text())
-    world = mm.load_world(WORLDS / "mine.world")
+    world = load_world(WORLDS / "mine.world")
     assert [m["name"] for m in world["meshes"] if m["visual"]] == ["mine_visual"]
     tris = mm.water_surface(world)
     half, noise = man["preset"]["shaft_half"], man["wall_noise_max"]
@@ -146,7 +148,7 @@ CLIENT = textwrap.dedent("""
 def test_node_publishes_the_markers_latched(tmp_path):
     if not shutil.which("roslaunch"):
         pytest.skip("roslaunch not installed")
-    from unexmin.launcher import free_port
+    from unexmin.scripting.launcher import free_port
 
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
@@ -162,6 +164,6 @@ def test_node_publishes_the_markers_latched(tmp_path):
     finally:
         os.killpg(launch.pid, 2)
         launch.wait(20)
-    expected = mm.build_markers(mm.load_world(WORLDS / "tank.world"))
+    expected = mm.build_markers(load_world(WORLDS / "tank.world"))
     assert got == [[k.ns, k.id, k.type, k.header.frame_id, k.mesh_resource, len(k.points),
                     [k.pose.position.x, k.pose.position.y, k.pose.position.z]] for k in expected.markers]

@@ -1,4 +1,4 @@
-"""The mine generator (python/unexmin/mine_generator.py) and the mine world (worlds/mine.world).
+"""The mine generator (python/unexmin/mine_generator/) and the mine world (worlds/mine.world).
 
 Expected values come from geometry written here (capsule and superellipse volumes, the hull radius,
 the Kaatiala figures of thesis 6.3), and trimesh (an independent library) reads back what the
@@ -18,7 +18,7 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin import mine_generator as mg
+from unexmin.mine_generator import generator as mg
 
 REPO = Path(__file__).resolve().parents[2]
 MINE_WORLD = REPO / "worlds" / "mine.world"

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, stop_process_group, wait_for
+from unexmin.scripting.launcher import free_port, stop_process_group, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 REAL = REPO.resolve()

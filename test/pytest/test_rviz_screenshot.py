@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from unexmin.launcher import stop_process_group
+from unexmin.scripting.launcher import stop_process_group
 
 REPO = Path(__file__).resolve().parents[2]
 DOCS_IMAGE = REPO / "docs" / "images" / "mine_rviz.png"
@@ -103,7 +103,7 @@ def run_rviz(display, tmp_path, launch_args, subscriptions, drawn, what, image):
     last stats (the caller asserts on them); with UNEXMIN_DOCS_SCREENSHOT=1 the last shot goes to `image`."""
     import rosgraph
 
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
     env = dict(os.environ, DISPLAY=display, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",

@@ -1,5 +1,5 @@
 """Clean shutdown (issue 11, docs/reliability.md): SIGINT, as Ctrl-C sends it to the foreground process group,
-at different moments of a roslaunch with record:=, of the mission (python -m unexmin.mission, what
+at different moments of a roslaunch with record:=, of the mission (python -m unexmin.missions.tank, what
 scripts/mission.sh runs after set-up), of the bag replay and of a Simulation script. Afterwards every process
 the run started (its whole process tree, collected from /proc just before the signal, including roslaunch's
 own session) has exited, and every bag it wrote opens with `rosbag info` without `rosbag reindex`.
@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, wait_for
+from unexmin.scripting.launcher import free_port, marked_processes, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 EXIT_TIMEOUT = 40.0  # [s] roslaunch: 15 s SIGINT grace per node, then SIGTERM
@@ -81,7 +81,7 @@ def test_roslaunch_with_record(tmp_path, runs):
 
 def test_mission(tmp_path, runs):
     out = tmp_path / "mission"
-    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.missions.tank", "--out", str(out)], tmp_path)
     wait_for(lambda: (out / "mission.bag.active").exists(), 120, "the mission's rosbag record to start")
     wait_for(lambda: "surge forward" in (tmp_path / "out.log").read_text(), 120, "the first leg to be driven")
     interrupt_and_check(runs, proc, [out / "mission.bag"])
@@ -89,7 +89,7 @@ def test_mission(tmp_path, runs):
 
 def test_mission_while_launching(tmp_path, runs):
     out = tmp_path / "mission"
-    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.missions.tank", "--out", str(out)], tmp_path)
     wait_for(lambda: (out / "logs" / "roslaunch.log").exists() and len(tree(proc.pid)) > 3, 60,
              "the mission to launch its world")
     interrupt_and_check(runs, proc, [out / "mission.bag"])

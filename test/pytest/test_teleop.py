@@ -1,4 +1,4 @@
-"""Keyboard teleop (python/unexmin/teleop.py, nodes/teleop): thesis table 5.1.
+"""Keyboard teleop (python/unexmin/control/teleop.py, nodes/teleop): thesis table 5.1.
 
 - TeleopState (no ROS, no terminal): every key of the table, limits, the hold timeout.
 - The real node in a real terminal: tmux (a private server) runs `rosrun unexmin teleop` on a private
@@ -19,8 +19,8 @@ import xmlrpc.client
 
 import pytest
 
-from unexmin.launcher import free_port, wait_for
-from unexmin.teleop import MOVE_KEYS, TeleopState
+from unexmin.scripting.launcher import free_port, wait_for
+from unexmin.control.teleop import MOVE_KEYS, TeleopState
 
 DEG = math.pi / 180.0
 

@@ -1,4 +1,4 @@
-"""KVH and DVL translators (python/unexmin/{kvh,dvl}_translator.py): unit conversions against their
+"""KVH and DVL translators (python/unexmin/translators/{kvh,dvl}.py): unit conversions against their
 definitions, round trips (message in -> translated -> back: the same numbers), invalid markers and the
 real robot's type names. Pure functions: no ROS master needed.
 
@@ -14,8 +14,8 @@ pytest.importorskip("kvh_1775.msg", reason="source the workspace (scripts/env.sh
 from dvl_nortek.msg import DvlBottomWaterTrack  # noqa: E402
 from kvh_1775.msg import ImuRawKvh  # noqa: E402
 
-from unexmin.dvl_translator import dvl_to_water_track, water_track_to_dvl  # noqa: E402
-from unexmin.kvh_translator import kvh_to_raw, raw_to_kvh  # noqa: E402
+from unexmin.translators.dvl import dvl_to_water_track, water_track_to_dvl  # noqa: E402
+from unexmin.translators.kvh import kvh_to_raw, raw_to_kvh  # noqa: E402
 from unexmin.msg import Dvl, ImuRaw  # noqa: E402
 
 BEAM_ANGLE = math.radians(25.0)

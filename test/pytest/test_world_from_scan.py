@@ -1,4 +1,4 @@
-"""Worlds from scans (python/unexmin/world_from_scan.py, docs/world_from_scan.md).
+"""Worlds from scans (python/unexmin/world_from_scan/, docs/world_from_scan.md).
 
 Known answers: point clouds are sampled here from meshes whose geometry is known (the tank's inner
 walls, a section of a generated mine, a sphere, a box), with noise (sd 2 cm) and missing patches; the
@@ -18,9 +18,8 @@ import trimesh
 import yaml
 
 from unexmin import mine_generator as mg
-from unexmin import world_from_scan as wfs
-from unexmin.map_quality import sample_surface
-from unexmin.mesh_marker import read_mesh
+from unexmin.world_from_scan import build as wfs
+from unexmin.worlds.meshes import read_mesh, sample_surface
 
 REPO = Path(__file__).resolve().parents[2]
 TANK = REPO / "worlds" / "meshes" / "tank.stl"

@@ -25,7 +25,7 @@ from ux1_msgs.msg import MotorCommand
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.srv import Step
 from unexmin.topics import ESC_COMMAND_TOPIC, sync_publisher
 

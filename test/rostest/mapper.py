@@ -35,9 +35,11 @@ from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
 from unexmin import Simulation
-from unexmin.allocation import ThrusterAllocator
-from unexmin.launcher import wait_for
-from unexmin.map_quality import expand, read_bt, sample_surface, world_path, world_triangles
+from unexmin.control.allocation import ThrusterAllocator
+from unexmin.scripting.launcher import wait_for
+from unexmin.map_quality import expand, read_bt
+from unexmin.worlds.files import world_path, world_triangles
+from unexmin.worlds.meshes import sample_surface
 from unexmin.msg import MapperStats
 from unexmin.srv import SaveMap
 

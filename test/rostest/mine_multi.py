@@ -25,7 +25,7 @@ from tf2_msgs.msg import TFMessage
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.topics import ESC_COMMAND_TOPIC
 
 NAMES = ["UX_1", "UX_2", "UX_3"]

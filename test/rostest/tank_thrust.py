@@ -10,7 +10,7 @@ from std_msgs.msg import Float64
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.topics import sync_publisher
 
 # Thesis allocation matrix (eq. 5.12) rows X and N, columns M0..M7.

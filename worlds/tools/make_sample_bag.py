@@ -11,7 +11,7 @@ centre of gravity that makes it rest at 14 deg pitch and 8 deg roll. It is spawn
 UX_1 position already at that rest attitude (no swinging in from level). A fixed remote-control
 mission (MISSION below: forward, yaw, left, pendulum, down, VBS; thesis 6.5 "X, Y, Z and Yaw remote
 control") is turned into the real robot's ESC commands the way the robot's own software does it:
-thesis allocation matrix (unexmin.allocation) then thrust -> rpm with the ESC table (unexmin.esc),
+thesis allocation matrix (unexmin.control.allocation) then thrust -> rpm with the ESC table (unexmin.control.esc),
 published at 10 Hz as ux1_msgs/MotorCommand. The simulator runs in lockstep through the same
 runner as the replay (unexmin.replay.LockstepRunner: /ux1/command/motors -> ESC driver ->
 thrusters), seed 0, and the robot's ground-truth odometry stands in for the real robot's
@@ -72,8 +72,8 @@ def mission_events(duration, vbs_trim=0.0, level_roll_pitch=None):
     of pitch then runs level instead of diving along its tilted x axis (moments stay in the body frame)."""
     import numpy as np
 
-    from unexmin.allocation import ThrusterAllocator
-    from unexmin.esc import MODE_RPM, EscConverter
+    from unexmin.control.allocation import ThrusterAllocator
+    from unexmin.control.esc import MODE_RPM, EscConverter
     from unexmin.geometry import rpy_matrix
 
     alloc, esc = ThrusterAllocator(), EscConverter()
@@ -95,7 +95,7 @@ def perturbed_world_files(tmp, overrides=None, spawn_xyz=None):
     """A copy of tank.world spawning UX_1 at the perturbed rest attitude, and a launch file that starts
     it with urdf/ux1_perturbed.urdf.xacro as UX_1's description, or with ux1.urdf.xacro and
     `overrides` (spawned at that robot's rest attitude)."""
-    from unexmin.replay.world import world_launch_file
+    from unexmin.worlds.spawn import world_launch_file
 
     if overrides:
         from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
@@ -121,7 +121,7 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_tr
 
     from unexmin.bag import BagWriter
     from unexmin.replay import LockstepRunner
-    from unexmin.simulation import Simulation
+    from unexmin.scripting.simulation import Simulation
     from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.launcher import WorldProcess, wait_for
-from unexmin.mesh_marker import read_mesh
+from unexmin.scripting.launcher import WorldProcess, wait_for
+from unexmin.worlds.meshes import read_mesh
 from unexmin.world_from_scan import build_world, sample_scan
 
 REPO = Path(__file__).resolve().parents[2]

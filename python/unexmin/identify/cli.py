@@ -11,7 +11,7 @@ import yaml
 
 from unexmin.identify.model import DOF, INDEX, PARAMS
 from unexmin.replay.bag_io import MOTORS_TOPIC, read_bag
-from unexmin.replay.errors import ReplayError
+from unexmin.replay.errors import ReplayError, print_summary
 
 DESCRIPTION = "Identify the robot's dynamics (Fossen model) from a mission bag; write identified.yaml, " \
               "an overrides file and a report."
@@ -273,7 +273,5 @@ def main(argv=None):
     except ReplayError as e:
         print(f"identify: error: {e}", file=sys.stderr)
         return 2
-    for line in summary(data):
-        print(line)
-    print(f"written: {Path(args.out).resolve()}/identified.yaml, identified_overrides.xacro, report.md")
-    return 0
+    return print_summary(summary(data), f"written: {Path(args.out).resolve()}/identified.yaml, "
+                         "identified_overrides.xacro, report.md")

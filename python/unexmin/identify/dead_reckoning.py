@@ -112,7 +112,7 @@ def _skew_exp(phi):
     return np.eye(3) + math.sin(th) / th * K + (1.0 - math.cos(th)) / th ** 2 * K @ K
 
 
-def rpy_of(R):
+def matrices_to_rpy(R):
     """(n, 3) ZYX roll, pitch, yaw [rad] of (n, 3, 3) matrices (body -> world)."""
     roll = np.arctan2(R[:, 2, 1], R[:, 2, 2])
     pitch = np.arcsin(np.clip(-R[:, 2, 0], -1.0, 1.0))
@@ -182,7 +182,7 @@ def dead_reckon(imu, dvl, pressure, mounts, t_out, water_density=1000.0, gravity
     low, _ = lfilter([alpha], [1.0, alpha - 1.0], err, zi=[start * (1.0 - alpha)])
     pos[:, 2] += low
     # 4. sample the pose at t_out
-    rpy = rpy_of(R)
+    rpy = matrices_to_rpy(R)
     rpy[:, 2] = np.unwrap(rpy[:, 2])
     t_out = np.clip(np.asarray(t_out, float), t[0], t[-1])
     cols = [np.interp(t_out, t, pos[:, i]) for i in range(3)] + [np.interp(t_out, t, rpy[:, i]) for i in range(3)]

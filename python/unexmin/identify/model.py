@@ -83,10 +83,10 @@ def submerged_fraction(z, surface_z, radius):
 
 def thrust_history(physics, motors, times, rate=500.0, converter=None):
     """Achieved thrust [N] of each thruster at unit gain at `times` [s] (mission time), from the
-    mission's motor commands [(t, mode, values[8])]: the ESC conversion (unexmin.esc), then each
+    mission's motor commands [(t, mode, values[8])]: the ESC conversion (unexmin.control.esc), then each
     thruster's command limits, watchdog and first-order dynamics at the physics `rate` [Hz], as the
     simulator applies them (a command acts from the physics step after its time)."""
-    from unexmin.esc import EscConverter
+    from unexmin.control.esc import EscConverter
 
     converter = converter or EscConverter()
     dt = 1.0 / rate

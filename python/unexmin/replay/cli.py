@@ -10,7 +10,7 @@ import time
 from pathlib import Path
 
 from unexmin.replay.bag_io import MOTORS_TOPIC, read_bag
-from unexmin.replay.errors import ReplayError
+from unexmin.replay.errors import ReplayError, print_summary
 from unexmin.replay.metrics import compare, to_start_frame
 from unexmin.replay.plots import write_csv, write_plots
 
@@ -25,7 +25,7 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
     overrides: xacro overrides file of the replaying robot (e.g. from unexmin.identify); that robot is
     then spawned at the bag's first roll and pitch (the real robot's trim), not level."""
     from unexmin.replay.runner import LockstepRunner
-    from unexmin.simulation import Simulation
+    from unexmin.scripting.simulation import Simulation
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -39,7 +39,7 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
             raise ReplayError("--overrides needs a simulator of its own: not with --connect")
         if not Path(overrides).is_file():
             raise ReplayError(f"--overrides {overrides}: no such file")
-        from unexmin.replay.world import world_launch_file
+        from unexmin.worlds.spawn import world_launch_file
 
         roll_pitch = None if mission.nav is None else (float(mission.nav[0, 4]), float(mission.nav[0, 5]))
         try:
@@ -182,7 +182,4 @@ def main(argv=None):
     except (RuntimeError, TimeoutError) as e:
         print(f"replay_mission: simulator failure: {e}", file=sys.stderr)
         return 1
-    for line in summary(report):
-        print(line)
-    print(f"report: {Path(args.out).resolve() / 'report.json'}")
-    return 0
+    return print_summary(summary(report), f"report: {Path(args.out).resolve() / 'report.json'}")

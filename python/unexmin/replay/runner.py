@@ -29,8 +29,8 @@ class LockstepRunner:
         wall time for the ESC driver to connect and to handle each command."""
         from ux1_msgs.msg import MotorCommand
 
-        from unexmin.esc_driver_node import EscDriverNode
-        from unexmin.launcher import wait_for
+        from unexmin.control.esc_driver_node import EscDriverNode
+        from unexmin.scripting.launcher import wait_for
         from unexmin.topics import sync_publisher
 
         self.sim, self.timeout, self.MotorCommand = sim, timeout, MotorCommand

@@ -45,7 +45,7 @@ def main():
     from std_srvs.srv import Empty
     from ux1_msgs.msg import MotorCommand
 
-    from unexmin.launcher import WorldProcess, stop_process_group, wait_for
+    from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record, Reset, Step
 
     world = WorldProcess(world="tank", realtime=True, paused=False, log_dir=log_dir)

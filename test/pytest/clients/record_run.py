@@ -32,7 +32,7 @@ def main():
     import rosgraph
     import rospy
     from unexmin import Simulation
-    from unexmin.launcher import WorldProcess, stop_process_group, wait_for
+    from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record
 
     world = WorldProcess(world=world_name, paused=True, log_dir=log_dir, extra_args=launch_args)
