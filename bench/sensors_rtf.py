@@ -36,14 +36,27 @@ from xmlrpc.client import ServerProxy
 import rosgraph
 
 HERE = Path(__file__).resolve().parent
-RATES = {"/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/imu_raw": 500, "/UX_1/kvh/raw": 500,
-         "/UX_1/pressure": 10, "/UX_1/dvl": 8, "/UX_1/dvl_sonar0": 8, "/UX_1/dvl_sonar1": 8,
-         "/UX_1/dvl_sonar2": 8, "/UX_1/dvl_sonar3": 8, "/UX_1/dvl_twist": 8, "/UX_1/dvl_water_track": 8}
+RATES = {
+    "/UX_1/imu": 500,
+    "/UX_1/imu/mag": 500,
+    "/UX_1/kvh/imu_raw": 500,
+    "/UX_1/kvh/raw": 500,
+    "/UX_1/pressure": 10,
+    "/UX_1/dvl": 8,
+    "/UX_1/dvl_sonar0": 8,
+    "/UX_1/dvl_sonar1": 8,
+    "/UX_1/dvl_sonar2": 8,
+    "/UX_1/dvl_sonar3": 8,
+    "/UX_1/dvl_twist": 8,
+    "/UX_1/dvl_water_track": 8,
+}
 ELEVEN = [t for t in RATES if t != "/UX_1/kvh/raw"]  # kvh/raw is advertised only for the rospy translator
-SINKS = {"none": dict(sink=None, kvh_translator=False, topics=[]),
-         "cpp-sink": dict(sink="counter", kvh_translator=False, topics=ELEVEN),
-         "rosbag": dict(sink="rosbag", kvh_translator=False, topics=ELEVEN),
-         "rospy-kvh": dict(sink="counter", kvh_translator=True, topics=list(RATES))}
+SINKS = {
+    "none": dict(sink=None, kvh_translator=False, topics=[]),
+    "cpp-sink": dict(sink="counter", kvh_translator=False, topics=ELEVEN),
+    "rosbag": dict(sink="rosbag", kvh_translator=False, topics=ELEVEN),
+    "rospy-kvh": dict(sink="counter", kvh_translator=True, topics=list(RATES)),
+}
 COUNTER_QUEUE = 100000
 
 
@@ -53,8 +66,22 @@ def build_counter(workdir):
     cxx = shutil.which("g++")
     if not cxx:
         raise RuntimeError("g++ not found: the cpp-sink runs need it")
-    subprocess.run([cxx, "-O2", "-std=c++17", str(HERE / "topic_counter.cpp"), "-o", str(exe), "-lroscpp",
-                    "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-ltopic_tools"], check=True)
+    subprocess.run(
+        [
+            cxx,
+            "-O2",
+            "-std=c++17",
+            str(HERE / "topic_counter.cpp"),
+            "-o",
+            str(exe),
+            "-lroscpp",
+            "-lrosconsole",
+            "-lroscpp_serialization",
+            "-lrostime",
+            "-ltopic_tools",
+        ],
+        check=True,
+    )
     return exe
 
 
@@ -110,9 +137,16 @@ def measure(sink_name, pace, window, workdir):
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     bag = Path(workdir) / f"{sink_name}.bag"
-    args = ["roslaunch", "--port", str(port), str(HERE / "sensors_bench.launch"), f"pace:={pace}",
-            f"kvh_translator:={str(cfg['kvh_translator']).lower()}",
-            f"bag:={bag if cfg['sink'] == 'rosbag' else ''}", "topics:=" + " ".join(topics)]
+    args = [
+        "roslaunch",
+        "--port",
+        str(port),
+        str(HERE / "sensors_bench.launch"),
+        f"pace:={pace}",
+        f"kvh_translator:={str(cfg['kvh_translator']).lower()}",
+        f"bag:={bag if cfg['sink'] == 'rosbag' else ''}",
+        "topics:=" + " ".join(topics),
+    ]
     log = open(Path(workdir) / f"{sink_name}.log", "w")
     proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
     counter = None
@@ -126,16 +160,22 @@ def measure(sink_name, pace, window, workdir):
         nodes = ["/simulator", "/UX_1/dvl_translator"] + (["/UX_1/kvh_translator"] if cfg["kvh_translator"] else [])
         sink_node = None
         if cfg["sink"] == "counter":
-            counter = subprocess.Popen([str(build_counter(workdir)), str(window_file), str(COUNTER_QUEUE)] + topics,
-                                       stdout=subprocess.PIPE, text=True)
+            counter = subprocess.Popen(
+                [str(build_counter(workdir)), str(window_file), str(COUNTER_QUEUE)] + topics,
+                stdout=subprocess.PIPE,
+                text=True,
+            )
             sink_node = lambda subs: any(s.startswith("/topic_counter") for s in subs)  # noqa: E731
         elif cfg["sink"] == "rosbag":
             nodes.append("/bag_record")
             sink_node = lambda subs: "/bag_record" in subs  # noqa: E731
         if sink_node:
             master = rosgraph.Master("/sensors_bench")
-            wait_for(lambda: sum(sink_node(subs) for t, subs in master.getSystemState()[1] if t in topics)
-                     == len(topics), 30.0, "the sink to subscribe to every topic")
+            wait_for(
+                lambda: sum(sink_node(subs) for t, subs in master.getSystemState()[1] if t in topics) == len(topics),
+                30.0,
+                "the sink to subscribe to every topic",
+            )
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sensors_bench", nodes)
         if counter:
@@ -176,16 +216,24 @@ def core_cost():
     with tempfile.TemporaryDirectory() as tmp:
         urdf = Path(tmp) / "ux1.urdf"
         xacro = shutil.which("xacro") or str(Path(sys.executable).parent / "xacro")
-        urdf.write_text(subprocess.run([xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"],
-                                       capture_output=True, text=True, check=True).stdout)
+        urdf.write_text(
+            subprocess.run(
+                [xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], capture_output=True, text=True, check=True
+            ).stdout
+        )
         subprocess.run([str(exe), str(urdf), str(repo / "worlds" / "tank.world")], check=True)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--window", type=float, default=10.0, help="wall seconds per run")
-    parser.add_argument("--pace", type=float, nargs="+", default=[0, 100, 50, 25, 10],
-                        help="real-time factors to pace at (0 = free-running lockstep)")
+    parser.add_argument(
+        "--pace",
+        type=float,
+        nargs="+",
+        default=[0, 100, 50, 25, 10],
+        help="real-time factors to pace at (0 = free-running lockstep)",
+    )
     parser.add_argument("--sinks", nargs="+", choices=list(SINKS), default=list(SINKS))
     parser.add_argument("--verbose", action="store_true", help="print every topic's delivered fraction")
     parser.add_argument("--core", action="store_true", help="only the models' cost in the core, without ROS")
@@ -202,9 +250,12 @@ def main():
     print(f"tank, 1 robot, physics 500 Hz, {args.window:.0f} s of wall time per run")
     print(f"{'sink':>9} {'pace':>5} {'RTF':>6} {'delivered':>10}  CPU (share of one core)")
     for name in args.sinks:
-        for pace in (args.pace if SINKS[name]["sink"] else [0]):
-            out = subprocess.run([sys.executable, __file__, "--one", name, str(pace), "--window", str(args.window)],
-                                 capture_output=True, text=True)
+        for pace in args.pace if SINKS[name]["sink"] else [0]:
+            out = subprocess.run(
+                [sys.executable, __file__, "--one", name, str(pace), "--window", str(args.window)],
+                capture_output=True,
+                text=True,
+            )
             if out.returncode != 0:
                 print(f"{name} pace {pace}: failed\n{out.stderr[-2000:]}", flush=True)
                 continue

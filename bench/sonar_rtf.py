@@ -41,24 +41,46 @@ def measure(robots, window, sink, workdir):
     names = ROBOTS[:robots]
     topics = [f"/{r}/{t}" for r in names for t in RATES]
     log = open(Path(workdir) / "launch.log", "w")
-    proc = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", f"robots:={robots}",
-                             "realtime:=false", "paused:=true", "seed:=0"],
-                            stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    proc = subprocess.Popen(
+        [
+            "roslaunch",
+            "--port",
+            str(port),
+            "unexmin",
+            "tank_world.launch",
+            f"robots:={robots}",
+            "realtime:=false",
+            "paused:=true",
+            "seed:=0",
+        ],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     counter = None
     window_file = Path(workdir) / "window"
     try:
         sim = Simulation(node_name="sonar_bench", timeout=60.0)
         for r in names:
-            wait_for(lambda: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()), 30.0,
-                     f"/{r}/m3/points")
+            wait_for(
+                lambda: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()), 30.0, f"/{r}/m3/points"
+            )
         nodes = ["/simulator"] + [f"/{r}/m3_translator" for r in names]
         if sink == "counter":
-            counter = subprocess.Popen([str(build_counter(workdir)), str(window_file), "100000"] + topics,
-                                       stdout=subprocess.PIPE, text=True)
+            counter = subprocess.Popen(
+                [str(build_counter(workdir)), str(window_file), "100000"] + topics, stdout=subprocess.PIPE, text=True
+            )
             master = rosgraph.Master("/sonar_bench")
-            wait_for(lambda: sum(any(s.startswith("/topic_counter") for s in subs)
-                                 for t, subs in master.getSystemState()[1] if t in topics) == len(topics),
-                     30.0, "the sink to subscribe to every topic")
+            wait_for(
+                lambda: sum(
+                    any(s.startswith("/topic_counter") for s in subs)
+                    for t, subs in master.getSystemState()[1]
+                    if t in topics
+                )
+                == len(topics),
+                30.0,
+                "the sink to subscribe to every topic",
+            )
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sonar_bench", nodes)
         t_sim0, t_sim1, wall, cpu = timed_window(sim, pids, window)
@@ -66,8 +88,9 @@ def measure(robots, window, sink, workdir):
         if counter:
             time.sleep(3.0)  # let the translators and the sink drain (benchmark only)
             counts = counter_counts(counter, window_file, t_sim0, t_sim1)
-            result["delivered"] = min(counts.get(t, 0) / max(1, round(RATES[t.split("/", 2)[2]] * (t_sim1 - t_sim0)))
-                                      for t in topics)
+            result["delivered"] = min(
+                counts.get(t, 0) / max(1, round(RATES[t.split("/", 2)[2]] * (t_sim1 - t_sim0))) for t in topics
+            )
         return result
     finally:
         stop_bench(counter, proc, log)
@@ -88,8 +111,11 @@ def main():
     print(f"tank, lockstep, physics 500 Hz, MSIS + M3 on every robot, sink {args.sink}, {args.window:.0f} s per run")
     print(f"{'robots':>6} {'RTF':>6} {'delivered':>9}  CPU (share of one core)")
     for n in args.robots:
-        out = subprocess.run([sys.executable, __file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink],
-                             capture_output=True, text=True)
+        out = subprocess.run(
+            [sys.executable, __file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink],
+            capture_output=True,
+            text=True,
+        )
         if out.returncode != 0:
             print(f"{n} robots: failed\n{out.stderr[-2000:]}", flush=True)
             continue

@@ -66,6 +66,9 @@ def node_command_line(name, doc, argv=None):
     import sys
 
     parser = argparse.ArgumentParser(
-        prog=f"rosrun unexmin {name}", usage=f"rosrun unexmin {name} [_param:=value ...] [topic:=other_topic ...]",
-        description=doc, epilog="Parameters and topics: see the doc page named above.")
+        prog=f"rosrun unexmin {name}",
+        usage=f"rosrun unexmin {name} [_param:=value ...] [topic:=other_topic ...]",
+        description=doc,
+        epilog="Parameters and topics: see the doc page named above.",
+    )
     parser.parse_known_args([a for a in (sys.argv[1:] if argv is None else argv) if ":=" not in a])

@@ -29,8 +29,9 @@ class MarkedRuns:
         """Start `args` in folder `tmp` (its output in tmp/out.log, ROS_HOME and ROS_LOG_DIR inside tmp),
         with `env` added to the environment; returns (process, marker)."""
         marker = f"pytest-{os.getpid()}-{len(self._runs)}-{time.monotonic_ns()}"
-        e = dict(os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker,
-                 **env)
+        e = dict(
+            os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker, **env
+        )
         log = open(tmp / "out.log", "w")
         proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, env=e, start_new_session=True, cwd=tmp)
         self._runs.append((proc, marker, log))

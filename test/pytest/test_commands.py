@@ -37,8 +37,14 @@ def help_of(command):
 
 def test_the_docs_name_commands():
     # The lists below come from the docs: an empty one would test nothing.
-    assert {"unexmin.batch", "unexmin.identify", "unexmin.map_quality", "unexmin.mine_generator", "unexmin.replay",
-            "unexmin.world_from_scan"} <= set(MODULES)
+    assert {
+        "unexmin.batch",
+        "unexmin.identify",
+        "unexmin.map_quality",
+        "unexmin.mine_generator",
+        "unexmin.replay",
+        "unexmin.world_from_scan",
+    } <= set(MODULES)
     assert set(ROSRUN) <= set(NODES), f"documented but not in nodes/: {set(ROSRUN) - set(NODES)}"
     assert len(NODES) >= 9
 

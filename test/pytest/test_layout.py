@@ -13,8 +13,24 @@ CPP = REPO / "cpp" / "unexmin"
 LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros_layer"]
 SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
-ROS_ROOTS = {"ros", "roscpp", "rosbag", "rosconsole", "tf", "tf2", "tf2_ros", "tf2_eigen", "image_transport",
-             "kvh_1775", "ux1_msgs", "dvl_nortek", "std_srvs", "pluginlib", "nodelet", "urdf"}
+ROS_ROOTS = {
+    "ros",
+    "roscpp",
+    "rosbag",
+    "rosconsole",
+    "tf",
+    "tf2",
+    "tf2_ros",
+    "tf2_eigen",
+    "image_transport",
+    "kvh_1775",
+    "ux1_msgs",
+    "dvl_nortek",
+    "std_srvs",
+    "pluginlib",
+    "nodelet",
+    "urdf",
+}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
 
@@ -73,8 +89,13 @@ def test_no_folder_includes_a_folder_above_it():
 
 
 def test_the_core_includes_no_ros_header():
-    bad = [f"{p.relative_to(REPO)}: <{h}>" for p in sources() if folder_of(p) != "ros_layer"
-           for _, h in includes(p) if is_ros_header(h)]
+    bad = [
+        f"{p.relative_to(REPO)}: <{h}>"
+        for p in sources()
+        if folder_of(p) != "ros_layer"
+        for _, h in includes(p)
+        if is_ros_header(h)
+    ]
     assert not bad, "ROS headers in the ROS-free core:\n" + "\n".join(bad)
 
 
@@ -97,8 +118,16 @@ def test_each_library_links_only_libraries_below_it_and_only_ros_links_ros():
                 assert folder == "ros_layer", f"unexmin_{folder} links the ROS library {dep}"
 
 
-@pytest.mark.parametrize("header,expected", [("ros/ros.h", True), ("sensor_msgs/Imu.h", True),
-                                             ("unexmin/Step.h", True), ("unexmin/sim/world.h", False),
-                                             ("Eigen/Core", False), ("embree3/rtcore.h", False)])
+@pytest.mark.parametrize(
+    "header,expected",
+    [
+        ("ros/ros.h", True),
+        ("sensor_msgs/Imu.h", True),
+        ("unexmin/Step.h", True),
+        ("unexmin/sim/world.h", False),
+        ("Eigen/Core", False),
+        ("embree3/rtcore.h", False),
+    ],
+)
 def test_ros_headers_are_recognised(header, expected):
     assert is_ros_header(header) is expected

@@ -27,15 +27,23 @@ def listening(pids):
 
 def test_world_listens_on_loopback(tmp_path):
     import rosgraph
+
     port = free_port()
     marker = f"loopback-test-{os.getpid()}"
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_IP", "ROS_HOSTNAME")}
-    env.update(ROS_IP="127.0.0.1", ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp_path),
-               UNEXMIN_RUN=marker)
-    proc = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch"], env=env,
-                            stdout=open(tmp_path / "roslaunch.out", "w"), stderr=subprocess.STDOUT, start_new_session=True)
+    env.update(
+        ROS_IP="127.0.0.1", ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp_path), UNEXMIN_RUN=marker
+    )
+    proc = subprocess.Popen(
+        ["roslaunch", "--port", str(port), "unexmin", "tank_world.launch"],
+        env=env,
+        stdout=open(tmp_path / "roslaunch.out", "w"),
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     try:
         master = rosgraph.Master("/loopback_test", master_uri=env["ROS_MASTER_URI"])
+
         def nodes():
             try:
                 state = master.getSystemState()

@@ -4,6 +4,7 @@ Pure functions: no ROS master needed.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_m3_translator.py (workspace sourced).
 """
+
 import math
 import random
 

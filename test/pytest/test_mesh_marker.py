@@ -6,6 +6,7 @@ master: the latched MarkerArray it publishes is the one build_markers makes.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_mesh_marker.py
 """
+
 import json
 import os
 import shutil
@@ -55,8 +56,8 @@ def test_cube_section_is_one_square_loop_whose_faces_point_out():
     points, normals = loops[0]
     assert polygon_area(points[:, :2]) == pytest.approx(4.0)
     np.testing.assert_allclose(points[:, 2], 0.25)
-    assert not mm.faces_inwards(points, normals)              # a solid: no water inside
-    inverted = np.asarray(box.faces)[:, ::-1]                 # a 2 m cube of water
+    assert not mm.faces_inwards(points, normals)  # a solid: no water inside
+    inverted = np.asarray(box.faces)[:, ::-1]  # a 2 m cube of water
     points, normals = mm.plane_loops(np.asarray(box.vertices), inverted, 0.25)[0]
     assert mm.faces_inwards(points, normals)
     assert mm.plane_loops(np.asarray(box.vertices), np.asarray(box.faces), 1.5) == []
@@ -76,14 +77,16 @@ def test_ear_clipping_covers_a_non_convex_polygon_exactly():
 def test_tank_markers_and_its_six_by_four_metre_water_surface():
     world = load_world(WORLDS / "tank.world")
     tris = mm.water_surface(world)
-    assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)      # interior 6 m x 4 m
+    assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)  # interior 6 m x 4 m
     np.testing.assert_allclose(tris[..., 2], 0.0, atol=1e-9)
     np.testing.assert_allclose(tris[..., 0].min(), -3.0, atol=1e-6)
     np.testing.assert_allclose(tris[..., 1].max(), 2.0, atol=1e-6)
     array = mm.build_markers(world)
     meshes = [m for m in array.markers if m.ns == "world_meshes"]
-    assert [Path(m.mesh_resource[len("file://"):]) for m in meshes] == [WORLDS / "meshes/tank.stl",
-                                                                       WORLDS / "meshes/anchor.stl"]
+    assert [Path(m.mesh_resource[len("file://") :]) for m in meshes] == [
+        WORLDS / "meshes/tank.stl",
+        WORLDS / "meshes/anchor.stl",
+    ]
     assert all(m.type == m.MESH_RESOURCE and m.header.frame_id == "world" for m in meshes)
     assert meshes[1].pose.position.z == pytest.approx(-1.8)
     assert (meshes[1].scale.x, meshes[1].scale.y, meshes[1].scale.z) == (1.0, 1.0, 1.0)
@@ -91,12 +94,15 @@ def test_tank_markers_and_its_six_by_four_metre_water_surface():
     assert len(water) == 1 and len(water[0].points) == 3 * len(tris) and water[0].color.a < 1.0
 
 
-@pytest.mark.parametrize("file, problem", [
-    ("/etc/passwd", "is an absolute path"),
-    ("../outside.stl", "is not inside the world file's folder"),
-    ("meshes/../../outside.stl", "is not inside the world file's folder"),
-    ("..", "is not inside the world file's folder"),
-])
+@pytest.mark.parametrize(
+    "file, problem",
+    [
+        ("/etc/passwd", "is an absolute path"),
+        ("../outside.stl", "is not inside the world file's folder"),
+        ("meshes/../../outside.stl", "is not inside the world file's folder"),
+        ("..", "is not inside the world file's folder"),
+    ],
+)
 def test_a_world_file_cannot_name_a_mesh_outside_its_folder(tmp_path, file, problem):
     # Same rule as the simulator (docs/worlds.md, "Paths"): the node would otherwise read and publish that file.
     (tmp_path / "w").mkdir()
@@ -120,7 +126,7 @@ def test_mine_water_surface_is_the_entry_shaft_section():
     tris = mm.water_surface(world)
     half, noise = man["preset"]["shaft_half"], man["wall_noise_max"]
     # inside the 6 m rounded-square shaft whose walls move by at most the noise amplitude
-    assert np.abs(tris[..., :2] - man["shaft_xy"]).max() <= half * 2 ** 0.5 + noise
+    assert np.abs(tris[..., :2] - man["shaft_xy"]).max() <= half * 2**0.5 + noise
     assert (2 * (half - noise)) ** 2 * 0.8 <= triangles_area(tris) <= (2 * (half + noise)) ** 2
 
 
@@ -151,11 +157,21 @@ def test_node_publishes_the_markers_latched(tmp_path):
     from unexmin.scripting.launcher import free_port
 
     port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
-    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch",
-                               f"world:={WORLDS / 'tank.world'}"], env=env, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True, start_new_session=True)
+    env = dict(
+        os.environ,
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1",
+        ROS_LOG_DIR=str(tmp_path / "log"),
+        ROS_HOME=str(tmp_path),
+    )
+    launch = subprocess.Popen(
+        ["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch", f"world:={WORLDS / 'tank.world'}"],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     try:
         # The client subscribes whenever it is ready: it only gets the message because it is latched.
         res = subprocess.run([sys.executable, "-c", CLIENT], env=env, capture_output=True, text=True, timeout=90)
@@ -165,5 +181,15 @@ def test_node_publishes_the_markers_latched(tmp_path):
         os.killpg(launch.pid, 2)
         launch.wait(20)
     expected = mm.build_markers(load_world(WORLDS / "tank.world"))
-    assert got == [[k.ns, k.id, k.type, k.header.frame_id, k.mesh_resource, len(k.points),
-                    [k.pose.position.x, k.pose.position.y, k.pose.position.z]] for k in expected.markers]
+    assert got == [
+        [
+            k.ns,
+            k.id,
+            k.type,
+            k.header.frame_id,
+            k.mesh_resource,
+            len(k.points),
+            [k.pose.position.x, k.pose.position.y, k.pose.position.z],
+        ]
+        for k in expected.markers
+    ]

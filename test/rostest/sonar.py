@@ -16,11 +16,10 @@ from std_msgs.msg import Float64
 from unexmin import Simulation
 
 NS = "/UX_1/"
-TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan,
-          "m3/points": PointCloud2}
-SECONDS = 2.0            # [s] of sim time per record
-M3_RATE = 40.0           # [Hz] urdf/properties.xacro m3_rate
-MSIS_RATE = 25.0         # [steps/s] msis_step_rate
+TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan, "m3/points": PointCloud2}
+SECONDS = 2.0  # [s] of sim time per record
+M3_RATE = 40.0  # [Hz] urdf/properties.xacro m3_rate
+MSIS_RATE = 25.0  # [steps/s] msis_step_rate
 MSIS_STEP = math.radians(0.9)
 
 

@@ -34,9 +34,14 @@ def _track_metrics(track, times):
     track = np.asarray(track)
     steps = np.linalg.norm(np.diff(track, axis=0), axis=1)
     dt = np.maximum(np.diff(times), 1e-9)
-    return {"net_displacement_m": float(np.linalg.norm(track[-1] - track[0])), "path_length_m": float(steps.sum()),
-            "max_speed_m_s": float((steps / dt).max()) if len(steps) else 0.0,
-            "end_x_m": float(track[-1, 0]), "end_y_m": float(track[-1, 1]), "end_z_m": float(track[-1, 2])}
+    return {
+        "net_displacement_m": float(np.linalg.norm(track[-1] - track[0])),
+        "path_length_m": float(steps.sum()),
+        "max_speed_m_s": float((steps / dt).max()) if len(steps) else 0.0,
+        "end_x_m": float(track[-1, 0]),
+        "end_y_m": float(track[-1, 1]),
+        "end_z_m": float(track[-1, 2]),
+    }
 
 
 def tank_survey(sim, params):
@@ -60,8 +65,9 @@ def tank_survey(sim, params):
         if sim.time >= duration - 1e-9:
             break
     metrics = _track_metrics(track, times)
-    metrics["yaw_change_deg"] = math.degrees(math.remainder(yaw_of(ux.odom().pose.pose.orientation) - yaw0,
-                                                            2 * math.pi))
+    metrics["yaw_change_deg"] = math.degrees(
+        math.remainder(yaw_of(ux.odom().pose.pose.orientation) - yaw0, 2 * math.pi)
+    )
     metrics["sim_time_s"] = sim.time
     return metrics
 
@@ -92,9 +98,14 @@ def station_keeping(sim, params):
         sim.step(steps)
     final = float(np.linalg.norm(_position(ux) - target))
     errors = np.array(errors or [final])
-    return {"mean_error_m": float(errors.mean()), "max_error_m": float(errors.max()),
-            "rms_error_m": float(np.sqrt((errors ** 2).mean())), "final_error_m": final,
-            "mean_total_thrust_N": float(np.mean(effort)) if effort else 0.0, "sim_time_s": sim.time}
+    return {
+        "mean_error_m": float(errors.mean()),
+        "max_error_m": float(errors.max()),
+        "rms_error_m": float(np.sqrt((errors**2).mean())),
+        "final_error_m": final,
+        "mean_total_thrust_N": float(np.mean(effort)) if effort else 0.0,
+        "sim_time_s": sim.time,
+    }
 
 
 def gallery_traverse(sim, params):
@@ -126,7 +137,13 @@ def gallery_traverse(sim, params):
     if reached == len(path):
         t_end = sim.time
     metrics = _track_metrics(track, times)
-    metrics.update({"waypoints_reached": reached, "waypoints": len(path), "reached_end": reached == len(path),
-                    "time_to_end_s": t_end if reached == len(path) else -1.0, "sim_time_s": sim.time})
+    metrics.update(
+        {
+            "waypoints_reached": reached,
+            "waypoints": len(path),
+            "reached_end": reached == len(path),
+            "time_to_end_s": t_end if reached == len(path) else -1.0,
+            "sim_time_s": sim.time,
+        }
+    )
     return metrics
-

@@ -31,8 +31,14 @@ def local_cluster(workers):
     from dask.distributed import LocalCluster
 
     with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                            dashboard_address="127.0.0.1:0", scheduler_port=0)
+        return LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+            scheduler_port=0,
+        )
 
 
 def _executing(dask_worker):
@@ -77,11 +83,22 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
         cluster = local_cluster(workers)
         client = Client(cluster)
     try:
-        log(f"[batch] {len(missions)} missions of {spec['mission']} on {scheduler or f'a local cluster of {workers} workers'}"
-            f"; Dask dashboard: {client.dashboard_link}")
+        log(
+            f"[batch] {len(missions)} missions of {spec['mission']} on {scheduler or f'a local cluster of {workers} workers'}"
+            f"; Dask dashboard: {client.dashboard_link}"
+        )
         t_submit = time.monotonic()
-        futures = [client.submit(run_mission, spec, m, out, key=f"unexmin-mission-{m['index']:05d}-{os.getpid()}-"
-                                 f"{time.monotonic_ns()}", pure=False) for m in missions]
+        futures = [
+            client.submit(
+                run_mission,
+                spec,
+                m,
+                out,
+                key=f"unexmin-mission-{m['index']:05d}-{os.getpid()}-" f"{time.monotonic_ns()}",
+                pure=False,
+            )
+            for m in missions
+        ]
         keys = {f.key for f in futures}
         rows, failed = [], 0
         bar = tqdm(total=len(futures), desc="missions", unit="mission", disable=not progress, file=sys.stderr)
@@ -119,8 +136,15 @@ def _row(future, futures, missions):
         return future.result()
     except Exception as e:
         m = missions[futures.index(future)]
-        return dict({"index": m["index"], "seed": m["seed"]}, **m["params"], status="failed",
-                    error=f"Dask task failed: {type(e).__name__}: {e}", log="", attempts=0, wall_time_s=math.nan)
+        return dict(
+            {"index": m["index"], "seed": m["seed"]},
+            **m["params"],
+            status="failed",
+            error=f"Dask task failed: {type(e).__name__}: {e}",
+            log="",
+            attempts=0,
+            wall_time_s=math.nan,
+        )
 
 
 def table(spec, rows):
@@ -131,7 +155,9 @@ def table(spec, rows):
     params = list(spec["params"]) + list(spec["sweep"]) + list(spec["sample"])
     metrics = []
     for r in rows:
-        metrics += [k for k in r if k not in metrics and k not in params and k not in TAIL and k not in ("index", "seed")]
+        metrics += [
+            k for k in r if k not in metrics and k not in params and k not in TAIL and k not in ("index", "seed")
+        ]
     columns = ["index", "seed", *params, *metrics, *TAIL]
     return pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
 
@@ -149,8 +175,15 @@ def metric_columns(spec, df):
     import pandas as pd
 
     params = set(spec["params"]) | set(spec["sweep"]) | set(spec["sample"])
-    return [c for c in df.columns if c not in params and c not in TAIL and c not in ("index", "seed")
-            and pd.api.types.is_numeric_dtype(df[c]) and not pd.api.types.is_bool_dtype(df[c])]
+    return [
+        c
+        for c in df.columns
+        if c not in params
+        and c not in TAIL
+        and c not in ("index", "seed")
+        and pd.api.types.is_numeric_dtype(df[c])
+        and not pd.api.types.is_bool_dtype(df[c])
+    ]
 
 
 def plot_summary(spec, df, out):
@@ -172,7 +205,7 @@ def plot_summary(spec, df, out):
 
     def grid(title):
         fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False)
-        for ax in axes.flat[len(metrics):]:
+        for ax in axes.flat[len(metrics) :]:
             ax.set_visible(False)
         fig.suptitle(title)
         return fig, axes.flat
@@ -226,16 +259,18 @@ def main(argv=None):
         print(f"error: {e}", file=sys.stderr)
         return 2
     t0 = time.monotonic()
-    df = run_batch(spec, args.out, workers=args.workers, scheduler=args.scheduler, limit=args.limit,
-                   progress=not args.no_progress)
+    df = run_batch(
+        spec, args.out, workers=args.workers, scheduler=args.scheduler, limit=args.limit, progress=not args.no_progress
+    )
     wall = time.monotonic() - t0
     paths = write_results(df, os.path.abspath(args.out))
     plots = plot_summary(spec, df, os.path.abspath(args.out))
     failed = df[df["status"] != "ok"]
-    print(f"[batch] {len(df) - len(failed)} ok, {len(failed)} failed of {len(df)} missions in {wall:.1f} s of wall "
-          f"time ({len(df) / wall * 60:.1f} missions/min)")
+    print(
+        f"[batch] {len(df) - len(failed)} ok, {len(failed)} failed of {len(df)} missions in {wall:.1f} s of wall "
+        f"time ({len(df) / wall * 60:.1f} missions/min)"
+    )
     for _, r in failed.iterrows():
         print(f"[batch] mission {r['index']} (seed {r['seed']}) failed: {r['error']} (log: {r['log']})")
     print(f"[batch] results: {paths[0]}, {paths[1]}" + (f"; plots: {', '.join(plots)}" if plots else ""))
     return 0
-

@@ -29,8 +29,24 @@ WORLD_PARAMS = {
     "overrides": "xacro overrides file for every robot (relative to the spec's folder)",
 }
 DISTRIBUTIONS = {"uniform": 2, "normal": 2, "loguniform": 2, "integers": 2, "choice": None}
-KEYS = {"world", "robots", "mission", "duration", "timeout", "retries", "seeds", "sweep", "sample", "sample_seed",
-        "params", "sensors", "mode", "ray_caster_threads", "python_path", "control"}
+KEYS = {
+    "world",
+    "robots",
+    "mission",
+    "duration",
+    "timeout",
+    "retries",
+    "seeds",
+    "sweep",
+    "sample",
+    "sample_seed",
+    "params",
+    "sensors",
+    "mode",
+    "ray_caster_threads",
+    "python_path",
+    "control",
+}
 VISIBILITY = ("none", "low", "medium", "high")
 
 
@@ -78,16 +94,21 @@ def _check_value(where, name, value):
 
 def _distribution(where, value):
     if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in DISTRIBUTIONS:
-        raise SpecError(f"{where}: expected one of {{{', '.join(f'{d}: [...]' for d in DISTRIBUTIONS)}}}, "
-                        f"got {value!r}")
+        raise SpecError(
+            f"{where}: expected one of {{{', '.join(f'{d}: [...]' for d in DISTRIBUTIONS)}}}, " f"got {value!r}"
+        )
     kind, args = next(iter(value.items()))
     if not isinstance(args, list) or not args or (DISTRIBUTIONS[kind] and len(args) != DISTRIBUTIONS[kind]):
-        raise SpecError(f"{where}.{kind}: expected a list of {DISTRIBUTIONS[kind] or 'one or more'} values, got {args!r}")
+        raise SpecError(
+            f"{where}.{kind}: expected a list of {DISTRIBUTIONS[kind] or 'one or more'} values, got {args!r}"
+        )
     if kind != "choice":
         a, b = (_number(f"{where}.{kind}[{i}]", v) for i, v in enumerate(args))
         if kind == "normal" and b < 0 or kind != "normal" and not a <= b:
-            raise SpecError(f"{where}.{kind}: {args!r}: expected " +
-                            ("a standard deviation >= 0" if kind == "normal" else "low <= high"))
+            raise SpecError(
+                f"{where}.{kind}: {args!r}: expected "
+                + ("a standard deviation >= 0" if kind == "normal" else "low <= high")
+            )
         if kind == "loguniform" and a <= 0:
             raise SpecError(f"{where}.loguniform: {args!r}: expected 0 < low <= high")
     return kind, args
@@ -128,8 +149,10 @@ def check_spec(raw, path="<spec>"):
     spec = {"path": path, "base": base}
     mission = raw.get("mission")
     if not isinstance(mission, str) or mission.count(":") != 1 or not all(mission.split(":")):
-        raise SpecError(f"{path}: mission: expected 'module:function' (e.g. unexmin.batch.missions:tank_survey), "
-                        f"got {mission!r}")
+        raise SpecError(
+            f"{path}: mission: expected 'module:function' (e.g. unexmin.batch.missions:tank_survey), "
+            f"got {mission!r}"
+        )
     spec["mission"] = mission
     world = raw.get("world", "tank")
     if not isinstance(world, str):
@@ -137,17 +160,21 @@ def check_spec(raw, path="<spec>"):
     try:
         spec["world_file"] = os.path.abspath(world_path(world, base))
     except FileNotFoundError:
-        raise SpecError(f"{path}: world: {world!r} is neither a world of the package's worlds/ "
-                        "(tank, mine, test_box) nor an existing world file") from None
+        raise SpecError(
+            f"{path}: world: {world!r} is neither a world of the package's worlds/ "
+            "(tank, mine, test_box) nor an existing world file"
+        ) from None
     spec["world"] = world
     spec["robots"] = _number(f"{path}: robots", raw.get("robots", 1), 1, 3, integer=True)
     spec["duration"] = _number(f"{path}: duration [s of sim time]", raw.get("duration", 30.0), 1e-3)
-    spec["timeout"] = _number(f"{path}: timeout [s of wall time per attempt]",
-                              raw.get("timeout", 120.0 + 10.0 * spec["duration"]), 1.0)
+    spec["timeout"] = _number(
+        f"{path}: timeout [s of wall time per attempt]", raw.get("timeout", 120.0 + 10.0 * spec["duration"]), 1.0
+    )
     spec["retries"] = _number(f"{path}: retries", raw.get("retries", 1), 0, 5, integer=True)
     spec["sample_seed"] = _number(f"{path}: sample_seed", raw.get("sample_seed", 0), 0, integer=True)
-    spec["ray_caster_threads"] = _number(f"{path}: ray_caster_threads", raw.get("ray_caster_threads", 1), 0,
-                                         integer=True)
+    spec["ray_caster_threads"] = _number(
+        f"{path}: ray_caster_threads", raw.get("ray_caster_threads", 1), 0, integer=True
+    )
     for key, default, accepted in (("sensors", "all", None), ("mode", "operational", ("operational", "visual"))):
         value = raw.get(key, default)
         if not isinstance(value, str) or (accepted and value not in accepted):
@@ -222,8 +249,9 @@ def load_mission_function(name):
     try:
         module = importlib.import_module(module_name)
     except ImportError as e:
-        raise SpecError(f"mission {name!r}: cannot import module {module_name!r} ({e}); is its folder in the "
-                        "spec's python_path?") from None
+        raise SpecError(
+            f"mission {name!r}: cannot import module {module_name!r} ({e}); is its folder in the " "spec's python_path?"
+        ) from None
     fn = getattr(module, attr, None)
     if not callable(fn):
         raise SpecError(f"mission {name!r}: module {module_name!r} has no function {attr!r}")
@@ -237,8 +265,11 @@ def write_world(spec, params, folder):
         world = yaml.safe_load(f)
     link_meshes(world.get("meshes") or [], os.path.dirname(os.path.abspath(spec["world_file"])), folder)
     current = world.setdefault("current", {})
-    for name, var in (("current_speed", "speed"), ("current_angle", "horizontal_angle"),
-                      ("current_vertical_angle", "vertical_angle")):
+    for name, var in (
+        ("current_speed", "speed"),
+        ("current_angle", "horizontal_angle"),
+        ("current_vertical_angle", "vertical_angle"),
+    ):
         if name in params:
             value = float(params[name])
             process = current.setdefault(var, {"min": value, "max": value, "noise": 0.0, "mu": 0.0})
@@ -279,18 +310,23 @@ def write_overrides(spec, params, folder):
             raise SpecError(f"overrides {params['overrides']!r}: no such file ({user})")
         lines.append(f'  <xacro:include filename="{user}"/>')
     if "buoyancy_offset" in params:
-        lines.append(f'  <xacro:property name="vehicle_mass" value="${{vehicle_mass - ({float(params["buoyancy_offset"])!r})}}"'
-                     ' scope="global"/>')
+        lines.append(
+            f'  <xacro:property name="vehicle_mass" value="${{vehicle_mass - ({float(params["buoyancy_offset"])!r})}}"'
+            ' scope="global"/>'
+        )
     if "sensor_noise_scale" in params:
         scale = float(params["sensor_noise_scale"])
-        lines += [f'  <xacro:property name="{n}" value="${{{n} * {scale!r}}}" scope="global"/>'
-                  for n in noise_properties()]
+        lines += [
+            f'  <xacro:property name="{n}" value="${{{n} * {scale!r}}}" scope="global"/>' for n in noise_properties()
+        ]
     if not lines:
         return ""
     path = os.path.join(folder, "overrides.xacro")
     with open(path, "w") as f:
-        f.write('<?xml version="1.0"?>\n<!-- Written by unexmin.batch for one mission (docs/batch.md) -->\n'
-                '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n' + "\n".join(lines) + "\n</robot>\n")
+        f.write(
+            '<?xml version="1.0"?>\n<!-- Written by unexmin.batch for one mission (docs/batch.md) -->\n'
+            '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n' + "\n".join(lines) + "\n</robot>\n"
+        )
     return path
 
 
@@ -299,15 +335,25 @@ def write_launch(spec, mission, folder):
     os.makedirs(folder, exist_ok=True)
     world = write_world(spec, mission["params"], folder)
     overrides = write_overrides(spec, mission["params"], folder)
-    args = {"world": world, "robots": spec["robots"], "realtime": "false", "paused": "true",
-            "seed": mission["seed"], "mode": spec["mode"], "sensors": spec["sensors"],
-            "ray_caster_threads": spec["ray_caster_threads"], "control": str(spec["control"]).lower(),
-            "mesh_marker": "false"}  # no rviz in a batch
+    args = {
+        "world": world,
+        "robots": spec["robots"],
+        "realtime": "false",
+        "paused": "true",
+        "seed": mission["seed"],
+        "mode": spec["mode"],
+        "sensors": spec["sensors"],
+        "ray_caster_threads": spec["ray_caster_threads"],
+        "control": str(spec["control"]).lower(),
+        "mesh_marker": "false",
+    }  # no rviz in a batch
     for k in range(1, spec["robots"] + 1):
         args[f"UX_{k}_overrides"] = overrides
     body = "\n".join(f'    <arg name="{k}" value="{v}"/>' for k, v in args.items())
     path = os.path.join(folder, "mission.launch")
     with open(path, "w") as f:
-        f.write("<!-- Written by unexmin.batch for one mission (docs/batch.md) -->\n<launch>\n"
-                f'  <include file="$(find unexmin)/launch/simulation.launch">\n{body}\n  </include>\n</launch>\n')
+        f.write(
+            "<!-- Written by unexmin.batch for one mission (docs/batch.md) -->\n<launch>\n"
+            f'  <include file="$(find unexmin)/launch/simulation.launch">\n{body}\n  </include>\n</launch>\n'
+        )
     return path

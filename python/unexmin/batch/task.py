@@ -58,11 +58,20 @@ def _child(task_path):
         from unexmin.scripting.simulation import Simulation
 
         fn = load_mission_function(spec["mission"])
-        params = dict(mission["params"], seed=mission["seed"], index=mission["index"], duration=spec["duration"],
-                      robots=spec["robots"])
+        params = dict(
+            mission["params"],
+            seed=mission["seed"],
+            index=mission["index"],
+            duration=spec["duration"],
+            robots=spec["robots"],
+        )
         os.environ.setdefault("ROS_HOME", os.path.join(folder, "ros_home"))
-        with Simulation.launch(launch_file=task["launch_file"], log_dir=os.path.join(folder, "logs"),
-                               timeout=min(120.0, spec["timeout"]), node_name="unexmin_batch") as sim:
+        with Simulation.launch(
+            launch_file=task["launch_file"],
+            log_dir=os.path.join(folder, "logs"),
+            timeout=min(120.0, spec["timeout"]),
+            node_name="unexmin_batch",
+        ) as sim:
             result["timings"]["launch_s"] = round(time.monotonic() - t0, 3)
             metrics = fn(sim, params)
             result["timings"]["mission_s"] = round(time.monotonic() - t0 - result["timings"]["launch_s"], 3)
@@ -81,8 +90,9 @@ def _child(task_path):
 def check_metrics(name, metrics):
     """`metrics` as {name: float|int|str|bool}; ValueError naming the mission and the bad metric otherwise."""
     if not isinstance(metrics, dict) or not metrics:
-        raise ValueError(f"mission {name} returned {type(metrics).__name__} {metrics!r}: expected a non-empty "
-                         "dict of metrics")
+        raise ValueError(
+            f"mission {name} returned {type(metrics).__name__} {metrics!r}: expected a non-empty " "dict of metrics"
+        )
     clean = {}
     for key, value in metrics.items():
         if not isinstance(key, str) or not key.isidentifier():
@@ -105,11 +115,17 @@ def _attempt(task_path, folder, timeout, attempt):
         os.remove(result_path)
     marker = uuid.uuid4().hex  # every process of the attempt (child, roslaunch, nodes) inherits it
     outer = os.environ.get("UNEXMIN_RUN")
-    env = dict(os.environ, UNEXMIN_RUN=f"{outer}:{marker}" if outer else marker,
-               ROS_LOG_DIR=os.path.join(folder, "logs"))
+    env = dict(
+        os.environ, UNEXMIN_RUN=f"{outer}:{marker}" if outer else marker, ROS_LOG_DIR=os.path.join(folder, "logs")
+    )
     with open(log_path, "w") as log:
-        proc = subprocess.Popen([sys.executable, "-m", "unexmin.batch.task", task_path], stdout=log,
-                                stderr=subprocess.STDOUT, start_new_session=True, env=env)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "unexmin.batch.task", task_path],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+            env=env,
+        )
         try:
             proc.wait(timeout)
             timed_out = False
@@ -151,8 +167,15 @@ def run_mission(spec, mission, out):
     row = {"index": mission["index"], "seed": mission["seed"]}
     row.update(mission["params"])
     row.update(metrics)
-    row.update({"status": status, "error": error, "log": log, "attempts": attempts,
-                "wall_time_s": round(time.monotonic() - t0, 3)})
+    row.update(
+        {
+            "status": status,
+            "error": error,
+            "log": log,
+            "attempts": attempts,
+            "wall_time_s": round(time.monotonic() - t0, 3),
+        }
+    )
     return row
 
 
@@ -160,8 +183,9 @@ def main(argv=None):
     """`python -m unexmin.batch.task TASK.json`: one attempt of one mission, as run_mission starts it."""
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m unexmin.batch.task",
-                                     description="One attempt of one batch mission (started by unexmin.batch).")
+    parser = argparse.ArgumentParser(
+        prog="python -m unexmin.batch.task", description="One attempt of one batch mission (started by unexmin.batch)."
+    )
     parser.add_argument("task", help="the task file run_mission writes (spec, mission, launch file)")
     return _child(parser.parse_args(argv).task)
 

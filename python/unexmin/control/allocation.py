@@ -58,12 +58,15 @@ def validate_matrix(matrix, name="allocation_matrix"):
         raise AllocationError(f"parameter {name}: expected 6 rows of numbers (X Y Z K M N), got {matrix!r} ({e})")
     if a.ndim == 1:
         if a.size == 0 or a.size % 6:
-            raise AllocationError(f"parameter {name}: a flat list needs 6 x n numbers (row-major, rows X Y Z K M N), "
-                                  f"got {a.size}")
+            raise AllocationError(
+                f"parameter {name}: a flat list needs 6 x n numbers (row-major, rows X Y Z K M N), " f"got {a.size}"
+            )
         a = a.reshape(6, -1)
     if a.ndim != 2 or a.shape[0] != 6 or a.shape[1] < 1:
-        raise AllocationError(f"parameter {name}: expected shape 6 x n (rows X Y Z K M N, one column per thruster), "
-                              f"got shape {' x '.join(str(s) for s in a.shape)}")
+        raise AllocationError(
+            f"parameter {name}: expected shape 6 x n (rows X Y Z K M N, one column per thruster), "
+            f"got shape {' x '.join(str(s) for s in a.shape)}"
+        )
     bad = np.argwhere(~np.isfinite(a))
     if bad.size:
         r, c = bad[0]

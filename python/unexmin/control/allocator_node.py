@@ -32,15 +32,19 @@ class ThrusterAllocatorNode:
     def __init__(self):
         self.load_params()
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64)
-                              for i in range(self.allocator.thrusters)]
-        self.motor_pub = (sync_publisher(self.motor_topic, MotorCommand)
-                          if self.publish_motor_command else None)
+        self.thruster_pubs = [
+            sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(self.allocator.thrusters)
+        ]
+        self.motor_pub = sync_publisher(self.motor_topic, MotorCommand) if self.publish_motor_command else None
         self.sub = rospy.Subscriber(f"{ns}force_moments", Wrench, self.on_wrench, queue_size=10, tcp_nodelay=True)
-        rospy.loginfo("thruster_allocator: /%sforce_moments -> /%sthrusters/0..%d/input%s, max thrust %.1f N",
-                      ns[1:], ns[1:], self.allocator.thrusters - 1,
-                      f" and {self.motor_topic} ({MODE_NAMES[self.motor_mode]})" if self.motor_pub else "",
-                      self.allocator.max_thrust)
+        rospy.loginfo(
+            "thruster_allocator: /%sforce_moments -> /%sthrusters/0..%d/input%s, max thrust %.1f N",
+            ns[1:],
+            ns[1:],
+            self.allocator.thrusters - 1,
+            f" and {self.motor_topic} ({MODE_NAMES[self.motor_mode]})" if self.motor_pub else "",
+            self.allocator.max_thrust,
+        )
 
     def load_params(self):
         """Every parameter, checked in one place (errors name the parameter)."""
@@ -53,15 +57,18 @@ class ThrusterAllocatorNode:
             raise AllocationError(str(e).replace("parameter ", "parameter ~", 1))
         self.publish_motor_command = rospy.get_param("~publish_motor_command", True)
         if not isinstance(self.publish_motor_command, bool):
-            raise AllocationError(f"parameter ~publish_motor_command = {self.publish_motor_command!r}: "
-                                  "expected true or false")
+            raise AllocationError(
+                f"parameter ~publish_motor_command = {self.publish_motor_command!r}: " "expected true or false"
+            )
         self.motor_topic = str(rospy.get_param("~motor_command_topic", ESC_COMMAND_TOPIC))
         self.motor_mode = parse_mode(rospy.get_param("~motor_command_mode", "rpm"), "~motor_command_mode")
         # The ESC tables (same parameters as the ESC driver) give the inverse conversion thrust -> rpm/duty.
         self.converter = converter_from_params(lambda name, default: rospy.get_param("~" + name, default))
         if self.publish_motor_command and self.allocator.thrusters != 8:
-            raise AllocationError(f"parameter ~allocation_matrix: has {self.allocator.thrusters} thruster columns "
-                                  "but ux1_msgs/MotorCommand carries exactly 8; set ~publish_motor_command false")
+            raise AllocationError(
+                f"parameter ~allocation_matrix: has {self.allocator.thrusters} thruster columns "
+                "but ux1_msgs/MotorCommand carries exactly 8; set ~publish_motor_command false"
+            )
 
     def on_wrench(self, msg):
         try:
@@ -70,8 +77,11 @@ class ThrusterAllocatorNode:
             rospy.logwarn_throttle(1.0, f"thruster_allocator: rejected /{self.robot}/force_moments: {e}")
             return
         if scale < 1.0:
-            rospy.logwarn_throttle(5.0, f"thruster_allocator: wrench {wrench_to_list(msg)} needs more than "
-                                        f"{self.allocator.max_thrust} N on a thruster; scaled by {scale:.3f}")
+            rospy.logwarn_throttle(
+                5.0,
+                f"thruster_allocator: wrench {wrench_to_list(msg)} needs more than "
+                f"{self.allocator.max_thrust} N on a thruster; scaled by {scale:.3f}",
+            )
         for pub, t in zip(self.thruster_pubs, thrusts):
             pub.publish(Float64(float(t)))
         if self.motor_pub is not None:

@@ -32,11 +32,26 @@ KGF = 9.80665  # [N] per kilogram-force
 
 # T200 at 16 V (see module docstring): (PWM [us], RPM unsigned, force [kgf]), every ~50 us.
 _T200_16V = (
-    (1100, 3465, -4.07), (1152, 3207, -3.45), (1200, 2865, -2.71), (1252, 2517, -2.02),
-    (1300, 2140, -1.44), (1352, 1705, -0.90), (1400, 1246, -0.48), (1452, 578, -0.10),
-    (1468, 317, -0.04), (1472, 0, 0.0), (1528, 0, 0.0), (1532, 308, 0.04),
-    (1548, 573, 0.13), (1600, 1237, 0.60), (1652, 1740, 1.18), (1700, 2129, 1.82),
-    (1752, 2538, 2.65), (1800, 2888, 3.42), (1852, 3260, 4.51), (1900, 3533, 5.25),
+    (1100, 3465, -4.07),
+    (1152, 3207, -3.45),
+    (1200, 2865, -2.71),
+    (1252, 2517, -2.02),
+    (1300, 2140, -1.44),
+    (1352, 1705, -0.90),
+    (1400, 1246, -0.48),
+    (1452, 578, -0.10),
+    (1468, 317, -0.04),
+    (1472, 0, 0.0),
+    (1528, 0, 0.0),
+    (1532, 308, 0.04),
+    (1548, 573, 0.13),
+    (1600, 1237, 0.60),
+    (1652, 1740, 1.18),
+    (1700, 2129, 1.82),
+    (1752, 2538, 2.65),
+    (1800, 2888, 3.42),
+    (1852, 3260, 4.51),
+    (1900, 3533, 5.25),
 )
 
 
@@ -47,8 +62,7 @@ def _rpm_table():
 
 
 def _duty_table():
-    return (tuple((pwm - 1500) / 400.0 for pwm, _, _ in _T200_16V),
-            tuple(kgf * KGF for _, _, kgf in _T200_16V))
+    return (tuple((pwm - 1500) / 400.0 for pwm, _, _ in _T200_16V), tuple(kgf * KGF for _, _, kgf in _T200_16V))
 
 
 #: Signed propeller speed [rev/min] -> thrust [N] (T200, 16 V; an assumption for the UX-1).
@@ -83,12 +97,16 @@ class ThrustTable:
             raise EscTableError(f"parameter {name}: entries must be finite numbers")
         if np.any(np.diff(x) <= 0):
             i = int(np.flatnonzero(np.diff(x) <= 0)[0])
-            raise EscTableError(f"parameter {name}: input must be strictly increasing, "
-                                f"but input[{i}] = {x[i]} >= input[{i + 1}] = {x[i + 1]}")
+            raise EscTableError(
+                f"parameter {name}: input must be strictly increasing, "
+                f"but input[{i}] = {x[i]} >= input[{i + 1}] = {x[i + 1]}"
+            )
         if np.any(np.diff(y) < 0):
             i = int(np.flatnonzero(np.diff(y) < 0)[0])
-            raise EscTableError(f"parameter {name}: output (thrust) must not decrease with the input, "
-                                f"but output[{i}] = {y[i]} > output[{i + 1}] = {y[i + 1]}")
+            raise EscTableError(
+                f"parameter {name}: output (thrust) must not decrease with the input, "
+                f"but output[{i}] = {y[i]} > output[{i + 1}] = {y[i + 1]}"
+            )
         if y[-1] <= y[0]:
             raise EscTableError(f"parameter {name}: output is constant ({y[0]} N): no thrust can be commanded")
         self.inputs = x
@@ -172,8 +190,9 @@ class EscConverter:
 
     def table(self, mode):
         if mode not in self.tables:
-            raise EscTableError(f"unknown MotorCommand mode {mode}: expected {MODE_RPM} (RPM) or "
-                                f"{MODE_DUTY_CYCLE} (DUTY_CYCLE)")
+            raise EscTableError(
+                f"unknown MotorCommand mode {mode}: expected {MODE_RPM} (RPM) or " f"{MODE_DUTY_CYCLE} (DUTY_CYCLE)"
+            )
         return self.tables[mode]
 
     def to_thrust(self, mode, values):
@@ -213,8 +232,14 @@ def converter_from_params(get_param):
     Parameters: rpm_table_input [rev/min], rpm_table_output [N], duty_table_input [-1..1],
     duty_table_output [N], max_thrust [N] (defaults: module constants).
     """
-    rpm = ThrustTable(get_param("rpm_table_input", list(DEFAULT_RPM_TABLE[0])),
-                      get_param("rpm_table_output", list(DEFAULT_RPM_TABLE[1])), name="rpm_table_input/output")
-    duty = ThrustTable(get_param("duty_table_input", list(DEFAULT_DUTY_TABLE[0])),
-                       get_param("duty_table_output", list(DEFAULT_DUTY_TABLE[1])), name="duty_table_input/output")
+    rpm = ThrustTable(
+        get_param("rpm_table_input", list(DEFAULT_RPM_TABLE[0])),
+        get_param("rpm_table_output", list(DEFAULT_RPM_TABLE[1])),
+        name="rpm_table_input/output",
+    )
+    duty = ThrustTable(
+        get_param("duty_table_input", list(DEFAULT_DUTY_TABLE[0])),
+        get_param("duty_table_output", list(DEFAULT_DUTY_TABLE[1])),
+        name="duty_table_input/output",
+    )
     return EscConverter(rpm, duty, get_param("max_thrust", 40.0))

@@ -24,17 +24,22 @@ class EscDriverNode:
         announce: log the configuration at start (off for an in-process driver)."""
         self.load_params(robot, motor_topic)
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64)
-                              for i in range(self.thrusters)]
-        self.processed = 0          # MotorCommand messages handled (converted and published, or rejected)
-        self.published = 0          # thruster input messages published
-        self.last_thrusts = None    # [N] the last thrusts published
+        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(self.thrusters)]
+        self.processed = 0  # MotorCommand messages handled (converted and published, or rejected)
+        self.published = 0  # thruster input messages published
+        self.last_thrusts = None  # [N] the last thrusts published
         self._cond = threading.Condition()
         self.sub = rospy.Subscriber(self.motor_topic, MotorCommand, self.on_motors, queue_size=20, tcp_nodelay=True)
         log = rospy.loginfo if announce else rospy.logdebug
-        log("esc_driver: %s -> /%s/thrusters/0..%d/input (rpm table %s rpm -> %s N, max thrust %.1f N)",
-            self.motor_topic, self.robot, self.thrusters - 1, self.converter.tables[0].command_range,
-            self.converter.tables[0].thrust_range, self.converter.max_thrust)
+        log(
+            "esc_driver: %s -> /%s/thrusters/0..%d/input (rpm table %s rpm -> %s N, max thrust %.1f N)",
+            self.motor_topic,
+            self.robot,
+            self.thrusters - 1,
+            self.converter.tables[0].command_range,
+            self.converter.tables[0].thrust_range,
+            self.converter.max_thrust,
+        )
 
     def load_params(self, robot=None, motor_topic=None):
         """Every parameter, checked in one place (ValueError names the parameter)."""
@@ -42,8 +47,10 @@ class EscDriverNode:
         self.motor_topic = str(motor_topic or rospy.get_param("~motor_topic", ESC_COMMAND_TOPIC))
         self.thrusters = rospy.get_param("~thrusters", 8)
         if not isinstance(self.thrusters, int) or not 1 <= self.thrusters <= 8:
-            raise ValueError(f"parameter ~thrusters = {self.thrusters!r}: expected an integer in [1, 8] "
-                             "(MotorCommand carries 8 values)")
+            raise ValueError(
+                f"parameter ~thrusters = {self.thrusters!r}: expected an integer in [1, 8] "
+                "(MotorCommand carries 8 values)"
+            )
         self.converter = converter_from_params(lambda name, default: rospy.get_param("~" + name, default))
 
     def on_motors(self, msg):
@@ -54,8 +61,11 @@ class EscDriverNode:
             self._done(None)
             return
         if clamped:
-            rospy.logwarn_throttle(1.0, f"esc_driver: {MODE_NAMES[msg.mode]} command {list(msg.values)} needs more "
-                                        f"than +-{self.converter.max_thrust} N; thrust clamped")
+            rospy.logwarn_throttle(
+                1.0,
+                f"esc_driver: {MODE_NAMES[msg.mode]} command {list(msg.values)} needs more "
+                f"than +-{self.converter.max_thrust} N; thrust clamped",
+            )
         for pub, t in zip(self.thruster_pubs, thrusts):
             pub.publish(Float64(float(t)))
         self._done(thrusts, len(self.thruster_pubs))

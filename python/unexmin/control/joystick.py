@@ -118,10 +118,17 @@ class JoystickMapping:
         except (OSError, yaml.YAMLError) as e:
             raise ValueError(f"joystick mapping {path}: {e}") from None
         if not isinstance(doc, dict) or not set(doc) <= {"axes", "buttons", "dead_zone", "deadman_button"}:
-            raise ValueError(f"joystick mapping {path}: expected a map with axes, buttons, dead_zone, "
-                             f"deadman_button, got {doc!r:.80}")
-        return cls(doc.get("axes", {}), doc.get("buttons", {}), doc.get("dead_zone", 0.1),
-                   doc.get("deadman_button", -1), source=f"joystick mapping {path}")
+            raise ValueError(
+                f"joystick mapping {path}: expected a map with axes, buttons, dead_zone, "
+                f"deadman_button, got {doc!r:.80}"
+            )
+        return cls(
+            doc.get("axes", {}),
+            doc.get("buttons", {}),
+            doc.get("dead_zone", 0.1),
+            doc.get("deadman_button", -1),
+            source=f"joystick mapping {path}",
+        )
 
 
 class JoystickState(OperatorCommands):
@@ -133,8 +140,8 @@ class JoystickState(OperatorCommands):
     def __init__(self, mapping, **commands):
         super().__init__(**commands)
         self.mapping = mapping
-        self.axes = {}         # axis number -> value in [-1, 1]
-        self.buttons = {}      # button number -> 0/1
+        self.axes = {}  # axis number -> value in [-1, 1]
+        self.buttons = {}  # button number -> 0/1
         self.axis_count = self.button_count = 0
         self._intents = {number: intent for intent, number in mapping.buttons.items()}
 
@@ -168,8 +175,10 @@ class JoystickState(OperatorCommands):
 
     def deflections(self):
         """{component: deflection in [-1, 1]} of the mapped axes, dead zone applied."""
-        return {c: apply_dead_zone(scale * self.axes.get(n, 0.0), self.mapping.dead_zone)
-                for c, (n, scale) in self.mapping.axes.items()}
+        return {
+            c: apply_dead_zone(scale * self.axes.get(n, 0.0), self.mapping.dead_zone)
+            for c, (n, scale) in self.mapping.axes.items()
+        }
 
     def deadman(self):
         """True when the wrench may be non-zero (the dead-man button is held, or there is none)."""
@@ -181,8 +190,10 @@ class JoystickState(OperatorCommands):
 
     def joy_arrays(self):
         """(axes, buttons) of a sensor_msgs/Joy: every axis in [-1, 1] (no dead zone) and button 0/1."""
-        return ([self.axes.get(i, 0.0) for i in range(self.axis_count)],
-                [self.buttons.get(i, 0) for i in range(self.button_count)])
+        return (
+            [self.axes.get(i, 0.0) for i in range(self.axis_count)],
+            [self.buttons.get(i, 0) for i in range(self.button_count)],
+        )
 
 
 class DeviceLost(Exception):
@@ -203,7 +214,7 @@ class JoystickDevice:
         try:
             return fcntl.ioctl(self.fd, request, b"\0")[0]
         except OSError:
-            return 0           # not a joystick device (a FIFO in the tests): the counts grow with the events
+            return 0  # not a joystick device (a FIFO in the tests): the counts grow with the events
 
     def read(self):
         """Every complete record available now, as (time_ms, value, kind, number); DeviceLost on EOF or error."""
@@ -249,15 +260,19 @@ class JoystickNode:
         self.robot = robot_param()
         default_mapping = os.path.join(rospkg.RosPack().get_path("unexmin"), "config", "joystick.yaml")
         mapping = JoystickMapping.load(rospy.get_param("~mapping", default_mapping))
-        params = (("rate", 10.0, 0.5, 100.0, "Hz"), ("timeout", 0.5, 0.05, 10.0, "s"),
-                  ("reopen_period", 1.0, 0.05, 60.0, "s"))
+        params = (
+            ("rate", 10.0, 0.5, 100.0, "Hz"),
+            ("timeout", 0.5, 0.05, 10.0, "s"),
+            ("reopen_period", 1.0, 0.05, 60.0, "s"),
+        )
         for name, default, lo, hi, unit in params:
             value = rospy.get_param("~" + name, default)
             if not (isinstance(value, (int, float)) and lo <= value <= hi):
                 raise ValueError(f"parameter ~{name} = {value!r}: expected [{lo}, {hi}] {unit}")
             setattr(self, name, float(value))
-        self.state = JoystickState(mapping, **command_params(lambda name, default: rospy.get_param("~" + name,
-                                                                                                   default)))
+        self.state = JoystickState(
+            mapping, **command_params(lambda name, default: rospy.get_param("~" + name, default))
+        )
         self.device = device
         self.path = device.path
         self.state.axis_count, self.state.button_count = device.axis_count, device.button_count
@@ -310,8 +325,9 @@ class JoystickNode:
             if self.device is None and now >= next_reopen:
                 self.reopen()
                 next_reopen = now + self.reopen_period
-            deadline = min(next_pub, next_reopen) if self.device is None else min(next_pub,
-                                                                                 self.last_alive + self.timeout)
+            deadline = (
+                min(next_pub, next_reopen) if self.device is None else min(next_pub, self.last_alive + self.timeout)
+            )
             wait = max(0.0, deadline - now)
             changed = set()
             if self.device is None:
@@ -361,13 +377,15 @@ def main():
     a parameter is wrong; a zero wrench on Ctrl-C, SIGTERM and SIGHUP."""
     import rospy
 
-    rospy.init_node("joystick", disable_signals=True)   # Ctrl-C must reach us as KeyboardInterrupt
+    rospy.init_node("joystick", disable_signals=True)  # Ctrl-C must reach us as KeyboardInterrupt
     path = rospy.get_param("~device", "/dev/input/js0")
     try:
         device = JoystickDevice(path)
     except OSError as e:
-        sys.exit(f"joystick: cannot open ~device {path}: {os.strerror(e.errno)} "
-                 "(is the pad plugged in? another device: _device:=/dev/input/jsN)")
+        sys.exit(
+            f"joystick: cannot open ~device {path}: {os.strerror(e.errno)} "
+            "(is the pad plugged in? another device: _device:=/dev/input/jsN)"
+        )
     try:
         node = JoystickNode(device)
     except ValueError as e:

@@ -21,18 +21,32 @@ LINEAR_AXES = ("X", "Y", "Z")
 
 #: Step intents: name -> (what, sign). "speed" steps linear and angular together.
 STEP_INTENTS = {
-    "linear+": ("linear", +1), "linear-": ("linear", -1),
-    "angular+": ("angular", +1), "angular-": ("angular", -1),
-    "speed+": ("speed", +1), "speed-": ("speed", -1),
-    "pendulum+": ("pendulum", +1), "pendulum-": ("pendulum", -1),
-    "vbs+": ("vbs", +1), "vbs-": ("vbs", -1),
+    "linear+": ("linear", +1),
+    "linear-": ("linear", -1),
+    "angular+": ("angular", +1),
+    "angular-": ("angular", -1),
+    "speed+": ("speed", +1),
+    "speed-": ("speed", -1),
+    "pendulum+": ("pendulum", +1),
+    "pendulum-": ("pendulum", -1),
+    "vbs+": ("vbs", +1),
+    "vbs-": ("vbs", -1),
 }
 
 #: Defaults of the shared parameters (rospy private parameter name -> value; pendulum_step_deg in degrees).
 DEFAULTS = {
-    "linear": 10.0, "angular": 2.0, "linear_step": 1.0, "angular_step": 0.5, "linear_max": 80.0,
-    "angular_max": 40.0, "pendulum_step_deg": 1.0, "pendulum_min": math.radians(-30.0),
-    "pendulum_max": math.radians(30.0), "vbs_step": 0.01, "vbs_min": -1.0, "vbs_max": 1.0,
+    "linear": 10.0,
+    "angular": 2.0,
+    "linear_step": 1.0,
+    "angular_step": 0.5,
+    "linear_max": 80.0,
+    "angular_max": 40.0,
+    "pendulum_step_deg": 1.0,
+    "pendulum_min": math.radians(-30.0),
+    "pendulum_max": math.radians(30.0),
+    "vbs_step": 0.01,
+    "vbs_min": -1.0,
+    "vbs_max": 1.0,
 }
 
 
@@ -46,18 +60,35 @@ class OperatorCommands:
     vbs_step: [kg] per step; vbs_min/max: [kg] limits.
     """
 
-    def __init__(self, linear=10.0, angular=2.0, linear_step=1.0, angular_step=0.5, linear_max=80.0,
-                 angular_max=40.0, pendulum_step=math.radians(1.0), pendulum_min=math.radians(-30.0),
-                 pendulum_max=math.radians(30.0), vbs_step=0.01, vbs_min=-1.0, vbs_max=1.0):
-        checks = (("linear_step", linear_step), ("angular_step", angular_step), ("linear_max", linear_max),
-                  ("angular_max", angular_max), ("pendulum_step", pendulum_step), ("vbs_step", vbs_step))
+    def __init__(
+        self,
+        linear=10.0,
+        angular=2.0,
+        linear_step=1.0,
+        angular_step=0.5,
+        linear_max=80.0,
+        angular_max=40.0,
+        pendulum_step=math.radians(1.0),
+        pendulum_min=math.radians(-30.0),
+        pendulum_max=math.radians(30.0),
+        vbs_step=0.01,
+        vbs_min=-1.0,
+        vbs_max=1.0,
+    ):
+        checks = (
+            ("linear_step", linear_step),
+            ("angular_step", angular_step),
+            ("linear_max", linear_max),
+            ("angular_max", angular_max),
+            ("pendulum_step", pendulum_step),
+            ("vbs_step", vbs_step),
+        )
         for name, value in checks:
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ValueError(f"parameter ~{name} = {value!r}: expected a finite number > 0")
         for name, value, top in (("linear", linear, linear_max), ("angular", angular, angular_max)):
             if not (isinstance(value, (int, float)) and 0 <= value <= top):
-                raise ValueError(f"parameter ~{name} = {value!r}: expected a number in [0, {top}] "
-                                 f"(~{name}_max)")
+                raise ValueError(f"parameter ~{name} = {value!r}: expected a number in [0, {top}] " f"(~{name}_max)")
         for name, lo, hi in (("pendulum", pendulum_min, pendulum_max), ("vbs", vbs_min, vbs_max)):
             if not (math.isfinite(lo) and math.isfinite(hi) and lo <= 0.0 <= hi):
                 raise ValueError(f"parameters ~{name}_min = {lo}, ~{name}_max = {hi}: expected min <= 0 <= max")
@@ -94,11 +125,14 @@ class OperatorCommands:
             raise ValueError(f"intent {intent!r}: expected one of {', '.join(STEP_INTENTS)}")
         what, sign = STEP_INTENTS[intent]
         if what in ("linear", "angular", "speed"):
-            for kind in (("linear", "angular") if what == "speed" else (what,)):
+            for kind in ("linear", "angular") if what == "speed" else (what,):
                 self._speed(kind, sign)
             return {"speed", "wrench"}
-        step, lo, hi = ((self.pendulum_step, self.pendulum_min, self.pendulum_max) if what == "pendulum"
-                        else (self.vbs_step, self.vbs_min, self.vbs_max))
+        step, lo, hi = (
+            (self.pendulum_step, self.pendulum_min, self.pendulum_max)
+            if what == "pendulum"
+            else (self.vbs_step, self.vbs_min, self.vbs_max)
+        )
         n = getattr(self, what + "_steps") + sign
         if lo - 1e-12 <= n * step <= hi + 1e-12:
             setattr(self, what + "_steps", n)
@@ -122,8 +156,10 @@ class OperatorCommands:
 
     def summary(self):
         """One line of the final state (printed when a teleop stops)."""
-        return (f"linear {self.linear:g} N, angular {self.angular:g} N m, "
-                f"pendulum {math.degrees(self.pendulum):g} deg, VBS {self.vbs:g} kg")
+        return (
+            f"linear {self.linear:g} N, angular {self.angular:g} N m, "
+            f"pendulum {math.degrees(self.pendulum):g} deg, VBS {self.vbs:g} kg"
+        )
 
 
 def command_params(get_param):

@@ -28,15 +28,25 @@ from unexmin.control.operator_commands import CommandPublishers, OperatorCommand
 
 #: Movement keys: key -> (wrench component, sign). Thesis table 5.1 (A is -yaw, D is +yaw).
 MOVE_KEYS = {
-    "w": ("Z", +1), "s": ("Z", -1),
-    "a": ("N", -1), "d": ("N", +1),
-    "i": ("X", +1), "k": ("X", -1),
-    "j": ("Y", +1), "l": ("Y", -1),
+    "w": ("Z", +1),
+    "s": ("Z", -1),
+    "a": ("N", -1),
+    "d": ("N", +1),
+    "i": ("X", +1),
+    "k": ("X", -1),
+    "j": ("Y", +1),
+    "l": ("Y", -1),
 }
 #: Step keys: key -> operator intent (unexmin.control.operator_commands.STEP_INTENTS).
 STEP_KEYS = {
-    "z": "linear+", "x": "linear-", "c": "angular+", "v": "angular-",
-    "e": "pendulum+", "r": "pendulum-", "y": "vbs+", "u": "vbs-",
+    "z": "linear+",
+    "x": "linear-",
+    "c": "angular+",
+    "v": "angular-",
+    "e": "pendulum+",
+    "r": "pendulum-",
+    "y": "vbs+",
+    "u": "vbs-",
 }
 
 HELP = (
@@ -58,7 +68,7 @@ class TeleopState(OperatorCommands):
         if not math.isfinite(key_timeout):
             raise ValueError(f"parameter ~key_timeout = {key_timeout!r}: expected a number of seconds")
         self.key_timeout = float(key_timeout)
-        self.held = {}            # axis -> (sign, expiry time [s] or None when latched)
+        self.held = {}  # axis -> (sign, expiry time [s] or None when latched)
         self.quit = False
 
     def press(self, key, now):
@@ -187,8 +197,8 @@ def main():
     import rospy
 
     if not sys.stdin.isatty():
-        sys.exit("teleop: stdin is not a terminal; run it in a terminal (roslaunch: launch-prefix=\"xterm -e\")")
-    rospy.init_node("teleop", disable_signals=True)   # Ctrl-C must reach us as KeyboardInterrupt
+        sys.exit('teleop: stdin is not a terminal; run it in a terminal (roslaunch: launch-prefix="xterm -e")')
+    rospy.init_node("teleop", disable_signals=True)  # Ctrl-C must reach us as KeyboardInterrupt
     try:
         node = TeleopNode()
     except ValueError as e:
@@ -196,7 +206,7 @@ def main():
     signal.signal(signal.SIGTERM, exit_on_signal)
     signal.signal(signal.SIGHUP, exit_on_signal)
     try:
-        curses.wrapper(node.run)          # wrapper restores the terminal whatever happens inside
+        curses.wrapper(node.run)  # wrapper restores the terminal whatever happens inside
     except KeyboardInterrupt:
         pass
     finally:

@@ -1,4 +1,5 @@
 """python -m unexmin.map_quality MAP.bt --world WORLD --out DIR ... (docs/mapping.md)."""
+
 import sys
 
 from unexmin.map_quality.cli import main

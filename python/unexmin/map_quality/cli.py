@@ -27,6 +27,7 @@ from unexmin.map_quality.metrics import evaluate, expand
 from unexmin.map_quality.plots import plot_distances
 from unexmin.worlds.files import world_path, world_triangles
 
+
 def run(map_path, world, out, trajectory=None, tau=None, sensor_range=10.0, seed=0):
     """The quality figures (dict) of the map at map_path against `world` (mine, tank or a world file); writes
     out/map_quality.json and out/map_quality.png."""
@@ -37,15 +38,28 @@ def run(map_path, world, out, trajectory=None, tau=None, sensor_range=10.0, seed
     tris = world_triangles(world_path(world))
     path = read_trajectory(trajectory)[:, 1:4] if trajectory else None
     result, dist = evaluate(centres, tris, tau, path, sensor_range, seed)
-    result.update({"occupied_leaves": int(len(leaves)), "map": os.path.abspath(map_path), "world": world, "trajectory": trajectory,
-                   "map_bytes": os.path.getsize(map_path)})
+    result.update(
+        {
+            "occupied_leaves": int(len(leaves)),
+            "map": os.path.abspath(map_path),
+            "world": world,
+            "trajectory": trajectory,
+            "map_bytes": os.path.getsize(map_path),
+        }
+    )
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "map_quality.json"), "w") as f:
         json.dump(result, f, indent=2)
     if len(centres):
-        plot_distances(centres, dist, tau, path, os.path.join(out, "map_quality.png"),
-             f"{os.path.basename(map_path)} vs {world}: precision {result['precision']:.3f}, "
-             f"recall {result['recall']:.3f}, F {result['f_score']:.3f} at tau {tau:g} m")
+        plot_distances(
+            centres,
+            dist,
+            tau,
+            path,
+            os.path.join(out, "map_quality.png"),
+            f"{os.path.basename(map_path)} vs {world}: precision {result['precision']:.3f}, "
+            f"recall {result['recall']:.3f}, F {result['f_score']:.3f} at tau {tau:g} m",
+        )
     return result
 
 
@@ -55,14 +69,21 @@ def main(argv=None):
     parser.add_argument("--world", required=True, help="mine, tank or a world file")
     parser.add_argument("--trajectory", help="bag (nav_msgs/Odometry) or CSV (x, y, z) of the robot's path")
     parser.add_argument("--tau", type=float, help="distance threshold [m] (default: the voxel size)")
-    parser.add_argument("--range", type=float, default=10.0, dest="sensor_range",
-                        help="surface within this distance [m] of the path counts for recall (default 10)")
+    parser.add_argument(
+        "--range",
+        type=float,
+        default=10.0,
+        dest="sensor_range",
+        help="surface within this distance [m] of the path counts for recall (default 10)",
+    )
     parser.add_argument("--out", required=True, help="output folder (created)")
     args = parser.parse_args(argv)
     r = run(args.map, args.world, args.out, args.trajectory, args.tau, args.sensor_range)
-    print(f"{r['occupied_voxels']} occupied voxels: precision {r['precision']:.3f}, recall {r['recall']:.3f}, "
-          f"F-score {r['f_score']:.3f} at tau {r['tau_m']:g} m; distance mean {r['mean_distance_m']:.3f} m, "
-          f"95th percentile {r['p95_distance_m']:.3f} m -> {os.path.join(args.out, 'map_quality.json')}")
+    print(
+        f"{r['occupied_voxels']} occupied voxels: precision {r['precision']:.3f}, recall {r['recall']:.3f}, "
+        f"F-score {r['f_score']:.3f} at tau {r['tau_m']:g} m; distance mean {r['mean_distance_m']:.3f} m, "
+        f"95th percentile {r['p95_distance_m']:.3f} m -> {os.path.join(args.out, 'map_quality.json')}"
+    )
     return 0
 
 

@@ -44,17 +44,25 @@ def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
     # Recall: the surface within sensor range of the path (all of it without a path), sampled at tau/2 or
     # coarser, at most about 4 million samples.
     seen_tris = tris if path is None else tris[near_path(tris, path, sensor_range + 1.0)]
-    area = 0.5 * np.linalg.norm(np.cross(seen_tris[:, 1] - seen_tris[:, 0], seen_tris[:, 2] - seen_tris[:, 0]), axis=1).sum()
+    area = (
+        0.5
+        * np.linalg.norm(np.cross(seen_tris[:, 1] - seen_tris[:, 0], seen_tris[:, 2] - seen_tris[:, 0]), axis=1).sum()
+    )
     seen_spacing = max(tau / 2.0, math.sqrt(area / 4e6)) if area > 0 else tau / 2.0
     seen, seen_area = sample_surface(seen_tris, seen_spacing, seed + 1)
     if path is not None and len(seen):
         d_path, _ = cKDTree(path).query(seen)
         seen_area *= float(np.mean(d_path <= sensor_range))
         seen = seen[d_path <= sensor_range]
-    result = {"tau_m": tau, "occupied_voxels": int(len(centres)), "surface_samples": int(len(seen)),
-              "surface_area_m2": round(seen_area, 3), "sample_spacing_m": spacing,
-              "recall_sample_spacing_m": seen_spacing,
-              "sensor_range_m": sensor_range if path is not None else None}
+    result = {
+        "tau_m": tau,
+        "occupied_voxels": int(len(centres)),
+        "surface_samples": int(len(seen)),
+        "surface_area_m2": round(seen_area, 3),
+        "sample_spacing_m": spacing,
+        "recall_sample_spacing_m": seen_spacing,
+        "sensor_range_m": sensor_range if path is not None else None,
+    }
     dist = np.full(len(centres), np.inf)
     if len(centres) and len(wide):
         dist, _ = cKDTree(wide).query(centres)
@@ -64,11 +72,13 @@ def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
         d_seen, _ = cKDTree(centres).query(seen)
         recall = float(np.mean(d_seen <= tau))
     finite = dist[np.isfinite(dist)]
-    result.update({
-        "precision": precision, "recall": recall,
-        "f_score": 2 * precision * recall / (precision + recall) if precision + recall > 0 else 0.0,
-        "mean_distance_m": float(finite.mean()) if len(finite) else None,
-        "p95_distance_m": float(np.percentile(finite, 95)) if len(finite) else None,
-    })
+    result.update(
+        {
+            "precision": precision,
+            "recall": recall,
+            "f_score": 2 * precision * recall / (precision + recall) if precision + recall > 0 else 0.0,
+            "mean_distance_m": float(finite.mean()) if len(finite) else None,
+            "p95_distance_m": float(np.percentile(finite, 95)) if len(finite) else None,
+        }
+    )
     return result, dist
-

@@ -22,4 +22,3 @@ def plot_distances(centres, dist, tau, path, out_png, title):
     fig.suptitle(title)
     fig.savefig(out_png, dpi=110)
     plt.close(fig)
-

@@ -36,34 +36,65 @@ GENERATOR_VERSION = 2
 @dataclass(frozen=True)
 class Preset:
     """Size and resolution of a generated mine; lengths [m]."""
+
     name: str
-    length: float               # extent along x, entry shaft wall to the farthest drift end
-    half_width: float           # the footprint is |y| <= half_width
-    levels: int                 # number of gallery levels
-    first_level_z: float        # z of level 0's centreline
-    level_spacing: float        # vertical distance between levels
-    collar_z: float             # top of the entry shaft (ground level, above the water)
-    surface_z: float            # water surface (only the entry shaft reaches above it)
-    shaft_half: float           # entry shaft half size (rounded square)
-    min_drift_length: float     # shortest main drift of a level below level 0
-    ramp_gradient: float        # drop per run of the ramps between levels (1:7 = 0.143)
-    chambers: int               # stopes, besides the pump station by the shaft
-    raises: int                 # internal shafts joining several levels
-    edge: float                 # collision tessellation edge length
-    visual_edge: float          # visual tessellation edge length
-    min_triangles: int          # the collision mesh must have at least this many
+    length: float  # extent along x, entry shaft wall to the farthest drift end
+    half_width: float  # the footprint is |y| <= half_width
+    levels: int  # number of gallery levels
+    first_level_z: float  # z of level 0's centreline
+    level_spacing: float  # vertical distance between levels
+    collar_z: float  # top of the entry shaft (ground level, above the water)
+    surface_z: float  # water surface (only the entry shaft reaches above it)
+    shaft_half: float  # entry shaft half size (rounded square)
+    min_drift_length: float  # shortest main drift of a level below level 0
+    ramp_gradient: float  # drop per run of the ramps between levels (1:7 = 0.143)
+    chambers: int  # stopes, besides the pump station by the shaft
+    raises: int  # internal shafts joining several levels
+    edge: float  # collision tessellation edge length
+    visual_edge: float  # visual tessellation edge length
+    min_triangles: int  # the collision mesh must have at least this many
     octaves: tuple = ((18.0, 0.30), (6.0, 0.16), (2.0, 0.07), (0.9, 0.035))  # (wavelength, amplitude)
 
 
 PRESETS = {
     # Kaatiala (thesis 6.3): max depth 353 m, max length 620 m, max width 30 m.
-    "full": Preset("full", length=620.0, half_width=15.0, levels=9, first_level_z=-22.0, level_spacing=41.0,
-                   collar_z=6.0, surface_z=0.0, shaft_half=3.0, min_drift_length=360.0, ramp_gradient=1 / 7,
-                   chambers=5, raises=2, edge=0.47, visual_edge=1.3, min_triangles=1_000_000),
+    "full": Preset(
+        "full",
+        length=620.0,
+        half_width=15.0,
+        levels=9,
+        first_level_z=-22.0,
+        level_spacing=41.0,
+        collar_z=6.0,
+        surface_z=0.0,
+        shaft_half=3.0,
+        min_drift_length=360.0,
+        ramp_gradient=1 / 7,
+        chambers=5,
+        raises=2,
+        edge=0.47,
+        visual_edge=1.3,
+        min_triangles=1_000_000,
+    ),
     # Same construction, two levels, coarse: for tests (a few seconds).
-    "small": Preset("small", length=120.0, half_width=15.0, levels=2, first_level_z=-22.0, level_spacing=12.0,
-                    collar_z=6.0, surface_z=0.0, shaft_half=3.0, min_drift_length=110.0, ramp_gradient=1 / 7,
-                    chambers=1, raises=1, edge=0.6, visual_edge=1.2, min_triangles=20_000),
+    "small": Preset(
+        "small",
+        length=120.0,
+        half_width=15.0,
+        levels=2,
+        first_level_z=-22.0,
+        level_spacing=12.0,
+        collar_z=6.0,
+        surface_z=0.0,
+        shaft_half=3.0,
+        min_drift_length=110.0,
+        ramp_gradient=1 / 7,
+        chambers=1,
+        raises=1,
+        edge=0.6,
+        visual_edge=1.2,
+        min_triangles=20_000,
+    ),
 }
 
 
@@ -72,6 +103,7 @@ class Tunnel:
     """A polyline of capsules. Cross-section: superellipse of half width `a` (horizontal, or along the
     first perpendicular for a vertical axis) and half height `b`, exponent `p_floor` below the axis and
     `p_roof` above (2 = ellipse, larger = squarer); ends: rounded, extent `c` along the axis."""
+
     kind: str
     points: np.ndarray
     a: float
@@ -89,15 +121,31 @@ class Tunnel:
 @dataclass
 class Layout:
     tunnels: list
-    spawns: list                # [(x, y, z)], in the entry shaft, under water
+    spawns: list  # [(x, y, z)], in the entry shaft, under water
     shaft_xy: tuple
     notes: dict = field(default_factory=dict)
 
 
 class GradientNoise:
     """Seeded 3-D gradient (Perlin) noise, vectorised; values in about [-1, 1], zero on the lattice."""
-    GRADS = np.array([[1, 1, 0], [-1, 1, 0], [1, -1, 0], [-1, -1, 0], [1, 0, 1], [-1, 0, 1], [1, 0, -1],
-                      [-1, 0, -1], [0, 1, 1], [0, -1, 1], [0, 1, -1], [0, -1, -1]], dtype=float)
+
+    GRADS = np.array(
+        [
+            [1, 1, 0],
+            [-1, 1, 0],
+            [1, -1, 0],
+            [-1, -1, 0],
+            [1, 0, 1],
+            [-1, 0, 1],
+            [1, 0, -1],
+            [-1, 0, -1],
+            [0, 1, 1],
+            [0, -1, 1],
+            [0, 1, -1],
+            [0, -1, -1],
+        ],
+        dtype=float,
+    )
 
     def __init__(self, rng):
         p = rng.permutation(256)
@@ -162,14 +210,23 @@ def make_layout(preset, seed):
     P = preset
     rng = np.random.default_rng([seed, 0])
     amp = sum(a for _, a in P.octaves)
-    sx, sy = P.shaft_half + amp, 0.0          # the entry shaft's wall touches x = 0
-    x_far = P.length - 2.2 - amp               # farthest drift end (cap extent about 2.2 m)
-    y_lim = P.half_width - 2.3 - amp - 3.7     # drift centreline bound: room for crosscuts
+    sx, sy = P.shaft_half + amp, 0.0  # the entry shaft's wall touches x = 0
+    x_far = P.length - 2.2 - amp  # farthest drift end (cap extent about 2.2 m)
+    y_lim = P.half_width - 2.3 - amp - 3.7  # drift centreline bound: room for crosscuts
     tunnels = []
     level_z = [P.first_level_z - k * P.level_spacing for k in range(P.levels)]
     sump_z = level_z[-1] - 2.0
-    tunnels.append(Tunnel("shaft", [(sx, sy, P.collar_z - P.shaft_half), (sx, sy, sump_z)],
-                          a=P.shaft_half, b=P.shaft_half, c=P.shaft_half, p_floor=2.6, p_roof=2.6))
+    tunnels.append(
+        Tunnel(
+            "shaft",
+            [(sx, sy, P.collar_z - P.shaft_half), (sx, sy, sump_z)],
+            a=P.shaft_half,
+            b=P.shaft_half,
+            c=P.shaft_half,
+            p_floor=2.6,
+            p_roof=2.6,
+        )
+    )
     drifts = []
     for k, z in enumerate(level_z):
         end = x_far if k == 0 else rng.uniform(max(P.min_drift_length, 0.55 * x_far), x_far)
@@ -177,7 +234,7 @@ def make_layout(preset, seed):
         xs[1:-1] += rng.uniform(-4.0, 4.0, len(xs) - 2)
         ys = _drift_y(rng, xs, y_lim)
         ys[0] = sy
-        zs = z + 0.004 * (xs - sx) + rng.normal(0.0, 0.25, len(xs))   # drains towards the shaft
+        zs = z + 0.004 * (xs - sx) + rng.normal(0.0, 0.25, len(xs))  # drains towards the shaft
         zs[0] = z
         poly = np.column_stack([xs, ys, zs])
         drifts.append(poly)
@@ -198,8 +255,10 @@ def make_layout(preset, seed):
         upper, lower = drifts[k], drifts[k + 1]
         lo, hi = sx + 12.0, min(upper[-1, 0], lower[-1, 0]) - 6.0
         if hi - lo < run:
-            raise ValueError(f"preset '{P.name}': levels {k} and {k + 1} overlap over {hi - lo:.0f} m, "
-                             f"a ramp at gradient {P.ramp_gradient:.3f} needs {run:.0f} m")
+            raise ValueError(
+                f"preset '{P.name}': levels {k} and {k + 1} overlap over {hi - lo:.0f} m, "
+                f"a ramp at gradient {P.ramp_gradient:.3f} needs {run:.0f} m"
+            )
         x0 = rng.uniform(lo, hi - run) if k % 2 == 0 else rng.uniform(lo + run, hi)
         x1 = x0 + run if k % 2 == 0 else x0 - run
         a, b = point_on(upper, x0), point_on(lower, x1)
@@ -211,9 +270,9 @@ def make_layout(preset, seed):
     for r in range(P.raises):
         top = int(rng.integers(0, max(1, P.levels - 2)))
         bottom = min(P.levels - 1, top + int(rng.integers(1, 4)))
-        reach = min(d[-1, 0] for d in drifts[top:bottom + 1]) - 8.0
+        reach = min(d[-1, 0] for d in drifts[top : bottom + 1]) - 8.0
         x = rng.uniform(max(sx + 30.0, reach - 150.0), reach)
-        pts = [point_on(d, x + rng.normal(0.0, 1.5)) for d in drifts[top:bottom + 1]]
+        pts = [point_on(d, x + rng.normal(0.0, 1.5)) for d in drifts[top : bottom + 1]]
         tunnels.append(Tunnel("raise", pts, a=1.6, b=1.6, p_floor=2.4, p_roof=2.4))
     # Chambers: a pump station beside the shaft on level 0, and stopes along the drifts.
     z0 = level_z[0]
@@ -226,13 +285,15 @@ def make_layout(preset, seed):
         half_w = rng.uniform(4.0, 5.5)
         y = float(np.clip(point_on(d, x)[1], -(P.half_width - half_w - amp - 0.5), P.half_width - half_w - amp - 0.5))
         half_h = rng.uniform(4.0, 7.0)
-        zc = point_on(d, x)[2] + half_h - 2.0          # floor near the drift's floor
-        tunnels.append(Tunnel("chamber", [(x, y, zc), (x + length, y, zc + rng.normal(0.0, 0.5))],
-                              a=half_w, b=half_h, c=half_w))
+        zc = point_on(d, x)[2] + half_h - 2.0  # floor near the drift's floor
+        tunnels.append(
+            Tunnel("chamber", [(x, y, zc), (x + length, y, zc + rng.normal(0.0, 0.5))], a=half_w, b=half_h, c=half_w)
+        )
     # Spawn points: three robots in the entry shaft, 2.5 m under water, 1 m from its axis.
     spawn_z = P.surface_z - 2.5
-    spawns = [(round(sx + math.cos(t), 3), round(sy + math.sin(t), 3), spawn_z)
-              for t in np.radians([180.0, 300.0, 60.0])]
+    spawns = [
+        (round(sx + math.cos(t), 3), round(sy + math.sin(t), 3), spawn_z) for t in np.radians([180.0, 300.0, 60.0])
+    ]
     return Layout(tunnels, spawns, (sx, sy), {"levels_z": level_z, "sump_z": sump_z})
 
 
@@ -257,7 +318,7 @@ def capsule(A, B, tunnel, edge, walls, min_wavelength):
     n_theta = max(8, 4 * math.ceil(math.pi * (a + b) / edge / 4))
     n_len = max(1, math.ceil(length / edge))
     n_cap = max(2, math.ceil(0.5 * math.pi * max(a, b, c) / edge))
-    caps = np.linspace(0.0, 0.5 * math.pi, n_cap + 1)[1:-1]             # latitudes strictly inside
+    caps = np.linspace(0.0, 0.5 * math.pi, n_cap + 1)[1:-1]  # latitudes strictly inside
     ring_t = np.concatenate([np.zeros(n_cap - 1), np.linspace(0.0, length, n_len + 1), np.full(n_cap - 1, length)])
     ring_phi = np.concatenate([caps[::-1], np.zeros(n_len + 1), caps])
     ring_s = np.concatenate([-np.ones(n_cap - 1), np.zeros(n_len + 1), np.ones(n_cap - 1)])
@@ -286,26 +347,35 @@ def capsule(A, B, tunnel, edge, walls, min_wavelength):
     r0, r1 = (ring[:-1] + k).reshape(-1), (ring[:-1] + k1).reshape(-1)
     q0, q1 = (ring[1:] + k).reshape(-1), (ring[1:] + k1).reshape(-1)
     last = len(verts) - 1
-    tris = np.concatenate([
-        np.column_stack([np.zeros(n_theta, int), ring[0] + k1, ring[0] + k]),
-        np.column_stack([r0, r1, q1]), np.column_stack([r0, q1, q0]),
-        np.column_stack([ring[-1] + k, ring[-1] + k1, np.full(n_theta, last)]),
-    ])
+    tris = np.concatenate(
+        [
+            np.column_stack([np.zeros(n_theta, int), ring[0] + k1, ring[0] + k]),
+            np.column_stack([r0, r1, q1]),
+            np.column_stack([r0, q1, q0]),
+            np.column_stack([ring[-1] + k, ring[-1] + k1, np.full(n_theta, last)]),
+        ]
+    )
     return verts, tris
 
 
 def build_solid(layout, edge, walls, min_wavelength, progress=None):
     """Union of every capsule of the layout: a manifold3d.Manifold of the void."""
     import manifold3d as mf
+
     parts = []
     for tunnel in layout.tunnels:
         for A, B in zip(tunnel.points[:-1], tunnel.points[1:]):
             v, t = capsule(A, B, tunnel, edge, walls, min_wavelength)
-            part = mf.Manifold(mf.Mesh(vert_properties=np.ascontiguousarray(v, np.float32),
-                                       tri_verts=np.ascontiguousarray(t, np.uint32)))
+            part = mf.Manifold(
+                mf.Mesh(
+                    vert_properties=np.ascontiguousarray(v, np.float32), tri_verts=np.ascontiguousarray(t, np.uint32)
+                )
+            )
             if part.status() != mf.Error.NoError or not part.volume() > 0.0:
-                raise RuntimeError(f"{tunnel.kind} capsule {A.round(2)}->{B.round(2)}: not a closed outward "
-                                   f"manifold ({part.status()}, volume {part.volume():.3f} m^3)")
+                raise RuntimeError(
+                    f"{tunnel.kind} capsule {A.round(2)}->{B.round(2)}: not a closed outward "
+                    f"manifold ({part.status()}, volume {part.volume():.3f} m^3)"
+                )
             parts.append(part)
         if progress is not None:
             progress.update(1)
@@ -370,10 +440,16 @@ def sha256(path):
 def surface_stats(solid, surface_z):
     bb = solid.bounding_box()
     below = solid.trim_by_plane((0.0, 0.0, -1.0), -surface_z)
-    return {"triangles": solid.num_tri(), "vertices": solid.num_vert(), "genus": solid.genus(),
-            "bbox_min": [round(x, 4) for x in bb[:3]], "bbox_max": [round(x, 4) for x in bb[3:]],
-            "volume": round(solid.volume(), 3), "flooded_volume": round(below.volume(), 3),
-            "area": round(solid.surface_area(), 3)}
+    return {
+        "triangles": solid.num_tri(),
+        "vertices": solid.num_vert(),
+        "genus": solid.genus(),
+        "bbox_min": [round(x, 4) for x in bb[:3]],
+        "bbox_max": [round(x, 4) for x in bb[3:]],
+        "volume": round(solid.volume(), 3),
+        "flooded_volume": round(below.volume(), 3),
+        "area": round(solid.surface_area(), 3),
+    }
 
 
 def manifest_path(out, name):
@@ -398,6 +474,7 @@ def is_current(out, name, seed, preset):
 def generate(out, seed=7, preset="full", name="mine", quiet=False):
     """Generate the mine into folder `out`; returns the manifest (dict), also written as <name>.json."""
     from tqdm import tqdm
+
     P = PRESETS[preset] if isinstance(preset, str) else preset
     if not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
@@ -406,23 +483,36 @@ def generate(out, seed=7, preset="full", name="mine", quiet=False):
     t0 = time.monotonic()
     layout = make_layout(P, int(seed))
     walls = RoughWalls(P.octaves, int(seed))
-    bar = tqdm(total=2 * len(layout.tunnels), desc=f"mine '{P.name}' seed {seed}", unit="tunnel",
-               disable=quiet, file=sys.stderr)
+    bar = tqdm(
+        total=2 * len(layout.tunnels),
+        desc=f"mine '{P.name}' seed {seed}",
+        unit="tunnel",
+        disable=quiet,
+        file=sys.stderr,
+    )
     collision = build_solid(layout, P.edge, walls, 0.0, bar)
     visual = build_solid(layout, P.visual_edge, walls, 3.0 * P.visual_edge, bar)
     bar.close()
     stats = surface_stats(collision, P.surface_z)
     if stats["triangles"] < P.min_triangles:
-        raise RuntimeError(f"preset '{P.name}': collision mesh has {stats['triangles']} triangles, fewer than "
-                           f"{P.min_triangles}: lower its edge ({P.edge} m)")
+        raise RuntimeError(
+            f"preset '{P.name}': collision mesh has {stats['triangles']} triangles, fewer than "
+            f"{P.min_triangles}: lower its edge ({P.edge} m)"
+        )
     tops = [t.points[:, 2].max() + t.b for t in layout.tunnels if t.kind != "shaft"]
     if max(tops) + walls.max_amplitude() >= P.surface_z:
         raise RuntimeError(f"a tunnel reaches z = {max(tops):.1f} m, above the water surface {P.surface_z} m")
-    man = {"generator_version": GENERATOR_VERSION, "seed": int(seed), "preset": asdict(P),
-           "surface_z": P.surface_z, "shaft_xy": [round(v, 4) for v in layout.shaft_xy],
-           "spawns": [list(s) for s in layout.spawns], "levels_z": layout.notes["levels_z"],
-           "tunnels": {k: sum(t.kind == k for t in layout.tunnels) for k in sorted({t.kind for t in layout.tunnels})},
-           "wall_noise_max": round(walls.max_amplitude(), 4)}
+    man = {
+        "generator_version": GENERATOR_VERSION,
+        "seed": int(seed),
+        "preset": asdict(P),
+        "surface_z": P.surface_z,
+        "shaft_xy": [round(v, 4) for v in layout.shaft_xy],
+        "spawns": [list(s) for s in layout.spawns],
+        "levels_z": layout.notes["levels_z"],
+        "tunnels": {k: sum(t.kind == k for t in layout.tunnels) for k in sorted({t.kind for t in layout.tunnels})},
+        "wall_noise_max": round(walls.max_amplitude(), 4),
+    }
     (out / ".gitignore").write_text("# generated by python -m unexmin.mine_generator (docs/mine_world.md)\n*\n")
     for key, solid, extra in (("collision", collision, stats), ("visual", visual, None)):
         v, t = canonical_mesh(solid)
@@ -431,9 +521,15 @@ def generate(out, seed=7, preset="full", name="mine", quiet=False):
             raise RuntimeError(f"{key} mesh is not a closed, consistently wound surface")
         path = out / f"{name}_{key}.ply"
         write_ply(path, v, t, f"unexmin mine_generator v{GENERATOR_VERSION} preset {P.name} seed {seed} {key}")
-        man[key] = dict(extra or surface_stats(solid, P.surface_z), file=path.name, sha256=sha256(path),
-                        bytes=path.stat().st_size, edge=P.edge if key == "collision" else P.visual_edge,
-                        pinches_separated=pinches, closed=True)
+        man[key] = dict(
+            extra or surface_stats(solid, P.surface_z),
+            file=path.name,
+            sha256=sha256(path),
+            bytes=path.stat().st_size,
+            edge=P.edge if key == "collision" else P.visual_edge,
+            pinches_separated=pinches,
+            closed=True,
+        )
     man["seconds"] = round(time.monotonic() - t0, 1)
     manifest_path(out, name).write_text(json.dumps(man, indent=1) + "\n")
     return man
@@ -442,17 +538,19 @@ def generate(out, seed=7, preset="full", name="mine", quiet=False):
 def report(man):
     c, v = man["collision"], man["visual"]
     size = np.subtract(c["bbox_max"], c["bbox_min"])
-    return "\n".join([
-        f"mine '{man['preset']['name']}' seed {man['seed']} (generator v{man['generator_version']}), "
-        f"{man['seconds']} s",
-        f"  collision: {c['triangles']:,} triangles, {c['bytes'] / 1e6:.1f} MB, {c['file']}",
-        f"  visual:    {v['triangles']:,} triangles, {v['bytes'] / 1e6:.1f} MB, {v['file']}",
-        f"  bounding box: min {c['bbox_min']} max {c['bbox_max']} m "
-        f"(size {size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} m)",
-        f"  void volume {c['volume']:,.0f} m^3, flooded (below z = {man['surface_z']}) {c['flooded_volume']:,.0f} m^3, "
-        f"wall area {c['area']:,.0f} m^2, genus {c['genus']}",
-        f"  tunnels: {man['tunnels']}",
-    ])
+    return "\n".join(
+        [
+            f"mine '{man['preset']['name']}' seed {man['seed']} (generator v{man['generator_version']}), "
+            f"{man['seconds']} s",
+            f"  collision: {c['triangles']:,} triangles, {c['bytes'] / 1e6:.1f} MB, {c['file']}",
+            f"  visual:    {v['triangles']:,} triangles, {v['bytes'] / 1e6:.1f} MB, {v['file']}",
+            f"  bounding box: min {c['bbox_min']} max {c['bbox_max']} m "
+            f"(size {size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} m)",
+            f"  void volume {c['volume']:,.0f} m^3, flooded (below z = {man['surface_z']}) {c['flooded_volume']:,.0f} m^3, "
+            f"wall area {c['area']:,.0f} m^2, genus {c['genus']}",
+            f"  tunnels: {man['tunnels']}",
+        ]
+    )
 
 
 def main(argv=None):
@@ -469,11 +567,12 @@ def main(argv=None):
     preset = PRESETS[args.preset]
     if not args.force and is_current(args.out, args.name, args.seed, preset):
         man = json.loads(manifest_path(args.out, args.name).read_text())
-        print(f"mine up to date in {args.out} (seed {args.seed}, preset {args.preset}, "
-              f"generator v{GENERATOR_VERSION}): nothing to do")
+        print(
+            f"mine up to date in {args.out} (seed {args.seed}, preset {args.preset}, "
+            f"generator v{GENERATOR_VERSION}): nothing to do"
+        )
         print(report(man))
         return 0
     man = generate(args.out, args.seed, preset, args.name, args.quiet)
     print(report(man))
     return 0
-

@@ -48,4 +48,3 @@ def mission_parser(prog, description):
     parser.add_argument("--out", default="mission_output", help="output folder (created)")
     parser.add_argument("--seed", type=int, default=0, help="seed of every random generator")
     return parser
-

@@ -24,7 +24,7 @@ from unexmin.geometry import yaw_of
 from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
 
 ROBOT = "UX_1"
-SPEED = 0.4      # [m/s] cruise speed
+SPEED = 0.4  # [m/s] cruise speed
 TOLERANCE = 0.5  # [m] a waypoint is reached within this distance
 CONTROL_DT = 0.1  # [s] sim time between controller updates
 SLS_UNITS = 4
@@ -67,8 +67,9 @@ def controller(pose, twist, target, yaw_target=0.0):
 
 
 def topics():
-    return ([f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan", "/mapper/stats"]
-            + [f"/{ROBOT}/sls_{i}/points" for i in range(SLS_UNITS)])
+    return [f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan", "/mapper/stats"] + [
+        f"/{ROBOT}/sls_{i}/points" for i in range(SLS_UNITS)
+    ]
 
 
 def plot_map(map_path, traj, out_png):
@@ -86,8 +87,12 @@ def plot_map(map_path, traj, out_png):
         if len(centres):
             ax.scatter(centres[:, i], centres[:, j], c=centres[:, 2], s=1, cmap="turbo")
         ax.plot(traj[:, i], traj[:, j], "k-", lw=1.2, label="UX_1 path")
-        ax.set(xlabel="xyz"[i] + " [m]", ylabel="xyz"[j] + " [m]", title=f"mine map ({name}, colour: height)",
-               aspect="equal")
+        ax.set(
+            xlabel="xyz"[i] + " [m]",
+            ylabel="xyz"[j] + " [m]",
+            title=f"mine map ({name}, colour: height)",
+            aspect="equal",
+        )
         ax.legend(loc="best")
     fig.tight_layout()
     fig.savefig(out_png, dpi=110)
@@ -106,8 +111,15 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
         if os.path.exists(stale):
             os.remove(stale)
     wall0 = time.monotonic()
-    world = WorldProcess(world="mine", robots=1, seed=seed, realtime=False, paused=True, log_dir=log_dir,
-                         extra_args=("mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}"))
+    world = WorldProcess(
+        world="mine",
+        robots=1,
+        seed=seed,
+        realtime=False,
+        paused=True,
+        log_dir=log_dir,
+        extra_args=("mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}"),
+    )
     recorder = log = sim = stats_sub = None
     stats = {}
     legs = []
@@ -122,11 +134,18 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
         wait_for(lambda: "last" in stats, 120.0, "the mapper's /mapper/stats")
         ux = sim.robot(ROBOT)
         log = open(os.path.join(log_dir, "rosbag_record.log"), "w")
-        recorder = subprocess.Popen(["rosbag", "record", "--tcpnodelay", "-O", bag, *topics()],
-                                    stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        recorder = subprocess.Popen(
+            ["rosbag", "record", "--tcpnodelay", "-O", bag, *topics()],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
         master = rosgraph.Master(rospy.get_name())
-        wait_for(lambda: recorder_connected(master, ("/simulator",), [f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan"]),
-                 30.0, "rosbag record to connect")
+        wait_for(
+            lambda: recorder_connected(master, ("/simulator",), [f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan"]),
+            30.0,
+            "rosbag record to connect",
+        )
         allocator = ThrusterAllocator()
         sim.step(1)
         path = waypoints(gallery)
@@ -144,8 +163,10 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
             p = ux.odom().pose.pose.position
             m = stats["last"]
             legs.append({"waypoint": list(target), "t": sim.time, "reached": dist < TOLERANCE})
-            print(f"{k:<10}{sim.time:8.1f}{p.x:9.2f}{p.y:9.2f}{p.z:9.2f}{m.clouds_inserted:9d}{m.occupied_leaves:10d}",
-                  flush=True)
+            print(
+                f"{k:<10}{sim.time:8.1f}{p.x:9.2f}{p.y:9.2f}{p.z:9.2f}{m.clouds_inserted:9d}{m.occupied_leaves:10d}",
+                flush=True,
+            )
             if sim.time > time_limit:
                 print(f"time limit {time_limit:.0f} s of sim time reached")
                 break
@@ -155,10 +176,13 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
         # Every cloud the simulator published reached the map: M3 at 40 Hz, each SLS unit at 10 Hz.
         expected = int(round(sim_time * 40.0)) + int(round(sim_time * 10.0)) * SLS_UNITS
         try:
-            wait_for(lambda: stats["last"].clouds_inserted + stats["last"].clouds_dropped
-                     >= stats["last"].clouds_received and stats["last"].pending == 0
-                     and stats["last"].clouds_received >= expected - 5 * (1 + SLS_UNITS), 60.0,
-                     "the mapper to insert every cloud")
+            wait_for(
+                lambda: stats["last"].clouds_inserted + stats["last"].clouds_dropped >= stats["last"].clouds_received
+                and stats["last"].pending == 0
+                and stats["last"].clouds_received >= expected - 5 * (1 + SLS_UNITS),
+                60.0,
+                "the mapper to insert every cloud",
+            )
         except TimeoutError as e:
             print(f"warning: {e}")
         final = stats["last"]
@@ -188,20 +212,32 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
     q = quality(map_path, "mine", out, trajectory=os.path.join(out, "trajectory.csv"))
     plot_map(map_path, traj[:, 1:4], os.path.join(out, "mission_map.png"))
     summary = {
-        "world": "mine", "robot": ROBOT, "seed": seed, "resolution_m": resolution,
-        "sim_time_s": sim_time, "wall_time_s": round(wall, 2), "stepping_wall_s": round(sim_wall, 2),
+        "world": "mine",
+        "robot": ROBOT,
+        "seed": seed,
+        "resolution_m": resolution,
+        "sim_time_s": sim_time,
+        "wall_time_s": round(wall, 2),
+        "stepping_wall_s": round(sim_wall, 2),
         "rtf_while_stepping": round(sim_time / sim_wall, 2),
         "path_length_m": float(np.linalg.norm(np.diff(traj[:, 1:4], axis=0), axis=1).sum()),
         "start": dict(zip("xyz", traj[0, 1:4].round(3).tolist())),
         "end": dict(zip("xyz", traj[-1, 1:4].round(3).tolist())),
-        "waypoints_reached": sum(leg["reached"] for leg in legs), "waypoints": len(legs),
-        "clouds_expected": expected, "clouds_received": int(final.clouds_received),
-        "clouds_inserted": int(final.clouds_inserted), "clouds_dropped": int(final.clouds_dropped),
-        "points_inserted": int(final.points_inserted), "insert_wall_s": round(final.insert_seconds, 3),
-        "map_memory_bytes": int(final.memory_bytes), "map_file_bytes": os.path.getsize(map_path),
+        "waypoints_reached": sum(leg["reached"] for leg in legs),
+        "waypoints": len(legs),
+        "clouds_expected": expected,
+        "clouds_received": int(final.clouds_received),
+        "clouds_inserted": int(final.clouds_inserted),
+        "clouds_dropped": int(final.clouds_dropped),
+        "points_inserted": int(final.points_inserted),
+        "insert_wall_s": round(final.insert_seconds, 3),
+        "map_memory_bytes": int(final.memory_bytes),
+        "map_file_bytes": os.path.getsize(map_path),
         "occupied_leaves": q["occupied_leaves"],
-        "quality": {k: q[k] for k in ("precision", "recall", "f_score", "mean_distance_m", "p95_distance_m",
-                                      "tau_m", "surface_area_m2")},
+        "quality": {
+            k: q[k]
+            for k in ("precision", "recall", "f_score", "mean_distance_m", "p95_distance_m", "tau_m", "surface_area_m2")
+        },
         "legs": legs,
     }
     return write_summary(out, summary)
@@ -214,17 +250,25 @@ def main(argv=None):
     args = parser.parse_args(argv)
     s = run(args.out, args.seed, args.gallery, args.resolution)
     q = s["quality"]
-    print(f"\nUX_1 surveyed {s['path_length_m']:.0f} m of the mine (shaft and gallery; {s['waypoints_reached']}/"
-          f"{s['waypoints']} waypoints) in {s['sim_time_s']:.0f} s of sim time, {s['wall_time_s']:.0f} s of wall "
-          f"time (RTF {s['rtf_while_stepping']:.1f} while stepping).")
-    print(f"map: {s['clouds_inserted']}/{s['clouds_received']} clouds inserted ({s['clouds_dropped']} dropped, "
-          f"{s['clouds_expected']} published), {s['occupied_leaves']} occupied leaves, "
-          f"{s['map_memory_bytes'] / 1e6:.1f} MB in memory, {s['map_file_bytes'] / 1e6:.2f} MB .bt")
-    print(f"quality at tau {q['tau_m']:g} m: precision {q['precision']:.3f}, recall {q['recall']:.3f} "
-          f"(over {q['surface_area_m2']:.0f} m2 within range of the path), F-score {q['f_score']:.3f}, "
-          f"distance mean {q['mean_distance_m']:.3f} m, 95th percentile {q['p95_distance_m']:.3f} m")
-    print(f"outputs: {os.path.abspath(args.out)} (mine_mission.bag, mine_map.bt, map_quality.json, "
-          f"map_quality.png, mission_map.png, trajectory.csv, summary.json)")
+    print(
+        f"\nUX_1 surveyed {s['path_length_m']:.0f} m of the mine (shaft and gallery; {s['waypoints_reached']}/"
+        f"{s['waypoints']} waypoints) in {s['sim_time_s']:.0f} s of sim time, {s['wall_time_s']:.0f} s of wall "
+        f"time (RTF {s['rtf_while_stepping']:.1f} while stepping)."
+    )
+    print(
+        f"map: {s['clouds_inserted']}/{s['clouds_received']} clouds inserted ({s['clouds_dropped']} dropped, "
+        f"{s['clouds_expected']} published), {s['occupied_leaves']} occupied leaves, "
+        f"{s['map_memory_bytes'] / 1e6:.1f} MB in memory, {s['map_file_bytes'] / 1e6:.2f} MB .bt"
+    )
+    print(
+        f"quality at tau {q['tau_m']:g} m: precision {q['precision']:.3f}, recall {q['recall']:.3f} "
+        f"(over {q['surface_area_m2']:.0f} m2 within range of the path), F-score {q['f_score']:.3f}, "
+        f"distance mean {q['mean_distance_m']:.3f} m, 95th percentile {q['p95_distance_m']:.3f} m"
+    )
+    print(
+        f"outputs: {os.path.abspath(args.out)} (mine_mission.bag, mine_map.bt, map_quality.json, "
+        f"map_quality.png, mission_map.png, trajectory.csv, summary.json)"
+    )
     return 0
 
 

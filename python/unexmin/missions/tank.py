@@ -40,8 +40,12 @@ TOPICS = [f"/{ROBOT}/odom"] + [f"/{ROBOT}/thrusters/{i}/{k}" for i in range(8) f
 
 def start_recorder(bag_path, log_dir):
     log = open(os.path.join(log_dir, "rosbag_record.log"), "w")
-    proc = subprocess.Popen(["rosbag", "record", "--tcpnodelay", "-O", bag_path, *TOPICS],
-                            stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    proc = subprocess.Popen(
+        ["rosbag", "record", "--tcpnodelay", "-O", bag_path, *TOPICS],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     return proc, log
 
 
@@ -92,7 +96,7 @@ def run(out, seed):
         import rosgraph
         import rospy
 
-        ux = sim.robot(ROBOT, streams="none")   # rosbag record subscribes what the report needs
+        ux = sim.robot(ROBOT, streams="none")  # rosbag record subscribes what the report needs
         recorder, log = start_recorder(bag, log_dir)
         master = rosgraph.Master(rospy.get_name())
         publishers = ("/simulator", rospy.get_name())  # odometry and thrusts; thruster inputs
@@ -107,8 +111,10 @@ def run(out, seed):
             sim.run_for(seconds)
             boundaries.append(sim.time)
             p = ux.odom().pose.pose
-            print(f"{name:<15}{sim.time:8.2f}{p.position.x:9.3f}{p.position.y:9.3f}{p.position.z:9.3f}"
-                  f"{math.degrees(yaw_of(p.orientation)):11.1f}")
+            print(
+                f"{name:<15}{sim.time:8.2f}{p.position.x:9.3f}{p.position.y:9.3f}{p.position.z:9.3f}"
+                f"{math.degrees(yaw_of(p.orientation)):11.1f}"
+            )
         sim_time = sim.time
         wait_until_written(bag + ".active")
     finally:
@@ -126,8 +132,11 @@ def run(out, seed):
     plot(traj, boundaries, os.path.join(out, "trajectory.png"))
     steps = np.linalg.norm(np.diff(traj[:, 1:4], axis=0), axis=1)
     summary = {
-        "world": "tank", "robot": ROBOT, "seed": seed,
-        "sim_time_s": sim_time, "wall_time_s": round(wall, 2),
+        "world": "tank",
+        "robot": ROBOT,
+        "seed": seed,
+        "sim_time_s": sim_time,
+        "wall_time_s": round(wall, 2),
         "start": dict(zip("xyz", traj[0, 1:4].round(4).tolist())),
         "end": dict(zip("xyz", traj[-1, 1:4].round(4).tolist())),
         "net_displacement_m": float(np.linalg.norm(traj[-1, 1:4] - traj[0, 1:4])),
@@ -146,11 +155,13 @@ def main(argv=None):
     parser = mission_parser("python -m unexmin.missions.tank", __doc__.splitlines()[0])
     args = parser.parse_args(argv)
     s = run(args.out, args.seed)
-    print(f"\nUX_1 went from ({s['start']['x']:.2f}, {s['start']['y']:.2f}, {s['start']['z']:.2f}) "
-          f"to ({s['end']['x']:.2f}, {s['end']['y']:.2f}, {s['end']['z']:.2f}) m: "
-          f"{s['net_displacement_m']:.2f} m net, {s['path_length_m']:.2f} m of path, "
-          f"yaw {s['yaw_change_deg']:+.1f} deg, top speed {s['max_speed_m_s']:.2f} m/s, "
-          f"{s['sim_time_s']:.0f} s of sim time in {s['wall_time_s']:.1f} s of wall time.")
+    print(
+        f"\nUX_1 went from ({s['start']['x']:.2f}, {s['start']['y']:.2f}, {s['start']['z']:.2f}) "
+        f"to ({s['end']['x']:.2f}, {s['end']['y']:.2f}, {s['end']['z']:.2f}) m: "
+        f"{s['net_displacement_m']:.2f} m net, {s['path_length_m']:.2f} m of path, "
+        f"yaw {s['yaw_change_deg']:+.1f} deg, top speed {s['max_speed_m_s']:.2f} m/s, "
+        f"{s['sim_time_s']:.0f} s of sim time in {s['wall_time_s']:.1f} s of wall time."
+    )
     print(f"outputs: {os.path.abspath(args.out)} (mission.bag, trajectory.csv, trajectory.png, summary.json)")
     return 0
 

@@ -34,5 +34,20 @@ from unexmin.replay.metrics import TRAJ_COLUMNS, compare, path_length, pose_row,
 from unexmin.replay.plots import write_csv, write_plots
 from unexmin.replay.runner import LockstepRunner
 
-__all__ = ["MOTORS_TOPIC", "Mission", "read_bag", "main", "replay", "summary", "ReplayError", "TRAJ_COLUMNS",
-           "compare", "path_length", "pose_row", "to_start_frame", "write_csv", "write_plots", "LockstepRunner"]
+__all__ = [
+    "MOTORS_TOPIC",
+    "Mission",
+    "read_bag",
+    "main",
+    "replay",
+    "summary",
+    "ReplayError",
+    "TRAJ_COLUMNS",
+    "compare",
+    "path_length",
+    "pose_row",
+    "to_start_frame",
+    "write_csv",
+    "write_plots",
+    "LockstepRunner",
+]

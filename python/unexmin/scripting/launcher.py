@@ -28,7 +28,7 @@ def _process_table():
                 stat = f.read()
         except OSError:
             continue
-        fields = stat[stat.rindex(")") + 2:].split()  # after "pid (comm) ": state ppid pgrp ...
+        fields = stat[stat.rindex(")") + 2 :].split()  # after "pid (comm) ": state ppid pgrp ...
         if fields[0] not in "ZX":
             table[int(entry.name)] = (int(fields[1]), int(fields[19]))
     return table
@@ -58,8 +58,9 @@ def marked_processes(marker):
                 zombie = f.read().rsplit(")", 1)[1].split()[0] == "Z"
         except OSError:
             continue
-        runs = [e[len(b"UNEXMIN_RUN="):].decode(errors="replace").split(":") for e in env
-                if e.startswith(b"UNEXMIN_RUN=")]
+        runs = [
+            e[len(b"UNEXMIN_RUN=") :].decode(errors="replace").split(":") for e in env if e.startswith(b"UNEXMIN_RUN=")
+        ]
         if runs and marker in runs[0] and not zombie:
             pids.append(int(d))
     return pids
@@ -83,11 +84,13 @@ def stop_process_group(proc, timeout=15.0, marker=None):
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
+
         # The SIGINT reached them too: give them `timeout` s to finish (a rosbag recorder indexes and closes
         # its bag after its parent script has exited), then SIGKILL what is still there.
         def alive():
             table = _process_table()
             return [p for p, start in below.items() if p in table and table[p][1] == start]  # not a reused pid
+
         deadline = time.monotonic() + timeout
         while alive() and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -132,8 +135,18 @@ class WorldProcess:
     this Python process exits (a roslaunch in its own session would otherwise outlive it).
     """
 
-    def __init__(self, world="tank", robots=1, seed=0, realtime=False, paused=True, port=None,
-                 log_dir=None, extra_args=(), launch_file=None):
+    def __init__(
+        self,
+        world="tank",
+        robots=1,
+        seed=0,
+        realtime=False,
+        paused=True,
+        port=None,
+        log_dir=None,
+        extra_args=(),
+        launch_file=None,
+    ):
         """world: `<world>_world.launch` of the package, with robots, seed, realtime, paused and
         extra_args ("name:=value") as its arguments; launch_file: a launch file to run instead (no
         arguments); port: the master's port (default: a free one); log_dir: roslaunch.log and the
@@ -151,9 +164,16 @@ class WorldProcess:
             args = ["roslaunch", "--port", str(self.port), str(launch_file)]
         else:
             args = [
-                "roslaunch", "--port", str(self.port), "unexmin", f"{world}_world.launch",
-                f"robots:={robots}", f"seed:={seed}", f"realtime:={str(realtime).lower()}",
-                f"paused:={str(paused).lower()}", *extra_args,
+                "roslaunch",
+                "--port",
+                str(self.port),
+                "unexmin",
+                f"{world}_world.launch",
+                f"robots:={robots}",
+                f"seed:={seed}",
+                f"realtime:={str(realtime).lower()}",
+                f"paused:={str(paused).lower()}",
+                *extra_args,
             ]
         self.log_path = os.path.join(log_dir, "roslaunch.log") if log_dir else None
         log = open(self.log_path, "w") if log_dir else subprocess.DEVNULL

@@ -57,8 +57,11 @@ class Robot:
         self._wrench = sync_publisher(f"{ns}force_moments", Wrench)
         self._pubs = self._thr + [self._pendulum, self._vbs, self._wrench]
         self._all_streams = False
-        wait_for(lambda: all(p.get_num_connections() > 0 for p in self._thr + [self._pendulum, self._vbs]),
-                 sim.timeout, f"the simulator to subscribe to {name}'s command topics")
+        wait_for(
+            lambda: all(p.get_num_connections() > 0 for p in self._thr + [self._pendulum, self._vbs]),
+            sim.timeout,
+            f"the simulator to subscribe to {name}'s command topics",
+        )
 
     def _resolve(self, topic):
         return topic if topic.startswith("/") else f"/{self.name}/{topic}"
@@ -77,8 +80,10 @@ class Robot:
         wanted = sorted(offered) if streams == "all" else [self._resolve(t) for t in streams]
         unknown = [t for t in wanted if t not in offered]
         if unknown:
-            raise LookupError(f"the simulator publishes no {', '.join(unknown)} (topics of /{self.name}/: "
-                              f"{', '.join(sorted(offered)) or 'none'})")
+            raise LookupError(
+                f"the simulator publishes no {', '.join(unknown)} (topics of /{self.name}/: "
+                f"{', '.join(sorted(offered)) or 'none'})"
+            )
         return self.sim._streams.subscribe({t: self._message_class(t, offered[t]) for t in wanted}, synced=True)
 
     @property
@@ -93,8 +98,10 @@ class Robot:
 
         cls = roslib.message.get_message_class(type_name) if type_name else None
         if cls is None:
-            raise LookupError(f"{topic}: cannot load the message class of type '{type_name}' (is its package "
-                              "built and the workspace sourced?)")
+            raise LookupError(
+                f"{topic}: cannot load the message class of type '{type_name}' (is its package "
+                "built and the workspace sourced?)"
+            )
         return cls
 
     def _stream(self, topic, msg_class, caller):
@@ -107,8 +114,10 @@ class Robot:
             type_name, nodes = published.get(full, ("", []))
             if not nodes and msg_class is None:
                 mine = sorted(t for t in streams.published(f"/{self.name}/"))
-                raise LookupError(f"{caller}('{topic}'): nobody publishes {full} (topics of /{self.name}/: "
-                                  f"{', '.join(mine) or 'none'}); give its message class to wait for it")
+                raise LookupError(
+                    f"{caller}('{topic}'): nobody publishes {full} (topics of /{self.name}/: "
+                    f"{', '.join(mine) or 'none'}); give its message class to wait for it"
+                )
             cls = msg_class or self._message_class(full, type_name)
             if type_name and cls._type != type_name:
                 raise TypeError(f"{caller}('{topic}', {cls._type}): {full} carries {type_name}")
@@ -141,9 +150,12 @@ class Robot:
             return msg
         wanted = f" stamped >= {min_stamp} s" if min_stamp is not None else ""
         if stream.synced and not self.sim.free_running:
-            why = ("it was subscribed after the last step call (e.g. robot(..., streams='none')): step, then ask "
-                   "again" if stream.fresh else "nothing was published on it since the start or the last reset "
-                   "(a sensor publishes its first sample at t = 1/rate)")
+            why = (
+                "it was subscribed after the last step call (e.g. robot(..., streams='none')): step, then ask " "again"
+                if stream.fresh
+                else "nothing was published on it since the start or the last reset "
+                "(a sensor publishes its first sample at t = 1/rate)"
+            )
             raise LookupError(f"no message{wanted} on {stream.topic} up to sim time {self.sim.time:.6f} s: {why}")
         timeout = self.sim.timeout if timeout is None else timeout
         msg = streams.wait_newest(stream, ready, timeout)
@@ -163,8 +175,10 @@ class Robot:
         """Command every thruster (command unit of each thruster, [N] by default)."""
         values = list(values)
         if len(values) != len(self._thr):
-            raise ValueError(f"thrusts needs {len(self._thr)} values for {self.name} "
-                             f"(/sim/thruster_count/{self.name}), got {len(values)}")
+            raise ValueError(
+                f"thrusts needs {len(self._thr)} values for {self.name} "
+                f"(/sim/thruster_count/{self.name}), got {len(values)}"
+            )
         msgs = [Float64(_finite(f"thrust[{i}]", v)) for i, v in enumerate(values)]
         for pub, msg in zip(self._thr, msgs):
             self._send(pub, msg)
@@ -219,7 +233,8 @@ class Simulation:
             raise RuntimeError(
                 f"this process already has an open Simulation (master {other.master_uri}); rospy runs one ROS "
                 "node per process, talking to one master, so a process can hold one Simulation at a time: "
-                "close() the first one (or use `with Simulation.launch(...) as sim:`), or use another process")
+                "close() the first one (or use `with Simulation.launch(...) as sim:`), or use another process"
+            )
         self.timeout = timeout
         self._world = world
         self._robots = {}
@@ -237,8 +252,10 @@ class Simulation:
         world = self._world
         node_master = node_master_uri()
         if node_master is not None and node_master.rstrip("/") != self.master_uri.rstrip("/"):
-            raise RuntimeError(f"this process's ROS node was started on the master {node_master}, and rospy cannot "
-                               f"move it to {self.master_uri}: use another process for that simulator")
+            raise RuntimeError(
+                f"this process's ROS node was started on the master {node_master}, and rospy cannot "
+                f"move it to {self.master_uri}: use another process for that simulator"
+            )
 
         probe = rosgraph.Master("/unexmin_probe", master_uri=self.master_uri)
 
@@ -247,14 +264,17 @@ class Simulation:
                 return True
             log = world.log_path or "the roslaunch output"
             if not world.alive():
-                raise RuntimeError(f"the world's roslaunch exited (code {world.proc.returncode}) before the simulator "
-                                   f"offered /sim/step: see {log}")
+                raise RuntimeError(
+                    f"the world's roslaunch exited (code {world.proc.returncode}) before the simulator "
+                    f"offered /sim/step: see {log}"
+                )
             if world.simulator_died(probe):
                 raise RuntimeError(f"the simulator node exited at start-up: see {log}")
             return True
 
-        wait_for(lambda: alive() and master_online(self.master_uri), self.timeout,
-                 f"the ROS master at {self.master_uri}")
+        wait_for(
+            lambda: alive() and master_online(self.master_uri), self.timeout, f"the ROS master at {self.master_uri}"
+        )
         if not rospy.core.is_initialized():
             rospy.init_node(node_name, anonymous=True, disable_signals=True)
         else:  # maybe a new master at the node's URI (a world launched again): tell it about rospy's own topics
@@ -281,15 +301,16 @@ class Simulation:
         self.physics_rate = float(rospy.get_param("/simulator/physics_rate", 500.0))
         names = rospy.get_param("/sim/robots", None)
         if names is None:
-            raise RuntimeError("the simulator did not set /sim/robots: it is older than this script (rebuild the "
-                               "workspace)")
+            raise RuntimeError(
+                "the simulator did not set /sim/robots: it is older than this script (rebuild the " "workspace)"
+            )
         self.robots = tuple(names)
         self._thruster_count = {n: int(rospy.get_param(f"/sim/thruster_count/{n}")) for n in self.robots}
         self._time = 0.0
-        self._step_count = 0          # physics steps of the simulator after the last step call
+        self._step_count = 0  # physics steps of the simulator after the last step call
         self.free_running = world is None and not rospy.get_param("/simulator/paused", False)
-        self._commands_sent = 0       # command messages published to the simulator by this node
-        self._odometry = {}           # robot name -> Odometry at self._time
+        self._commands_sent = 0  # command messages published to the simulator by this node
+        self._odometry = {}  # robot name -> Odometry at self._time
         master = rosgraph.Master(rospy.get_name(), master_uri=self.master_uri)
         sim_node = next(nodes[0] for srv, nodes in master.getSystemState()[2] if srv == "/sim/step")
         self._streams = StreamSet(master, sim_node, self.timeout)
@@ -313,7 +334,8 @@ class Simulation:
                 f"Simulation.launch: this process already has an open Simulation (master {other.master_uri}); "
                 "rospy runs one ROS node per process, talking to one master, so only one Simulation can be "
                 "open at a time: close() the first one (or use `with Simulation.launch(...) as sim:`) before "
-                "launching another, or launch it from another process")
+                "launching another, or launch it from another process"
+            )
         port = None
         node_master = node_master_uri()
         if node_master is not None:
@@ -321,12 +343,22 @@ class Simulation:
 
             url = urlparse(node_master)
             if url.hostname not in ("127.0.0.1", "localhost") or master_online(node_master):
-                raise RuntimeError(f"Simulation.launch: this process's ROS node is bound to the master {node_master}"
-                                   ", which is not a closed world of this process (rospy cannot move a node to "
-                                   "another master): launch the world from another process")
+                raise RuntimeError(
+                    f"Simulation.launch: this process's ROS node is bound to the master {node_master}"
+                    ", which is not a closed world of this process (rospy cannot move a node to "
+                    "another master): launch the world from another process"
+                )
             port = url.port
-        proc = WorldProcess(world=world, robots=robots, seed=seed, realtime=False, paused=True, log_dir=log_dir,
-                            port=port, launch_file=launch_file)
+        proc = WorldProcess(
+            world=world,
+            robots=robots,
+            seed=seed,
+            realtime=False,
+            paused=True,
+            log_dir=log_dir,
+            port=port,
+            launch_file=launch_file,
+        )
         try:
             return cls(timeout=timeout, world=proc, **kwargs)
         except BaseException:  # Ctrl-C (KeyboardInterrupt) while connecting too: no roslaunch left behind
@@ -372,8 +404,10 @@ class Simulation:
     def _gone(self, what):
         """Error text when a call to the simulator failed: whether its world is still running, and its log."""
         if self._world is not None and not self._world.alive():
-            return (f"{what}: the simulator world exited (code {self._world.proc.returncode}); "
-                    f"see {self._world.log_path or 'the roslaunch output'}")
+            return (
+                f"{what}: the simulator world exited (code {self._world.proc.returncode}); "
+                f"see {self._world.log_path or 'the roslaunch output'}"
+            )
         return f"{what}: the simulator is not answering (has it died? see its log)"
 
     def pause(self):
@@ -413,8 +447,7 @@ class Simulation:
         # hold: this script is in control, so the simulator's command watchdog (a safety net for
         # live nodes that die) does not zero its commands while it steps.
         try:
-            res = self._step(duration=0.0, steps=n, client=rospy.get_name(), commands=self._commands_sent,
-                             hold=True)
+            res = self._step(duration=0.0, steps=n, client=rospy.get_name(), commands=self._commands_sent, hold=True)
         except (rospy.ServiceException, rospy.ROSException, OSError) as e:
             raise RuntimeError(self._gone(f"/sim/step failed ({e})")) from None
         self.free_running = False

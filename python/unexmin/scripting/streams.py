@@ -97,16 +97,20 @@ class Collector:
     def wait_until(self, stamp, timeout=30.0):
         """Every message collected, once one stamped >= stamp [s] has arrived (for other nodes' topics,
         whose messages are not synchronised with the steps); TimeoutError after `timeout` s."""
+
         def ready():
             s = header_stamp(self._msgs[-1]) if self._msgs else None
             return s is not None and s >= stamp - 1e-9
+
         return self._wait(ready, timeout, f"a message stamped {stamp} s")
 
     def _wait(self, ready, timeout, what):
         with self._set.cond:
             if not self._set.cond.wait_for(ready, timeout):
-                raise TimeoutError(f"{self.topic}: no {what} within {timeout} s of wall time "
-                                   f"({len(self._msgs)} messages collected)")
+                raise TimeoutError(
+                    f"{self.topic}: no {what} within {timeout} s of wall time "
+                    f"({len(self._msgs)} messages collected)"
+                )
             return list(self._msgs)
 
     def __enter__(self):
@@ -123,13 +127,13 @@ class Stream:
 
     def __init__(self, topic, msg_class, synced):
         self.topic, self.msg_class, self.synced = topic, msg_class, synced
-        self.latest = None       # newest message received
-        self.received = 0        # messages received from the simulator's node
-        self.offset = 0          # messages the simulator sent before this stream counted (see StreamSet)
+        self.latest = None  # newest message received
+        self.received = 0  # messages received from the simulator's node
+        self.offset = 0  # messages the simulator sent before this stream counted (see StreamSet)
         self.collectors = []
         self.sub = None
         self.preexisting = False  # another subscriber of this process had the topic's connection first
-        self.fresh = True         # subscribed after the last step call (so it holds nothing of it)
+        self.fresh = True  # subscribed after the last step call (so it holds nothing of it)
 
 
 class StreamSet:
@@ -146,8 +150,8 @@ class StreamSet:
         self._step0 = rospy.ServiceProxy("/sim/step", Step)  # not persistent: see the module's docstring
         self.me = rospy.get_name()
         self.cond = threading.Condition()
-        self.streams = {}          # topic -> Stream
-        self._links = {}           # the simulator's connection id -> topic, for connections to this node
+        self.streams = {}  # topic -> Stream
+        self._links = {}  # the simulator's connection id -> topic, for connections to this node
         self._other_links = set()  # the simulator's connection ids to other nodes
         self._proxy = xmlrpc.client.ServerProxy(master.lookupNode(sim_node))
 
@@ -185,8 +189,11 @@ class StreamSet:
 
             timeout = self.timeout if timeout is None else timeout
             who = "the simulator" if synced else "a publisher"
-            wait_for(lambda: all(s.sub.get_num_connections() > 0 for s in new), timeout,
-                     f"{who} to connect to {len(new)} topic(s): {', '.join(s.topic for s in new)}")
+            wait_for(
+                lambda: all(s.sub.get_num_connections() > 0 for s in new),
+                timeout,
+                f"{who} to connect to {len(new)} topic(s): {', '.join(s.topic for s in new)}",
+            )
         if new and synced:
             sent = self._sent()
             with self.cond:
@@ -273,8 +280,11 @@ class StreamSet:
         sent = self._sent()
 
         def short():
-            return [(s, sent.get(s.topic, 0) - s.offset - s.received) for s in synced
-                    if s.received < sent.get(s.topic, 0) - s.offset]
+            return [
+                (s, sent.get(s.topic, 0) - s.offset - s.received)
+                for s in synced
+                if s.received < sent.get(s.topic, 0) - s.offset
+            ]
 
         t0 = time.monotonic()
         with self.cond:
@@ -282,6 +292,8 @@ class StreamSet:
                 return
             missing = short()
         detail = ", ".join(f"{s.topic} ({n} of {sent.get(s.topic, 0) - s.offset})" for s, n in missing[:5])
-        raise TimeoutError(f"after {time.monotonic() - t0:.0f} s of wall time, messages the simulator sent are "
-                           f"still missing: {detail} (lost to a queue too short: the simulator's outgoing queue of the "
-                           "topic, or a subscriber of this process with a finite queue_size on it)")
+        raise TimeoutError(
+            f"after {time.monotonic() - t0:.0f} s of wall time, messages the simulator sent are "
+            f"still missing: {detail} (lost to a queue too short: the simulator's outgoing queue of the "
+            "topic, or a subscriber of this process with a finite queue_size on it)"
+        )

@@ -128,4 +128,12 @@ def water_track_to_dvl(track, beam_angle, beam_azimuth=(0.0, math.pi / 2, math.p
 
 
 def main():
-    run("dvl_translator", Dvl, DvlBottomWaterTrack, dvl_to_water_track, input_topic="dvl", output_topic="dvl_water_track", queue_size=100)
+    run(
+        "dvl_translator",
+        Dvl,
+        DvlBottomWaterTrack,
+        dvl_to_water_track,
+        input_topic="dvl",
+        output_topic="dvl_water_track",
+        queue_size=100,
+    )

@@ -15,7 +15,7 @@ from kvh_1775.msg import ImuRawKvh
 
 from unexmin.msg import ImuRaw
 
-MILLIGAUSS_PER_TESLA = 1e7   # 1 G = 1e-4 T, 1 mG = 1e-7 T
+MILLIGAUSS_PER_TESLA = 1e7  # 1 G = 1e-4 T, 1 mG = 1e-7 T
 PASCAL_PER_BAR = 1e5
 
 
@@ -57,4 +57,12 @@ def kvh_to_raw(kvh):
 
 
 def main():
-    run("kvh_translator", ImuRaw, ImuRawKvh, raw_to_kvh, input_topic="kvh/raw", output_topic="kvh/imu_raw", queue_size=1000)
+    run(
+        "kvh_translator",
+        ImuRaw,
+        ImuRawKvh,
+        raw_to_kvh,
+        input_topic="kvh/raw",
+        output_topic="kvh/imu_raw",
+        queue_size=1000,
+    )

@@ -43,4 +43,12 @@ def cloud_to_ranges(cloud, angle_min, angle_increment, beams):
 
 
 def main():
-    run("m3_translator", LaserScan, PointCloud2, scan_to_cloud, input_topic="m3/scan", output_topic="m3/points", queue_size=100)
+    run(
+        "m3_translator",
+        LaserScan,
+        PointCloud2,
+        scan_to_cloud,
+        input_topic="m3/scan",
+        output_topic="m3/points",
+        queue_size=100,
+    )

@@ -19,8 +19,9 @@ class TranslatorNode:
         self.load_params(input_topic, output_topic, queue_size)
         self.translated = 0
         self.pub = rospy.Publisher(self.output_topic, out_type, queue_size=self.queue_size)
-        self.sub = rospy.Subscriber(self.input_topic, in_type, self.on_message, queue_size=self.queue_size,
-                                    tcp_nodelay=True)
+        self.sub = rospy.Subscriber(
+            self.input_topic, in_type, self.on_message, queue_size=self.queue_size, tcp_nodelay=True
+        )
         rospy.loginfo("%s: %s -> %s", name, self.sub.resolved_name, self.pub.resolved_name)
 
     def load_params(self, input_topic, output_topic, queue_size):

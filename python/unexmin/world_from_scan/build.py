@@ -22,10 +22,10 @@ import numpy as np
 
 from unexmin.worlds.meshes import sample_surface, write_ply
 
-HULL_RADIUS = 0.3         # [m] the UX-1's sphere (docs/robot_description.md)
-MIN_POINTS = 200          # fewer points after down-sampling: no surface to speak of
-REACH = 20.0              # [m] orientation rays' length
-SAMPLE_AREA = 1.0         # [m^2] of wall per orientation sample
+HULL_RADIUS = 0.3  # [m] the UX-1's sphere (docs/robot_description.md)
+MIN_POINTS = 200  # fewer points after down-sampling: no surface to speak of
+REACH = 20.0  # [m] orientation rays' length
+SAMPLE_AREA = 1.0  # [m^2] of wall per orientation sample
 CONE = ((0.0, 1), (math.radians(30.0), 6), (math.radians(60.0), 6))  # orientation rays: (angle from n, count)
 
 
@@ -64,8 +64,9 @@ def read_scan(path):
         las = laspy.read(str(path))
         points = np.column_stack([np.asarray(las.x), np.asarray(las.y), np.asarray(las.z)]).astype(np.float64)
     else:
-        raise ScanError(f"{path}: unknown point cloud extension '{ext}' (expected .ply .pcd .xyz .xyzn .pts .txt "
-                        ".csv .las .laz)")
+        raise ScanError(
+            f"{path}: unknown point cloud extension '{ext}' (expected .ply .pcd .xyz .xyzn .pts .txt " ".csv .las .laz)"
+        )
     ok = np.isfinite(points).all(axis=1)
     if normals is not None:
         lengths = np.linalg.norm(normals, axis=1)
@@ -89,7 +90,6 @@ def sample_scan(tris, spacing, noise, holes=0, hole_radius=0.5, seed=0):
     per spacing^2 [m] on average, Gaussian noise of sd `noise` [m] on each coordinate, and `holes` missing
     patches (every point within `hole_radius` [m] of a random scan point removed). Seeded: N x 3 [m]."""
     from scipy.spatial import cKDTree
-
 
     points, _ = sample_surface(tris, spacing, seed)
     rng = np.random.default_rng(seed + 1)
@@ -120,12 +120,16 @@ def downsample(points, normals, resolution):
 def check_usable(points, resolution, source):
     """Stop with one clear line when the down-sampled cloud cannot describe a surface."""
     if len(points) < MIN_POINTS:
-        raise ScanError(f"{source}: no usable surface: {len(points)} points after down-sampling to "
-                        f"{resolution} m (expected at least {MIN_POINTS}: a denser scan or a finer --resolution)")
+        raise ScanError(
+            f"{source}: no usable surface: {len(points)} points after down-sampling to "
+            f"{resolution} m (expected at least {MIN_POINTS}: a denser scan or a finer --resolution)"
+        )
     spread = np.sqrt(np.maximum(np.linalg.eigvalsh(np.cov(points.T)), 0.0))  # ascending [m]
     if spread[1] < 5 * resolution:
-        raise ScanError(f"{source}: no usable surface: the points lie along a line (spread {spread[2]:.3g} x "
-                        f"{spread[1]:.3g} x {spread[0]:.3g} m; expected walls around a void)")
+        raise ScanError(
+            f"{source}: no usable surface: the points lie along a line (spread {spread[2]:.3g} x "
+            f"{spread[1]:.3g} x {spread[0]:.3g} m; expected walls around a void)"
+        )
 
 
 def estimate_normals(points, resolution):
@@ -166,7 +170,7 @@ def orientation_samples(count, spacing):
     """How many points cast orientation rays: one per SAMPLE_AREA of wall (the area is about count x
     spacing^2), so that a point's nearest samples lie on its own wall, not across the tunnel (whose
     votes point the other way); between 5 000 and 300 000."""
-    return int(np.clip(count * spacing ** 2 / SAMPLE_AREA, 5000, 300000))
+    return int(np.clip(count * spacing**2 / SAMPLE_AREA, 5000, 300000))
 
 
 def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, seed=0, progress=None):
@@ -189,7 +193,7 @@ def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, 
     rng = np.random.default_rng(seed)
     pick = rng.choice(len(points), size=min(samples, len(points)), replace=False)
     p, n = points[pick], normals[pick]
-    dirs = _cone(n)                                            # S x K x 3
+    dirs = _cone(n)  # S x K x 3
     step = 0.8 * cell
     ts = orientation_steps(hi - lo, cell, reach)
     hits = np.zeros((2, len(p), dirs.shape[1]), dtype=bool)
@@ -239,8 +243,9 @@ def reconstruct(points, normals, depth):
 
     cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
     cloud.normals = o3d.utility.Vector3dVector(-normals)
-    mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(cloud, depth=depth, scale=1.1,
-                                                                        linear_fit=False, n_threads=-1)
+    mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(
+        cloud, depth=depth, scale=1.1, linear_fit=False, n_threads=-1
+    )
     return np.asarray(mesh.vertices).copy(), np.asarray(mesh.triangles).astype(np.int64)
 
 
@@ -256,8 +261,9 @@ def trim_unsupported(v, t, points, max_gap):
     t = t[keep]
     if len(t) == 0:
         return v[:0], t
-    labels = trimesh.graph.connected_component_labels(trimesh.Trimesh(v, t, process=False).face_adjacency,
-                                                      node_count=len(t))
+    labels = trimesh.graph.connected_component_labels(
+        trimesh.Trimesh(v, t, process=False).face_adjacency, node_count=len(t)
+    )
     sizes = np.bincount(labels)
     t = t[sizes[labels] >= 0.01 * len(t)]
     used = np.unique(t)
@@ -309,7 +315,7 @@ def close_holes(v, t):
         new_t.append(fan)
         nv += 1
     cap = np.zeros(sum(len(x) for x in new_t), dtype=bool)
-    cap[len(t):] = True
+    cap[len(t) :] = True
     return np.concatenate(new_v), np.concatenate(new_t), len(loops), area, cap
 
 
@@ -320,7 +326,7 @@ def simplify(v, t, edge):
 
     a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
     area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
-    target = max(1000, int(area / (edge ** 2 * math.sqrt(3) / 4)))
+    target = max(1000, int(area / (edge**2 * math.sqrt(3) / 4)))
     if target >= len(t):
         return v, t
     mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(t.astype(np.int32)))
@@ -342,8 +348,10 @@ def distances(scene, points, chunk=1_000_000):
     """Unsigned distance [m] from each point to the scene's triangles."""
     import open3d as o3d
 
-    out = [scene.compute_distance(o3d.core.Tensor(points[i:i + chunk].astype(np.float32))).numpy()
-           for i in range(0, len(points), chunk)]
+    out = [
+        scene.compute_distance(o3d.core.Tensor(points[i : i + chunk].astype(np.float32))).numpy()
+        for i in range(0, len(points), chunk)
+    ]
     return np.concatenate(out) if out else np.zeros(0)
 
 
@@ -372,8 +380,9 @@ def find_spawns(scene, points, normals, surface_z, clearance, count=3, spacing=1
     chosen = []
     for i in order:
         c = cand[i]
-        if chosen and (np.linalg.norm(c - chosen[0][0]) > 15.0
-                       or min(np.linalg.norm(c - s) for s, _ in chosen) < spacing):
+        if chosen and (
+            np.linalg.norm(c - chosen[0][0]) > 15.0 or min(np.linalg.norm(c - s) for s, _ in chosen) < spacing
+        ):
             continue
         chosen.append((c, float(room[i])))
         if len(chosen) == count:
@@ -386,8 +395,9 @@ def flooded_volume(v, t, surface_z):
     when the surface is not a closed 2-manifold."""
     import manifold3d
 
-    solid = manifold3d.Manifold(manifold3d.Mesh(vert_properties=v.astype(np.float32),
-                                                tri_verts=t[:, ::-1].astype(np.uint32)))
+    solid = manifold3d.Manifold(
+        manifold3d.Mesh(vert_properties=v.astype(np.float32), tri_verts=t[:, ::-1].astype(np.uint32))
+    )
     if solid.status() != manifold3d.Error.NoError:
         return None
     return float(solid.trim_by_plane((0.0, 0.0, -1.0), -surface_z).volume())
@@ -417,8 +427,10 @@ def world_yaml(name, surface_z, visibility, current_speed, collision_file, visua
         "robots:                                       # checked: in the water, clearance [m] to the walls",
     ]
     for k, (xyz, room) in enumerate(spawns):
-        lines.append(f"  - {{name: UX_{k + 1}, description: ux1.urdf.xacro, xyz: [{xyz[0]:.3f}, {xyz[1]:.3f}, "
-                     f"{xyz[2]:.3f}], rpy: [0, 0, 0]}}   # clearance {room:.2f} m")
+        lines.append(
+            f"  - {{name: UX_{k + 1}, description: ux1.urdf.xacro, xyz: [{xyz[0]:.3f}, {xyz[1]:.3f}, "
+            f"{xyz[2]:.3f}], rpy: [0, 0, 0]}}   # clearance {room:.2f} m"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -441,8 +453,21 @@ def closed_surface(v, t):
     return bool(mesh.is_watertight and mesh.is_winding_consistent)
 
 
-def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=1.0, clearance=0.6,
-                edge=0.3, visual_edge=1.0, visibility="medium", current_speed=0.0, seed=0, quiet=False):
+def build_world(
+    scan,
+    out,
+    name=None,
+    resolution=0.1,
+    water_level=None,
+    max_gap=1.0,
+    clearance=0.6,
+    edge=0.3,
+    visual_edge=1.0,
+    visibility="medium",
+    current_speed=0.0,
+    seed=0,
+    quiet=False,
+):
     """The whole pipeline; returns the report (dict), also written as <out>/<name>.json."""
     from tqdm import tqdm
 
@@ -479,17 +504,32 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     extent = points.max(axis=0) - points.min(axis=0)
     steps = 2 * len(orientation_steps(extent, orientation_cell(extent, resolution)))
     spacing = point_spacing(points, seed)
-    normals, decided = timed("orient", "orient", orient_towards_void, points, normals, resolution, seed=seed,
-                             samples=orientation_samples(len(points), spacing), total=steps, unit="ray step")
+    normals, decided = timed(
+        "orient",
+        "orient",
+        orient_towards_void,
+        points,
+        normals,
+        resolution,
+        seed=seed,
+        samples=orientation_samples(len(points), spacing),
+        total=steps,
+        unit="ray step",
+    )
     if spacing > resolution and not quiet:
-        print(f"world_from_scan: note: the scan's points are {spacing:.3g} m apart, sparser than --resolution "
-              f"{resolution} m: the surface is reconstructed at {spacing:.3g} m", file=sys.stderr)
+        print(
+            f"world_from_scan: note: the scan's points are {spacing:.3g} m apart, sparser than --resolution "
+            f"{resolution} m: the surface is reconstructed at {spacing:.3g} m",
+            file=sys.stderr,
+        )
     depth = poisson_depth(points, max(resolution, spacing))
     v, t = timed("poisson", "poisson", reconstruct, points, normals, depth)
     v, t = timed("trim", "trim", trim_unsupported, v, t, points, max_gap)
     if len(t) == 0:
-        raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap "
-                        f"{max_gap} m of the scan")
+        raise ScanError(
+            f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap "
+            f"{max_gap} m of the scan"
+        )
     v, t, holes, hole_area, cap = timed("holes", "close holes", close_holes, v, t)
     import trimesh
 
@@ -506,8 +546,10 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     v, t = cv, ct
     volume = -float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
     if closed and volume < (4 / 3) * math.pi * (HULL_RADIUS + clearance) ** 3:
-        raise ScanError(f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
-                        f"room for one robot (expected walls around a void)")
+        raise ScanError(
+            f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
+            f"room for one robot (expected walls around a void)"
+        )
     surface_z = float(points[:, 2].max()) if water_level is None else float(water_level)
     scene = raycasting_scene(v, t)
     t0 = time.monotonic()
@@ -516,8 +558,10 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
         bar.update(1)
     times["spawns"] = round(time.monotonic() - t0, 2)
     if not spawns:
-        raise ScanError(f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
-                        "clearance to the walls: no room for a robot")
+        raise ScanError(
+            f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
+            "clearance to the walls: no room for a robot"
+        )
     vv, vt = timed("visual", "visual mesh", simplify, v, t, visual_edge)
     t0 = time.monotonic()
     with stage("evaluate") as bar:
@@ -533,25 +577,42 @@ def build_world(scan, out, name=None, resolution=0.1, water_level=None, max_gap=
     write_ply(out / collision_file, v, t, comment + " collision", inward=False)
     write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
     world_path = out / f"{name}.world"
-    world_path.write_text(world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file,
-                                     spawns, scan.name))
+    world_path.write_text(
+        world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, scan.name)
+    )
     rep = {
-        "scan": str(scan), "points_read": int(len(raw)), "points_used": int(len(points)),
+        "scan": str(scan),
+        "points_read": int(len(raw)),
+        "points_used": int(len(points)),
         "normals": "read" if raw_normals is not None else "estimated",
-        "orientation_samples_decided": round(decided, 3), "resolution": resolution,
-        "point_spacing": round(spacing, 4), "poisson_depth": depth,
-        "max_gap": max_gap, "poisson_triangles": int(fine_triangles),
+        "orientation_samples_decided": round(decided, 3),
+        "resolution": resolution,
+        "point_spacing": round(spacing, 4),
+        "poisson_depth": depth,
+        "max_gap": max_gap,
+        "poisson_triangles": int(fine_triangles),
         "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
         "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
-        "world": world_path.name, "closed": closed, "volume": round(volume, 3) if closed else None,
-        "flooded_volume": round(flooded, 3) if flooded is not None else None, "water_level": surface_z,
-        "wall_area": round(wall_area, 3), "bridged_area": round(bridged_area, 3), "holes_closed": holes,
+        "world": world_path.name,
+        "closed": closed,
+        "volume": round(volume, 3) if closed else None,
+        "flooded_volume": round(flooded, 3) if flooded is not None else None,
+        "water_level": surface_z,
+        "wall_area": round(wall_area, 3),
+        "bridged_area": round(bridged_area, 3),
+        "holes_closed": holes,
         "holes_area": round(hole_area, 3),
-        "scan_to_mesh": {"mean": round(float(d.mean()), 4), "p95": round(float(np.percentile(d, 95)), 4),
-                         "max": round(float(d.max()), 4), "points": int(len(d))},
-        "bbox_min": [round(x, 3) for x in v.min(axis=0)], "bbox_max": [round(x, 3) for x in v.max(axis=0)],
+        "scan_to_mesh": {
+            "mean": round(float(d.mean()), 4),
+            "p95": round(float(np.percentile(d, 95)), 4),
+            "max": round(float(d.max()), 4),
+            "points": int(len(d)),
+        },
+        "bbox_min": [round(x, 3) for x in v.min(axis=0)],
+        "bbox_max": [round(x, 3) for x in v.max(axis=0)],
         "spawns": [{"xyz": [round(float(x), 3) for x in s], "clearance": round(c, 3)} for s, c in spawns],
-        "seconds": times, "total_seconds": round(time.monotonic() - t_all, 2),
+        "seconds": times,
+        "total_seconds": round(time.monotonic() - t_all, 2),
         "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
     }
     (out / f"{name}.json").write_text(json.dumps(rep, indent=1) + "\n")
@@ -562,20 +623,22 @@ def report(rep):
     s = rep["scan_to_mesh"]
     vol = f"{rep['volume']:,.1f}" if rep["volume"] is not None else "n/a (not closed)"
     flooded = f"{rep['flooded_volume']:,.1f}" if rep["flooded_volume"] is not None else "n/a"
-    return "\n".join([
-        f"world '{rep['world']}' from {rep['scan']}: {rep['points_read']:,} points read, {rep['points_used']:,} at "
-        f"{rep['resolution']} m, normals {rep['normals']}, Poisson depth {rep['poisson_depth']}, "
-        f"{rep['total_seconds']} s, peak {rep['peak_rss_mb']:.0f} MB",
-        f"  collision: {rep['collision']['triangles']:,} triangles (edge {rep['collision']['edge']} m, from Poisson's "
-        f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
-        f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
-        f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) "
-        f"{flooded} m^3, "
-        f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
-        f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
-        f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, max {s['max']:.2f} m",
-        "  spawns: " + ", ".join(f"{sp['xyz']} (clearance {sp['clearance']:.2f} m)" for sp in rep["spawns"]),
-    ])
+    return "\n".join(
+        [
+            f"world '{rep['world']}' from {rep['scan']}: {rep['points_read']:,} points read, {rep['points_used']:,} at "
+            f"{rep['resolution']} m, normals {rep['normals']}, Poisson depth {rep['poisson_depth']}, "
+            f"{rep['total_seconds']} s, peak {rep['peak_rss_mb']:.0f} MB",
+            f"  collision: {rep['collision']['triangles']:,} triangles (edge {rep['collision']['edge']} m, from Poisson's "
+            f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
+            f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
+            f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) "
+            f"{flooded} m^3, "
+            f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
+            f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
+            f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, max {s['max']:.2f} m",
+            "  spawns: " + ", ".join(f"{sp['xyz']} (clearance {sp['clearance']:.2f} m)" for sp in rep["spawns"]),
+        ]
+    )
 
 
 def main(argv=None):
@@ -585,25 +648,48 @@ def main(argv=None):
     ap.add_argument("--name", help="world and file name prefix (default: the scan's file name)")
     ap.add_argument("--resolution", type=float, default=0.1, help="[m] voxel size and Poisson cell (default 0.1)")
     ap.add_argument("--water-level", type=float, help="[m] z of the water surface (default: the scan's top)")
-    ap.add_argument("--max-gap", type=float, default=1.0,
-                    help="[m] surface farther than this from every scan point is trimmed (default 1.0)")
-    ap.add_argument("--clearance", type=float, default=0.6,
-                    help="[m] least distance from a spawn point to the walls (default 0.6: hull 0.3 + 0.3)")
+    ap.add_argument(
+        "--max-gap",
+        type=float,
+        default=1.0,
+        help="[m] surface farther than this from every scan point is trimmed (default 1.0)",
+    )
+    ap.add_argument(
+        "--clearance",
+        type=float,
+        default=0.6,
+        help="[m] least distance from a spawn point to the walls (default 0.6: hull 0.3 + 0.3)",
+    )
     ap.add_argument("--visibility", default="medium", help="none|low|medium|high (default medium)")
     ap.add_argument("--current-speed", type=float, default=0.0, help="[m/s] mean water current (default 0)")
-    ap.add_argument("--edge", type=float, default=0.3,
-                    help="[m] triangle edge of the collision mesh, decimated from Poisson's (default 0.3)")
+    ap.add_argument(
+        "--edge",
+        type=float,
+        default=0.3,
+        help="[m] triangle edge of the collision mesh, decimated from Poisson's (default 0.3)",
+    )
     ap.add_argument("--visual-edge", type=float, default=1.0, help="[m] triangle edge of the visual mesh (default 1.0)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the samplings (default 0)")
     ap.add_argument("--quiet", action="store_true", help="no progress bars")
     args = ap.parse_args(argv)
     try:
-        rep = build_world(args.scan, args.out, args.name, args.resolution, args.water_level, args.max_gap,
-                          args.clearance, args.edge, args.visual_edge, args.visibility, args.current_speed, args.seed,
-                          args.quiet)
+        rep = build_world(
+            args.scan,
+            args.out,
+            args.name,
+            args.resolution,
+            args.water_level,
+            args.max_gap,
+            args.clearance,
+            args.edge,
+            args.visual_edge,
+            args.visibility,
+            args.current_speed,
+            args.seed,
+            args.quiet,
+        )
     except ScanError as e:
         print(f"world_from_scan: error: {e}", file=sys.stderr)
         return 2
     print(report(rep))
     return 0
-

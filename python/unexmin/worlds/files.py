@@ -24,8 +24,9 @@ def world_path(world, base=""):
     path = os.path.join(base, world)
     if not os.path.exists(path):
         names = sorted(p.stem for p in (PACKAGE_DIR / "worlds").glob("*.world"))
-        raise FileNotFoundError(f"--world {world}: neither a shipped world ({', '.join(names)}) nor an existing "
-                                "world file")
+        raise FileNotFoundError(
+            f"--world {world}: neither a shipped world ({', '.join(names)}) nor an existing " "world file"
+        )
     return path
 
 
@@ -35,12 +36,16 @@ def inside_path(world, base, file, key):
     ValueError naming the file, the key and the path otherwise."""
     file = str(file)
     if os.path.isabs(file):
-        raise ValueError(f"{world}: '{key}' {file} is an absolute path: expected a path relative to the world "
-                         f"file's folder {base} and inside it")
+        raise ValueError(
+            f"{world}: '{key}' {file} is an absolute path: expected a path relative to the world "
+            f"file's folder {base} and inside it"
+        )
     norm = os.path.normpath(file)
     if norm == "." or norm == ".." or norm.startswith("../"):
-        raise ValueError(f"{world}: '{key}' {file} is not inside the world file's folder {base}: expected a "
-                         f"relative path to a file in it or below it (no '..' out of it)")
+        raise ValueError(
+            f"{world}: '{key}' {file} is not inside the world file's folder {base}: expected a "
+            f"relative path to a file in it or below it (no '..' out of it)"
+        )
     return os.path.join(base, norm)
 
 
@@ -72,17 +77,20 @@ def load_world(path):
     for i, m in enumerate(world.get("meshes") or []):
         if "file" not in m:
             raise ValueError(f"{path}: meshes[{i}] has no 'file'")
-        entry = {"name": m.get("name", f"mesh{i}"), "file": inside_path(path, base, m["file"], f"meshes[{i}].file"),
-                 "scale": [float(v) for v in m.get("scale", [1, 1, 1])],
-                 "xyz": [float(v) for v in m.get("xyz", [0, 0, 0])],
-                 "rpy": [float(v) for v in m.get("rpy", [0, 0, 0])],
-                 "collision": bool(m.get("collision", True)), "visual": bool(m.get("visual", True))}
+        entry = {
+            "name": m.get("name", f"mesh{i}"),
+            "file": inside_path(path, base, m["file"], f"meshes[{i}].file"),
+            "scale": [float(v) for v in m.get("scale", [1, 1, 1])],
+            "xyz": [float(v) for v in m.get("xyz", [0, 0, 0])],
+            "rpy": [float(v) for v in m.get("rpy", [0, 0, 0])],
+            "collision": bool(m.get("collision", True)),
+            "visual": bool(m.get("visual", True)),
+        }
         if len(entry["scale"]) != 3 or len(entry["xyz"]) != 3 or len(entry["rpy"]) != 3:
             raise ValueError(f"{path}: meshes[{i}] scale, xyz and rpy need 3 numbers each")
         meshes.append(entry)
     surface = float((world.get("water") or {}).get("surface_z", 0.0))
     return {"name": world.get("name", "world"), "surface_z": surface, "meshes": meshes}
-
 
 
 def placed_mesh(entry):
@@ -103,4 +111,3 @@ def world_triangles(path):
     if not tris:
         raise ValueError(f"{path}: no collision mesh")
     return np.concatenate(tris)
-

@@ -18,7 +18,7 @@ from unexmin.geometry import rpy_quaternion
 from unexmin.worlds.files import load_world, placed_mesh
 from unexmin.worlds.meshes import MeshFormatError
 
-ROCK = (0.42, 0.47, 0.55, 1.0)      # slate grey-blue: apart from the hull's yellow and rviz's grey
+ROCK = (0.42, 0.47, 0.55, 1.0)  # slate grey-blue: apart from the hull's yellow and rviz's grey
 WATER = (0.10, 0.45, 0.95, 0.45)
 
 
@@ -31,14 +31,14 @@ def plane_loops(v, t, z):
     if len(crossing) == 0:
         return []
     tri = t[crossing]
-    edges = np.stack([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]], axis=1)     # (C, 3, 2)
-    cut = above[edges[..., 0]] != above[edges[..., 1]]                            # two per triangle
+    edges = np.stack([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]], axis=1)  # (C, 3, 2)
+    cut = above[edges[..., 0]] != above[edges[..., 1]]  # two per triangle
     keys = np.sort(edges, axis=2)
     n = len(v)
     ids, inverse = np.unique((keys[..., 0] * n + keys[..., 1])[cut], return_inverse=True)
     a, b = v[ids // n], v[ids % n]
     points = a + ((z - a[:, 2]) / (b[:, 2] - a[:, 2]))[:, None] * (b - a)
-    seg = inverse.reshape(-1, 2)                                                  # edge-point pairs
+    seg = inverse.reshape(-1, 2)  # edge-point pairs
     p0, p1, p2 = (v[tri[:, i]] for i in range(3))
     normals = np.cross(p1 - p0, p2 - p0)
     normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
@@ -91,10 +91,13 @@ def triangulate(xy):
             i, j, l = idx[k - 1], idx[k], idx[(k + 1) % len(idx)]
             a, b, c = xy[i], xy[j], xy[l]
             if cross(a, b, c) <= 0.0:
-                continue                                  # reflex (or flat) corner
-            if any(cross(a, b, xy[m]) >= 0 and cross(b, c, xy[m]) >= 0 and cross(c, a, xy[m]) >= 0
-                   for m in idx if m not in (i, j, l)):
-                continue                                  # another vertex inside this ear
+                continue  # reflex (or flat) corner
+            if any(
+                cross(a, b, xy[m]) >= 0 and cross(b, c, xy[m]) >= 0 and cross(c, a, xy[m]) >= 0
+                for m in idx
+                if m not in (i, j, l)
+            ):
+                continue  # another vertex inside this ear
             tris.append((i, j, l))
             del idx[k]
             break
@@ -127,7 +130,7 @@ def build_markers(world, frame_id="world", color=ROCK, water_color=WATER, mesh_c
     array = MarkerArray()
     for i, entry in enumerate(m for m in world["meshes"] if m["visual"]):
         mk = Marker()
-        mk.header.frame_id = frame_id          # stamp 0: rviz uses the latest transform
+        mk.header.frame_id = frame_id  # stamp 0: rviz uses the latest transform
         mk.ns, mk.id, mk.type, mk.action = "world_meshes", i, Marker.MESH_RESOURCE, Marker.ADD
         mk.pose.position.x, mk.pose.position.y, mk.pose.position.z = entry["xyz"]
         q = rpy_quaternion(entry["rpy"])
@@ -165,8 +168,10 @@ def main():
     rospy.init_node("mesh_marker")
     world_file = rospy.get_param("~world_file", "")
     if not world_file or not os.path.isfile(world_file):
-        raise SystemExit(f"mesh_marker: parameter ~world_file = '{world_file}': expected an existing world "
-                         "file, e.g. $(find unexmin)/worlds/mine.world")
+        raise SystemExit(
+            f"mesh_marker: parameter ~world_file = '{world_file}': expected an existing world "
+            "file, e.g. $(find unexmin)/worlds/mine.world"
+        )
     world = load_world(world_file)
     color = _rgba("color", rospy.get_param("~color", list(ROCK)))
     water_color = _rgba("water_color", rospy.get_param("~water_color", list(WATER)))
@@ -183,6 +188,7 @@ def main():
         array = build_markers(world, frame_id, color, water_color, mesh_colors, water=False)
     pub = rospy.Publisher("world_meshes", MarkerArray, queue_size=1, latch=True)
     pub.publish(array)
-    rospy.loginfo("mesh_marker: %d marker(s) of world '%s' on %s (latched)", len(array.markers), world["name"],
-                  pub.resolved_name)
+    rospy.loginfo(
+        "mesh_marker: %d marker(s) of world '%s' on %s (latched)", len(array.markers), world["name"], pub.resolved_name
+    )
     rospy.spin()

@@ -42,7 +42,6 @@ def read_mesh(path):
     return v.astype(np.float64), inverse.reshape(-1, 3).astype(np.int64)
 
 
-
 def write_ply(path, verts, tris, comment, inward=True):
     """Binary little-endian PLY (float x y z, int triangles): compact, and loaded by assimp ten times
     faster than STL. `inward` reverses the winding so the faces point into the void (the water)."""
@@ -50,14 +49,15 @@ def write_ply(path, verts, tris, comment, inward=True):
         tris = tris[:, ::-1]
     faces = np.zeros(len(tris), dtype=[("n", "u1"), ("i", "<i4", (3,))])
     faces["n"], faces["i"] = 3, tris
-    header = (f"ply\nformat binary_little_endian 1.0\ncomment {comment}\nelement vertex {len(verts)}\n"
-              "property float x\nproperty float y\nproperty float z\n"
-              f"element face {len(tris)}\nproperty list uchar int vertex_indices\nend_header\n")
+    header = (
+        f"ply\nformat binary_little_endian 1.0\ncomment {comment}\nelement vertex {len(verts)}\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        f"element face {len(tris)}\nproperty list uchar int vertex_indices\nend_header\n"
+    )
     with open(path, "wb") as f:
         f.write(header.encode("ascii"))
         f.write(np.ascontiguousarray(verts, dtype="<f4").tobytes())
         f.write(faces.tobytes())
-
 
 
 def sample_surface(tris, spacing, seed=0):
@@ -65,11 +65,10 @@ def sample_surface(tris, spacing, seed=0):
     rng = np.random.default_rng(seed)
     a, b, c = tris[:, 0], tris[:, 1], tris[:, 2]
     area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    expected = area / spacing ** 2
+    expected = area / spacing**2
     counts = np.floor(expected + rng.random(len(tris))).astype(np.int64)
     idx = np.repeat(np.arange(len(tris)), counts)
     u, v = rng.random(len(idx)), rng.random(len(idx))
     flip = u + v > 1.0
     u[flip], v[flip] = 1.0 - u[flip], 1.0 - v[flip]
     return a[idx] + u[:, None] * (b[idx] - a[idx]) + v[:, None] * (c[idx] - a[idx]), float(area.sum())
-

@@ -13,8 +13,9 @@ from unexmin.worlds.files import PACKAGE_DIR as REPO
 from unexmin.worlds.files import link_meshes
 
 
-def world_launch_file(tmp, world="tank", robot="UX_1", roll_pitch=None, overrides=None, description=None,
-                      robots=1, seed=0, spawn_xyz=None):
+def world_launch_file(
+    tmp, world="tank", robot="UX_1", roll_pitch=None, overrides=None, description=None, robots=1, seed=0, spawn_xyz=None
+):
     """Write `<tmp>/<world>_spawn.world` and `.launch`; returns the launch file's path.
 
     world: a shipped world (worlds/<world>.world); roll_pitch: (roll, pitch) [rad] of `robot`'s spawn
@@ -35,12 +36,17 @@ def world_launch_file(tmp, world="tank", robot="UX_1", roll_pitch=None, override
     if roll_pitch is not None:
         entry["rpy"] = [float(roll_pitch[0]), float(roll_pitch[1]), entry["rpy"][2]]
     world_file = Path(tmp) / f"{world}_spawn.world"
-    world_file.write_text(f"# generated from worlds/{world}.world (unexmin.worlds.spawn)\n"
-                          + yaml.safe_dump(data, default_flow_style=None, sort_keys=False))
+    world_file.write_text(
+        f"# generated from worlds/{world}.world (unexmin.worlds.spawn)\n"
+        + yaml.safe_dump(data, default_flow_style=None, sort_keys=False)
+    )
     override_arg = f'\n    <arg name="{robot}_overrides" value="{Path(overrides).resolve()}"/>' if overrides else ""
-    description_param = (f'\n  <!-- replaces the description set by robot.launch (the later definition wins) -->'
-                         f'\n  <param name="/{robot}/robot_description" command="xacro \'{description}\' name:={robot}"/>'
-                         if description else "")
+    description_param = (
+        f"\n  <!-- replaces the description set by robot.launch (the later definition wins) -->"
+        f'\n  <param name="/{robot}/robot_description" command="xacro \'{description}\' name:={robot}"/>'
+        if description
+        else ""
+    )
     launch_file = Path(tmp) / f"{world}_spawn.launch"
     launch_file.write_text(f"""<launch>
   <include file="$(find unexmin)/launch/simulation.launch">

@@ -20,7 +20,7 @@ import time
 def main():
     argv = sys.argv[1:]
     sep = argv.index("--")
-    own, launch_args = argv[:sep], argv[sep + 1:]
+    own, launch_args = argv[:sep], argv[sep + 1 :]
     log_dir, seconds, commands = own[0], float(own[1]), int(own[2])
     rosbag_bag, rosbag_topics, world_name = None, [], "tank"
     rest = own[3:]
@@ -40,8 +40,12 @@ def main():
     try:
         sim = Simulation(world=world, timeout=60.0)
         if rosbag_bag:
-            recorder = subprocess.Popen(["rosbag", "record", "--lz4", "-O", rosbag_bag, *rosbag_topics],
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, start_new_session=True)
+            recorder = subprocess.Popen(
+                ["rosbag", "record", "--lz4", "-O", rosbag_bag, *rosbag_topics],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
             master = rosgraph.Master("/record_run")
 
             def subscribed():
@@ -53,6 +57,7 @@ def main():
             # Registered is not connected: messages published before the TCP connection exists are not
             # queued for it. Wait until the simulator lists an outgoing connection to rosbag on each topic.
             import xmlrpc.client
+
             simulator = xmlrpc.client.ServerProxy(master.lookupNode("/simulator"))
 
             def connected():
