@@ -10,7 +10,8 @@ shipped tank Monte-Carlo: the main job's tank mission, 30 s of sim time, every s
 per simulator). Reports the batch's wall time end to end (cluster start-up included) and from the first
 submission to the last result (the steady state of a long batch), missions per minute of each,
 the mean wall time per mission (start-up included), the load average before and after; then, per worker count
-over its runs, missions per minute and the throughput ratio against the smallest count. The tables of the runs must be equal but for wall times (checked).
+over its runs, missions per minute and the throughput ratio against the smallest count. The tables of the runs
+must be equal but for wall times (checked).
 """
 
 import argparse

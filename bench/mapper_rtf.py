@@ -12,8 +12,8 @@ import time
 import rospy
 
 from unexmin.control.allocation import ThrusterAllocator
-from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.msg import MapperStats
+from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.scripting.simulation import Simulation
 
 

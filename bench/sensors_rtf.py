@@ -156,7 +156,7 @@ def measure(sink_name, pace, window, workdir):
         import rospy
 
         for topic in ("/UX_1/dvl_water_track", "/UX_1/kvh/imu_raw"):
-            wait_for(lambda: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
+            wait_for(lambda topic=topic: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
         nodes = ["/simulator", "/UX_1/dvl_translator"] + (["/UX_1/kvh_translator"] if cfg["kvh_translator"] else [])
         sink_node = None
         if cfg["sink"] == "counter":

@@ -21,7 +21,6 @@ Prints one table and writes DIR/soak.json. The bag is deleted at the end unless 
 import argparse
 import json
 import math
-import os
 import sys
 import time
 from pathlib import Path
@@ -128,6 +127,7 @@ def main():
     bag = out / "soak.bag"
 
     import rospy
+
     from unexmin import Simulation
     from unexmin.scripting.launcher import WorldProcess
     from unexmin.srv import Record

@@ -31,10 +31,11 @@ RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
 
 
 def measure(robots, window, sink, workdir):
-    from unexmin import Simulation
-    from unexmin.scripting.launcher import free_port, wait_for
     import rosgraph
     import rospy
+
+    from unexmin import Simulation
+    from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
@@ -63,7 +64,9 @@ def measure(robots, window, sink, workdir):
         sim = Simulation(node_name="sonar_bench", timeout=60.0)
         for r in names:
             wait_for(
-                lambda: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()), 30.0, f"/{r}/m3/points"
+                lambda r=r: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()),
+                30.0,
+                f"/{r}/m3/points",
             )
         nodes = ["/simulator"] + [f"/{r}/m3_translator" for r in names]
         if sink == "counter":

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.worlds.meshes import read_mesh
 from unexmin.world_from_scan import sample_scan
+from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[1]
 

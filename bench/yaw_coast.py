@@ -30,8 +30,8 @@ def main(argv=None):
     from unexmin.control.allocation import ThrusterAllocator
     from unexmin.geometry import yaw_of
     from unexmin.identify import description
-    from unexmin.worlds.spawn import world_launch_file
     from unexmin.scripting.simulation import Simulation
+    from unexmin.worlds.spawn import world_launch_file
 
     physics = description.load(overrides=args.overrides)
     inertia = physics.inertia[2] + physics.added_mass[5, 5]

@@ -32,6 +32,8 @@ pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotl
   open3d-cpu==0.20.0 laspy==2.5.4 lazrs==0.6.2)
 # batch missions on Dask (docs/batch.md): scheduler/workers, results table (Parquet), dashboard
 pip_packages+=("dask[distributed]==2025.1.0" distributed==2025.1.0 pandas==2.2.3 pyarrow==18.1.0 bokeh==3.6.2)
+# Python lint and format (ruff.toml; test/pytest/test_style.py)
+pip_packages+=(ruff==0.8.6)
 
 missing=()
 for p in "${apt_packages[@]}"; do

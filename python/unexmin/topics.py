@@ -55,7 +55,7 @@ def run_node(name, make, errors=(ValueError,)):
         make()
     except errors as e:
         rospy.logfatal(f"{name}: {e}")
-        raise SystemExit(1)
+        raise SystemExit(1) from None
     rospy.spin()
 
 

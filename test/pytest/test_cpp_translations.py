@@ -63,7 +63,6 @@ def test_rospy_translators_do_not_run_by_default(bag):
 
 
 def test_m3_cloud_equals_the_python_translation(bag):
-    from sensor_msgs import point_cloud2
     from unexmin.translators.m3 import scan_to_cloud
 
     got, _, _ = bag

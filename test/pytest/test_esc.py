@@ -171,7 +171,8 @@ CLIENT = textwrap.dedent("""
     subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cb, i) for i in range(8)]
     pub = rospy.Publisher(ESC_COMMAND_TOPIC, MotorCommand, queue_size=10)
     deadline = time.monotonic() + 60  # a loaded machine starts rospy nodes slowly
-    while time.monotonic() < deadline and not (pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
+    while time.monotonic() < deadline and not (
+        pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
         time.sleep(0.05)
     out = []
     for n, (mode, values) in enumerate(cases, 1):

@@ -373,7 +373,7 @@ def test_dead_reckoning_of_a_steady_turn_is_the_closed_form_circle(nominal_physi
     imu_q = np.column_stack([t1, np.tile(w_q, (len(t1), 1)), np.tile([0.0, 0.0, g], (len(t1), 1))])
     td1 = td[td <= 2.0]
     rows = []
-    for tk in td1:  # the DVL's axes turn with the body; its velocity in them is constant
+    for _ in td1:  # the DVL's axes turn with the body; its velocity in them is constant
         rows.append(mounts.dvl_R.T @ np.cross(w_q, mounts.dvl_r))
     dvl_q = np.column_stack([td1, np.array(rows)])
     p_q = np.column_stack([tp[tp <= 2.0], np.full(len(tp[tp <= 2.0]), p_atm + rho * g * 1.0)])

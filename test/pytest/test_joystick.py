@@ -20,8 +20,8 @@ import time
 from pathlib import Path
 
 import pytest
-
 from test_teleop import Rig
+
 from unexmin.control.joystick import (
     EVENT,
     JS_EVENT_AXIS,

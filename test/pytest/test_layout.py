@@ -1,7 +1,9 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros_layer. No folder
-includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
-with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>."""
+in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its
+sub-folders sonar, vision) -> ros_layer. No folder includes a folder above it (the sub-folders of sensors stand
+side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and
+every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing collides with
+roscpp's <ros/...>."""
 
 import re
 from pathlib import Path

@@ -6,7 +6,6 @@ whatever ROS_IP says. Checked on the listening sockets of every process of a run
 import os
 import re
 import subprocess
-from pathlib import Path
 from urllib.parse import urlparse
 
 from unexmin.scripting.launcher import free_port, marked_processes, stop_process_group, wait_for

@@ -43,7 +43,7 @@ def param(sensor, name):
 
 def test_navigation_sensors_types_links_and_rates():
     robot = expand("UX_2")
-    links = {l.get("name") for l in robot.findall("link")}
+    links = {link.get("name") for link in robot.findall("link")}
     s = sensors(robot)
     expected = {
         "imu": ("imu", "UX_2/imu_link", 500.0),

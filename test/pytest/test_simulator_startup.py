@@ -1,6 +1,7 @@
 """Start-up errors of the simulator process (docs/simulator_node.md): a robot description with a <sensor> of
 an unknown type, an unknown family in ~sensors, an unknown ~visibility level, a negative ~ray_caster_threads and
-an unknown ray-casting back end in the world file each stop simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
+an unknown ray-casting back end in the world file each stop simulator_node with exit code 1 and one FATAL line
+that names the input and what was expected."""
 
 import os
 import re

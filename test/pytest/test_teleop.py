@@ -20,8 +20,8 @@ import xmlrpc.client
 
 import pytest
 
-from unexmin.scripting.launcher import free_port, wait_for
 from unexmin.control.teleop import MOVE_KEYS, TeleopState
+from unexmin.scripting.launcher import free_port, wait_for
 
 DEG = math.pi / 180.0
 

@@ -15,9 +15,9 @@ pytest.importorskip("kvh_1775.msg", reason="source the workspace (scripts/env.sh
 from dvl_nortek.msg import DvlBottomWaterTrack  # noqa: E402
 from kvh_1775.msg import ImuRawKvh  # noqa: E402
 
+from unexmin.msg import Dvl, ImuRaw  # noqa: E402
 from unexmin.translators.dvl import dvl_to_water_track, water_track_to_dvl  # noqa: E402
 from unexmin.translators.kvh import kvh_to_raw, raw_to_kvh  # noqa: E402
-from unexmin.msg import Dvl, ImuRaw  # noqa: E402
 
 BEAM_ANGLE = math.radians(25.0)
 AZIMUTHS = [0.0, math.pi / 2, math.pi, 3 * math.pi / 2]

@@ -103,7 +103,7 @@ def joints_by_name(robot):
 
 
 def links_by_name(robot):
-    return {l.get("name"): l for l in robot.findall("link")}
+    return {link.get("name"): link for link in robot.findall("link")}
 
 
 def link_pose(robot, link_name):

@@ -101,7 +101,10 @@ def mine(tmp_path_factory):
 def test_tank_surface_lies_on_the_true_walls(tank):
     out, rep, truth, _ = tank
     _, v, t = world_of(out, rep)
-    below_rim = lambda p: p[:, 2] < TANK_RIM - 0.1  # the cap over the open top is not in the scan
+
+    def below_rim(p):  # the cap over the open top is not in the scan
+        return p[:, 2] < TANK_RIM - 0.1
+
     to_truth, to_recon = surface_distances(v[t], truth, below_rim)
     for d in (to_truth, to_recon):
         assert d.mean() <= MEAN_TOL and np.percentile(d, 95) <= P95_TOL, (d.mean(), np.percentile(d, 95))
@@ -136,7 +139,10 @@ def test_tank_spawns_are_in_the_water_with_clearance(tank):
 def test_mine_section_surface_lies_on_the_true_walls(mine):
     out, rep, section, _ = mine
     _, v, t = world_of(out, rep)
-    covered = lambda p: (p[:, 0] < SECTION_X - 2.0) & (p[:, 2] > SECTION_Z + 2.0)  # away from the cuts
+
+    def covered(p):  # away from the cuts
+        return (p[:, 0] < SECTION_X - 2.0) & (p[:, 2] > SECTION_Z + 2.0)
+
     to_truth, to_recon = surface_distances(v[t], section, covered)
     for d in (to_truth, to_recon):
         assert d.mean() <= MEAN_TOL and np.percentile(d, 95) <= P95_TOL, (d.mean(), np.percentile(d, 95))

@@ -22,8 +22,8 @@ from sensor_msgs.msg import Joy
 from std_msgs.msg import Float64
 
 from unexmin import Simulation
-from unexmin.geometry import yaw_of
 from unexmin.control.joystick import JS_EVENT_AXIS, JS_EVENT_BUTTON, JS_EVENT_INIT, pack_event
+from unexmin.geometry import yaw_of
 from unexmin.scripting.launcher import wait_for
 
 LEFT_Y, RIGHT_X, BTN_LB = 1, 3, 4

@@ -26,22 +26,22 @@ import numpy as np
 import rosgraph
 import rospy
 import rostest
+from geometry_msgs.msg import TransformStamped
 from octomap_msgs.msg import Octomap
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import PointCloud2
-from geometry_msgs.msg import TransformStamped
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
 from unexmin import Simulation
 from unexmin.control.allocation import ThrusterAllocator
-from unexmin.scripting.launcher import wait_for
 from unexmin.map_quality import expand, read_bt
+from unexmin.msg import MapperStats
+from unexmin.scripting.launcher import wait_for
+from unexmin.srv import SaveMap
 from unexmin.worlds.files import world_path, world_triangles
 from unexmin.worlds.meshes import sample_surface
-from unexmin.msg import MapperStats
-from unexmin.srv import SaveMap
 
 MAPPED = ("UX_1", "UX_3")
 CLOUDS_PER_S = 40 + 4 * 10

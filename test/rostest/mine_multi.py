@@ -119,7 +119,7 @@ class MineMulti(unittest.TestCase):
         subs = [rospy.Subscriber(t, TFMessage, on_tf, queue_size=100) for t in ("/tf", "/tf_static")]
         headers = {}
         master = rosgraph.Master(rospy.get_name())
-        for topic, type_name in master.getPublishedTopics("/"):
+        for topic, _ in master.getPublishedTopics("/"):
             if any(topic.startswith(f"/{n}/") for n in NAMES):
                 cls = rostopic.get_topic_class(topic)[0]
                 if cls is not None and "header" in cls.__slots__:

@@ -72,7 +72,7 @@ class Sonar(unittest.TestCase):
             pts = list(point_cloud2.read_points(cloud, field_names=("x", "y", "z")))
             self.assertEqual(len(pts), len(valid))
             self.assertLessEqual(len(pts), 256)
-            for (x, y, z), r in zip(pts, valid):
+            for (x, y, _), r in zip(pts, valid):
                 self.assertAlmostEqual(math.hypot(x, y), r, delta=1e-5 * max(1.0, r))
         # End to end (REP-103, the M3's order): beam 0 at -fov/2 (to the right), the last at +fov/2.
         scan = got["m3/scan"][-1]

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from unexmin.scripting.launcher import WorldProcess, wait_for
-from unexmin.worlds.meshes import read_mesh
 from unexmin.world_from_scan import build_world, sample_scan
+from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -84,7 +84,8 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
         client = Client(cluster)
     try:
         log(
-            f"[batch] {len(missions)} missions of {spec['mission']} on {scheduler or f'a local cluster of {workers} workers'}"
+            f"[batch] {len(missions)} missions of {spec['mission']} on "
+            f"{scheduler or f'a local cluster of {workers} workers'}"
             f"; Dask dashboard: {client.dashboard_link}"
         )
         t_submit = time.monotonic()

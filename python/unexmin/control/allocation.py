@@ -55,7 +55,9 @@ def validate_matrix(matrix, name="allocation_matrix"):
     try:
         a = np.array(matrix, dtype=float)
     except (TypeError, ValueError) as e:
-        raise AllocationError(f"parameter {name}: expected 6 rows of numbers (X Y Z K M N), got {matrix!r} ({e})")
+        raise AllocationError(
+            f"parameter {name}: expected 6 rows of numbers (X Y Z K M N), got {matrix!r} ({e})"
+        ) from None
     if a.ndim == 1:
         if a.size == 0 or a.size % 6:
             raise AllocationError(
@@ -82,7 +84,7 @@ def validate_max_thrust(value, name="max_thrust"):
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise AllocationError(f"parameter {name}: expected a number of newtons > 0, got {value!r}")
+        raise AllocationError(f"parameter {name}: expected a number of newtons > 0, got {value!r}") from None
     if not math.isfinite(v) or v <= 0.0:
         raise AllocationError(f"parameter {name} = {v}: expected a finite thrust > 0 N")
     return v
@@ -93,7 +95,7 @@ def validate_wrench(wrench, name="wrench"):
     try:
         w = np.array(wrench, dtype=float).reshape(-1)
     except (TypeError, ValueError):
-        raise AllocationError(f"{name}: expected 6 numbers [X Y Z K M N], got {wrench!r}")
+        raise AllocationError(f"{name}: expected 6 numbers [X Y Z K M N], got {wrench!r}") from None
     if w.size != 6:
         raise AllocationError(f"{name}: expected 6 numbers [X Y Z K M N], got {w.size}")
     bad = [DOF[i] for i in np.flatnonzero(~np.isfinite(w))]

@@ -54,7 +54,7 @@ class ThrusterAllocatorNode:
         try:
             self.allocator = ThrusterAllocator(matrix, max_thrust)
         except AllocationError as e:
-            raise AllocationError(str(e).replace("parameter ", "parameter ~", 1))
+            raise AllocationError(str(e).replace("parameter ", "parameter ~", 1)) from None
         self.publish_motor_command = rospy.get_param("~publish_motor_command", True)
         if not isinstance(self.publish_motor_command, bool):
             raise AllocationError(

@@ -88,7 +88,7 @@ class ThrustTable:
             x = np.array(inputs, dtype=float).reshape(-1)
             y = np.array(outputs, dtype=float).reshape(-1)
         except (TypeError, ValueError) as e:
-            raise EscTableError(f"parameter {name}: input and output must be lists of numbers ({e})")
+            raise EscTableError(f"parameter {name}: input and output must be lists of numbers ({e})") from None
         if x.size != y.size:
             raise EscTableError(f"parameter {name}: input has {x.size} entries but output has {y.size}")
         if x.size < 2:
@@ -184,7 +184,7 @@ class EscConverter:
         try:
             self.max_thrust = float(max_thrust)
         except (TypeError, ValueError):
-            raise EscTableError(f"parameter max_thrust: expected a number of newtons > 0, got {max_thrust!r}")
+            raise EscTableError(f"parameter max_thrust: expected a number of newtons > 0, got {max_thrust!r}") from None
         if not math.isfinite(self.max_thrust) or self.max_thrust <= 0.0:
             raise EscTableError(f"parameter max_thrust = {max_thrust}: expected a finite thrust > 0 N")
 

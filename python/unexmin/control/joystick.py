@@ -250,8 +250,8 @@ class JoystickNode:
     """Publishers of the joystick teleop and its loop (run() until shutdown or stop)."""
 
     def __init__(self, device):
-        import rospy
         import rospkg
+        import rospy
         from sensor_msgs.msg import Joy
 
         from unexmin.topics import robot_param, sync_publisher

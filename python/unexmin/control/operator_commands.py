@@ -18,6 +18,9 @@ import math
 #: Wrench components, body frame (REP-103: X forward, Y left, Z up; K, M, N about x, y, z).
 AXES = ("X", "Y", "Z", "K", "M", "N")
 LINEAR_AXES = ("X", "Y", "Z")
+#: Pendulum step and limit (either side) [rad].
+PENDULUM_STEP = math.radians(1.0)
+PENDULUM_LIMIT = math.radians(30.0)
 
 #: Step intents: name -> (what, sign). "speed" steps linear and angular together.
 STEP_INTENTS = {
@@ -42,8 +45,8 @@ DEFAULTS = {
     "linear_max": 80.0,
     "angular_max": 40.0,
     "pendulum_step_deg": 1.0,
-    "pendulum_min": math.radians(-30.0),
-    "pendulum_max": math.radians(30.0),
+    "pendulum_min": -PENDULUM_LIMIT,
+    "pendulum_max": PENDULUM_LIMIT,
     "vbs_step": 0.01,
     "vbs_min": -1.0,
     "vbs_max": 1.0,
@@ -68,9 +71,9 @@ class OperatorCommands:
         angular_step=0.5,
         linear_max=80.0,
         angular_max=40.0,
-        pendulum_step=math.radians(1.0),
-        pendulum_min=math.radians(-30.0),
-        pendulum_max=math.radians(30.0),
+        pendulum_step=PENDULUM_STEP,
+        pendulum_min=-PENDULUM_LIMIT,
+        pendulum_max=PENDULUM_LIMIT,
         vbs_step=0.01,
         vbs_min=-1.0,
         vbs_max=1.0,

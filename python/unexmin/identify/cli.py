@@ -274,7 +274,8 @@ def summary(data):
         f"linear damping: {vec(data['damping_linear'])}",
         "thrust gain: " + ", ".join(f"{k} " + pm({"value": v, "sigma": g["sigma"][k]}) for k, v in g["value"].items()),
         f"added mass: {pm(data['added_mass'])} kg; added inertia (roll pitch yaw): {vec(data['added_inertia'])}",
-        f"unidentifiable from this bag (kept at the description's value): {', '.join(data['unidentifiable']) or 'none'}",
+        "unidentifiable from this bag (kept at the description's value): "
+        + (", ".join(data["unidentifiable"]) or "none"),
     ]
     if data["fixed"]:
         lines.append(f"fixed by request: {', '.join(data['fixed'])}")

@@ -5,7 +5,8 @@
 
 The occupied voxels of an OctoMap .bt (read with OctoMap's own `bt2vrml`, octomap-tools) against the
 collision meshes of a world, Tanks-and-Temples style at a distance tau (default: one voxel):
-- precision: fraction of occupied voxel centres (pruned leaves split into voxels of the finest size) within tau of the surface;
+- precision: fraction of occupied voxel centres (pruned leaves split into voxels of the finest size) within tau of
+  the surface;
 - recall (coverage): fraction of the surface, area-sampled, within tau of an occupied voxel centre,
   over the surface the robot could have seen: within --range (default 10 m, the mapper's max range)
   of its path (--trajectory: a bag with nav_msgs/Odometry topics, or a CSV with x, y, z columns); the

@@ -267,7 +267,7 @@ def make_layout(preset, seed):
         mid = [(x0 + (x1 - x0) * t, y_r, a[2] + (b[2] - a[2]) * t) for t in np.linspace(0.06, 0.94, n)]
         tunnels.append(Tunnel("ramp", [a, *mid, b], a=2.2, b=2.0))
     # Raises: internal shafts through consecutive levels, following the drifts where they are.
-    for r in range(P.raises):
+    for _ in range(P.raises):
         top = int(rng.integers(0, max(1, P.levels - 2)))
         bottom = min(P.levels - 1, top + int(rng.integers(1, 4)))
         reach = min(d[-1, 0] for d in drifts[top : bottom + 1]) - 8.0
@@ -546,7 +546,8 @@ def report(man):
             f"  visual:    {v['triangles']:,} triangles, {v['bytes'] / 1e6:.1f} MB, {v['file']}",
             f"  bounding box: min {c['bbox_min']} max {c['bbox_max']} m "
             f"(size {size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} m)",
-            f"  void volume {c['volume']:,.0f} m^3, flooded (below z = {man['surface_z']}) {c['flooded_volume']:,.0f} m^3, "
+            f"  void volume {c['volume']:,.0f} m^3, "
+            f"flooded (below z = {man['surface_z']}) {c['flooded_volume']:,.0f} m^3, "
             f"wall area {c['area']:,.0f} m^2, genus {c['genus']}",
             f"  tunnels: {man['tunnels']}",
         ]

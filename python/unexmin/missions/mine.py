@@ -19,9 +19,9 @@ import time
 import numpy as np
 
 from unexmin.control.allocation import ThrusterAllocator
-from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
 from unexmin.geometry import yaw_of
 from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
+from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
 
 ROBOT = "UX_1"
 SPEED = 0.4  # [m/s] cruise speed

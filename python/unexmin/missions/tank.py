@@ -17,8 +17,8 @@ import time
 import numpy as np
 
 from unexmin.control.allocation import ThrusterAllocator
-from unexmin.map_quality.io import read_trajectory, write_trajectory
 from unexmin.geometry import yaw_of
+from unexmin.map_quality.io import read_trajectory, write_trajectory
 from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
 from unexmin.scripting.launcher import stop_process_group, wait_for
 

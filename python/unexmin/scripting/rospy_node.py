@@ -12,7 +12,7 @@ def _reg_manager():
     """rospy's registration manager of this process's node (None before init_node)."""
     from rospy.impl.registration import RegManager, get_registration_listeners
 
-    return next((l for l in get_registration_listeners().listeners if isinstance(l, RegManager)), None)
+    return next((r for r in get_registration_listeners().listeners if isinstance(r, RegManager)), None)
 
 
 def node_master_uri():

@@ -23,8 +23,8 @@ from std_srvs.srv import Empty
 
 from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.scripting.rospy_node import master_online, node_master_uri, register_again
-from unexmin.srv import Reset, Step
 from unexmin.scripting.streams import StreamSet, header_stamp
+from unexmin.srv import Reset, Step
 from unexmin.topics import sync_publisher
 
 #: Longest burst of one /sim/step call [s of sim time] while sensor streams are subscribed: half of

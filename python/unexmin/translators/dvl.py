@@ -19,10 +19,10 @@ Invalid values use the message's INVALID_* markers (0 for the times).
 
 import math
 
-from unexmin.translators.node import run
 from dvl_nortek.msg import DvlBottomWaterTrack
 
 from unexmin.msg import Dvl
+from unexmin.translators.node import run
 
 PASCAL_PER_DBAR = 1e4
 PAIRS = ((0, 2), (1, 3), (0, 2), (1, 3))  # beams behind x, y, z1, z2

@@ -10,10 +10,10 @@ publishes kvh/imu_raw itself with the same conversion (see docs/translators.md f
 the ~kvh_from_simulator switch). Parameters: docs/translators.md.
 """
 
-from unexmin.translators.node import run
 from kvh_1775.msg import ImuRawKvh
 
 from unexmin.msg import ImuRaw
+from unexmin.translators.node import run
 
 MILLIGAUSS_PER_TESLA = 1e7  # 1 G = 1e-4 T, 1 mG = 1e-7 T
 PASCAL_PER_BAR = 1e5

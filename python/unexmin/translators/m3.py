@@ -12,9 +12,10 @@ inverse (no ROS master needed), so a round trip is testable. Parameters: docs/so
 
 import math
 
-from unexmin.translators.node import run
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import LaserScan, PointCloud2
+
+from unexmin.translators.node import run
 
 
 def scan_points(scan):

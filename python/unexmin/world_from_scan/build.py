@@ -194,7 +194,6 @@ def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, 
     pick = rng.choice(len(points), size=min(samples, len(points)), replace=False)
     p, n = points[pick], normals[pick]
     dirs = _cone(n)  # S x K x 3
-    step = 0.8 * cell
     ts = orientation_steps(hi - lo, cell, reach)
     hits = np.zeros((2, len(p), dirs.shape[1]), dtype=bool)
     for s, sign in enumerate((1.0, -1.0)):
@@ -628,14 +627,16 @@ def report(rep):
             f"world '{rep['world']}' from {rep['scan']}: {rep['points_read']:,} points read, {rep['points_used']:,} at "
             f"{rep['resolution']} m, normals {rep['normals']}, Poisson depth {rep['poisson_depth']}, "
             f"{rep['total_seconds']} s, peak {rep['peak_rss_mb']:.0f} MB",
-            f"  collision: {rep['collision']['triangles']:,} triangles (edge {rep['collision']['edge']} m, from Poisson's "
+            f"  collision: {rep['collision']['triangles']:,} triangles "
+            f"(edge {rep['collision']['edge']} m, from Poisson's "
             f"{rep['poisson_triangles']:,}), {rep['collision']['file']}",
             f"  visual:    {rep['visual']['triangles']:,} triangles, {rep['visual']['file']}",
             f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) "
             f"{flooded} m^3, "
             f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
             f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
-            f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, max {s['max']:.2f} m",
+            f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, "
+            f"max {s['max']:.2f} m",
             "  spawns: " + ", ".join(f"{sp['xyz']} (clearance {sp['clearance']:.2f} m)" for sp in rep["spawns"]),
         ]
     )

@@ -88,17 +88,17 @@ def triangulate(xy):
 
     while len(idx) > 3:
         for k in range(len(idx)):
-            i, j, l = idx[k - 1], idx[k], idx[(k + 1) % len(idx)]
-            a, b, c = xy[i], xy[j], xy[l]
+            i, j, q = idx[k - 1], idx[k], idx[(k + 1) % len(idx)]
+            a, b, c = xy[i], xy[j], xy[q]
             if cross(a, b, c) <= 0.0:
                 continue  # reflex (or flat) corner
             if any(
                 cross(a, b, xy[m]) >= 0 and cross(b, c, xy[m]) >= 0 and cross(c, a, xy[m]) >= 0
                 for m in idx
-                if m not in (i, j, l)
+                if m not in (i, j, q)
             ):
                 continue  # another vertex inside this ear
-            tris.append((i, j, l))
+            tris.append((i, j, q))
             del idx[k]
             break
         else:

@@ -19,8 +19,9 @@ def world_launch_file(
     """Write `<tmp>/<world>_spawn.world` and `.launch`; returns the launch file's path.
 
     world: a shipped world (worlds/<world>.world); roll_pitch: (roll, pitch) [rad] of `robot`'s spawn
-    attitude (its yaw and position are the world's; spawn_xyz [m] replaces its position); overrides: xacro overrides file of that robot
-    (UX_k_overrides:=); description: a whole robot file to use instead (with its own overrides).
+    attitude (its yaw and position are the world's; spawn_xyz [m] replaces its position); overrides: xacro
+    overrides file of that robot (UX_k_overrides:=); description: a whole robot file to use instead (with its own
+    overrides).
     The world starts paused in lockstep with `robots` robots and `seed`.
     """
     source = REPO / "worlds" / f"{world}.world"

@@ -14,7 +14,6 @@ import struct
 import subprocess
 import sys
 import time
-from io import BytesIO
 
 
 def raw_class(msg_class, payload):

@@ -10,8 +10,6 @@ usage: record_run.py <log dir> <seconds> <commands> [--world tank|mine] [--rosba
 """
 
 import json
-import os
-import signal
 import subprocess
 import sys
 import time
@@ -31,6 +29,7 @@ def main():
 
     import rosgraph
     import rospy
+
     from unexmin import Simulation
     from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record
