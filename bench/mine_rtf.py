@@ -37,6 +37,9 @@ from xmlrpc.client import ServerProxy
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sensors_rtf import run_child  # noqa: E402
+
 PATTERNS = {  # thrust per thruster [N], thesis allocation columns (eq. 5.12) scaled
     "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],  # surge
     "UX_2": [0.0, 10.0, 0.0, 10.0, 0.0, -10.0, 0.0, 10.0],  # heave down (-Z column)
@@ -91,7 +94,7 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         sink_topics = [f"/{n}/{t}" for n in names for t in TRANSLATIONS] if translations else []
         if sink_topics:
             sys.path.insert(0, str(Path(__file__).resolve().parent))
-            from sensors_rtf import build_counter
+            from sensors_rtf import build_counter, wait_for_sink
 
             sink = subprocess.Popen(
                 [str(build_counter(workdir.name)), str(window), "100000"] + sink_topics,
@@ -125,13 +128,10 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
         if sink:
-            wait_for(
-                lambda: sum(
-                    any(n.startswith("/topic_counter") for n in subs)
-                    for t, subs in master.getSystemState()[1]
-                    if t in sink_topics
-                )
-                == len(sink_topics),
+            wait_for_sink(
+                master,
+                sink_topics,
+                lambda n: n.startswith("/topic_counter"),
                 timeout,
                 "the sink to subscribe to every translation",
             )
@@ -179,6 +179,12 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         workdir.cleanup()
 
 
+def machine():
+    """The machine a benchmark runs on: cores, CPU model and the load average now."""
+    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
+    return f"nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; load average before: {os.getloadavg()[0]:.2f}"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sim-seconds", type=float, default=120.0, help="sim seconds per RTF measurement")
@@ -203,12 +209,9 @@ def main():
             )
         )
         return 0
-    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
     print(
         f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
-        f"{args.sim_seconds:.0f} s of sim time "
-        f"per run, {args.repeat} runs per count; nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; "
-        f"load average before: {os.getloadavg()[0]:.2f}"
+        f"{args.sim_seconds:.0f} s of sim time per run, {args.repeat} runs per count; {machine()}"
     )
     header = (
         f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
@@ -219,9 +222,8 @@ def main():
     for robots in (1, 2, 3):
         runs = []
         for _ in range(args.repeat):
-            proc = subprocess.run(
+            r = run_child(
                 [
-                    sys.executable,
                     __file__,
                     "--robots",
                     str(robots),
@@ -237,13 +239,11 @@ def main():
                     "--timeout",
                     str(args.timeout),
                 ],
-                capture_output=True,
-                text=True,
+                f"{robots} robots",
             )
-            if proc.returncode != 0:
-                print(proc.stderr[-3000:], file=sys.stderr)
+            if r is None:
                 return 1
-            runs.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+            runs.append(r)
             print(row(robots, runs[-1]), flush=True)
         topics = topics or runs[0]["topics"]
         summary.append(row(robots, {k: float(np.median([r[k] for r in runs])) for k in runs[0] if k != "topics"}))

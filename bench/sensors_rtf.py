@@ -107,6 +107,27 @@ def stop_bench(counter, proc, log):
     log.close()
 
 
+def wait_for_sink(master, topics, is_sink, timeout, what="the sink to subscribe to every topic"):
+    """Wait until a subscriber for which is_sink(subscriber node) holds is on every topic of `topics`."""
+    from unexmin.scripting.launcher import wait_for
+
+    def subscribed():
+        state = master.getSystemState()[1]
+        return sum(any(is_sink(n) for n in subs) for t, subs in state if t in topics) == len(topics)
+
+    wait_for(subscribed, timeout, what)
+
+
+def run_child(argv, label):
+    """The JSON of the last stdout line of `python <argv>` (one measurement in a process of its own), or None
+    (printed: `label`, failed and the end of its stderr) when it fails."""
+    out = subprocess.run([sys.executable, *argv], capture_output=True, text=True)
+    if out.returncode != 0:
+        print(f"{label}: failed\n{out.stderr[-2000:]}", flush=True)
+        return None
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def counter_counts(counter, window_file, sim_t0, sim_t1):
     """{topic: messages} the running topic_counter received stamped in (sim_t0, sim_t1] [s]; stops it."""
     window_file.write_text(f"{sim_t0} {sim_t1}\n")
@@ -165,17 +186,12 @@ def measure(sink_name, pace, window, workdir):
                 stdout=subprocess.PIPE,
                 text=True,
             )
-            sink_node = lambda subs: any(s.startswith("/topic_counter") for s in subs)  # noqa: E731
+            sink_node = lambda n: n.startswith("/topic_counter")  # noqa: E731
         elif cfg["sink"] == "rosbag":
             nodes.append("/bag_record")
-            sink_node = lambda subs: "/bag_record" in subs  # noqa: E731
+            sink_node = lambda n: n == "/bag_record"  # noqa: E731
         if sink_node:
-            master = rosgraph.Master("/sensors_bench")
-            wait_for(
-                lambda: sum(sink_node(subs) for t, subs in master.getSystemState()[1] if t in topics) == len(topics),
-                30.0,
-                "the sink to subscribe to every topic",
-            )
+            wait_for_sink(rosgraph.Master("/sensors_bench"), topics, sink_node, 30.0)
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sensors_bench", nodes)
         if counter:
@@ -251,15 +267,9 @@ def main():
     print(f"{'sink':>9} {'pace':>5} {'RTF':>6} {'delivered':>10}  CPU (share of one core)")
     for name in args.sinks:
         for pace in args.pace if SINKS[name]["sink"] else [0]:
-            out = subprocess.run(
-                [sys.executable, __file__, "--one", name, str(pace), "--window", str(args.window)],
-                capture_output=True,
-                text=True,
-            )
-            if out.returncode != 0:
-                print(f"{name} pace {pace}: failed\n{out.stderr[-2000:]}", flush=True)
+            r = run_child([__file__, "--one", name, str(pace), "--window", str(args.window)], f"{name} pace {pace}")
+            if r is None:
                 continue
-            r = json.loads(out.stdout.strip().splitlines()[-1])
             d = r["delivered"]
             fast = min((f for t, f in d.items() if RATES[t] == 500), default=None)
             slow = min((f for t, f in d.items() if RATES[t] < 500), default=None)

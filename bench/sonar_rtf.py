@@ -24,7 +24,15 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from sensors_rtf import build_counter, counter_counts, node_pids, stop_bench, timed_window  # noqa: E402
+from sensors_rtf import (  # noqa: E402
+    build_counter,
+    counter_counts,
+    node_pids,
+    run_child,
+    stop_bench,
+    timed_window,
+    wait_for_sink,
+)
 
 ROBOTS = ["UX_1", "UX_2", "UX_3"]
 RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
@@ -73,17 +81,7 @@ def measure(robots, window, sink, workdir):
             counter = subprocess.Popen(
                 [str(build_counter(workdir)), str(window_file), "100000"] + topics, stdout=subprocess.PIPE, text=True
             )
-            master = rosgraph.Master("/sonar_bench")
-            wait_for(
-                lambda: sum(
-                    any(s.startswith("/topic_counter") for s in subs)
-                    for t, subs in master.getSystemState()[1]
-                    if t in topics
-                )
-                == len(topics),
-                30.0,
-                "the sink to subscribe to every topic",
-            )
+            wait_for_sink(rosgraph.Master("/sonar_bench"), topics, lambda n: n.startswith("/topic_counter"), 30.0)
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sonar_bench", nodes)
         t_sim0, t_sim1, wall, cpu = timed_window(sim, pids, window)
@@ -114,15 +112,9 @@ def main():
     print(f"tank, lockstep, physics 500 Hz, MSIS + M3 on every robot, sink {args.sink}, {args.window:.0f} s per run")
     print(f"{'robots':>6} {'RTF':>6} {'delivered':>9}  CPU (share of one core)")
     for n in args.robots:
-        out = subprocess.run(
-            [sys.executable, __file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink],
-            capture_output=True,
-            text=True,
-        )
-        if out.returncode != 0:
-            print(f"{n} robots: failed\n{out.stderr[-2000:]}", flush=True)
+        r = run_child([__file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink], f"{n} robots")
+        if r is None:
             continue
-        r = json.loads(out.stdout.strip().splitlines()[-1])
         d = "-" if r["delivered"] is None else f"{r['delivered']:.2f}"
         cpu = ", ".join(f"{k} {100 * c:.0f} %" for k, c in r["cpu"].items())
         print(f"{n:>6} {r['rtf']:6.1f} {d:>9}  {cpu}", flush=True)

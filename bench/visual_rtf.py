@@ -33,7 +33,8 @@ from xmlrpc.client import ServerProxy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mine_rtf import PATTERNS, cpu_seconds, proc_status  # noqa: E402
+from mine_rtf import PATTERNS, cpu_seconds, machine, proc_status  # noqa: E402
+from sensors_rtf import run_child  # noqa: E402
 
 CAMERAS = 5
 
@@ -186,18 +187,16 @@ def main():
             )
         )
         return 0
-    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
     print(
         f"mine, 1 robot, mode:=visual, every sensor, 5 cameras at {args.size} and {args.fps:g} fps, images "
-        f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; nproc "
-        f"{os.cpu_count()}, {' '.join(cpu.split()[2:])}; load average before: {os.getloadavg()[0]:.2f}"
+        f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; "
+        f"{machine()}"
     )
     print(f"{'run':>4} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7}  images per camera (expected)")
     runs = []
     for k in range(args.repeat):
-        proc = subprocess.run(
+        r = run_child(
             [
-                sys.executable,
                 __file__,
                 "--once",
                 "--size",
@@ -215,13 +214,10 @@ def main():
                 "--sink",
                 args.sink,
             ],
-            capture_output=True,
-            text=True,
+            f"run {k}",
         )
-        if proc.returncode != 0:
-            print(proc.stderr[-3000:], file=sys.stderr)
+        if r is None:
             return 1
-        r = json.loads(proc.stdout.strip().splitlines()[-1])
         runs.append(r)
         print(
             f"{k + 1:>4} {r['rtf']:>7.2f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f}  {r['images']} "

@@ -13,12 +13,18 @@ NaN/inf wrenches are rejected with a throttled warning. Parameters: docs/thruste
 
 import rospy
 from geometry_msgs.msg import Wrench
-from std_msgs.msg import Float64
 from ux1_msgs.msg import MotorCommand
 
 from unexmin.control.allocation import DEFAULT_MAX_THRUST, THESIS_MATRIX, AllocationError, ThrusterAllocator
 from unexmin.control.esc import MODE_NAMES, converter_from_params, parse_mode
-from unexmin.topics import ESC_COMMAND_TOPIC, robot_param, run_node, sync_publisher
+from unexmin.topics import (
+    ESC_COMMAND_TOPIC,
+    publish_thrusts,
+    robot_param,
+    run_node,
+    sync_publisher,
+    thruster_publishers,
+)
 
 
 def wrench_to_list(msg):
@@ -32,9 +38,7 @@ class ThrusterAllocatorNode:
     def __init__(self):
         self.load_params()
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [
-            sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(self.allocator.thrusters)
-        ]
+        self.thruster_pubs = thruster_publishers(ns, self.allocator.thrusters)
         self.motor_pub = sync_publisher(self.motor_topic, MotorCommand) if self.publish_motor_command else None
         self.sub = rospy.Subscriber(f"{ns}force_moments", Wrench, self.on_wrench, queue_size=10, tcp_nodelay=True)
         rospy.loginfo(
@@ -82,8 +86,7 @@ class ThrusterAllocatorNode:
                 f"thruster_allocator: wrench {wrench_to_list(msg)} needs more than "
                 f"{self.allocator.max_thrust} N on a thruster; scaled by {scale:.3f}",
             )
-        for pub, t in zip(self.thruster_pubs, thrusts):
-            pub.publish(Float64(float(t)))
+        publish_thrusts(self.thruster_pubs, thrusts)
         if self.motor_pub is not None:
             cmd = MotorCommand()
             cmd.header.stamp = rospy.Time.now()

@@ -9,11 +9,16 @@ simulated robot. Parameters: docs/esc_driver.md.
 import threading
 
 import rospy
-from std_msgs.msg import Float64
 from ux1_msgs.msg import MotorCommand
 
 from unexmin.control.esc import MODE_NAMES, EscTableError, converter_from_params
-from unexmin.topics import ESC_COMMAND_TOPIC, robot_param, run_node, sync_publisher
+from unexmin.topics import (
+    ESC_COMMAND_TOPIC,
+    publish_thrusts,
+    robot_param,
+    run_node,
+    thruster_publishers,
+)
 
 
 class EscDriverNode:
@@ -24,7 +29,7 @@ class EscDriverNode:
         announce: log the configuration at start (off for an in-process driver)."""
         self.load_params(robot, motor_topic)
         ns = f"/{self.robot}/"
-        self.thruster_pubs = [sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(self.thrusters)]
+        self.thruster_pubs = thruster_publishers(ns, self.thrusters)
         self.processed = 0  # MotorCommand messages handled (converted and published, or rejected)
         self.published = 0  # thruster input messages published
         self.last_thrusts = None  # [N] the last thrusts published
@@ -66,8 +71,7 @@ class EscDriverNode:
                 f"esc_driver: {MODE_NAMES[msg.mode]} command {list(msg.values)} needs more "
                 f"than +-{self.converter.max_thrust} N; thrust clamped",
             )
-        for pub, t in zip(self.thruster_pubs, thrusts):
-            pub.publish(Float64(float(t)))
+        publish_thrusts(self.thruster_pubs, thrusts)
         self._done(thrusts, len(self.thruster_pubs))
 
     def _done(self, thrusts, published=0):

@@ -23,7 +23,7 @@ import json
 import math
 import sys
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -56,39 +56,36 @@ class Preset:
     octaves: tuple = ((18.0, 0.30), (6.0, 0.16), (2.0, 0.07), (0.9, 0.035))  # (wavelength, amplitude)
 
 
+# Kaatiala (thesis 6.3): max depth 353 m, max length 620 m, max width 30 m.
+FULL = Preset(
+    "full",
+    length=620.0,
+    half_width=15.0,
+    levels=9,
+    first_level_z=-22.0,
+    level_spacing=41.0,
+    collar_z=6.0,
+    surface_z=0.0,
+    shaft_half=3.0,
+    min_drift_length=360.0,
+    ramp_gradient=1 / 7,
+    chambers=5,
+    raises=2,
+    edge=0.47,
+    visual_edge=1.3,
+    min_triangles=1_000_000,
+)
+
 PRESETS = {
-    # Kaatiala (thesis 6.3): max depth 353 m, max length 620 m, max width 30 m.
-    "full": Preset(
-        "full",
-        length=620.0,
-        half_width=15.0,
-        levels=9,
-        first_level_z=-22.0,
-        level_spacing=41.0,
-        collar_z=6.0,
-        surface_z=0.0,
-        shaft_half=3.0,
-        min_drift_length=360.0,
-        ramp_gradient=1 / 7,
-        chambers=5,
-        raises=2,
-        edge=0.47,
-        visual_edge=1.3,
-        min_triangles=1_000_000,
-    ),
+    "full": FULL,
     # Same construction, two levels, coarse: for tests (a few seconds).
-    "small": Preset(
-        "small",
+    "small": replace(
+        FULL,
+        name="small",
         length=120.0,
-        half_width=15.0,
         levels=2,
-        first_level_z=-22.0,
         level_spacing=12.0,
-        collar_z=6.0,
-        surface_z=0.0,
-        shaft_half=3.0,
         min_drift_length=110.0,
-        ramp_gradient=1 / 7,
         chambers=1,
         raises=1,
         edge=0.6,

@@ -209,35 +209,19 @@ def main(argv=None):
         if not (args.sample_period > 0 and math.isfinite(args.sample_period)):
             raise ReplayError(f"--sample-period {args.sample_period}: expected a positive number of seconds")
         mission = read_bag(args.bag, args.robot, args.motors_topic, args.pendulum_topic, args.vbs_topic, args.nav_topic)
-        before = None
-        if args.overrides:
-            before = replay(
-                mission,
-                Path(args.out) / "nominal",
-                args.world,
-                args.seed,
-                args.robot,
-                args.sample_period,
-                args.duration,
-                not args.no_align,
-                args.pace,
-                not args.quiet,
-                args.connect,
-            )
-        report = replay(
-            mission,
-            args.out,
-            args.world,
-            args.seed,
-            args.robot,
-            args.sample_period,
-            args.duration,
-            not args.no_align,
-            args.pace,
-            not args.quiet,
-            args.connect,
-            overrides=args.overrides,
-        )
+        options = {
+            "world": args.world,
+            "seed": args.seed,
+            "robot": args.robot,
+            "sample_period": args.sample_period,
+            "duration": args.duration,
+            "align": not args.no_align,
+            "pace": args.pace,
+            "progress": not args.quiet,
+            "connect": args.connect,
+        }
+        before = replay(mission, Path(args.out) / "nominal", **options) if args.overrides else None
+        report = replay(mission, args.out, overrides=args.overrides, **options)
         if before is not None:
             report["errors_before"] = before["errors"]
             with open(Path(args.out) / "report.json", "w") as f:

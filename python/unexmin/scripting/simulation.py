@@ -228,13 +228,7 @@ class Simulation:
         """Connect to the simulator of ROS_MASTER_URI (waits up to `timeout` s of wall time for its
         /sim services); `world`: the WorldProcess this Simulation owns and closes (Simulation.launch)."""
         global _open
-        other = _open() if _open is not None else None
-        if other is not None:
-            raise RuntimeError(
-                f"this process already has an open Simulation (master {other.master_uri}); rospy runs one ROS "
-                "node per process, talking to one master, so a process can hold one Simulation at a time: "
-                "close() the first one (or use `with Simulation.launch(...) as sim:`), or use another process"
-            )
+        _refuse_a_second("Simulation")
         self.timeout = timeout
         self._world = world
         self._robots = {}
@@ -328,14 +322,7 @@ class Simulation:
         The first launch of a process picks a free port; later ones (after close()) reuse it, because
         rospy stays bound to the master it first registered with.
         """
-        other = _open() if _open is not None else None
-        if other is not None:
-            raise RuntimeError(
-                f"Simulation.launch: this process already has an open Simulation (master {other.master_uri}); "
-                "rospy runs one ROS node per process, talking to one master, so only one Simulation can be "
-                "open at a time: close() the first one (or use `with Simulation.launch(...) as sim:`) before "
-                "launching another, or launch it from another process"
-            )
+        _refuse_a_second("Simulation.launch")
         port = None
         node_master = node_master_uri()
         if node_master is not None:
@@ -505,6 +492,18 @@ class Simulation:
                 self._world = None
             if _open is not None and _open() is self:
                 _open = None
+
+
+def _refuse_a_second(caller):
+    """RuntimeError naming `caller` when this process already has an open Simulation: rospy runs one ROS node per
+    process, talking to one master."""
+    other = _open() if _open is not None else None
+    if other is not None:
+        raise RuntimeError(
+            f"{caller}: this process already has an open Simulation (master {other.master_uri}); rospy runs one "
+            "ROS node per process, talking to one master, so only one Simulation can be open at a time: close() "
+            "the first one (or use `with Simulation.launch(...) as sim:`), or use another process"
+        )
 
 
 def _close_at_exit():
