@@ -19,7 +19,7 @@ import trimesh
 import yaml
 
 from unexmin import mine_generator as mg
-from unexmin.world_from_scan import build as wfs
+from unexmin import world_from_scan as wfs
 from unexmin.worlds.meshes import read_mesh, sample_surface
 
 REPO = Path(__file__).resolve().parents[2]
