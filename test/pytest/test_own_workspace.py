@@ -183,7 +183,7 @@ def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
     assert build.returncode == 0, (tmp_path / "build.log").read_text()[-3000:]
 
     where = subprocess.run(
-        in_workspace(ws, ["bash", "-c", 'echo "$CMAKE_PREFIX_PATH"; rospack find unexmin; ' "rospack find ux1_msgs"]),
+        in_workspace(ws, ["bash", "-c", 'echo "$CMAKE_PREFIX_PATH"; rospack find unexmin; rospack find ux1_msgs']),
         env=env,
         capture_output=True,
         text=True,

@@ -81,7 +81,7 @@ def fatal_lines(output):
 
 def test_an_unknown_sensor_type_stops_start_up_with_one_line(master, description):
     urdf = description.replace(
-        "</unexmin>", "<sensor name='echo' type='echosounder' link='UX_1/base_link' " "rate='10'/></unexmin>"
+        "</unexmin>", "<sensor name='echo' type='echosounder' link='UX_1/base_link' rate='10'/></unexmin>"
     )
     code, output = start(master, urdf)
     assert code == 1, output

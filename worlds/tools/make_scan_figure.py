@@ -103,7 +103,7 @@ def main():
     for k, title in enumerate(
         (
             f"scan: {len(points):,} points (noise 2 cm, 15 missing patches)",
-            f"mesh: {rep['collision']['triangles']:,} triangles, closed, " f"{rep['holes_closed']} holes closed",
+            f"mesh: {rep['collision']['triangles']:,} triangles, closed, {rep['holes_closed']} holes closed",
         )
     ):
         ax = fig.add_subplot(1, 3, k + 1, projection="3d")

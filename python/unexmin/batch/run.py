@@ -95,7 +95,7 @@ def run_batch(spec, out, workers=None, scheduler=None, limit=None, progress=True
                 spec,
                 m,
                 out,
-                key=f"unexmin-mission-{m['index']:05d}-{os.getpid()}-" f"{time.monotonic_ns()}",
+                key=f"unexmin-mission-{m['index']:05d}-{os.getpid()}-{time.monotonic_ns()}",
                 pure=False,
             )
             for m in missions

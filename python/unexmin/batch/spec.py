@@ -95,7 +95,7 @@ def _check_value(where, name, value):
 def _distribution(where, value):
     if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in DISTRIBUTIONS:
         raise SpecError(
-            f"{where}: expected one of {{{', '.join(f'{d}: [...]' for d in DISTRIBUTIONS)}}}, " f"got {value!r}"
+            f"{where}: expected one of {{{', '.join(f'{d}: [...]' for d in DISTRIBUTIONS)}}}, got {value!r}"
         )
     kind, args = next(iter(value.items()))
     if not isinstance(args, list) or not args or (DISTRIBUTIONS[kind] and len(args) != DISTRIBUTIONS[kind]):
@@ -250,7 +250,7 @@ def load_mission_function(name):
         module = importlib.import_module(module_name)
     except ImportError as e:
         raise SpecError(
-            f"mission {name!r}: cannot import module {module_name!r} ({e}); is its folder in the " "spec's python_path?"
+            f"mission {name!r}: cannot import module {module_name!r} ({e}); is its folder in the spec's python_path?"
         ) from None
     fn = getattr(module, attr, None)
     if not callable(fn):

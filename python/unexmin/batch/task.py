@@ -91,7 +91,7 @@ def check_metrics(name, metrics):
     """`metrics` as {name: float|int|str|bool}; ValueError naming the mission and the bad metric otherwise."""
     if not isinstance(metrics, dict) or not metrics:
         raise ValueError(
-            f"mission {name} returned {type(metrics).__name__} {metrics!r}: expected a non-empty " "dict of metrics"
+            f"mission {name} returned {type(metrics).__name__} {metrics!r}: expected a non-empty dict of metrics"
         )
     clean = {}
     for key, value in metrics.items():

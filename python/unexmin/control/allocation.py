@@ -61,7 +61,7 @@ def validate_matrix(matrix, name="allocation_matrix"):
     if a.ndim == 1:
         if a.size == 0 or a.size % 6:
             raise AllocationError(
-                f"parameter {name}: a flat list needs 6 x n numbers (row-major, rows X Y Z K M N), " f"got {a.size}"
+                f"parameter {name}: a flat list needs 6 x n numbers (row-major, rows X Y Z K M N), got {a.size}"
             )
         a = a.reshape(6, -1)
     if a.ndim != 2 or a.shape[0] != 6 or a.shape[1] < 1:

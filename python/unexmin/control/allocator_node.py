@@ -62,7 +62,7 @@ class ThrusterAllocatorNode:
         self.publish_motor_command = rospy.get_param("~publish_motor_command", True)
         if not isinstance(self.publish_motor_command, bool):
             raise AllocationError(
-                f"parameter ~publish_motor_command = {self.publish_motor_command!r}: " "expected true or false"
+                f"parameter ~publish_motor_command = {self.publish_motor_command!r}: expected true or false"
             )
         self.motor_topic = str(rospy.get_param("~motor_command_topic", ESC_COMMAND_TOPIC))
         self.motor_mode = parse_mode(rospy.get_param("~motor_command_mode", "rpm"), "~motor_command_mode")

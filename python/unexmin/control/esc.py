@@ -191,7 +191,7 @@ class EscConverter:
     def table(self, mode):
         if mode not in self.tables:
             raise EscTableError(
-                f"unknown MotorCommand mode {mode}: expected {MODE_RPM} (RPM) or " f"{MODE_DUTY_CYCLE} (DUTY_CYCLE)"
+                f"unknown MotorCommand mode {mode}: expected {MODE_RPM} (RPM) or {MODE_DUTY_CYCLE} (DUTY_CYCLE)"
             )
         return self.tables[mode]
 

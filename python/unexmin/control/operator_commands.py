@@ -91,7 +91,7 @@ class OperatorCommands:
                 raise ValueError(f"parameter ~{name} = {value!r}: expected a finite number > 0")
         for name, value, top in (("linear", linear, linear_max), ("angular", angular, angular_max)):
             if not (isinstance(value, (int, float)) and 0 <= value <= top):
-                raise ValueError(f"parameter ~{name} = {value!r}: expected a number in [0, {top}] " f"(~{name}_max)")
+                raise ValueError(f"parameter ~{name} = {value!r}: expected a number in [0, {top}] (~{name}_max)")
         for name, lo, hi in (("pendulum", pendulum_min, pendulum_max), ("vbs", vbs_min, vbs_max)):
             if not (math.isfinite(lo) and math.isfinite(hi) and lo <= 0.0 <= hi):
                 raise ValueError(f"parameters ~{name}_min = {lo}, ~{name}_max = {hi}: expected min <= 0 <= max")

@@ -58,7 +58,7 @@ def results(fit, nominal, physics, signals, bag, robot, fixed):
         "nominal": {n: float(nominal[INDEX[n]]) for n in PARAMS},
         "units": {
             "buoyancy_kg": "kg (positive: floats)",
-            "cog_m": "m, body frame, whole vehicle, pendulum at 0, " "VBS empty, relative to the centre of buoyancy",
+            "cog_m": "m, body frame, whole vehicle, pendulum at 0, VBS empty, relative to the centre of buoyancy",
             "damping_linear": "N s/m x3, N m s/rad x3",
             "damping_quadratic": "N s^2/m^2 x3, N m s^2/rad^2 x3",
             "thrust_gain": "achieved / nominal thrust",
@@ -302,7 +302,7 @@ def main(argv=None):
     ap.add_argument("--imu-topic", help="sensor_msgs/Imu topic for --nav dead-reckoning (default /<robot>/imu)")
     ap.add_argument(
         "--dvl-topic",
-        help="geometry_msgs/TwistWithCovarianceStamped DVL topic, DVL frame " "(default /<robot>/dvl_twist)",
+        help="geometry_msgs/TwistWithCovarianceStamped DVL topic, DVL frame (default /<robot>/dvl_twist)",
     )
     ap.add_argument("--pressure-topic", help="sensor_msgs/FluidPressure topic (default /<robot>/pressure)")
     ap.add_argument("--gravity", type=float, default=9.81, help="[m/s^2] for the depth from pressure (default 9.81)")
@@ -316,7 +316,7 @@ def main(argv=None):
         "--depth-time-constant",
         type=float,
         default=10.0,
-        help="[s] of the complementary filter of " "pressure depth and DVL heave (default 10)",
+        help="[s] of the complementary filter of pressure depth and DVL heave (default 10)",
     )
     ap.add_argument(
         "--level-time",
@@ -390,5 +390,5 @@ def main(argv=None):
         print(f"identify: error: {e}", file=sys.stderr)
         return 2
     return print_summary(
-        summary(data), f"written: {Path(args.out).resolve()}/identified.yaml, " "identified_overrides.xacro, report.md"
+        summary(data), f"written: {Path(args.out).resolve()}/identified.yaml, identified_overrides.xacro, report.md"
     )

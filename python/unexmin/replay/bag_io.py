@@ -67,7 +67,7 @@ def pick_topic(types, wanted, accepted, role, required):
         return candidates[0]
     if len(candidates) > 1:
         raise ReplayError(
-            f"several {role} topics in the bag ({', '.join(candidates)}): choose one with " f"--{role.split()[0]}-topic"
+            f"several {role} topics in the bag ({', '.join(candidates)}): choose one with --{role.split()[0]}-topic"
         )
     if required:
         raise ReplayError(f"no {role} ({' or '.join(accepted)}) in the bag (topics: {listing})")

@@ -183,7 +183,7 @@ def main(argv=None):
     ap.add_argument(
         "--connect",
         action="store_true",
-        help="use the running simulator (ROS_MASTER_URI) instead " "of launching one; it is reset, and must be paused",
+        help="use the running simulator (ROS_MASTER_URI) instead of launching one; it is reset, and must be paused",
     )
     ap.add_argument("--robot", default="UX_1", help="simulated robot that replays the bag (default UX_1)")
     ap.add_argument("--seed", type=int, default=0, help="simulator seed (default 0)")

@@ -39,7 +39,7 @@ class LockstepRunner:
         self.sample_steps = round(sample_period * self.rate)
         if self.sample_steps < 1 or abs(self.sample_steps - sample_period * self.rate) > 1e-6:
             raise ReplayError(
-                f"--sample-period {sample_period} s must be a whole number of physics steps " f"({1.0 / self.rate} s)"
+                f"--sample-period {sample_period} s must be a whole number of physics steps ({1.0 / self.rate} s)"
             )
         self.ux = sim.robot(robot, streams="none")
         self.driver = EscDriverNode(robot=robot, motor_topic=motors_topic, announce=False)

@@ -151,7 +151,7 @@ class Robot:
         wanted = f" stamped >= {min_stamp} s" if min_stamp is not None else ""
         if stream.synced and not self.sim.free_running:
             why = (
-                "it was subscribed after the last step call (e.g. robot(..., streams='none')): step, then ask " "again"
+                "it was subscribed after the last step call (e.g. robot(..., streams='none')): step, then ask again"
                 if stream.fresh
                 else "nothing was published on it since the start or the last reset "
                 "(a sensor publishes its first sample at t = 1/rate)"
@@ -296,7 +296,7 @@ class Simulation:
         names = rospy.get_param("/sim/robots", None)
         if names is None:
             raise RuntimeError(
-                "the simulator did not set /sim/robots: it is older than this script (rebuild the " "workspace)"
+                "the simulator did not set /sim/robots: it is older than this script (rebuild the workspace)"
             )
         self.robots = tuple(names)
         self._thruster_count = {n: int(rospy.get_param(f"/sim/thruster_count/{n}")) for n in self.robots}

@@ -56,7 +56,7 @@ def read_scan(path):
         points = np.column_stack([np.asarray(las.x), np.asarray(las.y), np.asarray(las.z)]).astype(np.float64)
     else:
         raise ScanError(
-            f"{path}: unknown point cloud extension '{ext}' (expected .ply .pcd .xyz .xyzn .pts .txt " ".csv .las .laz)"
+            f"{path}: unknown point cloud extension '{ext}' (expected .ply .pcd .xyz .xyzn .pts .txt .csv .las .laz)"
         )
     ok = np.isfinite(points).all(axis=1)
     if normals is not None:

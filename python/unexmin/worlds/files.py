@@ -25,7 +25,7 @@ def world_path(world, base=""):
     if not os.path.exists(path):
         names = sorted(p.stem for p in (PACKAGE_DIR / "worlds").glob("*.world"))
         raise FileNotFoundError(
-            f"--world {world}: neither a shipped world ({', '.join(names)}) nor an existing " "world file"
+            f"--world {world}: neither a shipped world ({', '.join(names)}) nor an existing world file"
         )
     return path
 
