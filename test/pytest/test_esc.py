@@ -9,7 +9,6 @@ Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_esc.py
 """
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -188,39 +187,13 @@ CLIENT = textwrap.dedent("""
 def master(tmp_path):
     if not shutil.which("rosmaster"):
         pytest.skip("rosmaster not installed")
-    from unexmin.scripting.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, start_private_master, stop_process_group
 
-    port = free_port()
-    env = dict(
-        os.environ,
-        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
-        ROS_IP="127.0.0.1",
-        ROS_LOG_DIR=str(tmp_path / "log"),
-        ROS_HOME=str(tmp_path),
-    )
-    proc = subprocess.Popen(
-        ["rosmaster", "--core", "-p", str(port)],
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
+    proc, env = start_private_master(free_port(), tmp_path)
     try:
-        import xmlrpc.client
-
-        wait_for(lambda: _master_up(xmlrpc.client, port), 20, "rosmaster")
         yield env
     finally:
-        proc.terminate()
-        proc.wait(10)
-
-
-def _master_up(xmlrpc_client, port):
-    try:
-        xmlrpc_client.ServerProxy(f"http://127.0.0.1:{port}").getSystemState("/probe")
-        return True
-    except OSError:
-        return False
+        stop_process_group(proc)
 
 
 def test_driver_round_trip_follows_the_table(master):

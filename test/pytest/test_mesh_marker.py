@@ -154,16 +154,10 @@ CLIENT = textwrap.dedent("""
 def test_node_publishes_the_markers_latched(tmp_path):
     if not shutil.which("roslaunch"):
         pytest.skip("roslaunch not installed")
-    from unexmin.scripting.launcher import free_port
+    from unexmin.scripting.launcher import free_port, private_master_env
 
     port = free_port()
-    env = dict(
-        os.environ,
-        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
-        ROS_IP="127.0.0.1",
-        ROS_LOG_DIR=str(tmp_path / "log"),
-        ROS_HOME=str(tmp_path),
-    )
+    env = private_master_env(port, tmp_path)
     launch = subprocess.Popen(
         ["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch", f"world:={WORLDS / 'tank.world'}"],
         env=env,

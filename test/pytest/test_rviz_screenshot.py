@@ -121,17 +121,10 @@ def run_rviz(display, tmp_path, launch_args, subscriptions, drawn, what, image):
     last stats (the caller asserts on them); with UNEXMIN_DOCS_SCREENSHOT=1 the last shot goes to `image`."""
     import rosgraph
 
-    from unexmin.scripting.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, private_master_env, wait_for
 
     port = free_port()
-    env = dict(
-        os.environ,
-        DISPLAY=display,
-        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
-        ROS_IP="127.0.0.1",
-        ROS_LOG_DIR=str(tmp_path / "log"),
-        ROS_HOME=str(tmp_path),
-    )
+    env = private_master_env(port, tmp_path, DISPLAY=display)
     log = open(tmp_path / "roslaunch.log", "w")
     launch = subprocess.Popen(
         ["roslaunch", "--port", str(port), "unexmin", "mine_world.launch", "rviz:=true", "seed:=1", *launch_args],

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.scripting.launcher import free_port, stop_process_group, wait_for
+from unexmin.scripting.launcher import free_port, start_private_master, stop_process_group, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 TANK = REPO / "worlds" / "tank.world"
@@ -30,22 +30,8 @@ def description():
 @pytest.fixture(scope="module")
 def master(tmp_path_factory):
     """A private rosmaster; yields its URI."""
-    import rosgraph
-
-    port = free_port()
-    env = dict(
-        os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_LOG_DIR=str(tmp_path_factory.mktemp("ros_log"))
-    )
-    proc = subprocess.Popen(
-        ["rosmaster", "--core", "-p", str(port)],
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.STDOUT,
-        start_new_session=True,
-    )
-    uri = env["ROS_MASTER_URI"]
-    wait_for(lambda: rosgraph.Master("/startup_test", master_uri=uri).is_online(), 30, "the test rosmaster")
-    yield uri
+    proc, env = start_private_master(free_port(), tmp_path_factory.mktemp("ros"))
+    yield env["ROS_MASTER_URI"]
     stop_process_group(proc)
 
 

@@ -8,6 +8,7 @@ import socket
 import subprocess
 import time
 import uuid
+from pathlib import Path
 
 
 def free_port():
@@ -15,6 +16,41 @@ def free_port():
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def private_master_env(port, home, **extra):
+    """This process's environment for a child of a private ROS master on 127.0.0.1:`port`: ROS_IP on the
+    loopback, ROS logs in <home>/log, ROS_HOME = home, and the variables `extra`."""
+    return dict(
+        os.environ,
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1",
+        ROS_LOG_DIR=str(Path(home) / "log"),
+        ROS_HOME=str(home),
+        **extra,
+    )
+
+
+def start_private_master(port, home):
+    """A rosmaster --core of its own on 127.0.0.1:`port` (a process group of its own, output discarded), online
+    when this returns: (the process, private_master_env(port, home)). Stop it with stop_process_group."""
+    import rosgraph
+
+    env = private_master_env(port, home)
+    proc = subprocess.Popen(
+        ["rosmaster", "--core", "-p", str(port)],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    try:
+        master = rosgraph.Master("/unexmin_probe", master_uri=env["ROS_MASTER_URI"])
+        wait_for(master.is_online, 30.0, f"the private rosmaster on port {port}")
+    except BaseException:
+        stop_process_group(proc)
+        raise
+    return proc, env
 
 
 def _process_table():
