@@ -1,4 +1,4 @@
 from catkin_pkg.python_setup import generate_distutils_setup
-from setuptools import setup
+from setuptools import find_packages, setup
 
-setup(**generate_distutils_setup(packages=["unexmin", "unexmin.replay", "unexmin.hil"], package_dir={"": "python"}))
+setup(**generate_distutils_setup(packages=find_packages("python"), package_dir={"": "python"}))

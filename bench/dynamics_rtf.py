@@ -69,9 +69,23 @@ def main():
     print(f"world {args.world}, physics 500 Hz, lockstep, {args.seconds:.0f} s stepped, {args.window:.0f} s free")
     print(f"{'robots':>6} {'stepped RTF':>12} {'free RTF':>10} {'RSS [MB]':>9}")
     for robots in (1, 2, 3):
-        out = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--world", args.world,
-                              "--seconds", str(args.seconds), "--window", str(args.window)],
-                             capture_output=True, text=True, check=True).stdout
+        out = subprocess.run(
+            [
+                sys.executable,
+                __file__,
+                "--robots",
+                str(robots),
+                "--world",
+                args.world,
+                "--seconds",
+                str(args.seconds),
+                "--window",
+                str(args.window),
+            ],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
         stepped, free, rss = json.loads(out.strip().splitlines()[-1])
         print(f"{robots:>6} {stepped:>12.0f} {free:>10.0f} {rss:>9.1f}", flush=True)
 

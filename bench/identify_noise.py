@@ -21,8 +21,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-LEVELS = ((0.0, 0.0, 0.7), (0.0, 0.0, 5.0), (0.002, 0.05, 5.0), (0.005, 0.1, 5.0), (0.01, 0.2, 5.0),
-          (0.02, 0.5, 5.0))
+LEVELS = ((0.0, 0.0, 0.7), (0.0, 0.0, 5.0), (0.002, 0.05, 5.0), (0.005, 0.1, 5.0), (0.01, 0.2, 5.0), (0.02, 0.5, 5.0))
 # (position sigma [m], angle sigma [deg], Savitzky-Golay window [s])
 
 
@@ -37,8 +36,13 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--levels", help="noise levels 'pos_mm:angle_deg:window_s,...' (default: the table LEVELS)")
     args = ap.parse_args(argv)
-    levels = LEVELS if not args.levels else [
-        tuple(float(v) * f for v, f in zip(level.split(":"), (1e-3, 1.0, 1.0))) for level in args.levels.split(",")]
+    levels = (
+        LEVELS
+        if not args.levels
+        else [
+            tuple(float(v) * f for v, f in zip(level.split(":"), (1e-3, 1.0, 1.0))) for level in args.levels.split(",")
+        ]
+    )
     truth = model.nominal_vector(description.load(overrides=args.truth))
     rows = []
     for sp, sa, window in levels:
@@ -53,18 +57,21 @@ def main(argv=None):
             with tempfile.TemporaryDirectory() as out:
                 data = identify_bag(args.bag, out, window_s=window, progress=False, mission=mission)
             flat.append(len(data["unidentifiable"]))
-            got = {"buoyancy [g]": (data["buoyancy_kg"]["value"] - truth[INDEX["buoyancy_kg"]]) * 1000.0,
-                   "cog [mm]": 1000.0 * max(abs(v - truth[INDEX[f"cog_{a}"]])
-                                            for v, a in zip(data["cog_m"]["value"], "xyz")),
-                   "gain h [%]": 100.0 * (data["thrust_gain"]["value"]["horizontal"] - 1.0),
-                   "gain v [%]": 100.0 * (data["thrust_gain"]["value"]["vertical"] - 1.0)}
+            got = {
+                "buoyancy [g]": (data["buoyancy_kg"]["value"] - truth[INDEX["buoyancy_kg"]]) * 1000.0,
+                "cog [mm]": 1000.0
+                * max(abs(v - truth[INDEX[f"cog_{a}"]]) for v, a in zip(data["cog_m"]["value"], "xyz")),
+                "gain h [%]": 100.0 * (data["thrust_gain"]["value"]["horizontal"] - 1.0),
+                "gain v [%]": 100.0 * (data["thrust_gain"]["value"]["vertical"] - 1.0),
+            }
             for i, d in enumerate(DOF):
                 if d in ("roll", "pitch"):
                     continue
                 name = f"damping_quadratic_{d}"
                 v = data["damping_quadratic"]["value"][i]
-                got[f"Dq {d} [%]"] = (100.0 * (v / truth[INDEX[name]] - 1.0)
-                                      if name not in data["unidentifiable"] else float("nan"))
+                got[f"Dq {d} [%]"] = (
+                    100.0 * (v / truth[INDEX[name]] - 1.0) if name not in data["unidentifiable"] else float("nan")
+                )
             for k, v in got.items():
                 if k not in worst or not (abs(worst[k]) >= abs(v)):
                     worst[k] = v
@@ -72,8 +79,11 @@ def main(argv=None):
     keys = list(rows[0][3])
     print("pos[mm] ang[deg] win[s] " + " ".join(f"{k:>14s}" for k in keys) + "  flat  wall[s]")
     for sp, sa, window, worst, flat, wall in rows:
-        print(f"{sp * 1000:7.0f} {sa:8.2f} {window:6.1f} " + " ".join(f"{worst[k]:14.2f}" for k in keys)
-              + f"  {flat:4d}  {wall:7.1f}")
+        print(
+            f"{sp * 1000:7.0f} {sa:8.2f} {window:6.1f} "
+            + " ".join(f"{worst[k]:14.2f}" for k in keys)
+            + f"  {flat:4d}  {wall:7.1f}"
+        )
     return 0
 
 

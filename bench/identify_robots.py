@@ -39,13 +39,18 @@ def main(argv=None):
         ap.error(f"--robots {','.join(unknown)}: unknown (known: {', '.join(t.ROBOTS)})")
     out = Path(args.out or tempfile.mkdtemp(prefix="identify_robots_"))
     out.mkdir(parents=True, exist_ok=True)
-    groups = {"buoyancy": ["buoyancy_kg"], "cog": ["cog_x", "cog_y", "cog_z"],
-              "gains": ["thrust_gain_horizontal", "thrust_gain_vertical"],
-              "Dq trans": [f"damping_quadratic_{d}" for d in DOF[:3]],
-              "Dq rot": [f"damping_quadratic_{d}" for d in DOF[3:]],
-              "D lin": [f"damping_linear_{d}" for d in DOF], "added I": [f"added_inertia_{d}" for d in DOF[3:]]}
-    print(f"{'robot':<16}{'record[s]':>10}{'identify[s]':>12}" + "".join(f"{g:>10}" for g in groups)
-          + "  not identified")
+    groups = {
+        "buoyancy": ["buoyancy_kg"],
+        "cog": ["cog_x", "cog_y", "cog_z"],
+        "gains": ["thrust_gain_horizontal", "thrust_gain_vertical"],
+        "Dq trans": [f"damping_quadratic_{d}" for d in DOF[:3]],
+        "Dq rot": [f"damping_quadratic_{d}" for d in DOF[3:]],
+        "D lin": [f"damping_linear_{d}" for d in DOF],
+        "added I": [f"added_inertia_{d}" for d in DOF[3:]],
+    }
+    print(
+        f"{'robot':<16}{'record[s]':>10}{'identify[s]':>12}" + "".join(f"{g:>10}" for g in groups) + "  not identified"
+    )
     for name in names:
         w0 = time.monotonic()
         bag, overrides = t.make_bag(out, name)
@@ -57,11 +62,18 @@ def main(argv=None):
         got = t.got_values(data)
         worst = {}
         for g, members in groups.items():
-            ratios = [abs(got[n] - truth[INDEX[n]]) / t.bound_of(n, truth, truth_physics, data)
-                      for n in members if n not in data["unidentifiable"]]
+            ratios = [
+                abs(got[n] - truth[INDEX[n]]) / t.bound_of(n, truth, truth_physics, data)
+                for n in members
+                if n not in data["unidentifiable"]
+            ]
             worst[g] = f"{max(ratios):.2f}" if ratios else "flat"
-        print(f"{name:<16}{w1 - w0:>10.1f}{w2 - w1:>12.1f}" + "".join(f"{worst[g]:>10}" for g in groups)
-              + "  " + ", ".join(n.replace("damping_", "") for n in data["unidentifiable"] if n in PARAMS))
+        print(
+            f"{name:<16}{w1 - w0:>10.1f}{w2 - w1:>12.1f}"
+            + "".join(f"{worst[g]:>10}" for g in groups)
+            + "  "
+            + ", ".join(n.replace("damping_", "") for n in data["unidentifiable"] if n in PARAMS)
+        )
     return 0
 
 

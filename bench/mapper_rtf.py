@@ -11,10 +11,10 @@ import time
 
 import rospy
 
-from unexmin.allocation import ThrusterAllocator
-from unexmin.launcher import WorldProcess, wait_for
+from unexmin.control.allocation import ThrusterAllocator
 from unexmin.msg import MapperStats
-from unexmin.simulation import Simulation
+from unexmin.scripting.launcher import WorldProcess, wait_for
+from unexmin.scripting.simulation import Simulation
 
 
 def main():
@@ -47,16 +47,21 @@ def main():
             lag = published - (m.clouds_received - base)
             worst_lag, worst_pending = max(worst_lag, lag), max(worst_pending, m.pending)
             rows.append((sim.time - t0_sim, published, m.clouds_received - base, m.clouds_inserted - base, m.pending))
-            print(f"sim {sim.time - t0_sim:6.1f} s  published {published:6d}  received {m.clouds_received - base:6d}  "
-                  f"inserted {m.clouds_inserted - base:6d}  pending {m.pending:4d}  dropped {m.clouds_dropped}", flush=True)
+            print(
+                f"sim {sim.time - t0_sim:6.1f} s  published {published:6d}  received {m.clouds_received - base:6d}  "
+                f"inserted {m.clouds_inserted - base:6d}  pending {m.pending:4d}  dropped {m.clouds_dropped}",
+                flush=True,
+            )
     achieved = (sim.time - t0_sim) / (time.monotonic() - t0_wall)
     published = round((sim.time - t0_sim) * 80)
     wait_for(lambda: stats["m"].clouds_received - base >= published and stats["m"].pending == 0, 60.0, "the mapper")
     m = stats["m"]
-    print(f"RTF {achieved:.2f} (target {args.rtf}); {published} clouds published, {m.clouds_received - base} received, "
-          f"{m.clouds_dropped} dropped; worst lag behind the simulator {worst_lag} clouds "
-          f"({worst_lag / 80:.2f} s of sim), worst pending {worst_pending}; insertion {m.insert_seconds:.2f} s of wall "
-          f"for {m.points_inserted} points")
+    print(
+        f"RTF {achieved:.2f} (target {args.rtf}); {published} clouds published, {m.clouds_received - base} received, "
+        f"{m.clouds_dropped} dropped; worst lag behind the simulator {worst_lag} clouds "
+        f"({worst_lag / 80:.2f} s of sim), worst pending {worst_pending}; insertion {m.insert_seconds:.2f} s of wall "
+        f"for {m.points_inserted} points"
+    )
     world.close()
 
 

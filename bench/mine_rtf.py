@@ -37,10 +37,13 @@ from xmlrpc.client import ServerProxy
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sensors_rtf import run_child  # noqa: E402
+
 PATTERNS = {  # thrust per thruster [N], thesis allocation columns (eq. 5.12) scaled
-    "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],      # surge
-    "UX_2": [0.0, 10.0, 0.0, 10.0, 0.0, -10.0, 0.0, 10.0],       # heave down (-Z column)
-    "UX_3": [-5.0, 0.0, 5.0, 0.0, 5.0, 0.0, -5.0, 0.0],          # yaw
+    "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],  # surge
+    "UX_2": [0.0, 10.0, 0.0, 10.0, 0.0, -10.0, 0.0, 10.0],  # heave down (-Z column)
+    "UX_3": [-5.0, 0.0, 5.0, 0.0, 5.0, 0.0, -5.0, 0.0],  # yaw
 }
 
 
@@ -65,11 +68,13 @@ TRANSLATIONS = {"m3/points": 40.0, "dvl_water_track": 8.0}  # [Hz of sim time]: 
 
 def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False):
     t_launch = time.monotonic()
-    from unexmin.launcher import WorldProcess, wait_for
+    from unexmin.scripting.launcher import WorldProcess, wait_for
+
     # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
     # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
-    world = WorldProcess(world=world_name, robots=robots, seed=seed, realtime=False, paused=False,
-                         extra_args=(f"sensors:={sensors}",))
+    world = WorldProcess(
+        world=world_name, robots=robots, seed=seed, realtime=False, paused=False, extra_args=(f"sensors:={sensors}",)
+    )
     workdir = tempfile.TemporaryDirectory(prefix="mine_rtf_")
     sink = None
     try:
@@ -89,12 +94,24 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         sink_topics = [f"/{n}/{t}" for n in names for t in TRANSLATIONS] if translations else []
         if sink_topics:
             sys.path.insert(0, str(Path(__file__).resolve().parent))
-            from sensors_rtf import build_counter
-            sink = subprocess.Popen([str(build_counter(workdir.name)), str(window), "100000"] + sink_topics,
-                                    stdout=subprocess.PIPE, text=True)
+            from sensors_rtf import build_counter, wait_for_sink
+
+            sink = subprocess.Popen(
+                [str(build_counter(workdir.name)), str(window), "100000"] + sink_topics,
+                stdout=subprocess.PIPE,
+                text=True,
+            )
         first = {}
-        subs = [rospy.Subscriber(f"/{n}/odom", Odometry, lambda m, n=n: first.setdefault(n, time.monotonic()),
-                                 queue_size=1, tcp_nodelay=True) for n in names]
+        subs = [
+            rospy.Subscriber(
+                f"/{n}/odom",
+                Odometry,
+                lambda m, n=n: first.setdefault(n, time.monotonic()),
+                queue_size=1,
+                tcp_nodelay=True,
+            )
+            for n in names
+        ]
         rospy.wait_for_service("/sim/step", timeout)
         t_ready = time.monotonic()
         wait_for(lambda: len(first) == robots, timeout, "the first odometry of every robot")
@@ -103,14 +120,21 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
             sub.unregister()
         rospy.ServiceProxy("/sim/pause", Empty)()
         pubs = {n: [sync_publisher(f"/{n}/thrusters/{i}/input", Float64) for i in range(8)] for n in names}
-        wait_for(lambda: all(p.get_num_connections() > 0 for ps in pubs.values() for p in ps), timeout,
-                 "the simulator to subscribe to the thrusters")
+        wait_for(
+            lambda: all(p.get_num_connections() > 0 for ps in pubs.values() for p in ps),
+            timeout,
+            "the simulator to subscribe to the thrusters",
+        )
         master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
         if sink:
-            wait_for(lambda: sum(any(n.startswith("/topic_counter") for n in subs)
-                                 for t, subs in master.getSystemState()[1] if t in sink_topics) == len(sink_topics),
-                     timeout, "the sink to subscribe to every translation")
+            wait_for_sink(
+                master,
+                sink_topics,
+                lambda n: n.startswith("/topic_counter"),
+                timeout,
+                "the sink to subscribe to every translation",
+            )
         step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         chunk = 10.0  # [s] of sim time per call; `hold` keeps the commands past the 1 s watchdog
         sim0 = step(duration=0.0, steps=1, client="", commands=0, hold=True).time
@@ -126,17 +150,26 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         mem = proc_status(pid)
         publishers = master.getSystemState()[0]
         topics = sorted(t for t, nodes in publishers if t.startswith("/UX_1/") and "/simulator" in nodes)
-        result = {"robots": robots, "master_s": t_master - t_launch, "ready_s": t_ready - t_launch,
-                  "first_odom_s": t_odom - t_launch, "rtf": (sim1 - sim0) / (wall1 - wall0),
-                  "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
-                  "peak_rss_mb": mem["VmHWM"], "sim_seconds": sim1 - sim0, "topics": topics}
+        result = {
+            "robots": robots,
+            "master_s": t_master - t_launch,
+            "ready_s": t_ready - t_launch,
+            "first_odom_s": t_odom - t_launch,
+            "rtf": (sim1 - sim0) / (wall1 - wall0),
+            "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0),
+            "rss_mb": mem["VmRSS"],
+            "peak_rss_mb": mem["VmHWM"],
+            "sim_seconds": sim1 - sim0,
+            "topics": topics,
+        }
         if sink:
             result["sink_cpu_percent"] = 100.0 * (cpu_seconds(sink.pid) - sink_cpu0) / (wall1 - wall0)
             window.write_text(f"{sim0} {sim1}")
             sink.send_signal(signal.SIGINT)  # it counts what it got stamped inside the window, then exits
             counts = dict(line.split() for line in sink.communicate(timeout=timeout)[0].splitlines())
-            result["delivered"] = min(int(counts.get(t, 0)) / round((sim1 - sim0) * TRANSLATIONS[t.split("/", 2)[2]])
-                                      for t in sink_topics)
+            result["delivered"] = min(
+                int(counts.get(t, 0)) / round((sim1 - sim0) * TRANSLATIONS[t.split("/", 2)[2]]) for t in sink_topics
+            )
         return result
     finally:
         if sink and sink.poll() is None:
@@ -144,6 +177,12 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
             sink.wait()
         world.close()
         workdir.cleanup()
+
+
+def machine():
+    """The machine a benchmark runs on: cores, CPU model and the load average now."""
+    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
+    return f"nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; load average before: {os.getloadavg()[0]:.2f}"
 
 
 def main():
@@ -155,46 +194,71 @@ def main():
     ap.add_argument("--robots", type=int, choices=(1, 2, 3), help="measure this count only (JSON out)")
     ap.add_argument("--world", choices=("mine", "tank"), default="mine", help="tank: the same, for comparison")
     ap.add_argument("--sensors", default="all", help="sensor families that run (the sensors:= launch argument)")
-    ap.add_argument("--translations", action="store_true",
-                    help="a C++ sink subscribes to every robot's m3/points and dvl_water_track (the C++ translations)")
+    ap.add_argument(
+        "--translations",
+        action="store_true",
+        help="a C++ sink subscribes to every robot's m3/points and dvl_water_track (the C++ translations)",
+    )
     args = ap.parse_args()
     if args.robots:
-        print(json.dumps(measure(args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors,
-                                 args.translations)))
+        print(
+            json.dumps(
+                measure(
+                    args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors, args.translations
+                )
+            )
+        )
         return 0
-    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
-    print(f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
-          f"{args.sim_seconds:.0f} s of sim time "
-          f"per run, {args.repeat} runs per count; nproc {os.cpu_count()}, {' '.join(cpu.split()[2:])}; "
-          f"load average before: {os.getloadavg()[0]:.2f}")
-    header = (f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
-              f"{'ready s':>8} {'1st odom s':>11}")
+    print(
+        f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
+        f"{args.sim_seconds:.0f} s of sim time per run, {args.repeat} runs per count; {machine()}"
+    )
+    header = (
+        f"{'robots':>6} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8} {'master s':>9} "
+        f"{'ready s':>8} {'1st odom s':>11}"
+    )
     print(header)
     topics, summary = None, []
     for robots in (1, 2, 3):
         runs = []
         for _ in range(args.repeat):
-            proc = subprocess.run([sys.executable, __file__, "--robots", str(robots), "--seed", str(args.seed),
-                                   "--world", args.world, "--sim-seconds", str(args.sim_seconds),
-                                   "--sensors", args.sensors, *(["--translations"] if args.translations else []),
-                                   "--timeout", str(args.timeout)], capture_output=True, text=True)
-            if proc.returncode != 0:
-                print(proc.stderr[-3000:], file=sys.stderr)
+            r = run_child(
+                [
+                    __file__,
+                    "--robots",
+                    str(robots),
+                    "--seed",
+                    str(args.seed),
+                    "--world",
+                    args.world,
+                    "--sim-seconds",
+                    str(args.sim_seconds),
+                    "--sensors",
+                    args.sensors,
+                    *(["--translations"] if args.translations else []),
+                    "--timeout",
+                    str(args.timeout),
+                ],
+                f"{robots} robots",
+            )
+            if r is None:
                 return 1
-            runs.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+            runs.append(r)
             print(row(robots, runs[-1]), flush=True)
         topics = topics or runs[0]["topics"]
         summary.append(row(robots, {k: float(np.median([r[k] for r in runs])) for k in runs[0] if k != "topics"}))
     print(f"median of {args.repeat} runs (load average after: {os.getloadavg()[0]:.2f})\n{header}")
     print("\n".join(summary))
-    print("simulator topics under /UX_1: " + " ".join(t[len("/UX_1/"):] for t in topics))
+    print("simulator topics under /UX_1: " + " ".join(t[len("/UX_1/") :] for t in topics))
     return 0
 
 
 def row(robots, r):
-    return (f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
-            f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}"
-            + (f"  delivered {r['delivered']:.2f}, sink CPU {r['sink_cpu_percent']:.0f} %" if "delivered" in r else ""))
+    return (
+        f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
+        f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}"
+        + (f"  delivered {r['delivered']:.2f}, sink CPU {r['sink_cpu_percent']:.0f} %" if "delivered" in r else "")
+    )
 
 
 if __name__ == "__main__":

@@ -36,14 +36,27 @@ from xmlrpc.client import ServerProxy
 import rosgraph
 
 HERE = Path(__file__).resolve().parent
-RATES = {"/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/imu_raw": 500, "/UX_1/kvh/raw": 500,
-         "/UX_1/pressure": 10, "/UX_1/dvl": 8, "/UX_1/dvl_sonar0": 8, "/UX_1/dvl_sonar1": 8,
-         "/UX_1/dvl_sonar2": 8, "/UX_1/dvl_sonar3": 8, "/UX_1/dvl_twist": 8, "/UX_1/dvl_water_track": 8}
+RATES = {
+    "/UX_1/imu": 500,
+    "/UX_1/imu/mag": 500,
+    "/UX_1/kvh/imu_raw": 500,
+    "/UX_1/kvh/raw": 500,
+    "/UX_1/pressure": 10,
+    "/UX_1/dvl": 8,
+    "/UX_1/dvl_sonar0": 8,
+    "/UX_1/dvl_sonar1": 8,
+    "/UX_1/dvl_sonar2": 8,
+    "/UX_1/dvl_sonar3": 8,
+    "/UX_1/dvl_twist": 8,
+    "/UX_1/dvl_water_track": 8,
+}
 ELEVEN = [t for t in RATES if t != "/UX_1/kvh/raw"]  # kvh/raw is advertised only for the rospy translator
-SINKS = {"none": dict(sink=None, kvh_translator=False, topics=[]),
-         "cpp-sink": dict(sink="counter", kvh_translator=False, topics=ELEVEN),
-         "rosbag": dict(sink="rosbag", kvh_translator=False, topics=ELEVEN),
-         "rospy-kvh": dict(sink="counter", kvh_translator=True, topics=list(RATES))}
+SINKS = {
+    "none": dict(sink=None, kvh_translator=False, topics=[]),
+    "cpp-sink": dict(sink="counter", kvh_translator=False, topics=ELEVEN),
+    "rosbag": dict(sink="rosbag", kvh_translator=False, topics=ELEVEN),
+    "rospy-kvh": dict(sink="counter", kvh_translator=True, topics=list(RATES)),
+}
 COUNTER_QUEUE = 100000
 
 
@@ -53,8 +66,22 @@ def build_counter(workdir):
     cxx = shutil.which("g++")
     if not cxx:
         raise RuntimeError("g++ not found: the cpp-sink runs need it")
-    subprocess.run([cxx, "-O2", "-std=c++17", str(HERE / "topic_counter.cpp"), "-o", str(exe), "-lroscpp",
-                    "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-ltopic_tools"], check=True)
+    subprocess.run(
+        [
+            cxx,
+            "-O2",
+            "-std=c++17",
+            str(HERE / "topic_counter.cpp"),
+            "-o",
+            str(exe),
+            "-lroscpp",
+            "-lrosconsole",
+            "-lroscpp_serialization",
+            "-lrostime",
+            "-ltopic_tools",
+        ],
+        check=True,
+    )
     return exe
 
 
@@ -70,18 +97,77 @@ def node_pids(caller, names):
     return {n: ServerProxy(master.lookupNode(n)).getPid(caller)[2] for n in names}
 
 
+def stop_bench(counter, proc, log):
+    """Stop the topic counter (if still running) and the launched world's process group; close its log."""
+    from unexmin.scripting.launcher import stop_process_group
+
+    if counter and counter.poll() is None:
+        counter.kill()
+    stop_process_group(proc, 30.0)
+    log.close()
+
+
+def wait_for_sink(master, topics, is_sink, timeout, what="the sink to subscribe to every topic"):
+    """Wait until a subscriber for which is_sink(subscriber node) holds is on every topic of `topics`."""
+    from unexmin.scripting.launcher import wait_for
+
+    def subscribed():
+        state = master.getSystemState()[1]
+        return sum(any(is_sink(n) for n in subs) for t, subs in state if t in topics) == len(topics)
+
+    wait_for(subscribed, timeout, what)
+
+
+def run_child(argv, label):
+    """The JSON of the last stdout line of `python <argv>` (one measurement in a process of its own), or None
+    (printed: `label`, failed and the end of its stderr) when it fails."""
+    out = subprocess.run([sys.executable, *argv], capture_output=True, text=True)
+    if out.returncode != 0:
+        print(f"{label}: failed\n{out.stderr[-2000:]}", flush=True)
+        return None
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def counter_counts(counter, window_file, sim_t0, sim_t1):
+    """{topic: messages} the running topic_counter received stamped in (sim_t0, sim_t1] [s]; stops it."""
+    window_file.write_text(f"{sim_t0} {sim_t1}\n")
+    counter.send_signal(signal.SIGINT)
+    out = counter.communicate(timeout=30)[0]
+    return dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+
+
+def timed_window(sim, pids, window):
+    """Run the paused simulator for `window` s of wall time: (sim time at start, at end [s], wall time [s],
+    {node: CPU cores used}) of the processes `pids` ({node: pid})."""
+    cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
+    sim_t0 = sim.time
+    sim.unpause()
+    t0 = time.perf_counter()
+    time.sleep(window)  # a benchmark window, not a test wait
+    sim.pause()
+    wall = time.perf_counter() - t0
+    return sim_t0, sim.time, wall, {n: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+
+
 def measure(sink_name, pace, window, workdir):
     from unexmin import Simulation
-    from unexmin.launcher import free_port, stop_process_group, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
 
     cfg = SINKS[sink_name]
     topics = cfg["topics"]
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     bag = Path(workdir) / f"{sink_name}.bag"
-    args = ["roslaunch", "--port", str(port), str(HERE / "sensors_bench.launch"), f"pace:={pace}",
-            f"kvh_translator:={str(cfg['kvh_translator']).lower()}",
-            f"bag:={bag if cfg['sink'] == 'rosbag' else ''}", "topics:=" + " ".join(topics)]
+    args = [
+        "roslaunch",
+        "--port",
+        str(port),
+        str(HERE / "sensors_bench.launch"),
+        f"pace:={pace}",
+        f"kvh_translator:={str(cfg['kvh_translator']).lower()}",
+        f"bag:={bag if cfg['sink'] == 'rosbag' else ''}",
+        "topics:=" + " ".join(topics),
+    ]
     log = open(Path(workdir) / f"{sink_name}.log", "w")
     proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
     counter = None
@@ -91,40 +177,31 @@ def measure(sink_name, pace, window, workdir):
         import rospy
 
         for topic in ("/UX_1/dvl_water_track", "/UX_1/kvh/imu_raw"):
-            wait_for(lambda: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
+            wait_for(lambda topic=topic: any(t == topic for t, _ in rospy.get_published_topics()), 30.0, topic)
         nodes = ["/simulator", "/UX_1/dvl_translator"] + (["/UX_1/kvh_translator"] if cfg["kvh_translator"] else [])
         sink_node = None
         if cfg["sink"] == "counter":
-            counter = subprocess.Popen([str(build_counter(workdir)), str(window_file), str(COUNTER_QUEUE)] + topics,
-                                       stdout=subprocess.PIPE, text=True)
-            sink_node = lambda subs: any(s.startswith("/topic_counter") for s in subs)  # noqa: E731
+            counter = subprocess.Popen(
+                [str(build_counter(workdir)), str(window_file), str(COUNTER_QUEUE)] + topics,
+                stdout=subprocess.PIPE,
+                text=True,
+            )
+            sink_node = lambda n: n.startswith("/topic_counter")  # noqa: E731
         elif cfg["sink"] == "rosbag":
             nodes.append("/bag_record")
-            sink_node = lambda subs: "/bag_record" in subs  # noqa: E731
+            sink_node = lambda n: n == "/bag_record"  # noqa: E731
         if sink_node:
-            master = rosgraph.Master("/sensors_bench")
-            wait_for(lambda: sum(sink_node(subs) for t, subs in master.getSystemState()[1] if t in topics)
-                     == len(topics), 30.0, "the sink to subscribe to every topic")
+            wait_for_sink(rosgraph.Master("/sensors_bench"), topics, sink_node, 30.0)
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sensors_bench", nodes)
         if counter:
             pids["topic_counter"] = counter.pid
-        cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
-        sim_t0 = sim.time
-        sim.unpause()
-        t0 = time.perf_counter()
-        time.sleep(window)  # a benchmark window, not a test wait
-        sim.pause()
-        wall = time.perf_counter() - t0
-        sim_t1 = sim.time
-        cpu = {n.split("/")[-1]: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+        sim_t0, sim_t1, wall, cpu = timed_window(sim, pids, window)
+        cpu = {n.split("/")[-1]: c for n, c in cpu.items()}
         result = {"sink": sink_name, "pace": pace, "rtf": (sim_t1 - sim_t0) / wall, "cpu": cpu, "delivered": {}}
         time.sleep(3.0)  # let the translators and the sink drain their queues (benchmark only)
         if counter:
-            window_file.write_text(f"{sim_t0} {sim_t1}\n")
-            counter.send_signal(signal.SIGINT)
-            out = counter.communicate(timeout=30)[0]
-            counts = dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
+            counts = counter_counts(counter, window_file, sim_t0, sim_t1)
             result["delivered"] = {t: counts.get(t, 0) / max(1, round(RATES[t] * (sim_t1 - sim_t0))) for t in topics}
         if cfg["sink"] == "rosbag":
             os.killpg(proc.pid, signal.SIGINT)
@@ -132,10 +209,7 @@ def measure(sink_name, pace, window, workdir):
             result["delivered"] = count_bag(bag, sim_t0, sim_t1, topics)
         return result
     finally:
-        if counter and counter.poll() is None:
-            counter.kill()
-        stop_process_group(proc, 30.0)
-        log.close()
+        stop_bench(counter, proc, log)
 
 
 def count_bag(path, t0, t1, topics):
@@ -158,16 +232,24 @@ def core_cost():
     with tempfile.TemporaryDirectory() as tmp:
         urdf = Path(tmp) / "ux1.urdf"
         xacro = shutil.which("xacro") or str(Path(sys.executable).parent / "xacro")
-        urdf.write_text(subprocess.run([xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"],
-                                       capture_output=True, text=True, check=True).stdout)
+        urdf.write_text(
+            subprocess.run(
+                [xacro, str(repo / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], capture_output=True, text=True, check=True
+            ).stdout
+        )
         subprocess.run([str(exe), str(urdf), str(repo / "worlds" / "tank.world")], check=True)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--window", type=float, default=10.0, help="wall seconds per run")
-    parser.add_argument("--pace", type=float, nargs="+", default=[0, 100, 50, 25, 10],
-                        help="real-time factors to pace at (0 = free-running lockstep)")
+    parser.add_argument(
+        "--pace",
+        type=float,
+        nargs="+",
+        default=[0, 100, 50, 25, 10],
+        help="real-time factors to pace at (0 = free-running lockstep)",
+    )
     parser.add_argument("--sinks", nargs="+", choices=list(SINKS), default=list(SINKS))
     parser.add_argument("--verbose", action="store_true", help="print every topic's delivered fraction")
     parser.add_argument("--core", action="store_true", help="only the models' cost in the core, without ROS")
@@ -184,13 +266,10 @@ def main():
     print(f"tank, 1 robot, physics 500 Hz, {args.window:.0f} s of wall time per run")
     print(f"{'sink':>9} {'pace':>5} {'RTF':>6} {'delivered':>10}  CPU (share of one core)")
     for name in args.sinks:
-        for pace in (args.pace if SINKS[name]["sink"] else [0]):
-            out = subprocess.run([sys.executable, __file__, "--one", name, str(pace), "--window", str(args.window)],
-                                 capture_output=True, text=True)
-            if out.returncode != 0:
-                print(f"{name} pace {pace}: failed\n{out.stderr[-2000:]}", flush=True)
+        for pace in args.pace if SINKS[name]["sink"] else [0]:
+            r = run_child([__file__, "--one", name, str(pace), "--window", str(args.window)], f"{name} pace {pace}")
+            if r is None:
                 continue
-            r = json.loads(out.stdout.strip().splitlines()[-1])
             d = r["delivered"]
             fast = min((f for t, f in d.items() if RATES[t] == 500), default=None)
             slow = min((f for t, f in d.items() if RATES[t] < 500), default=None)

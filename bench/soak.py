@@ -21,16 +21,28 @@ Prints one table and writes DIR/soak.json. The bag is deleted at the end unless 
 import argparse
 import json
 import math
-import os
 import sys
 import time
 from pathlib import Path
 
 RATES = {  # [Hz of sim time], per robot topic suffix (and /current)
-    "imu": 500, "imu/mag": 500, "kvh/imu_raw": 500, "pressure": 10, "dvl": 8, "dvl_water_track": 8,
-    "dvl_sonar0": 8, "dvl_sonar1": 8, "dvl_sonar2": 8, "dvl_sonar3": 8, "m3/scan": 40, "m3/points": 40,
-    "tritech_micron/scan": 25, "msis/msis_r": 25, "odom": 50,
-    **{f"sls_{i}/points": 10 for i in range(4)}, **{f"sls_{i}/scan": 10 for i in range(4)},
+    "imu": 500,
+    "imu/mag": 500,
+    "kvh/imu_raw": 500,
+    "pressure": 10,
+    "dvl": 8,
+    "dvl_water_track": 8,
+    "dvl_sonar0": 8,
+    "dvl_sonar1": 8,
+    "dvl_sonar2": 8,
+    "dvl_sonar3": 8,
+    "m3/scan": 40,
+    "m3/points": 40,
+    "tritech_micron/scan": 25,
+    "msis/msis_r": 25,
+    "odom": 50,
+    **{f"sls_{i}/points": 10 for i in range(4)},
+    **{f"sls_{i}/scan": 10 for i in range(4)},
     **{f"thrusters/{i}/thrust": 50 for i in range(8)},
 }
 TURN = [-5.0, 0.0, 5.0, 0.0, 5.0, 0.0, -5.0, 0.0]  # [N] per thruster: a slow yaw (thesis allocation)
@@ -47,6 +59,7 @@ def rss_mb(pid):
 def finite_fields(msg, path=""):
     """Yield (name, value) of every float field of a rosbags message, recursively."""
     import numpy as np
+
     for name in getattr(msg, "__dataclass_fields__", {}):
         v = getattr(msg, name)
         if isinstance(v, float):
@@ -61,12 +74,15 @@ def finite_fields(msg, path=""):
 def analyse(bag, robots, seconds):
     from rosbags.highlevel import AnyReader
     from rosbags.typesys import Stores, get_typestore
+
     stats = {}
     strict = ("odom", "imu", "imu/mag", "kvh/imu_raw", "pressure", "thrust", "/current")
     with AnyReader([Path(bag)], default_typestore=get_typestore(Stores.ROS1_NOETIC)) as reader:
         for conn, t, raw in reader.messages():
-            s = stats.setdefault(conn.topic, {"count": 0, "last": -1, "monotonic": True, "stamp_mismatch": 0,
-                                              "nonfinite": 0, "markers": 0})
+            s = stats.setdefault(
+                conn.topic,
+                {"count": 0, "last": -1, "monotonic": True, "stamp_mismatch": 0, "nonfinite": 0, "markers": 0},
+            )
             s["count"] += 1
             if t <= s["last"]:
                 s["monotonic"] = False
@@ -111,12 +127,14 @@ def main():
     bag = out / "soak.bag"
 
     import rospy
+
     from unexmin import Simulation
-    from unexmin.launcher import WorldProcess
+    from unexmin.scripting.launcher import WorldProcess
     from unexmin.srv import Record
 
-    world = WorldProcess(world=args.world, robots=args.robots, paused=True, log_dir=str(out / "logs"),
-                         extra_args=[f"record:={bag}"])
+    world = WorldProcess(
+        world=args.world, robots=args.robots, paused=True, log_dir=str(out / "logs"), extra_args=[f"record:={bag}"]
+    )
     report = {"world": args.world, "robots": args.robots, "sim_seconds": args.sim_seconds}
     try:
         sim = Simulation(world=world, timeout=120.0, node_name="soak")
@@ -139,31 +157,47 @@ def main():
         wall = time.monotonic() - t0
         rss["end"] = rss_mb(pid)
         stop = rospy.ServiceProxy("/sim/record", Record)(path="")
-        report.update(rtf=args.sim_seconds / wall, wall_s=wall, rss_mb=rss, record=stop.message,
-                      rss_ratio=rss["end"] / rss["600"] if "600" in rss else None)
+        report.update(
+            rtf=args.sim_seconds / wall,
+            wall_s=wall,
+            rss_mb=rss,
+            record=stop.message,
+            rss_ratio=rss["end"] / rss["600"] if "600" in rss else None,
+        )
     finally:
         world.close()
     rows, _ = analyse(bag, robots, args.sim_seconds)
     report["topics"] = {t: {"expected": e, **s} for t, e, s in rows}
-    bad = [t for t, e, s in rows if abs(s["count"] - e) > 1 or not s.get("monotonic", False)
-           or s.get("nonfinite", 0) or s.get("stamp_mismatch", 0)]
+    bad = [
+        t
+        for t, e, s in rows
+        if abs(s["count"] - e) > 1
+        or not s.get("monotonic", False)
+        or s.get("nonfinite", 0)
+        or s.get("stamp_mismatch", 0)
+    ]
     report["bad_topics"] = bad
     if not args.keep_bag:
         bag.unlink()
     (out / "soak.json").write_text(json.dumps(report, indent=2))
-    print(f"{args.world}, {args.robots} robot(s), {args.sim_seconds:.0f} s of sim time in {report['wall_s']:.0f} s "
-          f"(RTF {report['rtf']:.1f}); simulator RSS at 600 s {rss.get('600', float('nan')):.1f} MB, at the end "
-          f"{rss['end']:.1f} MB (ratio {report['rss_ratio'] or float('nan'):.3f}); {report['record']}")
+    print(
+        f"{args.world}, {args.robots} robot(s), {args.sim_seconds:.0f} s of sim time in {report['wall_s']:.0f} s "
+        f"(RTF {report['rtf']:.1f}); simulator RSS at 600 s {rss.get('600', float('nan')):.1f} MB, at the end "
+        f"{rss['end']:.1f} MB (ratio {report['rss_ratio'] or float('nan'):.3f}); {report['record']}"
+    )
     print(f"{'topic':<32}{'expected':>10}{'count':>10}{'monotonic':>10}{'nonfinite':>10}{'markers':>9}")
     for t, e, s in rows:
-        print(f"{t:<32}{e:>10.0f}{s['count']:>10}{str(s.get('monotonic', '-')):>10}{s.get('nonfinite', 0):>10}"
-              f"{s.get('markers', 0):>9}")
+        print(
+            f"{t:<32}{e:>10.0f}{s['count']:>10}{str(s.get('monotonic', '-')):>10}{s.get('nonfinite', 0):>10}"
+            f"{s.get('markers', 0):>9}"
+        )
     print("every topic as expected" if not bad else f"NOT as expected: {bad}")
     return 0 if not bad and (report["rss_ratio"] is None or report["rss_ratio"] <= 1.05) else 1
 
 
 def _pid_of(marker, name):
-    from unexmin.launcher import marked_processes
+    from unexmin.scripting.launcher import marked_processes
+
     for pid in marked_processes(marker):
         try:
             cmd = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")[0]

@@ -16,7 +16,6 @@ the window (1.00 = the sink got all), CPU of the simulator and the M3 translator
 import argparse
 import json
 import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -25,67 +24,77 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from sensors_rtf import build_counter, cpu_seconds, node_pids  # noqa: E402
+from sensors_rtf import (  # noqa: E402
+    build_counter,
+    counter_counts,
+    node_pids,
+    run_child,
+    stop_bench,
+    timed_window,
+    wait_for_sink,
+)
 
 ROBOTS = ["UX_1", "UX_2", "UX_3"]
 RATES = {"tritech_micron/scan": 25.0, "m3/scan": 40.0, "m3/points": 40.0}
 
 
 def measure(robots, window, sink, workdir):
-    from unexmin import Simulation
-    from unexmin.launcher import free_port, stop_process_group, wait_for
     import rosgraph
     import rospy
+
+    from unexmin import Simulation
+    from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     names = ROBOTS[:robots]
     topics = [f"/{r}/{t}" for r in names for t in RATES]
     log = open(Path(workdir) / "launch.log", "w")
-    proc = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", f"robots:={robots}",
-                             "realtime:=false", "paused:=true", "seed:=0"],
-                            stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    proc = subprocess.Popen(
+        [
+            "roslaunch",
+            "--port",
+            str(port),
+            "unexmin",
+            "tank_world.launch",
+            f"robots:={robots}",
+            "realtime:=false",
+            "paused:=true",
+            "seed:=0",
+        ],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     counter = None
     window_file = Path(workdir) / "window"
     try:
         sim = Simulation(node_name="sonar_bench", timeout=60.0)
         for r in names:
-            wait_for(lambda: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()), 30.0,
-                     f"/{r}/m3/points")
+            wait_for(
+                lambda r=r: any(t == f"/{r}/m3/points" for t, _ in rospy.get_published_topics()),
+                30.0,
+                f"/{r}/m3/points",
+            )
         nodes = ["/simulator"] + [f"/{r}/m3_translator" for r in names]
         if sink == "counter":
-            counter = subprocess.Popen([str(build_counter(workdir)), str(window_file), "100000"] + topics,
-                                       stdout=subprocess.PIPE, text=True)
-            master = rosgraph.Master("/sonar_bench")
-            wait_for(lambda: sum(any(s.startswith("/topic_counter") for s in subs)
-                                 for t, subs in master.getSystemState()[1] if t in topics) == len(topics),
-                     30.0, "the sink to subscribe to every topic")
+            counter = subprocess.Popen(
+                [str(build_counter(workdir)), str(window_file), "100000"] + topics, stdout=subprocess.PIPE, text=True
+            )
+            wait_for_sink(rosgraph.Master("/sonar_bench"), topics, lambda n: n.startswith("/topic_counter"), 30.0)
             time.sleep(1.0)  # connections are made after the master registration (benchmark set-up only)
         pids = node_pids("/sonar_bench", nodes)
-        cpu0 = {n: cpu_seconds(p) for n, p in pids.items()}
-        t_sim0 = sim.time
-        sim.unpause()
-        t0 = time.perf_counter()
-        time.sleep(window)  # a benchmark window, not a test wait
-        sim.pause()
-        wall = time.perf_counter() - t0
-        t_sim1 = sim.time
-        cpu = {n: (cpu_seconds(p) - cpu0[n]) / wall for n, p in pids.items()}
+        t_sim0, t_sim1, wall, cpu = timed_window(sim, pids, window)
         result = {"robots": robots, "rtf": (t_sim1 - t_sim0) / wall, "cpu": cpu, "delivered": None}
         if counter:
             time.sleep(3.0)  # let the translators and the sink drain (benchmark only)
-            window_file.write_text(f"{t_sim0} {t_sim1}\n")
-            counter.send_signal(signal.SIGINT)
-            out = counter.communicate(timeout=30)[0]
-            counts = dict((t, int(n)) for t, n in (line.split() for line in out.splitlines() if line.strip()))
-            result["delivered"] = min(counts.get(t, 0) / max(1, round(RATES[t.split("/", 2)[2]] * (t_sim1 - t_sim0)))
-                                      for t in topics)
+            counts = counter_counts(counter, window_file, t_sim0, t_sim1)
+            result["delivered"] = min(
+                counts.get(t, 0) / max(1, round(RATES[t.split("/", 2)[2]] * (t_sim1 - t_sim0))) for t in topics
+            )
         return result
     finally:
-        if counter and counter.poll() is None:
-            counter.kill()
-        stop_process_group(proc, 30.0)
-        log.close()
+        stop_bench(counter, proc, log)
 
 
 def main():
@@ -103,12 +112,9 @@ def main():
     print(f"tank, lockstep, physics 500 Hz, MSIS + M3 on every robot, sink {args.sink}, {args.window:.0f} s per run")
     print(f"{'robots':>6} {'RTF':>6} {'delivered':>9}  CPU (share of one core)")
     for n in args.robots:
-        out = subprocess.run([sys.executable, __file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink],
-                             capture_output=True, text=True)
-        if out.returncode != 0:
-            print(f"{n} robots: failed\n{out.stderr[-2000:]}", flush=True)
+        r = run_child([__file__, "--one", str(n), "--window", str(args.window), "--sink", args.sink], f"{n} robots")
+        if r is None:
             continue
-        r = json.loads(out.stdout.strip().splitlines()[-1])
         d = "-" if r["delivered"] is None else f"{r['delivered']:.2f}"
         cpu = ", ".join(f"{k} {100 * c:.0f} %" for k, c in r["cpu"].items())
         print(f"{n:>6} {r['rtf']:6.1f} {d:>9}  {cpu}", flush=True)

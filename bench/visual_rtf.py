@@ -33,7 +33,8 @@ from xmlrpc.client import ServerProxy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mine_rtf import PATTERNS, cpu_seconds, proc_status  # noqa: E402
+from mine_rtf import PATTERNS, cpu_seconds, machine, proc_status  # noqa: E402
+from sensors_rtf import run_child  # noqa: E402
 
 CAMERAS = 5
 
@@ -50,7 +51,7 @@ def overrides(path, width, height, fps):
 
 
 def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cpp"):
-    from unexmin.launcher import WorldProcess, wait_for
+    from unexmin.scripting.launcher import WorldProcess, wait_for
 
     tmp = tempfile.mkdtemp(prefix="visual_rtf_")
     xacro = os.path.join(tmp, "cameras.xacro")
@@ -77,24 +78,42 @@ def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cp
         counter = None
         if sink == "cpp":
             from sensors_rtf import build_counter
+
             window = os.path.join(tmp, "window")
-            counter = subprocess.Popen([str(build_counter(tmp)), window, "1000"] + topics, stdout=subprocess.PIPE,
-                                       text=True)
-            wait_for(lambda: sum(any(n.startswith("/topic_counter") for n in nodes)
-                                 for t, nodes in master.getSystemState()[1] if t in topics) == CAMERAS,
-                     timeout, "the C++ counter to subscribe to the five image_raw topics")
+            counter = subprocess.Popen(
+                [str(build_counter(tmp)), window, "1000"] + topics, stdout=subprocess.PIPE, text=True
+            )
+            wait_for(
+                lambda: sum(
+                    any(n.startswith("/topic_counter") for n in nodes)
+                    for t, nodes in master.getSystemState()[1]
+                    if t in topics
+                )
+                == CAMERAS,
+                timeout,
+                "the C++ counter to subscribe to the five image_raw topics",
+            )
         else:
+
             def on_image(msg, i):
                 received[i] += 1
                 sizes.add((msg.width, msg.height, len(msg.data)))
 
-            subs = [rospy.Subscriber(t, Image, on_image, callback_args=i, queue_size=100, buff_size=2 ** 26,
-                                     tcp_nodelay=True) for i, t in enumerate(topics)]
-            wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), timeout,
-                     "the simulator's five image_raw publishers")
+            subs = [
+                rospy.Subscriber(t, Image, on_image, callback_args=i, queue_size=100, buff_size=2**26, tcp_nodelay=True)
+                for i, t in enumerate(topics)
+            ]
+            wait_for(
+                lambda: all(s.get_num_connections() > 0 for s in subs),
+                timeout,
+                "the simulator's five image_raw publishers",
+            )
         thrusters = [sync_publisher(f"/UX_1/thrusters/{i}/input", Float64) for i in range(8)]
-        wait_for(lambda: all(p.get_num_connections() > 0 for p in thrusters), timeout,
-                 "the simulator to subscribe to the thrusters")
+        wait_for(
+            lambda: all(p.get_num_connections() > 0 for p in thrusters),
+            timeout,
+            "the simulator to subscribe to the thrusters",
+        )
         pid = ServerProxy(master.lookupNode("/simulator")).getPid(rospy.get_name())[2]
         step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         sim0 = step(duration=0.0, steps=1, client="", commands=0, hold=True).time
@@ -124,10 +143,18 @@ def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cp
             except TimeoutError:
                 pass
         mem = proc_status(pid)
-        return {"size": f"{width}x{height}", "fps": fps, "rtf": (sim1 - sim0) / (wall1 - wall0),
-                "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0), "rss_mb": mem["VmRSS"],
-                "sim_seconds": sim1 - sim0, "images": [r - b for r, b in zip(received, base)],
-                "expected_per_camera": expected, "image_sizes": sorted(sizes), "sink": sink}
+        return {
+            "size": f"{width}x{height}",
+            "fps": fps,
+            "rtf": (sim1 - sim0) / (wall1 - wall0),
+            "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0),
+            "rss_mb": mem["VmRSS"],
+            "sim_seconds": sim1 - sim0,
+            "images": [r - b for r, b in zip(received, base)],
+            "expected_per_camera": expected,
+            "image_sizes": sorted(sizes),
+            "sink": sink,
+        }
     finally:
         if counter is not None and counter.poll() is None:
             counter.kill()
@@ -144,34 +171,59 @@ def main():
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--timeout", type=float, default=180.0, help="wall seconds allowed for each wait")
     ap.add_argument("--visibility", default="", help="override the world's visibility (none|low|medium|high)")
-    ap.add_argument("--sink", choices=("cpp", "python"), default="cpp",
-                    help="who subscribes to the images: a C++ counter node (default) or rospy in this process")
+    ap.add_argument(
+        "--sink",
+        choices=("cpp", "python"),
+        default="cpp",
+        help="who subscribes to the images: a C++ counter node (default) or rospy in this process",
+    )
     ap.add_argument("--once", action="store_true", help="one run in this process, JSON out")
     args = ap.parse_args()
     width, height = (int(v) for v in args.size.lower().split("x"))
     if args.once:
-        print(json.dumps(measure(width, height, args.fps, args.sim_seconds, args.seed, args.timeout,
-                                 args.visibility, args.sink)))
+        print(
+            json.dumps(
+                measure(width, height, args.fps, args.sim_seconds, args.seed, args.timeout, args.visibility, args.sink)
+            )
+        )
         return 0
-    cpu = subprocess.run("lscpu | grep 'Model name'", shell=True, capture_output=True, text=True).stdout
-    print(f"mine, 1 robot, mode:=visual, every sensor, 5 cameras at {args.size} and {args.fps:g} fps, images "
-          f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; nproc "
-          f"{os.cpu_count()}, {' '.join(cpu.split()[2:])}; load average before: {os.getloadavg()[0]:.2f}")
+    print(
+        f"mine, 1 robot, mode:=visual, every sensor, 5 cameras at {args.size} and {args.fps:g} fps, images "
+        f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; "
+        f"{machine()}"
+    )
     print(f"{'run':>4} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7}  images per camera (expected)")
     runs = []
     for k in range(args.repeat):
-        proc = subprocess.run([sys.executable, __file__, "--once", "--size", args.size, "--fps", str(args.fps),
-                               "--sim-seconds", str(args.sim_seconds), "--seed", str(args.seed),
-                               "--timeout", str(args.timeout), "--visibility", args.visibility,
-                               "--sink", args.sink],
-                              capture_output=True, text=True)
-        if proc.returncode != 0:
-            print(proc.stderr[-3000:], file=sys.stderr)
+        r = run_child(
+            [
+                __file__,
+                "--once",
+                "--size",
+                args.size,
+                "--fps",
+                str(args.fps),
+                "--sim-seconds",
+                str(args.sim_seconds),
+                "--seed",
+                str(args.seed),
+                "--timeout",
+                str(args.timeout),
+                "--visibility",
+                args.visibility,
+                "--sink",
+                args.sink,
+            ],
+            f"run {k}",
+        )
+        if r is None:
             return 1
-        r = json.loads(proc.stdout.strip().splitlines()[-1])
         runs.append(r)
-        print(f"{k + 1:>4} {r['rtf']:>7.2f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f}  {r['images']} "
-              f"({r['expected_per_camera']}); image sizes {r['image_sizes']}", flush=True)
+        print(
+            f"{k + 1:>4} {r['rtf']:>7.2f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f}  {r['images']} "
+            f"({r['expected_per_camera']}); image sizes {r['image_sizes']}",
+            flush=True,
+        )
     print(f"median RTF {np.median([r['rtf'] for r in runs]):.2f} (load average after: {os.getloadavg()[0]:.2f})")
     return 0
 

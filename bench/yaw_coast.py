@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Coast-down of a yaw turn: the main job's yaw leg (python -m unexmin.mission: N = 2 for 2 s from rest,
+"""Coast-down of a yaw turn: the main job's yaw leg (python -m unexmin.missions.tank: N = 2 for 2 s from rest,
 thesis allocation), then no thrust; prints the peak yaw rate and the time it takes to halve, measured
 in the simulator and from the closed form of quadratic damping.
 
@@ -27,11 +27,11 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
 
-    from unexmin.allocation import ThrusterAllocator
+    from unexmin.control.allocation import ThrusterAllocator
     from unexmin.geometry import yaw_of
     from unexmin.identify import description
-    from unexmin.replay.world import world_launch_file
-    from unexmin.simulation import Simulation
+    from unexmin.scripting.simulation import Simulation
+    from unexmin.worlds.spawn import world_launch_file
 
     physics = description.load(overrides=args.overrides)
     inertia = physics.inertia[2] + physics.added_mass[5, 5]
@@ -39,14 +39,15 @@ def main(argv=None):
     tmp = tempfile.mkdtemp(prefix="yaw_coast_")
     launch = world_launch_file(tmp, "tank", "UX_1", overrides=args.overrides) if args.overrides else None
     rows = []
-    with Simulation.launch("tank", robots=1, seed=args.seed, log_dir=os.path.join(tmp, "log"),
-                           launch_file=launch) as sim:
+    with Simulation.launch(
+        "tank", robots=1, seed=args.seed, log_dir=os.path.join(tmp, "log"), launch_file=launch
+    ) as sim:
         ux = sim.robot("UX_1", streams="none")
         alloc = ThrusterAllocator()
         thrusts, _ = alloc.allocate((0, 0, 0, 0, 0, 2.0))
         ux.thrusts(thrusts)
         t_cmd = sim.time
-        for _ in range(20):                 # 2 s of the yaw command, sampled every 0.1 s
+        for _ in range(20):  # 2 s of the yaw command, sampled every 0.1 s
             sim.run_for(0.1)
             o = ux.odom()
             rows.append((sim.time - t_cmd, yaw_of(o.pose.pose.orientation), o.twist.twist.angular.z))
@@ -64,8 +65,10 @@ def main(argv=None):
     turned = math.degrees(np.unwrap(a[:, 1])[-1] - a[0, 1])
     at = {s: rate[np.argmin(np.abs(a[:, 0] - s))] for s in (5.0, 10.0, 19.0, 30.0)}
     print(f"yaw damping D_q {d_q:.3f} N m s^2/rad^2, inertia I_z + I_A {inertia:.3f} kg m^2")
-    print(f"peak yaw rate {w0:.2f} deg/s at t = {a[k0, 0]:.1f} s (command from 0 to 2 s); "
-          + ", ".join(f"{v:.2f} deg/s at {s:.0f} s" for s, v in at.items()))
+    print(
+        f"peak yaw rate {w0:.2f} deg/s at t = {a[k0, 0]:.1f} s (command from 0 to 2 s); "
+        + ", ".join(f"{v:.2f} deg/s at {s:.0f} s" for s, v in at.items())
+    )
     print(f"measured: rate halves {t_half:.1f} s after the peak; turned {turned:.0f} deg in {a[-1, 0]:.0f} s")
     print(f"closed form I / (D_q w0): {inertia / (d_q * math.radians(w0)):.1f} s")
     return 0

@@ -24,9 +24,9 @@ bash "$repo/scripts/setup.sh"
 source "$repo/scripts/env.sh"
 out=${UNEXMIN_OUT:-$repo/mission_output}
 export ROS_HOME=${ROS_HOME:-$out/ros_home}
-python -m unexmin.mine_mission --out "$out" "${args[@]+"${args[@]}"}"
+python -m unexmin.missions.mine --out "$out" "${args[@]+"${args[@]}"}"
 if [ "$tank" = 1 ]; then
-  python -m unexmin.mission --out "$out/tank"
+  python -m unexmin.missions.tank --out "$out/tank"
 fi
 if [ "$replay" = 1 ]; then
   # Hardware-in-the-loop replay of a shipped "real robot" bag (docs/replay.md): report and plots.

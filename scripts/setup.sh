@@ -36,6 +36,8 @@ pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotl
 pip_packages+=("dask[distributed]==2025.1.0" distributed==2025.1.0 pandas==2.2.3 pyarrow==18.1.0 bokeh==3.6.2)
 # the C++ formatter the test command checks against (.clang-format, test/pytest/test_cpp_format.py)
 pip_packages+=(clang-format==19.1.7)
+# Python lint and format (ruff.toml; test/pytest/test_style.py)
+pip_packages+=(ruff==0.8.6)
 
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -80,8 +80,10 @@ def main(folder, allowed=None):
                 reason = allowed_reason(test_id, allowed)
                 if reason is None:
                     failed += 1
-                    print(f"FAILED: skipped: {path.name}: {test_id}: {' '.join(skipped.split())[:200]}"
-                          f" (fix the cause, or allow it in scripts/summarize_junit.py ALLOWED_SKIPS)")
+                    print(
+                        f"FAILED: skipped: {path.name}: {test_id}: {' '.join(skipped.split())[:200]}"
+                        f" (fix the cause, or allow it in scripts/summarize_junit.py ALLOWED_SKIPS)"
+                    )
                 else:
                     allowed_skips.append(f"allowed skip: {path.name}: {test_id} ({reason})")
             else:

@@ -10,7 +10,7 @@ __all__ = ["Simulation"]
 def __getattr__(name):
     # Lazy so that ``import unexmin.<pure module>`` does not pull in rospy.
     if name == "Simulation":
-        from unexmin.simulation import Simulation
+        from unexmin.scripting.simulation import Simulation
 
         return Simulation
     raise AttributeError(name)

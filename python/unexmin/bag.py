@@ -40,8 +40,10 @@ def open_bag(path):
     except BagError:
         raise
     except Exception as e:  # rosbags raises several error types (and struct/unicode errors) on damaged files
-        raise BagError(f"{path}: cannot read the bag ({type(e).__name__}: {e}); is it truncated or corrupt? "
-                       "(`rosbag reindex` repairs a bag whose recording was cut off)") from None
+        raise BagError(
+            f"{path}: cannot read the bag ({type(e).__name__}: {e}); is it truncated or corrupt? "
+            "(`rosbag reindex` repairs a bag whose recording was cut off)"
+        ) from None
 
 
 def topic_types(path):
@@ -55,8 +57,10 @@ def read_messages(path, topics=None):
     (topic, message type, receive time [s], message) tuples. Raises BagError (see open_bag)."""
     with open_bag(path) as reader:
         conns = [c for c in reader.connections if topics is None or c.topic in topics]
-        return [(conn.topic, conn.msgtype, t * 1e-9, reader.deserialize(raw, conn.msgtype))
-                for conn, t, raw in reader.messages(connections=conns)]
+        return [
+            (conn.topic, conn.msgtype, t * 1e-9, reader.deserialize(raw, conn.msgtype))
+            for conn, t, raw in reader.messages(connections=conns)
+        ]
 
 
 class BagWriter:
@@ -83,8 +87,9 @@ class BagWriter:
 
         if topic not in self.conns:
             pkg, name = msg._type.split("/")
-            self.conns[topic] = self.writer.add_connection(topic, f"{pkg}/msg/{name}", msgdef=msg._full_text,
-                                                           md5sum=msg._md5sum, callerid=self.callerid)
+            self.conns[topic] = self.writer.add_connection(
+                topic, f"{pkg}/msg/{name}", msgdef=msg._full_text, md5sum=msg._md5sum, callerid=self.callerid
+            )
         buf = io.BytesIO()
         msg.serialize(buf)
         self.writer.write(self.conns[topic], int(round(t * 1e9)), buf.getvalue())

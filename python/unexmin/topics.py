@@ -55,5 +55,36 @@ def run_node(name, make, errors=(ValueError,)):
         make()
     except errors as e:
         rospy.logfatal(f"{name}: {e}")
-        raise SystemExit(1)
+        raise SystemExit(1) from None
     rospy.spin()
+
+
+def thruster_publishers(ns, count):
+    """Synchronous publishers of the simulated thrusters' commands, <ns>thrusters/<i>/input (std_msgs/Float64,
+    thrust [N]) for i in 0..count-1."""
+    from std_msgs.msg import Float64
+
+    return [sync_publisher(f"{ns}thrusters/{i}/input", Float64) for i in range(count)]
+
+
+def publish_thrusts(publishers, thrusts):
+    """One thrust [N] on each publisher of thruster_publishers(), in order."""
+    from std_msgs.msg import Float64
+
+    for pub, t in zip(publishers, thrusts):
+        pub.publish(Float64(float(t)))
+
+
+def node_command_line(name, doc, argv=None):
+    """The command line of the node nodes/<name>: `--help` prints its usage and `doc` and exits 0; ROS
+    arguments (topic:=other, _param:=value, __name:=...) and anything else are left to rospy."""
+    import argparse
+    import sys
+
+    parser = argparse.ArgumentParser(
+        prog=f"rosrun unexmin {name}",
+        usage=f"rosrun unexmin {name} [_param:=value ...] [topic:=other_topic ...]",
+        description=doc,
+        epilog="Parameters and topics: see the doc page named above.",
+    )
+    parser.parse_known_args([a for a in (sys.argv[1:] if argv is None else argv) if ":=" not in a])

@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from unexmin.launcher import stop_process_group
+from unexmin.scripting.launcher import stop_process_group
 
 # The shutdown tests press a terminal's Ctrl-C (SIGINT to a run's process group). A test runner started in the
 # background of a non-interactive shell (`cmd &`) or under nohup inherits SIGINT ignored, and so would every process
@@ -20,7 +20,7 @@ if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
 class MarkedRuns:
     """Processes a test starts, each in a session of its own with a fresh UNEXMIN_RUN marker in its
     environment: every process it starts inherits the marker, so the whole run can be found
-    (unexmin.launcher.marked_processes) and stopped, even what left the process group."""
+    (unexmin.scripting.launcher.marked_processes) and stopped, even what left the process group."""
 
     def __init__(self):
         self._runs = []
@@ -29,8 +29,9 @@ class MarkedRuns:
         """Start `args` in folder `tmp` (its output in tmp/out.log, ROS_HOME and ROS_LOG_DIR inside tmp),
         with `env` added to the environment; returns (process, marker)."""
         marker = f"pytest-{os.getpid()}-{len(self._runs)}-{time.monotonic_ns()}"
-        e = dict(os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker,
-                 **env)
+        e = dict(
+            os.environ, ROS_HOME=str(tmp / "ros_home"), ROS_LOG_DIR=str(tmp / "ros_log"), UNEXMIN_RUN=marker, **env
+        )
         log = open(tmp / "out.log", "w")
         proc = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, env=e, start_new_session=True, cwd=tmp)
         self._runs.append((proc, marker, log))

@@ -1,4 +1,4 @@
-"""Thruster allocation (python/unexmin/allocation.py): the thesis matrix, m = A^T tau, saturation.
+"""Thruster allocation (python/unexmin/control/allocation.py): the thesis matrix, m = A^T tau, saturation.
 
 Pure maths: no roscore. Expected values are written out from the thesis (eq. 5.12) and computed
 here from the definition, never taken from a previous run. The last test checks the allocation
@@ -6,6 +6,7 @@ against the thruster geometry of the shipped robot description (expanded with xa
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_allocation.py
 """
+
 import math
 import shutil
 import subprocess
@@ -16,21 +17,31 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from unexmin.allocation import (DEFAULT_MAX_THRUST, DOF, THESIS_MATRIX, AllocationError, ThrusterAllocator,
-                                validate_matrix, validate_max_thrust, validate_wrench)
+from unexmin.control.allocation import (
+    DEFAULT_MAX_THRUST,
+    DOF,
+    THESIS_MATRIX,
+    AllocationError,
+    ThrusterAllocator,
+    validate_matrix,
+    validate_max_thrust,
+    validate_wrench,
+)
 from unexmin.geometry import rpy_matrix
 
 REPO = Path(__file__).resolve().parents[2]
 
 # Thesis eq. 5.12, typed in again: rows X Y Z K M N, columns M0..M7.
-A = np.array([
-    [0.5, 0.0, -0.50, 0.0, 0.50, 0.0, -0.50, 0.0],
-    [-0.25, -0.25, -0.25, 0.25, 0.25, -0.25, 0.25, -0.25],
-    [0.0, -0.50, 0.0, -0.5, 0.0, 0.50, 0.0, -0.50],
-    [0, 0, 0, 0, 0, 0, 0, 0],
-    [0, 0, 0, 0, 0, 0, 0, 0],
-    [-0.25, 0.0, 0.25, 0.0, 0.25, 0.0, -0.25, 0.0],
-])
+A = np.array(
+    [
+        [0.5, 0.0, -0.50, 0.0, 0.50, 0.0, -0.50, 0.0],
+        [-0.25, -0.25, -0.25, 0.25, 0.25, -0.25, 0.25, -0.25],
+        [0.0, -0.50, 0.0, -0.5, 0.0, 0.50, 0.0, -0.50],
+        [0, 0, 0, 0, 0, 0, 0, 0],
+        [0, 0, 0, 0, 0, 0, 0, 0],
+        [-0.25, 0.0, 0.25, 0.0, 0.25, 0.0, -0.25, 0.0],
+    ]
+)
 
 
 def test_default_matrix_is_the_thesis_matrix():
@@ -96,13 +107,16 @@ def test_flat_row_major_matrix_is_accepted():
     np.testing.assert_array_equal(validate_matrix(A.reshape(-1).tolist()), A)
 
 
-@pytest.mark.parametrize("matrix, words", [
-    ([[1, 2], [3, 4]], ["allocation_matrix", "6 x n", "2 x 2"]),
-    ([1.0] * 13, ["allocation_matrix", "6 x n", "13"]),
-    ([[0.5] * 8] * 5 + [[float("nan")] + [0.5] * 7], ["allocation_matrix", "[N][M0]", "not a finite"]),
-    ([[0.5, 0.0]] + [[0.2, 0.0]] * 5, ["allocation_matrix", "M1", "all zero"]),
-    ("not a matrix", ["allocation_matrix"]),
-])
+@pytest.mark.parametrize(
+    "matrix, words",
+    [
+        ([[1, 2], [3, 4]], ["allocation_matrix", "6 x n", "2 x 2"]),
+        ([1.0] * 13, ["allocation_matrix", "6 x n", "13"]),
+        ([[0.5] * 8] * 5 + [[float("nan")] + [0.5] * 7], ["allocation_matrix", "[N][M0]", "not a finite"]),
+        ([[0.5, 0.0]] + [[0.2, 0.0]] * 5, ["allocation_matrix", "M1", "all zero"]),
+        ("not a matrix", ["allocation_matrix"]),
+    ],
+)
 def test_bad_matrix_is_rejected_with_the_parameter_name(matrix, words):
     with pytest.raises(AllocationError) as e:
         validate_matrix(matrix)
@@ -118,10 +132,13 @@ def test_bad_max_thrust_is_rejected(value):
         ThrusterAllocator(max_thrust=value)
 
 
-@pytest.mark.parametrize("wrench, words", [
-    ([1, 2, 3], ["6 numbers", "3"]),
-    ([0, 0, float("nan"), 0, 0, float("inf")], ["Z", "N", "not finite"]),
-])
+@pytest.mark.parametrize(
+    "wrench, words",
+    [
+        ([1, 2, 3], ["6 numbers", "3"]),
+        ([0, 0, float("nan"), 0, 0, float("inf")], ["Z", "N", "not finite"]),
+    ],
+)
 def test_bad_wrench_is_rejected(wrench, words):
     with pytest.raises(AllocationError) as e:
         validate_wrench(wrench)
@@ -144,8 +161,9 @@ def geometry_matrix():
     exe = _xacro()
     if not exe:
         pytest.skip("xacro not installed")
-    urdf = subprocess.run([exe, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], check=True,
-                          capture_output=True, text=True).stdout
+    urdf = subprocess.run(
+        [exe, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], check=True, capture_output=True, text=True
+    ).stdout
     joints = {j.get("name"): j for j in ET.fromstring(urdf).iter("joint")}
     B = np.zeros((6, 8))
     for i in range(8):

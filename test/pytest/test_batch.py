@@ -1,4 +1,4 @@
-"""Batches of missions on Dask distributed (python/unexmin/batch*.py, docs/batch.md).
+"""Batches of missions on Dask distributed (python/unexmin/batch/, docs/batch.md).
 
 - A spec expands the same way every time: seeds outermost, then the sweep's cartesian product; sampled
   values come from (sample_seed, index) and follow their distribution; --limit keeps the first N; a bad
@@ -12,6 +12,7 @@
 - A real deployment on the loopback: `dask scheduler` and two `dask worker` processes, the CLI pointed at
   the scheduler with --limit; both workers ran missions; the dashboard's address is printed.
 """
+
 import math
 import os
 import re
@@ -23,8 +24,8 @@ import threading
 import numpy as np
 import pytest
 
-from unexmin.batch_spec import SpecError, check_spec, expand, write_launch
-from unexmin.launcher import free_port, stop_process_group, wait_for
+from unexmin.batch.spec import SpecError, check_spec, expand, write_launch
+from unexmin.scripting.launcher import free_port, stop_process_group, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -44,7 +45,7 @@ def spec_of(text, folder):
 
 def test_expansion_is_a_function_of_the_spec(tmp_path):
     text = """
-        mission: unexmin.batch_missions:tank_survey
+        mission: unexmin.batch.missions:tank_survey
         seeds: {start: 5, count: 3}
         sweep: {visibility: [none, high], current_angle: [0.0, 1.0]}
         sample: {current_speed: {uniform: [0.1, 0.3]}, sensor_noise_scale: {choice: [0.5, 2.0]}}
@@ -55,12 +56,16 @@ def test_expansion_is_a_function_of_the_spec(tmp_path):
     assert len(missions) == 3 * 2 * 2
     assert [m["seed"] for m in missions] == [5] * 4 + [6] * 4 + [7] * 4
     assert [(m["params"]["visibility"], m["params"]["current_angle"]) for m in missions[:4]] == [
-        ("none", 0.0), ("none", 1.0), ("high", 0.0), ("high", 1.0)]
+        ("none", 0.0),
+        ("none", 1.0),
+        ("high", 0.0),
+        ("high", 1.0),
+    ]
     assert all(m["params"]["gain"] == 2.0 for m in missions)
     speeds = [m["params"]["current_speed"] for m in missions]
     assert all(0.1 <= s <= 0.3 for s in speeds) and len(set(speeds)) == len(speeds)
     assert {m["params"]["sensor_noise_scale"] for m in missions} <= {0.5, 2.0}
-    assert expand(spec_of(text, tmp_path)) == missions           # the same spec, the same missions
+    assert expand(spec_of(text, tmp_path)) == missions  # the same spec, the same missions
     assert expand(spec, limit=5) == missions[:5]
     # A mission's draws depend on (sample_seed, index) only: numpy's generator seeded with that pair.
     rng = np.random.default_rng([0, 7])
@@ -68,31 +73,37 @@ def test_expansion_is_a_function_of_the_spec(tmp_path):
 
 
 def test_sampled_values_follow_their_distribution(tmp_path):
-    spec = spec_of("""
-        mission: unexmin.batch_missions:tank_survey
+    spec = spec_of(
+        """
+        mission: unexmin.batch.missions:tank_survey
         seeds: 2000
         sample: {buoyancy_offset: {normal: [0.2, 0.5]}, n: {integers: [1, 3]}, v: {loguniform: [0.01, 1.0]}}
-    """, tmp_path)
+    """,
+        tmp_path,
+    )
     params = [m["params"] for m in expand(spec)]
     b = np.array([p["buoyancy_offset"] for p in params])
-    se = 0.5 / math.sqrt(len(b))                         # standard error of the mean
+    se = 0.5 / math.sqrt(len(b))  # standard error of the mean
     assert abs(b.mean() - 0.2) < 4 * se and abs(b.std() - 0.5) < 0.05
     assert {p["n"] for p in params} == {1, 2, 3}
-    logv = np.log10([p["v"] for p in params])            # log-uniform: uniform in [-2, 0]
+    logv = np.log10([p["v"] for p in params])  # log-uniform: uniform in [-2, 0]
     assert abs(logv.mean() + 1.0) < 0.05 and logv.min() >= -2.0 and logv.max() <= 0.0
 
 
-@pytest.mark.parametrize("text, message", [
-    ("mission: tank_survey", "mission: expected 'module:function'"),
-    ("mission: a:b\nworld: moon", "world: 'moon' is neither"),
-    ("mission: a:b\nsweep: {current_speed: 0.1}", "sweep.current_speed: expected a non-empty list"),
-    ("mission: a:b\nsweep: {visibility: [murky]}", "visibility 'murky': expected one of none, low, medium, high"),
-    ("mission: a:b\nsample: {current_speed: {uniform: [0.3, 0.1]}}", "expected low <= high"),
-    ("mission: a:b\nsample: {x: {poisson: [1]}}", "sample.x: expected one of"),
-    ("mission: a:b\nsweep: {x: [1]}\nsample: {x: {uniform: [0, 1]}}", "parameter 'x' is given both in sweep"),
-    ("mission: a:b\nseeds: -3", "seeds: -3 is outside"),
-    ("mission: a:b\nduraton: 3", "unknown key(s) duraton"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("mission: tank_survey", "mission: expected 'module:function'"),
+        ("mission: a:b\nworld: moon", "world: 'moon' is neither"),
+        ("mission: a:b\nsweep: {current_speed: 0.1}", "sweep.current_speed: expected a non-empty list"),
+        ("mission: a:b\nsweep: {visibility: [murky]}", "visibility 'murky': expected one of none, low, medium, high"),
+        ("mission: a:b\nsample: {current_speed: {uniform: [0.3, 0.1]}}", "expected low <= high"),
+        ("mission: a:b\nsample: {x: {poisson: [1]}}", "sample.x: expected one of"),
+        ("mission: a:b\nsweep: {x: [1]}\nsample: {x: {uniform: [0, 1]}}", "parameter 'x' is given both in sweep"),
+        ("mission: a:b\nseeds: -3", "seeds: -3 is outside"),
+        ("mission: a:b\nduraton: 3", "unknown key(s) duraton"),
+    ],
+)
 def test_bad_specs_name_the_key(tmp_path, text, message):
     with pytest.raises(SpecError, match=re.escape(message)):
         spec_of(text, tmp_path)
@@ -101,11 +112,14 @@ def test_bad_specs_name_the_key(tmp_path, text, message):
 def test_mission_files_carry_the_parameters(tmp_path):
     import yaml
 
-    spec = spec_of("""
-        mission: unexmin.batch_missions:tank_survey
+    spec = spec_of(
+        """
+        mission: unexmin.batch.missions:tank_survey
         params: {current_speed: 0.7, current_angle: 1.2, visibility: low, buoyancy_offset: 0.5,
                  sensor_noise_scale: 2.0}
-    """, tmp_path)
+    """,
+        tmp_path,
+    )
     mission = expand(spec)[0]
     launch = write_launch(spec, mission, str(tmp_path / "m"))
     world = yaml.safe_load((tmp_path / "m" / "mission.world").read_text())
@@ -117,15 +131,19 @@ def test_mission_files_carry_the_parameters(tmp_path):
     assert 'name="ray_caster_threads" value="1"' in open(launch).read()
 
     def expand_xacro(*args):
-        return subprocess.run(["xacro", os.path.join(REPO, "urdf", "ux1.urdf.xacro"), "name:=UX_1", *args],
-                              check=True, capture_output=True, text=True).stdout
+        return subprocess.run(
+            ["xacro", os.path.join(REPO, "urdf", "ux1.urdf.xacro"), "name:=UX_1", *args],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
 
     base = expand_xacro()
     mine = expand_xacro(f"overrides:={tmp_path / 'm' / 'overrides.xacro'}")
     masses = [[float(v) for v in re.findall(r'<mass value="([^"]+)"', text)] for text in (base, mine)]
     # buoyancy offset 0.5 kg: the vehicle (hull, and the dynamics' total dry mass) 0.5 kg lighter than
     # neutral (rho V = 1000 kg/m^3 x 4/3 pi 0.3^3 m^3); the pendulum unchanged
-    neutral = 1000.0 * 4.0 / 3.0 * math.pi * 0.3 ** 3
+    neutral = 1000.0 * 4.0 / 3.0 * math.pi * 0.3**3
     assert masses[1] == pytest.approx([neutral - 10.0 - 0.5, 10.0, neutral - 0.5], abs=1e-9)
     assert masses[0] == pytest.approx([neutral - 10.0, 10.0, neutral], abs=1e-9)
     for name in ("pressure_noise", "gyro_noise_density", "range_noise"):
@@ -134,8 +152,9 @@ def test_mission_files_carry_the_parameters(tmp_path):
         assert new == pytest.approx(2.0 * ref, rel=1e-12), name
 
 
-def six_missions(folder, mission="unexmin.batch_missions:tank_survey", extra=""):
-    return spec_of(f"""
+def six_missions(folder, mission="unexmin.batch.missions:tank_survey", extra=""):
+    return spec_of(
+        f"""
         world: tank
         mission: {mission}
         duration: 2.0
@@ -146,7 +165,10 @@ def six_missions(folder, mission="unexmin.batch_missions:tank_survey", extra="")
         sweep: {{current_speed: [0.0, 0.25]}}
         sample: {{current_angle: {{uniform: [-3.14, 3.14]}}}}
         python_path: [{HERE}]
-    """ + textwrap.dedent(extra), folder)
+    """
+        + textwrap.dedent(extra),
+        folder,
+    )
 
 
 def comparable(df):
@@ -185,7 +207,8 @@ def test_local_cluster_gives_the_sequential_table(tmp_path):
 def test_failures_are_recorded_and_the_batch_completes(tmp_path):
     from unexmin.batch import run_batch
 
-    spec = spec_of(f"""
+    spec = spec_of(
+        f"""
         world: tank
         mission: batch_test_missions:flaky
         duration: 1.0
@@ -194,12 +217,14 @@ def test_failures_are_recorded_and_the_batch_completes(tmp_path):
         control: false
         seeds: 5
         python_path: [{HERE}]
-    """, tmp_path)
+    """,
+        tmp_path,
+    )
     # 3 workers: the hanging mission holds one for two timeouts while it uses no CPU
     df = run_batch(spec, str(tmp_path / "out"), workers=3, progress=False, log=lambda _: None).set_index("index")
     assert list(df["status"]) == ["ok", "failed", "failed", "failed", "failed"]
     assert df.loc[0, "attempts"] == 1 and df.loc[0, "net_displacement_m"] > 0
-    assert (df.loc[1:, "attempts"] == 2).all()          # each failure was retried once
+    assert (df.loc[1:, "attempts"] == 2).all()  # each failure was retried once
     assert "RuntimeError: deliberate failure of mission 1" in df.loc[1, "error"]
     assert "metric score is nan" in df.loc[2, "error"]
     assert "exited with code 3 without a result" in df.loc[3, "error"]
@@ -213,31 +238,75 @@ def test_scheduler_and_two_workers_on_loopback(tmp_path):
     from dask.distributed import Client
 
     spec_path = tmp_path / "spec.yaml"
-    six_missions(tmp_path, "batch_test_missions:where")   # checks it; the CLI reads the file
+    six_missions(tmp_path, "batch_test_missions:where")  # checks it; the CLI reads the file
     port, dash = free_port(), free_port()
     address = f"tcp://127.0.0.1:{port}"
     logs = [open(tmp_path / name, "w") for name in ("scheduler.log", "worker1.log", "worker2.log")]
     procs = []
     try:
-        procs.append(subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                                       "--dashboard-address", f"127.0.0.1:{dash}"],
-                                      stdout=logs[0], stderr=subprocess.STDOUT, start_new_session=True))
+        procs.append(
+            subprocess.Popen(
+                [
+                    "dask",
+                    "scheduler",
+                    "--host",
+                    "127.0.0.1",
+                    "--port",
+                    str(port),
+                    "--dashboard-address",
+                    f"127.0.0.1:{dash}",
+                ],
+                stdout=logs[0],
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
+        )
         for log in logs[1:]:
-            procs.append(subprocess.Popen(["dask", "worker", address, "--host", "127.0.0.1", "--nthreads", "1",
-                                           "--no-nanny", "--no-dashboard"],
-                                          stdout=log, stderr=subprocess.STDOUT, start_new_session=True))
+            procs.append(
+                subprocess.Popen(
+                    [
+                        "dask",
+                        "worker",
+                        address,
+                        "--host",
+                        "127.0.0.1",
+                        "--nthreads",
+                        "1",
+                        "--no-nanny",
+                        "--no-dashboard",
+                    ],
+                    stdout=log,
+                    stderr=subprocess.STDOUT,
+                    start_new_session=True,
+                )
+            )
         with Client(address, timeout=30) as client:
             wait_for(lambda: len(client.scheduler_info()["workers"]) == 2, 60, "two Dask workers to join")
         out = tmp_path / "out"
-        run = subprocess.run([sys.executable, "-m", "unexmin.batch", str(spec_path), "--out", str(out),
-                              "--scheduler", address, "--limit", "4", "--no-progress"],
-                             capture_output=True, text=True, timeout=300)
+        run = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "unexmin.batch",
+                str(spec_path),
+                "--out",
+                str(out),
+                "--scheduler",
+                address,
+                "--limit",
+                "4",
+                "--no-progress",
+            ],
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
         assert run.returncode == 0, run.stdout + run.stderr
         assert f"Dask dashboard: http://127.0.0.1:{dash}/status" in run.stdout
         assert "4 ok, 0 failed of 4 missions" in run.stdout
         df = pd.read_parquet(out / "results.parquet")
         assert list(df["index"]) == [0, 1, 2, 3] and (df["status"] == "ok").all()
-        assert set(df["runner_pid"]) == {procs[1].pid, procs[2].pid}   # both workers ran missions
+        assert set(df["runner_pid"]) == {procs[1].pid, procs[2].pid}  # both workers ran missions
         assert (out / "results.csv").exists() and (out / "summary_hist.png").exists()
         assert (out / "summary_vs_current_speed.png").exists() and (out / "summary_vs_current_angle.png").exists()
     finally:

@@ -1,5 +1,5 @@
 """The simulator's C++ M3 and DVL translations (cpp/unexmin/ros_layer/m3_cloud.cpp, dvl_water_track.cpp) against the
-rospy translators they replace in simulation (python/unexmin/m3_translator.py scan_to_cloud,
+rospy translators they replace in simulation (python/unexmin/translators/m3.py scan_to_cloud,
 dvl_translator.py dvl_to_water_track): the simulator records its own m3/scan, m3/points, dvl and
 dvl_water_track while the robot moves (record:=, every message kept); each C++ output must equal the Python
 translation of the input message of the same stamp, field by field, and the rospy nodes do not run."""
@@ -21,11 +21,27 @@ TOPICS = "/UX_1/m3/scan /UX_1/m3/points /UX_1/dvl /UX_1/dvl_water_track"
 def bag(tmp_path_factory, request):
     tmp = tmp_path_factory.mktemp("cpp_translations")
     path = tmp / "translations.bag"
-    out = subprocess.run([sys.executable, str(HERE / "clients" / "record_run.py"), str(tmp / "log"), str(SECONDS), "200",
-                          "--world", request.param, "--", f"record:={path}", f"record_topics:={TOPICS}"],
-                         capture_output=True, text=True, timeout=300, env=dict(os.environ, ROS_HOME=str(tmp)))
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(HERE / "clients" / "record_run.py"),
+            str(tmp / "log"),
+            str(SECONDS),
+            "200",
+            "--world",
+            request.param,
+            "--",
+            f"record:={path}",
+            f"record_topics:={TOPICS}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=dict(os.environ, ROS_HOME=str(tmp)),
+    )
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     import rosbag
+
     got = {}
     with rosbag.Bag(str(path)) as b:
         for topic, msg, _ in b.read_messages():
@@ -47,8 +63,8 @@ def test_rospy_translators_do_not_run_by_default(bag):
 
 
 def test_m3_cloud_equals_the_python_translation(bag):
-    from sensor_msgs import point_cloud2
-    from unexmin.m3_translator import scan_to_cloud
+    from unexmin.translators.m3 import scan_to_cloud
+
     got, _, _ = bag
     scans, clouds = got["/UX_1/m3/scan"], got["/UX_1/m3/points"]
     assert len(scans) == len(clouds) == round(40 * (SECONDS + 1.0))
@@ -56,10 +72,17 @@ def test_m3_cloud_equals_the_python_translation(bag):
     for stamp, scan in scans.items():
         cpp, py = clouds[stamp], scan_to_cloud(scan)
         assert cpp.header.frame_id == py.header.frame_id
-        assert (cpp.height, cpp.width, cpp.point_step, cpp.row_step, cpp.is_dense, cpp.is_bigendian) == \
-               (py.height, py.width, py.point_step, py.row_step, py.is_dense, py.is_bigendian)
-        assert [(f.name, f.offset, f.datatype, f.count) for f in cpp.fields] == \
-               [(f.name, f.offset, f.datatype, f.count) for f in py.fields]
+        assert (cpp.height, cpp.width, cpp.point_step, cpp.row_step, cpp.is_dense, cpp.is_bigendian) == (
+            py.height,
+            py.width,
+            py.point_step,
+            py.row_step,
+            py.is_dense,
+            py.is_bigendian,
+        )
+        assert [(f.name, f.offset, f.datatype, f.count) for f in cpp.fields] == [
+            (f.name, f.offset, f.datatype, f.count) for f in py.fields
+        ]
         # the same doubles rounded to float32 by the same rule: the same bytes
         assert bytes(cpp.data) == bytes(py.data), stamp
         widths.add(cpp.width)
@@ -69,7 +92,8 @@ def test_m3_cloud_equals_the_python_translation(bag):
 
 
 def test_dvl_water_track_equals_the_python_translation(bag):
-    from unexmin.dvl_translator import dvl_to_water_track
+    from unexmin.translators.dvl import dvl_to_water_track
+
     got, _, _ = bag
     pings, tracks = got["/UX_1/dvl"], got["/UX_1/dvl_water_track"]
     assert len(pings) == len(tracks) == round(8 * (SECONDS + 1.0))

@@ -1,4 +1,4 @@
-"""ESC table (python/unexmin/esc.py) and the simulated ESC driver node (nodes/esc_driver).
+"""ESC table (python/unexmin/control/esc.py) and the simulated ESC driver node (nodes/esc_driver).
 
 The table tests need no roscore. Expected thrusts are computed here from the T200 16 V rows typed in
 again from Blue Robotics' published sheet (PWM [us], RPM, force [kgf]) and the definition of linear
@@ -7,8 +7,8 @@ MotorCommand -> thrust on /UX_1/thrusters/<i>/input.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_esc.py
 """
+
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -17,13 +17,32 @@ import textwrap
 import numpy as np
 import pytest
 
-from unexmin.esc import (DEFAULT_DUTY_TABLE, DEFAULT_RPM_TABLE, KGF, MODE_DUTY_CYCLE, MODE_RPM, EscConverter,
-                         EscTableError, ThrustTable, converter_from_params, parse_mode)
+from unexmin.control.esc import (
+    DEFAULT_DUTY_TABLE,
+    DEFAULT_RPM_TABLE,
+    KGF,
+    MODE_DUTY_CYCLE,
+    MODE_RPM,
+    EscConverter,
+    EscTableError,
+    ThrustTable,
+    converter_from_params,
+    parse_mode,
+)
 
 G = 9.80665
 # Rows of the sheet used by the defaults (PWM us, RPM, kgf), typed in again.
-ROWS = [(1100, 3465, -4.07), (1400, 1246, -0.48), (1468, 317, -0.04), (1472, 0, 0.0), (1528, 0, 0.0),
-        (1532, 308, 0.04), (1600, 1237, 0.60), (1652, 1740, 1.18), (1900, 3533, 5.25)]
+ROWS = [
+    (1100, 3465, -4.07),
+    (1400, 1246, -0.48),
+    (1468, 317, -0.04),
+    (1472, 0, 0.0),
+    (1528, 0, 0.0),
+    (1532, 308, 0.04),
+    (1600, 1237, 0.60),
+    (1652, 1740, 1.18),
+    (1900, 3533, 5.25),
+]
 
 
 def lerp(x, x0, y0, x1, y1):
@@ -59,7 +78,7 @@ def test_dead_band_gives_no_thrust_and_the_ends_clamp():
     duty = ThrustTable(*DEFAULT_DUTY_TABLE)
     for d in (-0.07, -0.03, 0.0, 0.05, 0.07):
         assert duty.thrust(d) == 0.0
-    assert duty.thrust(1.5) == pytest.approx(5.25 * G)      # beyond the table: its last thrust
+    assert duty.thrust(1.5) == pytest.approx(5.25 * G)  # beyond the table: its last thrust
     assert duty.thrust(-3.0) == pytest.approx(-4.07 * G)
     assert duty.thrust_range == pytest.approx((-4.07 * G, 5.25 * G))
     assert duty.command_range == (-1.0, 1.0)
@@ -85,15 +104,18 @@ def test_inverse_of_zero_is_the_middle_of_the_dead_band_and_edges_are_exact():
     assert duty.command(100.0) == 1.0 and duty.command(-100.0) == -1.0
 
 
-@pytest.mark.parametrize("inputs, outputs, words", [
-    ([0, 1, 2], [0, 1], ["3 entries", "2"]),
-    ([0], [0], ["at least 2"]),
-    ([0, 2, 1], [0, 1, 2], ["strictly increasing", "input[1]"]),
-    ([0, 1, 2], [0, 2, 1], ["must not decrease", "output[1]"]),
-    ([0, 1], [5, 5], ["constant"]),
-    ([0, float("nan")], [0, 1], ["finite"]),
-    ("ab", [0, 1], ["lists of numbers"]),
-])
+@pytest.mark.parametrize(
+    "inputs, outputs, words",
+    [
+        ([0, 1, 2], [0, 1], ["3 entries", "2"]),
+        ([0], [0], ["at least 2"]),
+        ([0, 2, 1], [0, 1, 2], ["strictly increasing", "input[1]"]),
+        ([0, 1, 2], [0, 2, 1], ["must not decrease", "output[1]"]),
+        ([0, 1], [5, 5], ["constant"]),
+        ([0, float("nan")], [0, 1], ["finite"]),
+        ("ab", [0, 1], ["lists of numbers"]),
+    ],
+)
 def test_bad_table_is_rejected_naming_the_parameter(inputs, outputs, words):
     with pytest.raises(EscTableError) as e:
         ThrustTable(inputs, outputs, name="rpm_table_input/output")
@@ -148,7 +170,8 @@ CLIENT = textwrap.dedent("""
     subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cb, i) for i in range(8)]
     pub = rospy.Publisher(ESC_COMMAND_TOPIC, MotorCommand, queue_size=10)
     deadline = time.monotonic() + 60  # a loaded machine starts rospy nodes slowly
-    while time.monotonic() < deadline and not (pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
+    while time.monotonic() < deadline and not (
+        pub.get_num_connections() and all(s.get_num_connections() for s in subs)):
         time.sleep(0.05)
     out = []
     for n, (mode, values) in enumerate(cases, 1):
@@ -164,46 +187,49 @@ CLIENT = textwrap.dedent("""
 def master(tmp_path):
     if not shutil.which("rosmaster"):
         pytest.skip("rosmaster not installed")
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, start_private_master, stop_process_group
 
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
-    proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
+    proc, env = start_private_master(free_port(), tmp_path)
     try:
-        import xmlrpc.client
-        wait_for(lambda: _master_up(xmlrpc.client, port), 20, "rosmaster")
         yield env
     finally:
-        proc.terminate()
-        proc.wait(10)
-
-
-def _master_up(xmlrpc_client, port):
-    try:
-        xmlrpc_client.ServerProxy(f"http://127.0.0.1:{port}").getSystemState("/probe")
-        return True
-    except OSError:
-        return False
+        stop_process_group(proc)
 
 
 def test_driver_round_trip_follows_the_table(master):
     rpm = [1237, -1246, 0, 1488.5, 3533, -3465, 308, 154]
     duty = [0.25, -0.25, 0.0, 0.05, 1.0, -1.0, 0.45, -0.08]
-    driver = subprocess.Popen(["rosrun", "unexmin", "esc_driver"], env=master, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True, start_new_session=True)
+    driver = subprocess.Popen(
+        ["rosrun", "unexmin", "esc_driver"],
+        env=master,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     try:
-        res = subprocess.run([sys.executable, "-c", CLIENT, json.dumps([[MODE_RPM, rpm], [MODE_DUTY_CYCLE, duty]])],
-                             env=master, capture_output=True, text=True, timeout=60)
+        res = subprocess.run(
+            [sys.executable, "-c", CLIENT, json.dumps([[MODE_RPM, rpm], [MODE_DUTY_CYCLE, duty]])],
+            env=master,
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
         assert res.returncode == 0, res.stderr
         by_rpm, by_duty = json.loads(res.stdout.strip().splitlines()[-1])
     finally:
         driver.terminate()
         driver.wait(10)
-    expected_rpm = [0.60 * G, -0.48 * G, 0.0, lerp(1488.5, 1237, 0.60, 1740, 1.18) * G, 40.0,  # 51.5 N clamped
-                    -4.07 * G, 0.04 * G, 0.02 * G]
-    expected_duty = [0.60 * G, -0.48 * G, 0.0, 0.0, 40.0, -4.07 * G,
-                     lerp(0.45, 0.38, 1.18, 0.5, 1.82) * G, -0.04 * G]
+    expected_rpm = [
+        0.60 * G,
+        -0.48 * G,
+        0.0,
+        lerp(1488.5, 1237, 0.60, 1740, 1.18) * G,
+        40.0,  # 51.5 N clamped
+        -4.07 * G,
+        0.04 * G,
+        0.02 * G,
+    ]
+    expected_duty = [0.60 * G, -0.48 * G, 0.0, 0.0, 40.0, -4.07 * G, lerp(0.45, 0.38, 1.18, 0.5, 1.82) * G, -0.04 * G]
     np.testing.assert_allclose(by_rpm, expected_rpm, atol=1e-9)
     np.testing.assert_allclose(by_duty, expected_duty, atol=1e-9)

@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, wait_for
+from unexmin.scripting.launcher import free_port, marked_processes, wait_for
+
 
 def pids_of(marker, name):
     out = []
@@ -28,29 +29,35 @@ def pids_of(marker, name):
 def world(runs, tmp, *args):
     port = free_port()
     uri = f"http://127.0.0.1:{port}"
-    proc, marker = runs.start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", *args], tmp,
-                         ROS_MASTER_URI=uri)
+    proc, marker = runs.start(
+        ["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", *args], tmp, ROS_MASTER_URI=uri
+    )
     return proc, marker, uri
 
 
-@pytest.mark.parametrize("node,args", [("thruster_allocator", ()),
-                                       ("kvh_translator", ("kvh_translator:=true",)),
-                                       ("esc_driver", ())])
+@pytest.mark.parametrize(
+    "node,args", [("thruster_allocator", ()), ("kvh_translator", ("kvh_translator:=true",)), ("esc_driver", ())]
+)
 def test_killed_node_is_respawned(tmp_path, runs, node, args):
     proc, marker, uri = world(runs, tmp_path, "realtime:=true", *args)
     if node == "esc_driver":  # not in the world launch: its own control.launch on the world's master
         (tmp_path / "esc").mkdir()
-        _, marker = runs.start(["roslaunch", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false",
-                           "esc_driver:=true"], tmp_path / "esc", ROS_MASTER_URI=uri)
+        _, marker = runs.start(
+            ["roslaunch", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false", "esc_driver:=true"],
+            tmp_path / "esc",
+            ROS_MASTER_URI=uri,
+        )
     first = wait_for(lambda: pids_of(marker, node), 90, f"{node} to start")
     os.kill(first[0], signal.SIGKILL)
     again = wait_for(lambda: [p for p in pids_of(marker, node) if p not in first], 60, f"{node} to be respawned")
     assert again
     # registered with the master again
     import rosgraph
+
     master = rosgraph.Master("/faults_test", master_uri=uri)
-    wait_for(lambda: any(node in n for _, nodes in master.getSystemState()[0] for n in nodes), 60,
-             f"{node} to publish again")
+    wait_for(
+        lambda: any(node in n for _, nodes in master.getSystemState()[0] for n in nodes), 60, f"{node} to publish again"
+    )
 
 
 SCRIPT = """

@@ -18,8 +18,13 @@ ROSCPP_DESERIALIZE = "Exception thrown when deserializing"
 
 
 def test_fuzzed_inputs_and_services(tmp_path):
-    out = subprocess.run([sys.executable, str(HERE / "clients" / "fuzz_run.py"), str(tmp_path / "log"), str(FUZZ)],
-                         capture_output=True, text=True, timeout=240, env=dict(os.environ, ROS_HOME=str(tmp_path)))
+    out = subprocess.run(
+        [sys.executable, str(HERE / "clients" / "fuzz_run.py"), str(tmp_path / "log"), str(FUZZ)],
+        capture_output=True,
+        text=True,
+        timeout=240,
+        env=dict(os.environ, ROS_HOME=str(tmp_path)),
+    )
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     r = json.loads(out.stdout.strip().splitlines()[-1])
     assert r["fuzz_rate_hz"] > 500, r

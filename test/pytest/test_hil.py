@@ -234,7 +234,7 @@ def test_checker_says_the_link_is_good_in_one_line(rig):
 
 def test_checker_names_what_is_wrong_on_the_robot_side(rig):
     from unexmin.hil.rig import SIM_ADDRESS
-    from unexmin.launcher import wait_for
+    from unexmin.scripting.launcher import wait_for
 
     def check_line(*args):
         status, out, took = rig.run_in(rig.sim_ns, SIM_ADDRESS, "unexmin.hil.check", "--timeout", 2, *args)

@@ -17,6 +17,7 @@
 Bags are made once per session in a temporary folder (each launches its own world on a private
 master, in a subprocess). Run: python -m pytest test/pytest/test_identify.py (after source scripts/env.sh)
 """
+
 import json
 import math
 import os
@@ -28,7 +29,7 @@ import numpy as np
 import pytest
 import yaml
 
-from unexmin.esc import MODE_RPM, EscConverter
+from unexmin.control.esc import MODE_RPM, EscConverter
 from unexmin.identify import description, model
 from unexmin.identify.cli import identify_bag, overrides_xacro
 from unexmin.identify.model import DOF, INDEX, PARAMS
@@ -37,13 +38,14 @@ from unexmin.replay import read_bag
 REPO = Path(__file__).resolve().parents[2]
 SAMPLE_BAG = REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"
 MAKER = REPO / "worlds" / "tools" / "make_sample_bag.py"
-RHO_V = 1000.0 * 4.0 / 3.0 * math.pi * 0.3 ** 3
+RHO_V = 1000.0 * 4.0 / 3.0 * math.pi * 0.3**3
 
 
 def run(args, cwd, timeout=300):
     env = dict(os.environ, ROS_HOME=str(cwd / "ros_home"), ROS_LOG_DIR=str(cwd / "ros_log"), PYTHONWARNINGS="ignore")
-    return subprocess.run([sys.executable, *map(str, args)], capture_output=True, text=True, timeout=timeout,
-                          env=env, cwd=cwd)
+    return subprocess.run(
+        [sys.executable, *map(str, args)], capture_output=True, text=True, timeout=timeout, env=env, cwd=cwd
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -90,7 +92,7 @@ def test_overrides_round_trip(tmp_path, nominal_physics):
     """Parameters -> overrides xacro -> expanded description -> the same parameters."""
     x = model.nominal_vector(nominal_physics)
     x[INDEX["buoyancy_kg"]] = -0.137
-    x[INDEX["cog_x"]:INDEX["cog_z"] + 1] = [0.011, -0.017, -0.035]
+    x[INDEX["cog_x"] : INDEX["cog_z"] + 1] = [0.011, -0.017, -0.035]
     x[INDEX["thrust_gain_horizontal"]], x[INDEX["thrust_gain_vertical"]] = 0.83, 1.17
     for k, d in enumerate(DOF):
         x[INDEX[f"damping_linear_{d}"]] = 0.5 + k
@@ -126,7 +128,7 @@ ROBOTS = {
     "cog_down_2cm": (0.05, (0.0, -0.02, -0.02), 0.5, 1.0, 1.2, 5, (-1.7, -1.35, -1.3)),
     "cog_forward_2cm": (-0.05, (0.02, 0.0, 0.0), 1.5, 0.9, 1.0, 6, (-1.7, -1.35, -1.0)),
 }
-NOMINAL_COG_BASE = (0.0, 0.0, -0.02)   # urdf/properties.xacro cog_x, cog_y, cog_z
+NOMINAL_COG_BASE = (0.0, 0.0, -0.02)  # urdf/properties.xacro cog_x, cog_y, cog_z
 
 
 def robot_overrides(buoyancy, cog_offset, damping, gain_h, gain_v):
@@ -162,18 +164,35 @@ def make_bag(bag_dir, name):
         # the operator trims the robot to neutral with the VBS, so it stays in mid-water, and commands
         # the runs in the level frame (--level), so a robot trimmed 20 deg nose down does not dive onto
         # the anchor or the floor along its tilted x axis
-        out = run([MAKER, "--overrides", overrides, "--out", bag, "--seed", seed, "--vbs-trim", buoyancy,
-                   "--spawn-xyz", *spawn_xyz, "--level"],
-                  bag_dir)
+        out = run(
+            [
+                MAKER,
+                "--overrides",
+                overrides,
+                "--out",
+                bag,
+                "--seed",
+                seed,
+                "--vbs-trim",
+                buoyancy,
+                "--spawn-xyz",
+                *spawn_xyz,
+                "--level",
+            ],
+            bag_dir,
+        )
         assert out.returncode == 0, out.stderr[-3000:]
     return bag, overrides
 
 
 def got_values(data):
     """{parameter name: identified value} of an identified.yaml dict."""
-    got = {"buoyancy_kg": data["buoyancy_kg"]["value"], "added_mass": data["added_mass"]["value"],
-           "thrust_gain_horizontal": data["thrust_gain"]["value"]["horizontal"],
-           "thrust_gain_vertical": data["thrust_gain"]["value"]["vertical"]}
+    got = {
+        "buoyancy_kg": data["buoyancy_kg"]["value"],
+        "added_mass": data["added_mass"]["value"],
+        "thrust_gain_horizontal": data["thrust_gain"]["value"]["horizontal"],
+        "thrust_gain_vertical": data["thrust_gain"]["value"]["vertical"],
+    }
     for i, a in enumerate("xyz"):
         got[f"cog_{a}"] = data["cog_m"]["value"][i]
     for i, d in enumerate(DOF):
@@ -240,8 +259,9 @@ def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
     # pendulum's pitch swing, the buoyancy, the centre of gravity and both gains
     for d in ("surge", "sway", "heave", "pitch", "yaw"):
         assert f"damping_quadratic_{d}" not in data["unidentifiable"]
-    assert not {"buoyancy_kg", "cog_x", "cog_y", "cog_z", "thrust_gain_horizontal",
-                "thrust_gain_vertical"} & set(data["unidentifiable"])
+    assert not {"buoyancy_kg", "cog_x", "cog_y", "cog_z", "thrust_gain_horizontal", "thrust_gain_vertical"} & set(
+        data["unidentifiable"]
+    )
     written = yaml.safe_load((tmp_path / "out" / "identified.yaml").read_text())
     assert written["buoyancy_kg"]["value"] == pytest.approx(data["buoyancy_kg"]["value"])
     assert {"value", "sigma"} <= set(written["cog_m"]) and len(written["damping_quadratic"]["value"]) == 6
@@ -253,8 +273,19 @@ def test_sample_bag_identify_then_replay(tmp_path):
     check_identified(data, description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     for d in ("surge", "sway", "heave", "yaw"):
         assert f"damping_quadratic_{d}" not in data["unidentifiable"]
-    out = run(["-m", "unexmin.replay", SAMPLE_BAG, "--out", tmp_path / "replay", "--quiet",
-               "--overrides", tmp_path / "id" / "identified_overrides.xacro"], tmp_path)
+    out = run(
+        [
+            "-m",
+            "unexmin.replay",
+            SAMPLE_BAG,
+            "--out",
+            tmp_path / "replay",
+            "--quiet",
+            "--overrides",
+            tmp_path / "id" / "identified_overrides.xacro",
+        ],
+        tmp_path,
+    )
     assert out.returncode == 0, out.stderr[-3000:]
     report = json.loads((tmp_path / "replay" / "report.json").read_text())
     assert report["errors_before"]["position_error_m"]["final"] > 1.3
@@ -278,16 +309,18 @@ def test_noisy_navigation_degrades_gracefully(tmp_path):
     mission = noisy(read_bag(SAMPLE_BAG), 0.005, math.radians(0.1), seed=7)
     data = identify_bag(SAMPLE_BAG, tmp_path, window_s=5.0, progress=False, mission=mission)
     assert not {"buoyancy_kg", "cog_x", "cog_y", "thrust_gain_horizontal", "thrust_gain_vertical"} & set(
-        data["unidentifiable"])
+        data["unidentifiable"]
+    )
     truth = model.nominal_vector(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     assert data["buoyancy_kg"]["value"] == pytest.approx(truth[INDEX["buoyancy_kg"]], abs=0.02)
-    assert data["cog_m"]["value"] == pytest.approx(list(truth[INDEX["cog_x"]:INDEX["cog_z"] + 1]), abs=0.002)
+    assert data["cog_m"]["value"] == pytest.approx(list(truth[INDEX["cog_x"] : INDEX["cog_z"] + 1]), abs=0.002)
     for g in ("horizontal", "vertical"):
         assert data["thrust_gain"]["value"][g] == pytest.approx(1.0, rel=0.15)
     for i, d in enumerate(DOF[:3]):
         if f"damping_quadratic_{d}" not in data["unidentifiable"]:
-            assert data["damping_quadratic"]["value"][i] == pytest.approx(truth[INDEX[f"damping_quadratic_{d}"]],
-                                                                          rel=0.25)
+            assert data["damping_quadratic"]["value"][i] == pytest.approx(
+                truth[INDEX[f"damping_quadratic_{d}"]], rel=0.25
+            )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -309,11 +342,11 @@ def test_dead_reckoning_of_a_steady_turn_is_the_closed_form_circle(nominal_physi
     w_b = np.array([0.0, 0.0, r])
     imu = np.column_stack([t, np.tile(w_b, (len(t), 1)), np.tile([0.0, 0.0, g], (len(t), 1))])
     td = np.arange(0.0, 30.0 + 1e-9, 0.125)
-    v_b = np.array([u, 0.0, h])                      # level: body z is world z
+    v_b = np.array([u, 0.0, h])  # level: body z is world z
     v_dvl = mounts.dvl_R.T @ (v_b + np.cross(w_b, mounts.dvl_r))
     dvl = np.column_stack([td, np.tile(v_dvl, (len(td), 1))])
     tp = np.arange(0.0, 30.0 + 1e-9, 0.1)
-    z_sensor = z0 + h * tp + mounts.pressure_r[2]    # level: the mount's z offset is its world offset
+    z_sensor = z0 + h * tp + mounts.pressure_r[2]  # level: the mount's z offset is its world offset
     pressure = np.column_stack([tp, p_atm + rho * g * (0.0 - z_sensor)])
     t_out = np.arange(0.0, 30.0, 0.5)
     nav = dr.dead_reckon(imu, dvl, pressure, mounts, t_out, rho, g, p_atm, 0.0)
@@ -340,7 +373,7 @@ def test_dead_reckoning_of_a_steady_turn_is_the_closed_form_circle(nominal_physi
     imu_q = np.column_stack([t1, np.tile(w_q, (len(t1), 1)), np.tile([0.0, 0.0, g], (len(t1), 1))])
     td1 = td[td <= 2.0]
     rows = []
-    for tk in td1:   # the DVL's axes turn with the body; its velocity in them is constant
+    for _ in td1:  # the DVL's axes turn with the body; its velocity in them is constant
         rows.append(mounts.dvl_R.T @ np.cross(w_q, mounts.dvl_r))
     dvl_q = np.column_stack([td1, np.array(rows)])
     p_q = np.column_stack([tp[tp <= 2.0], np.full(len(tp[tp <= 2.0]), p_atm + rho * g * 1.0)])
@@ -377,11 +410,23 @@ def test_bad_input_is_one_error_line(tmp_path, bag_dir):
     out = run(["-m", "unexmin.identify", tmp_path / "missing.bag", "--out", tmp_path / "o", "--quiet"], tmp_path)
     assert out.returncode == 2
     assert out.stderr.strip().startswith("identify: error:") and len(out.stderr.strip().splitlines()) == 1
-    out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--fix", "nonsense", "--quiet"],
-              tmp_path)
+    out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--fix", "nonsense", "--quiet"], tmp_path)
     assert out.returncode == 2 and "--fix nonsense" in out.stderr
-    out = run(["-m", "unexmin.identify", SAMPLE_BAG, "--out", tmp_path / "o", "--nav", "dead-reckoning",
-               "--depth-time-constant", "0", "--quiet"], tmp_path)
+    out = run(
+        [
+            "-m",
+            "unexmin.identify",
+            SAMPLE_BAG,
+            "--out",
+            tmp_path / "o",
+            "--nav",
+            "dead-reckoning",
+            "--depth-time-constant",
+            "0",
+            "--quiet",
+        ],
+        tmp_path,
+    )
     assert out.returncode == 2 and "--depth-time-constant 0" in out.stderr
     # dead reckoning from a bag without the navigation sensors (recorded without --sensors)
     bag, _ = make_bag(bag_dir, "cog_up_2cm")

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import WorldProcess, free_port, marked_processes, stop_process_group, wait_for
+from unexmin.scripting.launcher import WorldProcess, free_port, marked_processes, stop_process_group, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 # Both ends of the test's veth pair: link-local addresses on a link that exists only between the test's own two

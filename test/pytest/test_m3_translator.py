@@ -1,9 +1,10 @@
-"""M3 translator (python/unexmin/m3_translator.py): LaserScan -> PointCloud2 (x y z) and back gives the
+"""M3 translator (python/unexmin/translators/m3.py): LaserScan -> PointCloud2 (x y z) and back gives the
 same ranges; REP-117 markers and out-of-window ranges are dropped; at most one point per beam (256).
 Pure functions: no ROS master needed.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_m3_translator.py (workspace sourced).
 """
+
 import math
 import random
 
@@ -14,7 +15,7 @@ pytest.importorskip("sensor_msgs.msg", reason="source the workspace (scripts/env
 from sensor_msgs import point_cloud2  # noqa: E402
 from sensor_msgs.msg import LaserScan, PointField  # noqa: E402
 
-from unexmin.m3_translator import cloud_to_ranges, scan_points, scan_to_cloud  # noqa: E402
+from unexmin.translators.m3 import cloud_to_ranges, scan_points, scan_to_cloud  # noqa: E402
 
 BEAMS = 256
 FOV = math.radians(120.0)

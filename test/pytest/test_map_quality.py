@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from unexmin import map_quality
+from unexmin.worlds.files import world_path
 
 RES = 0.1
 needs_tools = pytest.mark.skipif(shutil.which("binvox2bt") is None, reason="octomap-tools missing")
@@ -29,7 +30,9 @@ def write_binvox(path, occupied, dim, origin):
             run += 1
         out += bytes([data[n], run])
         n += run
-    header = f"#binvox 1\ndim {dim} {dim} {dim}\ntranslate {origin[0]} {origin[1]} {origin[2]}\nscale {dim * RES}\ndata\n"
+    header = (
+        f"#binvox 1\ndim {dim} {dim} {dim}\ntranslate {origin[0]} {origin[1]} {origin[2]}\nscale {dim * RES}\ndata\n"
+    )
     path.write_bytes(header.encode() + bytes(out))
 
 
@@ -42,14 +45,17 @@ def case(tmp_path_factory):
     box.apply_translation((2.0, 1.5, 1.0))
     box.export(tmp / "room.stl")
     (tmp / "room.world").write_text(
-        "name: room\nmeshes:\n  - {name: room, file: room.stl, collision: true, visual: false}\nrobots: []\n")
-    wall = [(0, j, k) for j in range(30) for k in range(20)]         # centres x = 0.05: 0.05 m from x = 0
-    stray = [(20, 10 + j, 10) for j in range(60 // 6) for _ in range(1)] + \
-            [(20 + di, 10 + j, 10 + dk) for j in range(10) for di, dk in ((1, 0), (0, 1), (1, 1), (2, 0), (0, 2))]
+        "name: room\nmeshes:\n  - {name: room, file: room.stl, collision: true, visual: false}\nrobots: []\n"
+    )
+    wall = [(0, j, k) for j in range(30) for k in range(20)]  # centres x = 0.05: 0.05 m from x = 0
+    stray = [(20, 10 + j, 10) for j in range(60 // 6) for _ in range(1)] + [
+        (20 + di, 10 + j, 10 + dk) for j in range(10) for di, dk in ((1, 0), (0, 1), (1, 1), (2, 0), (0, 2))
+    ]
     assert len(set(stray)) == 60
     write_binvox(tmp / "map.binvox", wall + stray, 64, (0.0, 0.0, 0.0))
-    out = subprocess.run(["binvox2bt", "-o", str(tmp / "map.bt"), str(tmp / "map.binvox")], capture_output=True,
-                         text=True, timeout=60)
+    out = subprocess.run(
+        ["binvox2bt", "-o", str(tmp / "map.bt"), str(tmp / "map.binvox")], capture_output=True, text=True, timeout=60
+    )
     assert out.returncode == 0, out.stdout + out.stderr
     return tmp
 
@@ -84,13 +90,18 @@ def test_precision_recall_and_distances_match_the_construction(case):
 @needs_tools
 def test_recall_counts_only_the_surface_within_range_of_the_path(case):
     (case / "path.csv").write_text("t,x,y,z\n0,0.5,1.5,1.0\n1,0.5,1.6,1.0\n")
-    r = map_quality.run(str(case / "map.bt"), str(case / "room.world"), str(case / "out_path"),
-                        trajectory=str(case / "path.csv"), sensor_range=0.9)
+    r = map_quality.run(
+        str(case / "map.bt"),
+        str(case / "room.world"),
+        str(case / "out_path"),
+        trajectory=str(case / "path.csv"),
+        sensor_range=0.9,
+    )
     assert r["recall"] >= 0.97  # only the x = 0 wall is within 0.9 m of the path, and it is all mapped
-    assert r["surface_area_m2"] == pytest.approx(np.pi * (0.9 ** 2 - 0.5 ** 2) + 0.1 * 1.6, rel=0.15)
+    assert r["surface_area_m2"] == pytest.approx(np.pi * (0.9**2 - 0.5**2) + 0.1 * 1.6, rel=0.15)
     assert r["precision"] == pytest.approx(600 / 660, abs=1e-9)
 
 
 def test_unknown_world_is_named():
     with pytest.raises(FileNotFoundError, match="--world nowhere"):
-        map_quality.world_path("nowhere")
+        world_path("nowhere")

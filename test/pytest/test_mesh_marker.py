@@ -1,4 +1,4 @@
-"""The mesh marker (python/unexmin/mesh_marker.py, nodes/mesh_marker, launch/mesh_marker.launch).
+"""The mesh marker (python/unexmin/worlds/mesh_marker.py, nodes/mesh_marker, launch/mesh_marker.launch).
 
 Geometry against closed forms (rotation conventions, a cube's and the tank's water surface: the
 tank's interior is 6 m x 4 m, docs/worlds.md), then the real node through roslaunch on a private
@@ -6,6 +6,7 @@ master: the latched MarkerArray it publishes is the one build_markers makes.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_mesh_marker.py
 """
+
 import json
 import os
 import shutil
@@ -18,7 +19,9 @@ import numpy as np
 import pytest
 import trimesh
 
-from unexmin import mesh_marker as mm
+from unexmin.worlds import mesh_marker as mm
+from unexmin.worlds.files import load_world
+from unexmin.worlds.meshes import MeshFormatError, read_mesh
 
 REPO = Path(__file__).resolve().parents[2]
 WORLDS = REPO / "worlds"
@@ -38,12 +41,12 @@ def test_read_mesh_gives_the_same_triangles_from_stl_and_ply(tmp_path):
     box.export(tmp_path / "b.ply")
     tri_sets = []
     for name in ("b.stl", "b.ply"):
-        v, t = mm.read_mesh(tmp_path / name)
+        v, t = read_mesh(tmp_path / name)
         tri_sets.append(sorted(tuple(map(tuple, np.round(v[tri], 6))) for tri in t))
     assert tri_sets[0] == tri_sets[1] and len(tri_sets[0]) == 12
     (tmp_path / "a.stl").write_text("solid x\nendsolid x\n")
-    with pytest.raises(mm.MeshFormatError, match="not a binary STL"):
-        mm.read_mesh(tmp_path / "a.stl")
+    with pytest.raises(MeshFormatError, match="not a binary STL"):
+        read_mesh(tmp_path / "a.stl")
 
 
 def test_cube_section_is_one_square_loop_whose_faces_point_out():
@@ -53,8 +56,8 @@ def test_cube_section_is_one_square_loop_whose_faces_point_out():
     points, normals = loops[0]
     assert polygon_area(points[:, :2]) == pytest.approx(4.0)
     np.testing.assert_allclose(points[:, 2], 0.25)
-    assert not mm.faces_inwards(points, normals)              # a solid: no water inside
-    inverted = np.asarray(box.faces)[:, ::-1]                 # a 2 m cube of water
+    assert not mm.faces_inwards(points, normals)  # a solid: no water inside
+    inverted = np.asarray(box.faces)[:, ::-1]  # a 2 m cube of water
     points, normals = mm.plane_loops(np.asarray(box.vertices), inverted, 0.25)[0]
     assert mm.faces_inwards(points, normals)
     assert mm.plane_loops(np.asarray(box.vertices), np.asarray(box.faces), 1.5) == []
@@ -72,16 +75,18 @@ def test_ear_clipping_covers_a_non_convex_polygon_exactly():
 
 
 def test_tank_markers_and_its_six_by_four_metre_water_surface():
-    world = mm.load_world(WORLDS / "tank.world")
+    world = load_world(WORLDS / "tank.world")
     tris = mm.water_surface(world)
-    assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)      # interior 6 m x 4 m
+    assert triangles_area(tris) == pytest.approx(24.0, rel=1e-9)  # interior 6 m x 4 m
     np.testing.assert_allclose(tris[..., 2], 0.0, atol=1e-9)
     np.testing.assert_allclose(tris[..., 0].min(), -3.0, atol=1e-6)
     np.testing.assert_allclose(tris[..., 1].max(), 2.0, atol=1e-6)
     array = mm.build_markers(world)
     meshes = [m for m in array.markers if m.ns == "world_meshes"]
-    assert [Path(m.mesh_resource[len("file://"):]) for m in meshes] == [WORLDS / "meshes/tank.stl",
-                                                                       WORLDS / "meshes/anchor.stl"]
+    assert [Path(m.mesh_resource[len("file://") :]) for m in meshes] == [
+        WORLDS / "meshes/tank.stl",
+        WORLDS / "meshes/anchor.stl",
+    ]
     assert all(m.type == m.MESH_RESOURCE and m.header.frame_id == "world" for m in meshes)
     assert meshes[1].pose.position.z == pytest.approx(-1.8)
     assert (meshes[1].scale.x, meshes[1].scale.y, meshes[1].scale.z) == (1.0, 1.0, 1.0)
@@ -89,12 +94,15 @@ def test_tank_markers_and_its_six_by_four_metre_water_surface():
     assert len(water) == 1 and len(water[0].points) == 3 * len(tris) and water[0].color.a < 1.0
 
 
-@pytest.mark.parametrize("file, problem", [
-    ("/etc/passwd", "is an absolute path"),
-    ("../outside.stl", "is not inside the world file's folder"),
-    ("meshes/../../outside.stl", "is not inside the world file's folder"),
-    ("..", "is not inside the world file's folder"),
-])
+@pytest.mark.parametrize(
+    "file, problem",
+    [
+        ("/etc/passwd", "is an absolute path"),
+        ("../outside.stl", "is not inside the world file's folder"),
+        ("meshes/../../outside.stl", "is not inside the world file's folder"),
+        ("..", "is not inside the world file's folder"),
+    ],
+)
 def test_a_world_file_cannot_name_a_mesh_outside_its_folder(tmp_path, file, problem):
     # Same rule as the simulator (docs/worlds.md, "Paths"): the node would otherwise read and publish that file.
     (tmp_path / "w").mkdir()
@@ -102,23 +110,23 @@ def test_a_world_file_cannot_name_a_mesh_outside_its_folder(tmp_path, file, prob
     world = tmp_path / "w" / "bad.world"
     world.write_text(f"name: w\nmeshes:\n  - {{name: m, file: '{file}'}}\nrobots: [{{name: UX_1}}]\n")
     with pytest.raises(ValueError) as err:
-        mm.load_world(world)
+        load_world(world)
     assert str(err.value).startswith(f"{world}: 'meshes[0].file' {file} {problem}")
     # Inside its folder, '..' that stays inside included, it loads the file it names.
     (tmp_path / "w" / "meshes").mkdir()
     shutil.copy(WORLDS / "meshes/test_box.stl", tmp_path / "w" / "meshes" / "box.stl")
     world.write_text("name: w\nmeshes:\n  - {name: m, file: meshes/../meshes/box.stl}\nrobots: [{name: UX_1}]\n")
-    assert mm.load_world(world)["meshes"][0]["file"] == str(tmp_path / "w" / "meshes" / "box.stl")
+    assert load_world(world)["meshes"][0]["file"] == str(tmp_path / "w" / "meshes" / "box.stl")
 
 
 def test_mine_water_surface_is_the_entry_shaft_section():
     man = json.loads((WORLDS / "meshes/mine/mine.json").read_text())
-    world = mm.load_world(WORLDS / "mine.world")
+    world = load_world(WORLDS / "mine.world")
     assert [m["name"] for m in world["meshes"] if m["visual"]] == ["mine_visual"]
     tris = mm.water_surface(world)
     half, noise = man["preset"]["shaft_half"], man["wall_noise_max"]
     # inside the 6 m rounded-square shaft whose walls move by at most the noise amplitude
-    assert np.abs(tris[..., :2] - man["shaft_xy"]).max() <= half * 2 ** 0.5 + noise
+    assert np.abs(tris[..., :2] - man["shaft_xy"]).max() <= half * 2**0.5 + noise
     assert (2 * (half - noise)) ** 2 * 0.8 <= triangles_area(tris) <= (2 * (half + noise)) ** 2
 
 
@@ -146,14 +154,18 @@ CLIENT = textwrap.dedent("""
 def test_node_publishes_the_markers_latched(tmp_path):
     if not shutil.which("roslaunch"):
         pytest.skip("roslaunch not installed")
-    from unexmin.launcher import free_port
+    from unexmin.scripting.launcher import free_port, private_master_env
 
     port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
-    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch",
-                               f"world:={WORLDS / 'tank.world'}"], env=env, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True, start_new_session=True)
+    env = private_master_env(port, tmp_path)
+    launch = subprocess.Popen(
+        ["roslaunch", "--port", str(port), "unexmin", "mesh_marker.launch", f"world:={WORLDS / 'tank.world'}"],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     try:
         # The client subscribes whenever it is ready: it only gets the message because it is latched.
         res = subprocess.run([sys.executable, "-c", CLIENT], env=env, capture_output=True, text=True, timeout=90)
@@ -162,6 +174,16 @@ def test_node_publishes_the_markers_latched(tmp_path):
     finally:
         os.killpg(launch.pid, 2)
         launch.wait(20)
-    expected = mm.build_markers(mm.load_world(WORLDS / "tank.world"))
-    assert got == [[k.ns, k.id, k.type, k.header.frame_id, k.mesh_resource, len(k.points),
-                    [k.pose.position.x, k.pose.position.y, k.pose.position.z]] for k in expected.markers]
+    expected = mm.build_markers(load_world(WORLDS / "tank.world"))
+    assert got == [
+        [
+            k.ns,
+            k.id,
+            k.type,
+            k.header.frame_id,
+            k.mesh_resource,
+            len(k.points),
+            [k.pose.position.x, k.pose.position.y, k.pose.position.z],
+        ]
+        for k in expected.markers
+    ]

@@ -1,4 +1,4 @@
-"""The mine generator (python/unexmin/mine_generator.py) and the mine world (worlds/mine.world).
+"""The mine generator (python/unexmin/mine_generator/) and the mine world (worlds/mine.world).
 
 Expected values come from geometry written here (capsule and superellipse volumes, the hull radius,
 the Kaatiala figures of thesis 6.3), and trimesh (an independent library) reads back what the
@@ -7,6 +7,7 @@ Kaatiala-size mesh that scripts/setup.sh generates into worlds/meshes/mine/ is c
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_mine_generator.py
 """
+
 import dataclasses
 import hashlib
 import json
@@ -18,14 +19,14 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin import mine_generator as mg
+from unexmin.mine_generator import generator as mg
 
 REPO = Path(__file__).resolve().parents[2]
 MINE_WORLD = REPO / "worlds" / "mine.world"
 SHIPPED = REPO / "worlds" / "meshes" / "mine"
-SETUP_SEED = 7                      # scripts/setup.sh and worlds/mine.world
-R_HULL = 0.3                        # [m] UX-1 hull radius (0.6 m sphere)
-CLEARANCE = 0.3                     # [m] water required between a spawned hull and the rock
+SETUP_SEED = 7  # scripts/setup.sh and worlds/mine.world
+R_HULL = 0.3  # [m] UX-1 hull radius (0.6 m sphere)
+CLEARANCE = 0.3  # [m] water required between a spawned hull and the rock
 SEED = 3
 
 
@@ -69,6 +70,7 @@ def superellipse_area(a, b, p):
 
 def capsule_manifold(A, B, tunnel, edge):
     import manifold3d as mf
+
     v, t = mg.capsule(np.array(A, float), np.array(B, float), tunnel, edge, NoWalls(), 0.0)
     return mf.Manifold(mf.Mesh(vert_properties=v.astype(np.float32), tri_verts=t.astype(np.uint32)))
 
@@ -76,11 +78,11 @@ def capsule_manifold(A, B, tunnel, edge):
 def test_smooth_elliptic_capsule_has_the_volume_of_a_cylinder_plus_an_ellipsoid():
     a, b, c, length = 2.0, 1.5, 1.7, 10.0
     tunnel = mg.Tunnel("gallery", [[0, 0, 0], [1, 0, 0]], a=a, b=b, c=c, p_floor=2.0, p_roof=2.0)
-    m = capsule_manifold([1.0, 2.0, -3.0], [1.0 + 6.0, 2.0 + 8.0, -3.0], tunnel, 0.1)   # |AB| = 10
+    m = capsule_manifold([1.0, 2.0, -3.0], [1.0 + 6.0, 2.0 + 8.0, -3.0], tunnel, 0.1)  # |AB| = 10
     assert m.status().name == "NoError"
     expected = math.pi * a * b * length + 4.0 / 3.0 * math.pi * a * b * c
     assert m.volume() == pytest.approx(expected, rel=2e-3)
-    assert m.volume() < expected                       # inscribed polygons
+    assert m.volume() < expected  # inscribed polygons
 
 
 def test_superellipse_cross_section_area_per_metre_of_gallery():
@@ -108,8 +110,8 @@ def test_rough_walls_are_bounded_by_the_sum_of_the_octave_amplitudes_and_use_the
     bound = sum(amp for _, amp in mg.PRESETS["full"].octaves)
     assert walls.max_amplitude() == pytest.approx(bound)
     assert np.abs(d).max() <= bound
-    assert d.std() > 0.1 * bound                                 # not flat
-    coarse = walls(pts, min_wavelength=3.0)                      # only the 18 m and 6 m octaves
+    assert d.std() > 0.1 * bound  # not flat
+    coarse = walls(pts, min_wavelength=3.0)  # only the 18 m and 6 m octaves
     assert np.abs(d - coarse).max() <= 0.07 + 0.035 + 1e-12
     assert np.array_equal(walls(pts), mg.RoughWalls(mg.PRESETS["full"].octaves, seed=11)(pts))
 
@@ -131,14 +133,14 @@ def test_same_seed_gives_the_same_bytes_and_another_seed_another_mine(small, tmp
 def test_meshes_are_closed_face_the_water_and_match_the_report(small, key):
     out, man = small
     rep = man[key]
-    mesh = trimesh.load(str(out / rep["file"]), force="mesh")     # merges vertices by position
+    mesh = trimesh.load(str(out / rep["file"]), force="mesh")  # merges vertices by position
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert len(mesh.faces) == rep["triangles"]
-    assert mesh.volume < 0.0                                       # faces point into the void
+    assert mesh.volume < 0.0  # faces point into the void
     assert -mesh.volume == pytest.approx(rep["volume"], rel=1e-5)
     assert mesh.area == pytest.approx(rep["area"], rel=1e-5)
     np.testing.assert_allclose(mesh.bounds, [rep["bbox_min"], rep["bbox_max"]], atol=2e-3)
-    assert rep["flooded_volume"] < rep["volume"]                   # the shaft's top is dry
+    assert rep["flooded_volume"] < rep["volume"]  # the shaft's top is dry
     if key == "collision":
         assert rep["triangles"] >= mg.PRESETS["small"].min_triangles
 
@@ -234,8 +236,8 @@ def test_world_spawns_are_the_generator_spawns_submerged_and_apart():
         layout = mg.make_layout(mg.PRESETS[preset], SETUP_SEED)
         np.testing.assert_allclose([r["xyz"] for r in robots], layout.spawns, atol=1e-9)
     for i, r in enumerate(robots):
-        assert r["xyz"][2] + R_HULL <= world["water"]["surface_z"] - 1.0       # a metre of water above
-        for other in robots[i + 1:]:
+        assert r["xyz"][2] + R_HULL <= world["water"]["surface_z"] - 1.0  # a metre of water above
+        for other in robots[i + 1 :]:
             assert math.dist(r["xyz"], other["xyz"]) >= 2 * R_HULL + 1.0
 
 
@@ -274,9 +276,9 @@ def test_shipped_mine_is_current_full_size_and_kaatiala_scale(shipped):
     header = (SHIPPED / c["file"]).read_bytes()[:400].decode("ascii", "replace")
     assert f"element face {c['triangles']}\n" in header
     size = np.subtract(c["bbox_max"], c["bbox_min"])
-    assert 600.0 <= size[0] <= 640.0                 # thesis 6.3: max length 620 m
-    assert size[1] <= 30.0                           # max width 30 m
-    assert 340.0 <= -c["bbox_min"][2] <= 370.0       # max depth 353 m below the water
+    assert 600.0 <= size[0] <= 640.0  # thesis 6.3: max length 620 m
+    assert size[1] <= 30.0  # max width 30 m
+    assert 340.0 <= -c["bbox_min"][2] <= 370.0  # max depth 353 m below the water
     assert shipped["visual"]["triangles"] <= 300_000
     assert shipped["tunnels"]["chamber"] >= 3 and shipped["tunnels"]["crosscut"] >= 20
     assert len(shipped["levels_z"]) >= 8

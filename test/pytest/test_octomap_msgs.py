@@ -21,15 +21,28 @@ def test_octomap_message_md5_is_the_upstream_one():
 @pytest.mark.parametrize("launch_file", ["tank_world.launch", "mine_world.launch"])
 def test_mapping_launch_argument(launch_file):
     def nodes(*args):
-        out = subprocess.run(["roslaunch", "--nodes", "unexmin", launch_file, *args], capture_output=True, text=True,
-                             timeout=120)
+        out = subprocess.run(
+            ["roslaunch", "--nodes", "unexmin", launch_file, *args], capture_output=True, text=True, timeout=120
+        )
         assert out.returncode == 0, out.stderr
         return out.stdout.split()
 
     assert "/mapper" not in nodes()
     assert "/mapper" in nodes("mapping:=true")
-    out = subprocess.run(["roslaunch", "--dump-params", "unexmin", launch_file, "mapping:=true",
-                          "map_file:=/tmp/x.bt", "map_resolution:=0.05"], capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [
+            "roslaunch",
+            "--dump-params",
+            "unexmin",
+            launch_file,
+            "mapping:=true",
+            "map_file:=/tmp/x.bt",
+            "map_resolution:=0.05",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert out.returncode == 0, out.stderr
     params = yaml.safe_load(out.stdout)
     assert params["/mapper/map_file"] == "/tmp/x.bt"

@@ -20,21 +20,45 @@ SECONDS = 60.0
 COMMANDS = 50  # thruster commands the client sends (one per step)
 # Nominal rates [Hz of sim time] of the default recorded set, from SPEC / docs/sensors.md (not from a run).
 RATES = {
-    "/UX_1/imu": 500, "/UX_1/imu/mag": 500, "/UX_1/kvh/imu_raw": 500, "/UX_1/pressure": 10,
-    "/UX_1/dvl": 8, "/UX_1/dvl_twist": 8, "/UX_1/dvl_water_track": 8,
+    "/UX_1/imu": 500,
+    "/UX_1/imu/mag": 500,
+    "/UX_1/kvh/imu_raw": 500,
+    "/UX_1/pressure": 10,
+    "/UX_1/dvl": 8,
+    "/UX_1/dvl_twist": 8,
+    "/UX_1/dvl_water_track": 8,
     **{f"/UX_1/dvl_sonar{i}": 8 for i in range(4)},
-    "/UX_1/m3/scan": 40, "/UX_1/m3/points": 40, "/UX_1/tritech_micron/scan": 25, "/UX_1/msis/msis_r": 25,
-    **{f"/UX_1/sls_{i}/points": 10 for i in range(4)}, **{f"/UX_1/sls_{i}/scan": 10 for i in range(4)},
-    "/UX_1/odom": 50, **{f"/UX_1/thrusters/{i}/thrust": 50 for i in range(8)}, "/current": 10,
+    "/UX_1/m3/scan": 40,
+    "/UX_1/m3/points": 40,
+    "/UX_1/tritech_micron/scan": 25,
+    "/UX_1/msis/msis_r": 25,
+    **{f"/UX_1/sls_{i}/points": 10 for i in range(4)},
+    **{f"/UX_1/sls_{i}/scan": 10 for i in range(4)},
+    "/UX_1/odom": 50,
+    **{f"/UX_1/thrusters/{i}/thrust": 50 for i in range(8)},
+    "/current": 10,
 }
 SIM_PUBLISHED = set(RATES)  # the M3 and DVL translations included: the simulator makes them (C++)
 LOCKED_ONLY = {"/UX_1/dvl_twist"}  # published only with bottom lock: one per locked /UX_1/dvl message
 
 
 def run(tmp, *args, launch=(), timeout=300):
-    out = subprocess.run([sys.executable, str(HERE / "clients" / "record_run.py"), str(tmp / "log"), str(SECONDS),
-                          str(COMMANDS), *args, "--", *launch],
-                         capture_output=True, text=True, timeout=timeout, env=dict(os.environ, ROS_HOME=str(tmp)))
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(HERE / "clients" / "record_run.py"),
+            str(tmp / "log"),
+            str(SECONDS),
+            str(COMMANDS),
+            *args,
+            "--",
+            *launch,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=dict(os.environ, ROS_HOME=str(tmp)),
+    )
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -44,6 +68,7 @@ def bag_stamps(path, locks=None):
     list) gets the header stamp of every /UX_1/dvl message with bottom lock."""
     from rosbags.highlevel import AnyReader
     from rosbags.typesys import Stores, get_typestore
+
     out = {}
     with AnyReader([Path(path)], default_typestore=get_typestore(Stores.ROS1_NOETIC)) as reader:
         for conn, t, raw in reader.messages():

@@ -11,6 +11,7 @@ Simulator runs are subprocesses (each launches its own world on a private master
 so this process never initialises rospy. Run:
     python -m pytest test/pytest/test_replay.py      (after source scripts/env.sh)
 """
+
 import json
 import math
 import os
@@ -31,10 +32,12 @@ G = 9.80665
 
 
 def run(args, tmp_path, timeout=240):
-    env = dict(os.environ, ROS_HOME=str(tmp_path / "ros_home"), ROS_LOG_DIR=str(tmp_path / "ros_log"),
-               PYTHONWARNINGS="ignore")
-    return subprocess.run([sys.executable, *map(str, args)], capture_output=True, text=True, timeout=timeout,
-                          env=env, cwd=tmp_path)
+    env = dict(
+        os.environ, ROS_HOME=str(tmp_path / "ros_home"), ROS_LOG_DIR=str(tmp_path / "ros_log"), PYTHONWARNINGS="ignore"
+    )
+    return subprocess.run(
+        [sys.executable, *map(str, args)], capture_output=True, text=True, timeout=timeout, env=env, cwd=tmp_path
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -51,7 +54,7 @@ def helix(t, x0=0.0, y0=0.0, z0=0.0, yaw0=0.0):
 def test_alignment_removes_start_pose_and_error_is_zero_for_the_same_motion():
     t = np.arange(0, 30.01, 0.1)
     sim = helix(t, -1.7, -0.85, -1.0, 0.46365)
-    nav = helix(t, 12.0, -4.0, -30.0, -2.5)          # same motion, elsewhere, another heading
+    nav = helix(t, 12.0, -4.0, -30.0, -2.5)  # same motion, elsewhere, another heading
     metrics, s, n = compare(sim, nav, align=True)
     assert metrics["position_error_m"]["max"] < 1e-9
     assert metrics["yaw_error_deg"]["max_abs"] < 1e-9
@@ -68,29 +71,28 @@ def test_errors_of_a_known_drift_and_yaw_offset():
     t = np.arange(0, 20.01, 0.5)
     sim = helix(t)
     nav = sim.copy()
-    nav[:, 3] += 0.05 * t                             # rises 5 cm/s faster than the simulated robot
-    nav[:, 6] = wrap_angle(nav[:, 6] + np.radians(2.0) * t / 20.0)   # yaw drifts to +2 deg
+    nav[:, 3] += 0.05 * t  # rises 5 cm/s faster than the simulated robot
+    nav[:, 6] = wrap_angle(nav[:, 6] + np.radians(2.0) * t / 20.0)  # yaw drifts to +2 deg
     metrics, _, _ = compare(sim, nav, align=True)
     assert metrics["position_error_m"]["final"] == pytest.approx(1.0, abs=1e-9)
     assert metrics["final_error_xyz_m"] == pytest.approx([0, 0, -1.0], abs=1e-9)
-    assert metrics["position_error_m"]["rms"] == pytest.approx(0.05 * math.sqrt(np.mean(t ** 2)), rel=1e-9)
+    assert metrics["position_error_m"]["rms"] == pytest.approx(0.05 * math.sqrt(np.mean(t**2)), rel=1e-9)
     assert metrics["yaw_error_deg"]["final"] == pytest.approx(-2.0, abs=1e-9)
 
 
 def test_navigation_is_interpolated_at_the_simulated_times():
     t = np.arange(0, 10.01, 0.1)
     sim = helix(t)
-    nav = helix(np.arange(0, 10.01, 0.7))             # coarser, not on the same times
+    nav = helix(np.arange(0, 10.01, 0.7))  # coarser, not on the same times
     metrics, s, n = compare(sim, nav, align=False)
-    assert metrics["t_end_s"] <= 9.8 + 1e-9           # the last nav sample is at 9.8 s
+    assert metrics["t_end_s"] <= 9.8 + 1e-9  # the last nav sample is at 9.8 s
     assert metrics["position_error_m"]["max"] < 5e-3  # chord error of linear interpolation
 
 
 def test_to_start_frame_of_a_straight_line():
     t = np.arange(0, 5.01, 1.0)
     yaw = math.radians(30)
-    traj = np.column_stack([t, 3 + t * math.cos(yaw), 4 + t * math.sin(yaw), -2 + 0 * t, 0 * t, 0 * t,
-                            yaw + 0 * t])
+    traj = np.column_stack([t, 3 + t * math.cos(yaw), 4 + t * math.sin(yaw), -2 + 0 * t, 0 * t, 0 * t, yaw + 0 * t])
     out = to_start_frame(traj, 0.0)
     np.testing.assert_allclose(out[:, 1], t, atol=1e-12)
     np.testing.assert_allclose(out[:, 2:4], 0, atol=1e-12)
@@ -101,11 +103,10 @@ def test_to_start_frame_of_a_straight_line():
 def test_sample_bag_contents():
     m = read_bag(SAMPLE_BAG)
     assert SAMPLE_BAG.stat().st_size < 2_000_000
-    assert m.topics == {"motors": MOTORS_TOPIC, "pendulum": "/UX_1/pendulum", "vbs": "/UX_1/vbs",
-                        "nav": "/UX_1/odom"}
-    assert len(m.motors) == 421 and len(m.nav) == 421          # 42 s at 10 Hz, both ends included
+    assert m.topics == {"motors": MOTORS_TOPIC, "pendulum": "/UX_1/pendulum", "vbs": "/UX_1/vbs", "nav": "/UX_1/odom"}
+    assert len(m.motors) == 421 and len(m.nav) == 421  # 42 s at 10 Hz, both ends included
     assert m.motors[0][0] == 0.0 and m.motors[1][0] == pytest.approx(0.1)
-    assert all(mode == 0 and len(v) == 8 for _, mode, v in m.motors)   # RPM
+    assert all(mode == 0 and len(v) == 8 for _, mode, v in m.motors)  # RPM
     # forward segment (2..7 s): X = 6 -> +-3 N (0.306 kgf) on the horizontal thrusters -> the T200 rpm
     # giving it: forward between the rows 573 rpm (0.13 kgf) and 1237 rpm (0.60 kgf), reverse between
     # -1246 rpm (-0.48 kgf) and -578 rpm (-0.10 kgf)
@@ -134,10 +135,10 @@ def test_sample_bag_contents():
 
 
 def test_mission_events_order():
-    m = Mission(path="x", t0=0.0, motors=[(1.0, 0, (0,) * 8), (0.0, 0, (0,) * 8)], pendulum=[(1.0, 0.1)],
-                vbs=[(0.5, 0.01)])
-    assert [(t, k) for t, k, _ in m.events()] == [(0.0, "motors"), (0.5, "vbs"), (1.0, "motors"),
-                                                   (1.0, "pendulum")]
+    m = Mission(
+        path="x", t0=0.0, motors=[(1.0, 0, (0,) * 8), (0.0, 0, (0,) * 8)], pendulum=[(1.0, 0.1)], vbs=[(0.5, 0.01)]
+    )
+    assert [(t, k) for t, k, _ in m.events()] == [(0.0, "motors"), (0.5, "vbs"), (1.0, "motors"), (1.0, "pendulum")]
     assert m.duration == 1.0
 
 
@@ -162,7 +163,7 @@ def _damaged(tmp_path, src, kind):
     elif kind == "corrupt":
         rng = np.random.default_rng(5)
         b = bytearray(data)
-        b[13:4096] = rng.integers(0, 256, 4096 - 13, dtype=np.uint8).tobytes()   # header and first records
+        b[13:4096] = rng.integers(0, 256, 4096 - 13, dtype=np.uint8).tobytes()  # header and first records
         out.write_bytes(bytes(b))
     elif kind == "not_a_bag":
         out.write_text("this is not a rosbag\n")
@@ -180,7 +181,7 @@ def test_damaged_bag_gives_one_clear_error(nominal_bag, tmp_path, kind):
     assert len(lines) == 1, res.stderr
     assert lines[0].startswith("replay_mission: error: ") and str(bag) in lines[0]
     assert "Traceback" not in res.stderr
-    assert not (tmp_path / "out" / "ros_log").exists()       # failed before launching a simulator
+    assert not (tmp_path / "out" / "ros_log").exists()  # failed before launching a simulator
 
 
 def test_bag_without_motor_commands(tmp_path):
@@ -212,10 +213,10 @@ def test_nominal_bag_replays_to_the_recorded_trajectory(nominal_bag, tmp_path):
     report, out = replay_report(nominal_bag, tmp_path)
     e = report["errors"]
     assert report["messages"]["motors"] == 121 and e["samples"] == 121
-    assert e["bag_path_length_m"] > 0.5                       # the mission moved the robot
-    assert e["position_error_m"]["max"] < 0.01                # stated tolerance: 1 cm
-    assert e["yaw_error_deg"]["max_abs"] < 0.5                # and 0.5 deg
-    assert report["speed_vs_real_time"] > 1.0                 # faster than real time
+    assert e["bag_path_length_m"] > 0.5  # the mission moved the robot
+    assert e["position_error_m"]["max"] < 0.01  # stated tolerance: 1 cm
+    assert e["yaw_error_deg"]["max_abs"] < 0.5  # and 0.5 deg
+    assert report["speed_vs_real_time"] > 1.0  # faster than real time
     assert sorted(report["plots"]) == ["error.png", "xy.png", "xz.png", "yaw.png", "yz.png"]
     csv = np.genfromtxt(out / "trajectory.csv", delimiter=",", names=True)
     assert len(csv) == 121 and "bag_z" in csv.dtype.names

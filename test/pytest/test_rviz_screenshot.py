@@ -13,6 +13,7 @@ displays, then takes screenshots of the root window (ImageMagick `import`) until
     UNEXMIN_DOCS_SCREENSHOT=1 python -m pytest test/pytest/test_rviz_screenshot.py   # also refreshes
                     # docs/images/mine_rviz.png and docs/images/rviz_camera_map.png
 """
+
 import os
 import shutil
 import subprocess
@@ -21,28 +22,30 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from unexmin.launcher import stop_process_group
+from unexmin.scripting.launcher import stop_process_group
 
 REPO = Path(__file__).resolve().parents[2]
 DOCS_IMAGE = REPO / "docs" / "images" / "mine_rviz.png"
 CAMERA_MAP_IMAGE = REPO / "docs" / "images" / "rviz_camera_map.png"
 WIDTH, HEIGHT = 1024, 768
-pytestmark = pytest.mark.skipif(not all(shutil.which(t) for t in ("Xvfb", "import", "rviz", "roslaunch")),
-                                reason="needs Xvfb, ImageMagick's import, rviz and roslaunch")
+pytestmark = pytest.mark.skipif(
+    not all(shutil.which(t) for t in ("Xvfb", "import", "rviz", "roslaunch")),
+    reason="needs Xvfb, ImageMagick's import, rviz and roslaunch",
+)
 
 
 def view_region(img):
     """The 3-D view of rviz's window (right of the Displays dock, below the toolbar) in the
     shipped config's 1024 x 768 layout."""
     h, w = img.shape[:2]
-    return img[int(0.12 * h):int(0.94 * h), int(0.38 * w):int(0.97 * w)].astype(int)
+    return img[int(0.12 * h) : int(0.94 * h), int(0.38 * w) : int(0.97 * w)].astype(int)
 
 
 def camera_panel(img):
     """The Camera display's panel, docked at the top of the left dock (above Displays) in the shipped
     config's 1024 x 768 layout."""
     h, w = img.shape[:2]
-    return img[int(0.115 * h):int(0.305 * h), 0:int(0.33 * w)].astype(int)
+    return img[int(0.115 * h) : int(0.305 * h), 0 : int(0.33 * w)].astype(int)
 
 
 def displays_names(img):
@@ -78,29 +81,44 @@ def classify(img):
     hull = (r > 120) & (g > 90) & (b < 0.45 * r) & (r - b > 80)
     labels, n = ndimage.label(hull)
     sizes = np.bincount(labels.ravel())[1:]
-    sls = (g > 200) & (r < 80) & (b < 80)                        # 0 255 0, unlit points
-    m3 = (r > 180) & (b > 180) & (g < 90)                        # 255 0 255
+    sls = (g > 200) & (r < 80) & (b < 80)  # 0 255 0, unlit points
+    m3 = (r > 180) & (b > 180) & (g < 90)  # 255 0 255
     msis = (r < 25) & (b >= 25) & (g >= 0.5 * b) & (g <= b + 10)  # 0 20 30 .. 0 255 255
-    map_blue = (b > 150) & (r < 40) & (g < 0.6 * b)              # heightColour's low end, shaded
+    map_blue = (b > 150) & (r < 40) & (g < 0.6 * b)  # heightColour's low end, shaded
     c = camera_panel(img)
     cr, cg, cb = c[..., 0], c[..., 1], c[..., 2]
     lit = ((cr + cg + cb) / 3 > 40) & (cr - cb > 4) & ~((cg > 200) & (cr < 80) & (cb < 80))
-    return {"rock": float(rock.mean()), "hull_blobs": int((sizes >= 20).sum()), "std": float(v.std()),
-            "hull_pixels": int(hull.sum()), "sls": int(sls.sum()), "m3": int(m3.sum()), "msis": int(msis.sum()),
-            "map_blue": int(map_blue.sum()), "camera_lit": float(lit.mean())}
+    return {
+        "rock": float(rock.mean()),
+        "hull_blobs": int((sizes >= 20).sum()),
+        "std": float(v.std()),
+        "hull_pixels": int(hull.sum()),
+        "sls": int(sls.sum()),
+        "m3": int(m3.sum()),
+        "msis": int(msis.sum()),
+        "map_blue": int(map_blue.sum()),
+        "camera_lit": float(lit.mean()),
+    }
 
 
 def screenshot(display, path):
-    subprocess.run(["import", "-display", display, "-window", "root", str(path)], check=True,
-                   capture_output=True, timeout=30)
+    subprocess.run(
+        ["import", "-display", display, "-window", "root", str(path)], check=True, capture_output=True, timeout=30
+    )
     from PIL import Image
+
     return np.asarray(Image.open(path).convert("RGB"))
 
 
 @pytest.fixture
 def xvfb():
-    proc = subprocess.Popen(["Xvfb", "-displayfd", "1", "-screen", "0", f"{WIDTH}x{HEIGHT}x24", "-nolisten", "tcp"],
-                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, start_new_session=True)
+    proc = subprocess.Popen(
+        ["Xvfb", "-displayfd", "1", "-screen", "0", f"{WIDTH}x{HEIGHT}x24", "-nolisten", "tcp"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        start_new_session=True,
+    )
     try:
         number = proc.stdout.readline().strip()
         if not number.isdigit():
@@ -123,25 +141,31 @@ def run_rviz(display, tmp_path, launch_args, subscriptions, drawn, what, image):
     last stats (the caller asserts on them); with UNEXMIN_DOCS_SCREENSHOT=1 the last shot goes to `image`."""
     import rosgraph
 
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, private_master_env, wait_for
 
     port = free_port()
-    env = dict(os.environ, DISPLAY=display, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
+    env = private_master_env(port, tmp_path, DISPLAY=display)
     log = open(tmp_path / "roslaunch.log", "w")
-    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "mine_world.launch", "rviz:=true",
-                               "seed:=1", *launch_args], env=env, stdout=log, stderr=subprocess.STDOUT,
-                              start_new_session=True)
+    launch = subprocess.Popen(
+        ["roslaunch", "--port", str(port), "unexmin", "mine_world.launch", "rviz:=true", "seed:=1", *launch_args],
+        env=env,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     stats = {}
     try:
         master = rosgraph.Master("/rviz_screenshot_test", master_uri=env["ROS_MASTER_URI"])
         missing = ["the master"]
 
         def ready():
-            checks = {"the simulator (/sim/step)": lambda: master.lookupService("/sim/step"),
-                      "the mesh marker node (/mesh_marker)": lambda: master.lookupNode("/mesh_marker")}
-            checks.update({f"rviz subscribed to {t}": (lambda t=t: subscribed(master, t, "/rviz"))
-                           for t in subscriptions})
+            checks = {
+                "the simulator (/sim/step)": lambda: master.lookupService("/sim/step"),
+                "the mesh marker node (/mesh_marker)": lambda: master.lookupNode("/mesh_marker"),
+            }
+            checks.update(
+                {f"rviz subscribed to {t}": (lambda t=t: subscribed(master, t, "/rviz")) for t in subscriptions}
+            )
             missing[:] = []
             for name, check in checks.items():
                 try:
@@ -186,11 +210,11 @@ def test_shipped_config_shows_the_mine_three_robots_and_their_sonars_and_sls(xvf
     topics = ["/world_meshes", "/tf"] + [t for r in ("UX_1", "UX_2", "UX_3") for t in robot_sensor_topics(r)]
 
     def drawn(s):
-        return (s["rock"] > 0.05 and s["hull_blobs"] >= 3 and s["sls"] >= 300 and s["m3"] >= 30
-                and s["msis"] >= 5000)
+        return s["rock"] > 0.05 and s["hull_blobs"] >= 3 and s["sls"] >= 300 and s["m3"] >= 30 and s["msis"] >= 5000
 
-    stats = run_rviz(xvfb, tmp_path, ["robots:=3"], topics, drawn, "rviz to draw the mine, robots and sensors",
-                     DOCS_IMAGE)
+    stats = run_rviz(
+        xvfb, tmp_path, ["robots:=3"], topics, drawn, "rviz to draw the mine, robots and sensors", DOCS_IMAGE
+    )
     assert stats["std"] > 10.0, f"blank 3-D view: {stats}"
     assert stats["rock"] > 0.05, f"too little of the mine's wall colour in the view: {stats}"
     assert stats["hull_blobs"] >= 3, f"expected the three yellow hulls: {stats}"
@@ -209,8 +233,15 @@ def test_shipped_config_shows_camera_image_and_map(xvfb, tmp_path):
     def drawn(s):
         return s["camera_lit"] > 0.003 and s["map_blue"] >= 150
 
-    stats = run_rviz(xvfb, tmp_path, ["robots:=1", "mode:=visual", "mapping:=true", f"UX_1_overrides:={overrides}"],
-                     topics, drawn, "rviz to draw camera 0's image and the map", CAMERA_MAP_IMAGE)
+    stats = run_rviz(
+        xvfb,
+        tmp_path,
+        ["robots:=1", "mode:=visual", "mapping:=true", f"UX_1_overrides:={overrides}"],
+        topics,
+        drawn,
+        "rviz to draw camera 0's image and the map",
+        CAMERA_MAP_IMAGE,
+    )
     assert stats["camera_lit"] > 0.003, f"the Camera panel shows no rendered image: {stats}"
     assert stats["map_blue"] >= 150, f"expected the map's cubes (blue at the bottom of the map): {stats}"
 
@@ -220,29 +251,29 @@ def test_classifier_tells_the_displays_and_background_apart():
     shading, the sensors' flat colours, the map's blue, rviz's background, the docks' greys and a camera
     panel with and without an image."""
     img = np.zeros((HEIGHT, WIDTH, 3), np.uint8)
-    img[:] = (30, 30, 36)                                          # the config's background
+    img[:] = (30, 30, 36)  # the config's background
     rows = np.linspace(int(0.12 * HEIGHT), int(0.94 * HEIGHT), 4).astype(int)
     x0, x1 = int(0.38 * WIDTH), int(0.97 * WIDTH)
     for shade, (top, bottom) in zip((0.4, 0.7, 1.0), zip(rows[:-1], rows[1:])):
         img[top:bottom, x0:x1] = np.round(255 * shade * np.array([0.42, 0.47, 0.55]))
-    for k, shade in enumerate((0.6, 0.8, 1.0)):                    # three hulls
+    for k, shade in enumerate((0.6, 0.8, 1.0)):  # three hulls
         y, x = 300, x0 + 60 + 120 * k
-        img[y:y + 12, x:x + 12] = np.round(255 * shade * np.array([0.95, 0.75, 0.10]))
+        img[y : y + 12, x : x + 12] = np.round(255 * shade * np.array([0.95, 0.75, 0.10]))
     stats = classify(img)
     assert stats["hull_blobs"] == 3
     assert stats["rock"] > 0.9
     assert stats["sls"] == stats["m3"] == stats["msis"] == stats["map_blue"] == 0
-    assert stats["camera_lit"] == 0.0                              # black panel: no image yet
-    img[400:410, x0:x0 + 10] = (0, 255, 0)                         # SLS
-    img[420:430, x0:x0 + 10] = (255, 0, 255)                       # M3
-    img[440:450, x0:x0 + 10] = (0, 20, 30)                         # MSIS, weakest bin
-    img[440:450, x0 + 10:x0 + 20] = (0, 255, 255)                  # MSIS, strongest
-    img[460:470, x0:x0 + 10] = (0, 0, 200)                         # map, lowest cubes, shaded
-    img[int(0.2 * HEIGHT):int(0.25 * HEIGHT), 100:200] = (120, 100, 80)   # a lit wall in the camera panel
+    assert stats["camera_lit"] == 0.0  # black panel: no image yet
+    img[400:410, x0 : x0 + 10] = (0, 255, 0)  # SLS
+    img[420:430, x0 : x0 + 10] = (255, 0, 255)  # M3
+    img[440:450, x0 : x0 + 10] = (0, 20, 30)  # MSIS, weakest bin
+    img[440:450, x0 + 10 : x0 + 20] = (0, 255, 255)  # MSIS, strongest
+    img[460:470, x0 : x0 + 10] = (0, 0, 200)  # map, lowest cubes, shaded
+    img[int(0.2 * HEIGHT) : int(0.25 * HEIGHT), 100:200] = (120, 100, 80)  # a lit wall in the camera panel
     stats = classify(img)
     assert (stats["sls"], stats["m3"], stats["msis"], stats["map_blue"]) == (100, 100, 200, 100)
     assert 0.05 < stats["camera_lit"] < 0.2
-    grey = np.full((HEIGHT, WIDTH, 3), 200, np.uint8)              # Qt's panels: none of them
+    grey = np.full((HEIGHT, WIDTH, 3), 200, np.uint8)  # Qt's panels: none of them
     g = classify(grey)
     assert g["rock"] == 0.0 and g["hull_blobs"] == 0 and g["camera_lit"] == 0.0
     assert g["sls"] == g["m3"] == g["msis"] == g["map_blue"] == 0
@@ -254,7 +285,7 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
     error (at least two red rows), so the check sees an error row when there is one."""
     import rosgraph
 
-    from unexmin.launcher import free_port, wait_for
+    from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
     env = dict(os.environ, DISPLAY=xvfb, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",

@@ -1,4 +1,4 @@
-"""The Python scan -> points (unexmin.m3_translator.scan_points) against its C++ twin (mapping::scanPoints,
+"""The Python scan -> points (unexmin.translators.m3.scan_points) against its C++ twin (mapping::scanPoints,
 cpp/unexmin/mapping/scan_points.h, which the M3 cloud and the mapper use) on the same scans: seeded M3-like scans
 and edge cases (+-inf, NaN, ranges at and just beyond range_min and range_max, negative increments, no beams).
 The fields hold float32 values, as in a received sensor_msgs/LaserScan; the C++ side runs through
@@ -16,7 +16,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from unexmin.m3_translator import scan_points
+from unexmin.translators.m3 import scan_points
 
 REPO = Path(__file__).resolve().parents[2]
 

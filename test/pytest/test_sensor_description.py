@@ -4,6 +4,7 @@ of sensors.xacro. The simulator's parser and models check the rest at start-up (
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_sensor_description.py
 """
+
 import math
 import shutil
 import subprocess
@@ -42,10 +43,13 @@ def param(sensor, name):
 
 def test_navigation_sensors_types_links_and_rates():
     robot = expand("UX_2")
-    links = {l.get("name") for l in robot.findall("link")}
+    links = {link.get("name") for link in robot.findall("link")}
     s = sensors(robot)
-    expected = {"imu": ("imu", "UX_2/imu_link", 500.0), "dvl": ("dvl", "UX_2/dvl_link", 8.0),
-                "pressure": ("pressure", "UX_2/pressure_link", 10.0)}
+    expected = {
+        "imu": ("imu", "UX_2/imu_link", 500.0),
+        "dvl": ("dvl", "UX_2/dvl_link", 8.0),
+        "pressure": ("pressure", "UX_2/pressure_link", 10.0),
+    }
     for name, (kind, link, rate) in expected.items():
         assert s[name].get("type") == kind
         assert s[name].get("link") == link and link in links
@@ -93,19 +97,30 @@ def test_malformed_sensor_parameter_stops_the_simulator_naming_sensor_and_parame
     if node is None or not shutil.which("rosmaster"):
         pytest.skip("simulator_node not built or no rosmaster")
     overrides = tmp_path / "bad_dvl.xacro"
-    overrides.write_text('<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-                         '  <xacro:property name="dvl_beam_angle" value="${radians(95.0)}"/>\n</robot>\n')
+    overrides.write_text(
+        '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:property name="dvl_beam_angle" value="${radians(95.0)}"/>\n</robot>\n'
+    )
     exe = Path(sys.executable).parent / "xacro"
     exe = str(exe) if exe.exists() else shutil.which("xacro")
-    urdf = subprocess.run([exe, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1", f"overrides:={overrides}"],
-                          capture_output=True, text=True, check=True).stdout
+    urdf = subprocess.run(
+        [exe, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1", f"overrides:={overrides}"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_LOG_DIR=str(tmp_path / "log"),
-               ROS_HOME=str(tmp_path / "home"))
-    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL)
+    env = dict(
+        os.environ,
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_LOG_DIR=str(tmp_path / "log"),
+        ROS_HOME=str(tmp_path / "home"),
+    )
+    master = subprocess.Popen(
+        ["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     try:
         from xmlrpc.client import ServerProxy
 
@@ -118,8 +133,13 @@ def test_malformed_sensor_parameter_stops_the_simulator_naming_sensor_and_parame
             except OSError:
                 assert time.monotonic() < deadline, "rosmaster did not start within 20 s"
                 time.sleep(0.05)
-        proc = subprocess.run([str(node), f"_world_file:={REPO / 'worlds' / 'tank.world'}", "_paused:=true"],
-                              env=env, capture_output=True, text=True, timeout=60)
+        proc = subprocess.run(
+            [str(node), f"_world_file:={REPO / 'worlds' / 'tank.world'}", "_paused:=true"],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
     finally:
         master.terminate()
         master.wait(10)

@@ -1,5 +1,5 @@
 """Clean shutdown (issue 11, docs/reliability.md): SIGINT, as Ctrl-C sends it to the foreground process group,
-at different moments of a roslaunch with record:=, of the mission (python -m unexmin.mission, what
+at different moments of a roslaunch with record:=, of the mission (python -m unexmin.missions.tank, what
 scripts/mission.sh runs after set-up), of the bag replay and of a Simulation script. Afterwards every process
 the run started (its whole process tree, collected from /proc just before the signal, including roslaunch's
 own session) has exited, and every bag it wrote opens with `rosbag info` without `rosbag reindex`.
@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, marked_processes, wait_for
+from unexmin.scripting.launcher import free_port, marked_processes, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 EXIT_TIMEOUT = 40.0  # [s] roslaunch: 15 s SIGINT grace per node, then SIGTERM
@@ -60,8 +60,9 @@ def interrupt_and_check(runs, proc, bags=()):
         if Path(str(bag) + ".active").exists():
             pytest.fail(f"{bag} was left .active (not closed)")
         if Path(bag).exists():
-            info = subprocess.run(["rosbag", "info", "--yaml", "--key=indexed", str(bag)], capture_output=True,
-                                  text=True, timeout=60)
+            info = subprocess.run(
+                ["rosbag", "info", "--yaml", "--key=indexed", str(bag)], capture_output=True, text=True, timeout=60
+            )
             assert info.returncode == 0 and info.stdout.strip() == "True", info.stdout + info.stderr
     return pids
 
@@ -71,8 +72,11 @@ def test_roslaunch_with_record(tmp_path, runs):
     nodes running; our launchers clean those up, test_mission_while_launching; docs/reliability.md)"""
     bag = tmp_path / "run.bag"
     port = free_port()
-    proc, _ = runs.start(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "realtime:=false",
-                  f"record:={bag}"], tmp_path, ROS_MASTER_URI=f"http://127.0.0.1:{port}")
+    proc, _ = runs.start(
+        ["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "realtime:=false", f"record:={bag}"],
+        tmp_path,
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+    )
     # lockstep running free, the simulator writing its bag
     wait_for(lambda: bag.exists() and bag.stat().st_size > 1_000_000, 120, "the simulator to write 1 MB of its bag")
     interrupt_and_check(runs, proc, [bag])
@@ -81,7 +85,7 @@ def test_roslaunch_with_record(tmp_path, runs):
 
 def test_mission(tmp_path, runs):
     out = tmp_path / "mission"
-    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.missions.tank", "--out", str(out)], tmp_path)
     wait_for(lambda: (out / "mission.bag.active").exists(), 120, "the mission's rosbag record to start")
     wait_for(lambda: "surge forward" in (tmp_path / "out.log").read_text(), 120, "the first leg to be driven")
     interrupt_and_check(runs, proc, [out / "mission.bag"])
@@ -89,17 +93,30 @@ def test_mission(tmp_path, runs):
 
 def test_mission_while_launching(tmp_path, runs):
     out = tmp_path / "mission"
-    proc, _ = runs.start([sys.executable, "-m", "unexmin.mission", "--out", str(out)], tmp_path)
-    wait_for(lambda: (out / "logs" / "roslaunch.log").exists() and len(tree(proc.pid)) > 3, 60,
-             "the mission to launch its world")
+    proc, _ = runs.start([sys.executable, "-m", "unexmin.missions.tank", "--out", str(out)], tmp_path)
+    wait_for(
+        lambda: (out / "logs" / "roslaunch.log").exists() and len(tree(proc.pid)) > 3,
+        60,
+        "the mission to launch its world",
+    )
     interrupt_and_check(runs, proc, [out / "mission.bag"])
 
 
 def test_replay(tmp_path, runs):
-    proc, _ = runs.start([sys.executable, "-m", "unexmin.replay", str(REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"),
-                  "--out", str(tmp_path / "replay"), "--pace", "1"], tmp_path)
-    wait_for(lambda: "%" in (tmp_path / "out.log").read_text() or len(tree(proc.pid)) > 6, 120,
-             "the replay to run")
+    proc, _ = runs.start(
+        [
+            sys.executable,
+            "-m",
+            "unexmin.replay",
+            str(REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"),
+            "--out",
+            str(tmp_path / "replay"),
+            "--pace",
+            "1",
+        ],
+        tmp_path,
+    )
+    wait_for(lambda: "%" in (tmp_path / "out.log").read_text() or len(tree(proc.pid)) > 6, 120, "the replay to run")
     interrupt_and_check(runs, proc)
 
 

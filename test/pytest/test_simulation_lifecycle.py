@@ -1,4 +1,4 @@
-"""The scripting API's life cycle (python/unexmin/simulation.py), in this process as a script uses it.
+"""The scripting API's life cycle (python/unexmin/scripting/simulation.py), in this process as a script uses it.
 
 - `with Simulation.launch(...) as sim:` stops the launched world (roslaunch, master, simulator) when
   the block raises, whatever it raises, and when it ends normally: every process of the world
@@ -10,6 +10,7 @@
   an unknown robot raises KeyError at once, naming the known ones.
 - A world that dies at start-up gives a RuntimeError naming its log, and leaves nothing running.
 """
+
 import os
 import socket
 import time
@@ -44,9 +45,9 @@ def processes():
             stat = (entry / "stat").read_text()
         except OSError:
             continue
-        fields = stat[stat.rindex(")") + 2:].split()  # after "pid (comm) ": state ppid ...
+        fields = stat[stat.rindex(")") + 2 :].split()  # after "pid (comm) ": state ppid ...
         if fields[0] != "Z":
-            table[int(entry.name)] = (int(fields[1]), stat[stat.index("(") + 1:stat.rindex(")")])
+            table[int(entry.name)] = (int(fields[1]), stat[stat.index("(") + 1 : stat.rindex(")")])
     return table
 
 
@@ -104,7 +105,7 @@ def test_with_block_stops_the_world_on_an_exception_then_a_second_launch_works(t
         ux = sim.robot("UX_1")
         assert sim.run_for(0.5) == pytest.approx(0.5, abs=1e-12)
         assert ux.latest("imu").header.stamp.to_sec() == pytest.approx(0.5, abs=1e-9)
-    assert alive(tree) == []                    # normal exit of the block: stopped too
+    assert alive(tree) == []  # normal exit of the block: stopped too
 
 
 def test_keyboard_interrupt_also_stops_the_world(tmp_path):
@@ -125,30 +126,30 @@ def test_one_open_simulation_per_process_with_a_clear_error(tmp_path):
             msg = str(e.value)
             assert "already has an open Simulation" in msg and sim.master_uri in msg
             assert "one ROS node per process" in msg and "close()" in msg
-        assert sim.run_for(0.1) == pytest.approx(0.1)   # the open one is untouched
-    sim.close()                                           # idempotent
+        assert sim.run_for(0.1) == pytest.approx(0.1)  # the open one is untouched
+    sim.close()  # idempotent
 
 
 def test_robots_and_thruster_counts_come_from_the_simulator(tmp_path):
     with launch(tmp_path, "two", robots=2) as sim:
-        assert sim.robots == ("UX_1", "UX_2")            # tank.world's first two spawn entries
+        assert sim.robots == ("UX_1", "UX_2")  # tank.world's first two spawn entries
         ux2 = sim.robot("UX_2", streams="none")
-        assert ux2.thruster_count == 8                   # the UX-1's eight thrusters
+        assert ux2.thruster_count == 8  # the UX-1's eight thrusters
         with pytest.raises(ValueError, match="thrusts needs 8 values for UX_2"):
             ux2.thrusts([1.0] * 7)
         t0 = time.monotonic()
         with pytest.raises(KeyError) as e:
             sim.robot("UX_9")
-        assert time.monotonic() - t0 < 0.5               # at once: no wait for topics that never come
+        assert time.monotonic() - t0 < 0.5  # at once: no wait for topics that never come
         assert "UX_9" in str(e.value) and "UX_1, UX_2" in str(e.value)
-        with pytest.raises(KeyError, match="UX_3"):      # in tank.world, but not spawned (robots=2)
+        with pytest.raises(KeyError, match="UX_3"):  # in tank.world, but not spawned (robots=2)
             sim.robot("UX_3")
 
 
 def test_a_world_that_dies_at_start_up_names_its_log_and_leaves_nothing(tmp_path):
     with pytest.raises(RuntimeError, match=r"exited .*see .*roslaunch\.log") as e:
-        launch(tmp_path, "bad", robots=4, timeout=60.0)   # tank.world spawns at most 3
+        launch(tmp_path, "bad", robots=4, timeout=60.0)  # tank.world spawns at most 3
     log = Path(str(e.value).split("see ")[-1].rstrip(")"))
     assert log.is_file() and "robots" in log.read_text()
-    with launch(tmp_path, "after_bad") as sim:              # the failed launch released the process
+    with launch(tmp_path, "after_bad") as sim:  # the failed launch released the process
         assert sim.step(1) == pytest.approx(1.0 / sim.physics_rate)

@@ -1,4 +1,4 @@
-"""Sensor data as a script expects it (python/unexmin/simulation.py, python/unexmin/streams.py).
+"""Sensor data as a script expects it (python/unexmin/scripting/simulation.py, python/unexmin/scripting/streams.py).
 
 One lockstep tank world in this process. Expected values are closed forms of the sensor rates
 written in the robot description (`<sensor rate=...>` of /UX_1/robot_description): sample k of a
@@ -13,6 +13,7 @@ t_k = ceil(k / (f dt)) dt, dt = 1 / physics rate.
   step calls of odd lengths, and one call far longer than the simulator's per-topic queue holds.
   The robot streams (odometry, thrust) also publish at the end of each step call.
 """
+
 import math
 import os
 import xml.etree.ElementTree as ET
@@ -22,8 +23,16 @@ import pytest
 ENV_KEYS = ("ROS_MASTER_URI", "ROS_IP", "ROS_LOG_DIR")
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")  # rospy's own (notifyAll, warn)
 # topic of UX_1 -> the <sensor> whose samples it carries
-SENSOR_OF = {"imu": "imu", "imu/mag": "imu", "kvh/imu_raw": "imu", "dvl": "dvl",
-             "dvl_sonar0": "dvl", "pressure": "pressure", "m3/scan": "m3", "tritech_micron/scan": "msis"}
+SENSOR_OF = {
+    "imu": "imu",
+    "imu/mag": "imu",
+    "kvh/imu_raw": "imu",
+    "dvl": "dvl",
+    "dvl_sonar0": "dvl",
+    "pressure": "pressure",
+    "m3/scan": "m3",
+    "tritech_micron/scan": "msis",
+}
 
 
 @pytest.fixture(scope="module")
@@ -68,7 +77,7 @@ def test_latest_after_run_for_is_the_sample_at_sim_time(sim):
     msg = ux.latest("kvh/imu_raw", ImuRawKvh)
     assert isinstance(msg, ImuRawKvh)
     assert msg.header.stamp.to_sec() == pytest.approx(3.0, abs=1e-9)
-    assert ux.latest("kvh/imu_raw") is msg             # the class is found from the topic's type
+    assert ux.latest("kvh/imu_raw") is msg  # the class is found from the topic's type
 
 
 def test_latest_of_every_sensor_topic_first_asked_after_steps_of_odd_lengths(sim, rates):
@@ -76,8 +85,8 @@ def test_latest_of_every_sensor_topic_first_asked_after_steps_of_odd_lengths(sim
     ux = sim.robot("UX_1")
     dt = 1.0 / sim.physics_rate
     sim.run_for(1.1)
-    sim.step(383)                                      # t = 1.866 s: between samples of every slow sensor
-    sim.run_for(0.5)                                   # t = 2.366 s
+    sim.step(383)  # t = 1.866 s: between samples of every slow sensor
+    sim.run_for(0.5)  # t = 2.366 s
     t = sim.time
     assert t == pytest.approx(1.1 + 383 * dt + 0.5, abs=1e-9)
     for topic, sensor in SENSOR_OF.items():
@@ -96,7 +105,7 @@ def test_latest_errors_are_immediate_and_say_why(sim):
         ux.latest("kvh/imu_raw", Imu)
     with pytest.raises(LookupError, match="nobody publishes /UX_1/no_such_sensor"):
         ux.latest("no_such_sensor")
-    sim.step(1)                                        # t = 2 ms: the IMU has sampled, the DVL (8 Hz) not
+    sim.step(1)  # t = 2 ms: the IMU has sampled, the DVL (8 Hz) not
     assert ux.latest("imu").header.stamp.to_sec() == pytest.approx(0.002, abs=1e-9)
     with pytest.raises(LookupError, match="no message on /UX_1/dvl up to sim time 0.002000 s"):
         ux.latest("dvl")
@@ -106,13 +115,13 @@ def test_collect_gets_every_message_of_the_following_steps(sim, rates):
     sim.reset(seed=3)
     ux = sim.robot("UX_1")
     dt = 1.0 / sim.physics_rate
-    sim.run_for(0.25)                                  # collectors start at t0, mid-run
+    sim.run_for(0.25)  # collectors start at t0, mid-run
     t0 = sim.time
     topics = ("imu", "kvh/imu_raw", "dvl", "pressure", "m3/scan")
     cols = {t: ux.collect(t) for t in topics}
-    thrust = ux.collect("thrusters/0/thrust")          # a robot stream without header
-    ends = []                                          # physics step count after each call
-    for seconds in (0.7, 0.036, 1.014):                # three step calls, 1.75 s in all
+    thrust = ux.collect("thrusters/0/thrust")  # a robot stream without header
+    ends = []  # physics step count after each call
+    for seconds in (0.7, 0.036, 1.014):  # three step calls, 1.75 s in all
         sim.run_for(seconds)
         ends.append(round(sim.time / dt))
     for c in cols.values():
@@ -126,7 +135,7 @@ def test_collect_gets_every_message_of_the_following_steps(sim, rates):
         expected = [sample_time(k, rate, dt) for k in range(k0 + 1, k1 + 1)]
         assert len(c) == len(expected), topic
         assert c.stamps() == pytest.approx(expected, abs=1e-9), topic
-    assert len(cols["imu"]) == round(T * 500)              # every physics step at 500 Hz
+    assert len(cols["imu"]) == round(T * 500)  # every physics step at 500 Hz
     # The thrust stream: every `every` physics steps, and at the end of a step call that is not on that grid.
     import rospy
 
@@ -134,7 +143,7 @@ def test_collect_gets_every_message_of_the_following_steps(sim, rates):
     on_grid = sum(1 for s in range(round(t0 / dt) + 1, ends[-1] + 1) if s % every == 0)
     assert len(thrust) == on_grid + sum(1 for e in ends if e % every) == 88 + 2
     sim.run_for(0.1)
-    assert len(cols["imu"]) == round(T * 500)              # stopped: nothing more
+    assert len(cols["imu"]) == round(T * 500)  # stopped: nothing more
 
 
 def test_collect_over_a_step_longer_than_the_simulators_queues_loses_nothing(sim, rates):
@@ -142,10 +151,10 @@ def test_collect_over_a_step_longer_than_the_simulators_queues_loses_nothing(sim
     ux = sim.robot("UX_1")
     dt = 1.0 / sim.physics_rate
     with ux.collect("imu") as imu, ux.collect("dvl") as dvl:
-        sim.run_for(24.0)                              # the simulator queues 20 s of samples per topic
-    assert len(imu) == round(24.0 * rates["imu"])      # 12000
+        sim.run_for(24.0)  # the simulator queues 20 s of samples per topic
+    assert len(imu) == round(24.0 * rates["imu"])  # 12000
     assert imu.stamps() == pytest.approx([k * dt for k in range(1, 12001)], abs=1e-9)
-    assert len(dvl) == round(24.0 * rates["dvl"])      # 192
+    assert len(dvl) == round(24.0 * rates["dvl"])  # 192
     assert dvl.stamps()[-1] == pytest.approx(24.0, abs=1e-9)
     assert ux.latest("imu").header.stamp.to_sec() == pytest.approx(24.0, abs=1e-9)
 

@@ -1,6 +1,7 @@
 """Start-up errors of the simulator process (docs/simulator_node.md): a robot description with a <sensor> of
 an unknown type, an unknown family in ~sensors, an unknown ~visibility level, a negative ~ray_caster_threads and
-an unknown ray-casting back end in the world file each stop simulator_node with exit code 1 and one FATAL line that names the input and what was expected."""
+an unknown ray-casting back end in the world file each stop simulator_node with exit code 1 and one FATAL line
+that names the input and what was expected."""
 
 import os
 import re
@@ -10,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from unexmin.launcher import free_port, stop_process_group, wait_for
+from unexmin.scripting.launcher import free_port, start_private_master, stop_process_group, wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 TANK = REPO / "worlds" / "tank.world"
@@ -21,34 +22,42 @@ BUILTIN = {"camera", "dvl", "imu", "m3", "msis", "pressure", "sls"}  # families 
 def description():
     xacro = shutil.which("xacro")
     assert xacro, "xacro is not on PATH (source scripts/env.sh)"
-    return subprocess.run([xacro, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], capture_output=True,
-                          text=True, check=True).stdout
+    return subprocess.run(
+        [xacro, str(REPO / "urdf" / "ux1.urdf.xacro"), "name:=UX_1"], capture_output=True, text=True, check=True
+    ).stdout
 
 
 @pytest.fixture(scope="module")
 def master(tmp_path_factory):
     """A private rosmaster; yields its URI."""
-    import rosgraph
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}",
-               ROS_LOG_DIR=str(tmp_path_factory.mktemp("ros_log")))
-    proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.STDOUT, start_new_session=True)
-    uri = env["ROS_MASTER_URI"]
-    wait_for(lambda: rosgraph.Master("/startup_test", master_uri=uri).is_online(), 30, "the test rosmaster")
-    yield uri
+    proc, env = start_private_master(free_port(), tmp_path_factory.mktemp("ros"))
+    yield env["ROS_MASTER_URI"]
     stop_process_group(proc)
 
 
 def start(master, urdf, world=TANK, sensors="all", extra=()):
     """Runs simulator_node against `master` with UX_1 described by `urdf`; returns (exit code, output)."""
     import rosgraph
+
     params = rosgraph.Master("/startup_test", master_uri=master)
     params.setParam("/UX_1/robot_description", urdf)
     env = dict(os.environ, ROS_MASTER_URI=master)
-    out = subprocess.run(["rosrun", "unexmin", "simulator_node", f"_world_file:={world}", f"_sensors:={sensors}",
-                          "_paused:=true", "__name:=simulator", *extra], env=env, capture_output=True, text=True,
-                         timeout=60)
+    out = subprocess.run(
+        [
+            "rosrun",
+            "unexmin",
+            "simulator_node",
+            f"_world_file:={world}",
+            f"_sensors:={sensors}",
+            "_paused:=true",
+            "__name:=simulator",
+            *extra,
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     return out.returncode, out.stdout + out.stderr
 
 
@@ -57,8 +66,9 @@ def fatal_lines(output):
 
 
 def test_an_unknown_sensor_type_stops_start_up_with_one_line(master, description):
-    urdf = description.replace("</unexmin>", "<sensor name='echo' type='echosounder' link='UX_1/base_link' "
-                                             "rate='10'/></unexmin>")
+    urdf = description.replace(
+        "</unexmin>", "<sensor name='echo' type='echosounder' link='UX_1/base_link' rate='10'/></unexmin>"
+    )
     code, output = start(master, urdf)
     assert code == 1, output
     lines = fatal_lines(output)
@@ -92,6 +102,7 @@ def test_an_unknown_ray_caster_back_end_in_the_world_file_stops_start_up(master,
 
 def test_an_unknown_visibility_level_stops_start_up(master, description):
     import rosgraph
+
     try:
         code, output = start(master, description, sensors="imu", extra=["_visibility:=murky"])
     finally:  # rosrun left ~visibility on the master: the next start must not inherit it
@@ -99,12 +110,14 @@ def test_an_unknown_visibility_level_stops_start_up(master, description):
     assert code == 1, output
     lines = fatal_lines(output)
     assert len(lines) == 1, output
-    assert ("parameter ~visibility = 'murky': expected none|low|medium|high (or empty: the world file's level)"
-            in lines[0]), lines[0]
+    assert (
+        "parameter ~visibility = 'murky': expected none|low|medium|high (or empty: the world file's level)" in lines[0]
+    ), lines[0]
 
 
 def test_a_negative_ray_caster_thread_count_stops_start_up(master, description):
     import rosgraph
+
     try:
         code, output = start(master, description, sensors="imu", extra=["_ray_caster_threads:=-1"])
     finally:  # as above: the next start must not inherit ~ray_caster_threads
@@ -119,11 +132,25 @@ def test_a_valid_selection_starts(master, description):
     """The same set-up with known names starts (so the failures above are about the names): the node is
     alive until stopped."""
     import rosgraph
+
     rosgraph.Master("/startup_test", master_uri=master).setParam("/UX_1/robot_description", description)
     env = dict(os.environ, ROS_MASTER_URI=master)
-    proc = subprocess.Popen(["rosrun", "unexmin", "simulator_node", f"_world_file:={TANK}", "_sensors:=imu,dvl",
-                             "_paused:=true", "__name:=simulator"], env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    proc = subprocess.Popen(
+        [
+            "rosrun",
+            "unexmin",
+            "simulator_node",
+            f"_world_file:={TANK}",
+            "_sensors:=imu,dvl",
+            "_paused:=true",
+            "__name:=simulator",
+        ],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
     try:
         master_api = rosgraph.Master("/startup_test", master_uri=master)
         wait_for(lambda: "/sim/step" in [s for s, _ in master_api.getSystemState()[2]], 60, "/sim/step")

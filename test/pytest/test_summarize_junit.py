@@ -44,8 +44,14 @@ ROSTEST = """<?xml version="1.0" encoding="utf-8"?>
   <testcase classname="unexmin.test_sensors.Sensors" name="test_dvl" time="1.0"><skipped>no DVL</skipped></testcase>
 </testsuite>
 """
-SKIPS = ["Hydro.NeedsEmbree", "Hydro.DISABLED_Old", "test_replay.test_bag[1]", "test_translators",
-         "test_esc.test_known", "unexmin.test_sensors.Sensors.test_dvl"]
+SKIPS = [
+    "Hydro.NeedsEmbree",
+    "Hydro.DISABLED_Old",
+    "test_replay.test_bag[1]",
+    "test_translators",
+    "test_esc.test_known",
+    "unexmin.test_sensors.Sensors.test_dvl",
+]
 
 
 @pytest.fixture
@@ -70,14 +76,19 @@ def test_every_kind_of_skip_fails_by_default(results, capsys):
     assert lines[-1] == "unexmin: 5 passed, 7 failed"
     for test_id in SKIPS:
         assert sum(line.startswith("FAILED: skipped: ") and f": {test_id}: " in line for line in lines) == 1, test_id
-    assert any("no embree" in line for line in lines)       # the skip's own message is shown
+    assert any("no embree" in line for line in lines)  # the skip's own message is shown
 
 
 def test_allowed_skips_pass_and_count_as_neither(results, capsys):
-    allowed = {"Hydro.*": "Embree is optional", "test_replay.test_bag[[]*": "bag made by hand",
-               "test_translators": "x", "test_esc.test_known": "x", "unexmin.test_sensors.*.test_dvl": "x"}
+    allowed = {
+        "Hydro.*": "Embree is optional",
+        "test_replay.test_bag[[]*": "bag made by hand",
+        "test_translators": "x",
+        "test_esc.test_known": "x",
+        "unexmin.test_sensors.*.test_dvl": "x",
+    }
     rc, lines = run(results, capsys, allowed)
-    assert rc == 1                                           # test_b still fails
+    assert rc == 1  # test_b still fails
     assert lines[-1] == "unexmin: 5 passed, 1 failed"
     assert sum(line.startswith("allowed skip: ") for line in lines) == len(SKIPS)
     assert "allowed skip: gtest-test_hydro.xml: Hydro.NeedsEmbree (Embree is optional)" in lines
@@ -96,11 +107,12 @@ def test_missing_and_unreadable_files_and_nothing_run(tmp_path, capsys):
     (tmp_path / "MISSING-rostest-test_world.xml").write_text(
         '<?xml version="1.0" encoding="UTF-8"?>\n<testsuite tests="1" failures="1" time="1" errors="0" '
         'name="rostest-test_world.xml">\n  <testcase name="test_ran" status="run" time="1" classname="Results">\n'
-        '    <failure message="Unable to find test results" type=""/>\n  </testcase>\n</testsuite>')
+        '    <failure message="Unable to find test results" type=""/>\n  </testcase>\n</testsuite>'
+    )
     (tmp_path / "broken.xml").write_text("<testsuite")
     rc, lines = run(tmp_path, capsys, {})
     assert rc == 1
-    assert lines[-1] == "unexmin: 0 passed, 2 failed"        # the missing result once, the unreadable file
+    assert lines[-1] == "unexmin: 0 passed, 2 failed"  # the missing result once, the unreadable file
     empty = tmp_path / "empty"
     empty.mkdir()
     rc, lines = run(empty, capsys, {})
@@ -117,13 +129,17 @@ def test_command_line_uses_the_shipped_allow_list(results, capsys):
     expected = capsys.readouterr().out
     out = subprocess.run([sys.executable, str(SCRIPT), str(results)], capture_output=True, text=True, timeout=60)
     assert (out.returncode, out.stdout) == (rc, expected)
-    assert rc == 1                                           # test_b fails whatever the allow-list says
+    assert rc == 1  # test_b fails whatever the allow-list says
 
 
 def test_rostests_do_not_skip():
     """rosunit (rostest's Python runner) writes a unittest skip as a passed test case, so the summary
     cannot see it: test/rostest/ must not skip at all."""
     pattern = re.compile(r"\bskipTest\b|\bunittest\.skip|@skip(If|Unless)?\b|\bSkipTest\b")
-    offenders = [f"{path.name}:{n}" for path in sorted((REPO / "test" / "rostest").glob("*.py"))
-                 for n, line in enumerate(path.read_text().splitlines(), 1) if pattern.search(line)]
+    offenders = [
+        f"{path.name}:{n}"
+        for path in sorted((REPO / "test" / "rostest").glob("*.py"))
+        for n, line in enumerate(path.read_text().splitlines(), 1)
+        if pattern.search(line)
+    ]
     assert not offenders, f"unittest skips in rostests (reported as passed by rosunit): {offenders}"

@@ -1,9 +1,10 @@
-"""KVH and DVL translators (python/unexmin/{kvh,dvl}_translator.py): unit conversions against their
+"""KVH and DVL translators (python/unexmin/translators/{kvh,dvl}.py): unit conversions against their
 definitions, round trips (message in -> translated -> back: the same numbers), invalid markers and the
 real robot's type names. Pure functions: no ROS master needed.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_translators.py (workspace sourced).
 """
+
 import math
 
 import numpy as np
@@ -14,9 +15,9 @@ pytest.importorskip("kvh_1775.msg", reason="source the workspace (scripts/env.sh
 from dvl_nortek.msg import DvlBottomWaterTrack  # noqa: E402
 from kvh_1775.msg import ImuRawKvh  # noqa: E402
 
-from unexmin.dvl_translator import dvl_to_water_track, water_track_to_dvl  # noqa: E402
-from unexmin.kvh_translator import kvh_to_raw, raw_to_kvh  # noqa: E402
 from unexmin.msg import Dvl, ImuRaw  # noqa: E402
+from unexmin.translators.dvl import dvl_to_water_track, water_track_to_dvl  # noqa: E402
+from unexmin.translators.kvh import kvh_to_raw, raw_to_kvh  # noqa: E402
 
 BEAM_ANGLE = math.radians(25.0)
 AZIMUTHS = [0.0, math.pi / 2, math.pi, 3 * math.pi / 2]
@@ -31,7 +32,7 @@ def test_type_names_are_the_real_robots():
 def random_raw(rng):
     m = ImuRaw()
     m.header.seq = int(rng.integers(0, 1 << 31))
-    m.header.stamp.secs, m.header.stamp.nsecs = int(rng.integers(0, 1 << 20)), int(rng.integers(0, 10 ** 9))
+    m.header.stamp.secs, m.header.stamp.nsecs = int(rng.integers(0, 1 << 20)), int(rng.integers(0, 10**9))
     m.header.frame_id = "UX_1/imu_link"
     m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z = rng.normal(0, 5, 3)
     m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z = rng.normal(0, 1, 3)
@@ -44,12 +45,12 @@ def random_raw(rng):
 
 def test_kvh_units_are_milligauss_and_bar():
     raw = ImuRaw()
-    raw.magnetic_field.x = 5.0e-5          # 0.5 G
-    raw.pressure = 201325.0                # [Pa]
+    raw.magnetic_field.x = 5.0e-5  # 0.5 G
+    raw.pressure = 201325.0  # [Pa]
     raw.linear_acceleration.z = 9.81
     kvh = raw_to_kvh(raw)
-    assert kvh.magnetometer.x == pytest.approx(500.0, rel=1e-12)   # [mG]
-    assert kvh.pressure == pytest.approx(2.01325, rel=1e-12)       # [bar]
+    assert kvh.magnetometer.x == pytest.approx(500.0, rel=1e-12)  # [mG]
+    assert kvh.pressure == pytest.approx(2.01325, rel=1e-12)  # [bar]
     assert kvh.accelerometer.z == 9.81
 
 
@@ -98,7 +99,7 @@ def ping(v, altitude, sigma, valid=(True, True, True, True), sound_speed=1446.6,
     if m.bottom_lock:
         Bv = B[used]
         m.velocity.x, m.velocity.y, m.velocity.z = np.linalg.lstsq(Bv, u[used], rcond=None)[0]
-        m.velocity_covariance = list((sigma ** 2 * np.linalg.inv(Bv.T @ Bv)).ravel())
+        m.velocity_covariance = list((sigma**2 * np.linalg.inv(Bv.T @ Bv)).ravel())
         c = math.cos(BEAM_ANGLE)
         m.velocity_z1 = (u[0] + u[2]) / (2 * c) if valid[0] and valid[2] else math.nan
         m.velocity_z2 = (u[1] + u[3]) / (2 * c) if valid[1] and valid[3] else math.nan
@@ -118,14 +119,14 @@ def test_water_track_fields_follow_their_definitions():
     c, s = math.cos(BEAM_ANGLE), math.sin(BEAM_ANGLE)
     assert t.header == m.header
     assert t.sound_speed == m.sound_speed and t.temperature == m.temperature
-    assert t.pressure == pytest.approx(12.0)                        # 1.2e5 Pa = 12 dbar
+    assert t.pressure == pytest.approx(12.0)  # 1.2e5 Pa = 12 dbar
     for i in range(4):
-        assert t.range[i] == pytest.approx(m.range[i] * c)          # vertical distance
+        assert t.range[i] == pytest.approx(m.range[i] * c)  # vertical distance
         assert t.velocity_beam[i] == pytest.approx(beams()[i] @ v)
         assert t.fom_beam[i] == sigma
         assert t.dt1_beam[i] == pytest.approx(2 * m.range[i] / m.sound_speed)
         assert t.time_beam[i] == pytest.approx(m.range[i] / m.sound_speed)
-    assert max(t.dt2_beam) == pytest.approx(t.dt1_beam[3] - t.dt1_beam[0])   # beam 3 is the last echo
+    assert max(t.dt2_beam) == pytest.approx(t.dt1_beam[3] - t.dt1_beam[0])  # beam 3 is the last echo
     assert min(t.dt2_beam) == 0.0
     # Janus pairs: x, z1 from beams 0 and 2; y, z2 from 1 and 3.
     assert t.velocity_xyzz == pytest.approx([v[0], v[1], v[2], v[2]], abs=1e-12)
@@ -139,8 +140,13 @@ def test_dvl_round_trip_keeps_every_number():
     rng = np.random.default_rng(2)
     for _ in range(200):
         v = rng.normal(0, 0.5, 3)
-        m = ping(v, altitude=rng.uniform(0.2, 70), sigma=rng.uniform(1e-3, 1e-2),
-                 sound_speed=rng.uniform(1420, 1540), pressure=rng.uniform(1e5, 5e6))
+        m = ping(
+            v,
+            altitude=rng.uniform(0.2, 70),
+            sigma=rng.uniform(1e-3, 1e-2),
+            sound_speed=rng.uniform(1420, 1540),
+            pressure=rng.uniform(1e5, 5e6),
+        )
         back = water_track_to_dvl(dvl_to_water_track(m), BEAM_ANGLE, AZIMUTHS)
         assert back.header == m.header
         assert back.bottom_lock
@@ -164,7 +170,7 @@ def test_three_beams_keep_the_lock_and_mark_the_lost_beam_invalid():
     assert t.fom_beam[2] == DvlBottomWaterTrack.INVALID_FOM
     assert t.range[2] == DvlBottomWaterTrack.INVALID_RANGE
     assert t.velocity_xyzz[:3] == pytest.approx([v[0], v[1], DvlBottomWaterTrack.INVALID_VELOCITY], abs=1e-12)
-    assert t.velocity_xyzz[3] == pytest.approx(v[2], abs=1e-12)       # z2 still has beams 1 and 3
+    assert t.velocity_xyzz[3] == pytest.approx(v[2], abs=1e-12)  # z2 still has beams 1 and 3
     back = water_track_to_dvl(t, BEAM_ANGLE, AZIMUTHS)
     assert back.bottom_lock and back.beam_valid == [True, True, False, True]
     assert (back.velocity.x, back.velocity.y, back.velocity.z) == pytest.approx(tuple(v), abs=1e-12)

@@ -6,6 +6,7 @@ thesis's allocation matrix eq. 5.12), never from a previous expansion.
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_urdf.py
 xacro is taken from $XACRO, else from the running interpreter's bin folder, else from PATH.
 """
+
 import math
 import os
 import shutil
@@ -27,20 +28,22 @@ ROBOT_FILE = URDF_DIR / "ux1.urdf.xacro"
 WORLDS_DIR = REPO / "worlds"
 SHIPPED_WORLDS = ["tank.world", "test_box.world"]
 
-RHO = 1000.0          # [kg/m^3] fresh water (thesis 5.3)
-R_HULL = 0.3          # [m] 0.6 m diameter sphere (thesis 2.3)
-MU = 1.0e-3           # [Pa s] water viscosity
-CD_SPHERE = 0.47      # [-] subcritical sphere (Hoerner)
+RHO = 1000.0  # [kg/m^3] fresh water (thesis 5.3)
+R_HULL = 0.3  # [m] 0.6 m diameter sphere (thesis 2.3)
+MU = 1.0e-3  # [Pa s] water viscosity
+CD_SPHERE = 0.47  # [-] subcritical sphere (Hoerner)
 
 # Thesis eq. 5.12: rows X Y Z K M N, columns M0..M7.
-A_THESIS = np.array([
-    [0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5, 0.0],
-    [-0.25, -0.25, -0.25, 0.25, 0.25, -0.25, 0.25, -0.25],
-    [0.0, -0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5],
-    [0.0] * 8,
-    [0.0] * 8,
-    [-0.25, 0.0, 0.25, 0.0, 0.25, 0.0, -0.25, 0.0],
-])
+A_THESIS = np.array(
+    [
+        [0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5, 0.0],
+        [-0.25, -0.25, -0.25, 0.25, 0.25, -0.25, 0.25, -0.25],
+        [0.0, -0.5, 0.0, -0.5, 0.0, 0.5, 0.0, -0.5],
+        [0.0] * 8,
+        [0.0] * 8,
+        [-0.25, 0.0, 0.25, 0.0, 0.25, 0.0, -0.25, 0.0],
+    ]
+)
 DOF = ["X", "Y", "Z", "K", "M", "N"]
 
 
@@ -100,7 +103,7 @@ def joints_by_name(robot):
 
 
 def links_by_name(robot):
-    return {l.get("name"): l for l in robot.findall("link")}
+    return {link.get("name"): link for link in robot.findall("link")}
 
 
 def link_pose(robot, link_name):
@@ -142,11 +145,10 @@ def inertials(robot):
         rot = rpy_matrix(floats(origin.get("rpy", "0 0 0"))) if origin is not None else np.eye(3)
         i = inertial.find("inertia")
         g = {k: float(i.get(k, "0")) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        tensor = np.array([[g["ixx"], g["ixy"], g["ixz"]],
-                           [g["ixy"], g["iyy"], g["iyz"]],
-                           [g["ixz"], g["iyz"], g["izz"]]])
-        out.append((link.get("name"), float(inertial.find("mass").get("value")), com,
-                    rot @ tensor @ rot.T))
+        tensor = np.array(
+            [[g["ixx"], g["ixy"], g["ixz"]], [g["ixy"], g["iyy"], g["iyz"]], [g["ixz"], g["iyz"], g["izz"]]]
+        )
+        out.append((link.get("name"), float(inertial.find("mass").get("value")), com, rot @ tensor @ rot.T))
     return out
 
 
@@ -180,8 +182,9 @@ def check_allocation(b_matrix):
             continue
         scale = row @ a / (a @ a)
         assert scale > 0, "%s row has a negative scale %g: %s vs %s" % (DOF[j], scale, row, a)
-        assert np.allclose(row, scale * a, rtol=1e-6, atol=1e-9 * np.abs(row).max()), \
+        assert np.allclose(row, scale * a, rtol=1e-6, atol=1e-9 * np.abs(row).max()), (
             "%s row %s is not a positive multiple of %s" % (DOF[j], row, a)
+        )
 
 
 # ----------------------------------------------------------------------------------------------
@@ -256,8 +259,8 @@ def test_camera_optical_frames_follow_rep103():
         _, r_link = link_pose(robot, "UX_1/camera_%d_link" % i)
         p_link, _ = link_pose(robot, "UX_1/camera_%d_link" % i)
         _, r_opt = link_pose(robot, "UX_1/camera_%d_optical_frame" % i)
-        assert np.allclose(r_opt[:, 2], r_link[:, 0], atol=1e-12)    # optical z = camera forward
-        assert np.allclose(r_opt[:, 0], -r_link[:, 1], atol=1e-12)   # optical x = right
+        assert np.allclose(r_opt[:, 2], r_link[:, 0], atol=1e-12)  # optical z = camera forward
+        assert np.allclose(r_opt[:, 0], -r_link[:, 1], atol=1e-12)  # optical x = right
         # Cameras look outwards from the hull.
         assert r_link[:, 0] @ p_link / np.linalg.norm(p_link) > 0.99
 
@@ -289,15 +292,17 @@ def test_urdfdom_parses_the_description(tmp_path):
         pytest.skip("g++ or liburdfdom-headers-dev not available")
     src = tmp_path / "check.cpp"
     src.write_text(
-        '#include <urdf_parser/urdf_parser.h>\n#include <iostream>\n#include <sstream>\n'
+        "#include <urdf_parser/urdf_parser.h>\n#include <iostream>\n#include <sstream>\n"
         "int main() { std::stringstream s; s << std::cin.rdbuf();\n"
         "  urdf::ModelInterfaceSharedPtr m = urdf::parseURDF(s.str());\n"
         "  if (!m) return 1;\n"
         '  std::cout << m->getName() << " " << m->getRoot()->name << " " << m->links_.size()'
-        ' << " " << m->joints_.size() << std::endl; return 0; }\n')
+        ' << " " << m->joints_.size() << std::endl; return 0; }\n'
+    )
     exe = tmp_path / "check"
-    build = subprocess.run([compiler, "-std=c++17", str(src), "-o", str(exe), "-lurdfdom_model"],
-                           capture_output=True, text=True)
+    build = subprocess.run(
+        [compiler, "-std=c++17", str(src), "-o", str(exe), "-lurdfdom_model"], capture_output=True, text=True
+    )
     if build.returncode != 0:
         pytest.skip("cannot build against urdfdom: " + build.stderr[-300:])
     for name in ("UX_1", "UX_2"):
@@ -320,7 +325,7 @@ def test_total_mass_is_hydro_mass_and_neutral(name):
     (volume,) = hydro_value(robot, "volume")
     (radius,) = hydro_value(robot, "radius")
     assert total == pytest.approx(hydro_mass, abs=1e-6)
-    sphere_volume = 4.0 / 3.0 * math.pi * R_HULL ** 3
+    sphere_volume = 4.0 / 3.0 * math.pi * R_HULL**3
     assert radius == pytest.approx(R_HULL, abs=1e-12)
     assert volume == pytest.approx(sphere_volume, rel=1e-12)
     assert total == pytest.approx(RHO * sphere_volume, abs=1e-3), "not neutrally buoyant"
@@ -344,7 +349,7 @@ def test_inertia_and_centre_of_gravity_are_consistent():
             mass_rest += m
             moment_rest += m * c
     m_total = hydro_value(robot, "mass")[0]
-    expected = 0.4 * m_total * R_HULL ** 2
+    expected = 0.4 * m_total * R_HULL**2
     assert np.allclose(total_inertia, np.diag([expected] * 3), rtol=1e-9, atol=1e-12)
     assert np.allclose(hydro_value(robot, "inertia", "ixx"), expected, rtol=1e-12)
     for key in ("iyy", "izz"):
@@ -357,7 +362,7 @@ def test_inertia_and_centre_of_gravity_are_consistent():
 
 def test_hydrodynamic_defaults_match_sphere_formulas():
     robot = robot_xml("UX_1")
-    volume = 4.0 / 3.0 * math.pi * R_HULL ** 3
+    volume = 4.0 / 3.0 * math.pi * R_HULL**3
     added = hydro_value(robot, "added_mass").reshape(6, 6)
     expected_added = np.diag([0.5 * RHO * volume] * 3 + [0.0] * 3)
     assert np.allclose(added, expected_added, rtol=1e-12, atol=1e-12)
@@ -366,15 +371,20 @@ def test_hydrodynamic_defaults_match_sphere_formulas():
     quad = hydro_value(robot, "quadratic_damping")
     assert lin.shape == (6,) and quad.shape == (6,)
     assert np.allclose(lin[:3], 6 * math.pi * MU * R_HULL, rtol=1e-12)
-    assert np.allclose(lin[3:], 8 * math.pi * MU * R_HULL ** 3, rtol=1e-12)
-    assert np.allclose(quad[:3], 0.5 * RHO * CD_SPHERE * math.pi * R_HULL ** 2, rtol=1e-12)
+    assert np.allclose(lin[3:], 8 * math.pi * MU * R_HULL**3, rtol=1e-12)
+    assert np.allclose(quad[:3], 0.5 * RHO * CD_SPHERE * math.pi * R_HULL**2, rtol=1e-12)
     assert quad[0] == pytest.approx(66.44, abs=0.01)
     # rotational: the protrusions' drag 1/2 rho Cd A r^3, itemised (docs/identification.md, "The default
     # rotational damping"): (count, Cd, area [m^2], arm [m])
-    items = [(4, 1.0, math.pi * 0.035 ** 2, R_HULL), (4, 1.0, 0.07 * 0.08, R_HULL / math.sqrt(2.0)),
-             (4, 1.0, 0.05 * 0.04, 0.32), (4, 1.0, 0.04 * 0.04, 0.32), (1, 1.05, 0.15 * 0.10, R_HULL),
-             (1, 1.0, 0.0034, 0.13)]
-    rotational = sum(n * 0.5 * RHO * cd * a * r ** 3 for n, cd, a, r in items)
+    items = [
+        (4, 1.0, math.pi * 0.035**2, R_HULL),
+        (4, 1.0, 0.07 * 0.08, R_HULL / math.sqrt(2.0)),
+        (4, 1.0, 0.05 * 0.04, 0.32),
+        (4, 1.0, 0.04 * 0.04, 0.32),
+        (1, 1.05, 0.15 * 0.10, R_HULL),
+        (1, 1.0, 0.0034, 0.13),
+    ]
+    rotational = sum(n * 0.5 * RHO * cd * a * r**3 for n, cd, a, r in items)
     assert np.allclose(quad[3:], rotational, rtol=1e-12)
     assert rotational == pytest.approx(0.767, abs=0.001)
     # Terminal speed at full forward thrust lies in a sane range for a 0.6 m sphere.
@@ -409,11 +419,12 @@ def test_thruster_models_schema():
     assert (float(pend.get("min")), float(pend.get("max"))) == pytest.approx((-math.radians(30), math.radians(30)))
     limit = joints[name + "/pendulum_joint"].find("limit")
     assert (float(limit.get("lower")), float(limit.get("upper"))) == pytest.approx(
-        (float(pend.get("min")), float(pend.get("max"))))
+        (float(pend.get("min")), float(pend.get("max")))
+    )
     vbs = hydro(robot).find("vbs")
     assert float(vbs.get("min")) < 0 < float(vbs.get("max")) and floats(vbs.get("xyz")).shape == (3,)
     # The pendulum link carries the pendulum mass at the arm.
-    (link, m, com, _), = [x for x in inertials(robot) if x[0] == name + "/pendulum"]
+    ((link, m, com, _),) = [x for x in inertials(robot) if x[0] == name + "/pendulum"]
     assert m == pytest.approx(float(pend.get("mass")))
     assert np.allclose(com, [0, 0, -float(pend.get("arm"))])
 
@@ -471,7 +482,8 @@ def test_overrides_file_changes_only_what_it_names(tmp_path):
         '  <xacro:property name="msis_elevation_deg" value="90.0"/>\n'
         '  <xacro:property name="thruster_dynamics" value="zero_order"/>\n'
         '  <xacro:property name="thruster_conversion" value="table"/>\n'
-        '</robot>\n')
+        "</robot>\n"
+    )
     robot = robot_xml("UX_3", "overrides:=%s" % override)
     joints = joints_by_name(robot)
     xyz, _ = joint_origin(joints["UX_3/msis_base_joint"])
@@ -480,8 +492,11 @@ def test_overrides_file_changes_only_what_it_names(tmp_path):
     assert t.find("dynamics").get("type") == "zero_order" and t.find("dynamics/param") is None
     conv = t.find("conversion")
     assert conv.get("type") == "table"
-    assert len(floats(conv.find("param[@name='input']").get("value"))) == \
-        len(floats(conv.find("param[@name='output']").get("value"))) >= 2
+    assert (
+        len(floats(conv.find("param[@name='input']").get("value")))
+        == len(floats(conv.find("param[@name='output']").get("value")))
+        >= 2
+    )
     # Everything else is unchanged.
     default = robot_xml("UX_3")
     assert ET.tostring(hydro(default).find("hydrodynamics")) == ET.tostring(hydro(robot).find("hydrodynamics"))
@@ -490,8 +505,17 @@ def test_overrides_file_changes_only_what_it_names(tmp_path):
 # ----------------------------------------------------------------------------------------------
 # worlds
 # ----------------------------------------------------------------------------------------------
-WORLD_KEYS = {"name", "gravity", "water", "atmospheric_pressure", "visibility", "ray_caster", "current", "meshes",
-              "robots"}
+WORLD_KEYS = {
+    "name",
+    "gravity",
+    "water",
+    "atmospheric_pressure",
+    "visibility",
+    "ray_caster",
+    "current",
+    "meshes",
+    "robots",
+}
 MESH_KEYS = {"name", "file", "scale", "xyz", "rpy", "collision", "visual"}
 ROBOT_KEYS = {"name", "description", "xyz", "rpy"}
 
@@ -504,6 +528,7 @@ def load_world(file_name):
 def placed_mesh(world_file, entry):
     """The entry's mesh in world coordinates (scale, then rpy rotation, then xyz)."""
     import trimesh
+
     mesh = trimesh.load(str((WORLDS_DIR / world_file).parent / entry["file"]), force="mesh")
     transform = np.eye(4)
     transform[:3, :3] = rpy_matrix(entry["rpy"]) @ np.diag(entry["scale"])
@@ -571,8 +596,9 @@ def test_spawns_inside_container_and_submerged(world_file):
     lo, hi = interior_bounds(meshes[container])
     for r in world["robots"]:
         p, radius = np.array(r["xyz"], float), robot_radius(r)
-        assert np.all(p - lo >= radius) and np.all(hi - p >= radius), \
+        assert np.all(p - lo >= radius) and np.all(hi - p >= radius), (
             "%s at %s is within %g m of a wall of %s [%s .. %s]" % (r["name"], p, radius, container, lo, hi)
+        )
         assert p[2] + radius <= world["water"]["surface_z"], r["name"] + " is not fully submerged"
         for name, mesh in meshes.items():
             if name != container:
@@ -586,9 +612,9 @@ def test_tank_scene():
     assert np.allclose(lo, [-3, -2, -3], atol=1e-5) and np.allclose(hi, [3, 2, 0.3], atol=1e-5)
     assert world["water"]["surface_z"] == 0.0
     anchor = meshes["anchor"]
-    assert anchor.bounds[1][2] == pytest.approx(-1.8, abs=1e-5)           # top at 1.8 m depth
-    assert 0.5 <= anchor.extents[2] <= 0.7                                 # about 0.6 m tall
-    assert np.allclose(anchor.bounds.mean(axis=0)[:2], 0.0, atol=0.05)     # in the middle
+    assert anchor.bounds[1][2] == pytest.approx(-1.8, abs=1e-5)  # top at 1.8 m depth
+    assert 0.5 <= anchor.extents[2] <= 0.7  # about 0.6 m tall
+    assert np.allclose(anchor.bounds.mean(axis=0)[:2], 0.0, atol=0.05)  # in the middle
     clearance = 0.8  # [m] of water between a hull and anything else
     robots = world["robots"]
     for r in robots:
@@ -616,6 +642,7 @@ def test_test_box_scene():
 def test_mesh_normals_face_the_water():
     """Tank and box are closed, consistently wound solids: their water-side faces point into the water."""
     import trimesh
+
     for file_name in ("tank.stl", "test_box.stl"):
         mesh = trimesh.load(str(WORLDS_DIR / "meshes" / file_name), force="mesh")
         assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
@@ -628,8 +655,11 @@ def test_mesh_normals_face_the_water():
 
 def test_meshes_are_binary_stl_and_reproducible(tmp_path):
     """The committed meshes are exactly what worlds/tools/make_tank.py writes."""
-    subprocess.run([sys.executable, str(WORLDS_DIR / "tools" / "make_tank.py"), "--out", str(tmp_path)],
-                   check=True, capture_output=True)
+    subprocess.run(
+        [sys.executable, str(WORLDS_DIR / "tools" / "make_tank.py"), "--out", str(tmp_path)],
+        check=True,
+        capture_output=True,
+    )
     for file_name in ("tank.stl", "anchor.stl", "test_box.stl"):
         committed = (WORLDS_DIR / "meshes" / file_name).read_bytes()
         count = int.from_bytes(committed[80:84], "little")

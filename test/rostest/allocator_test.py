@@ -25,7 +25,7 @@ from ux1_msgs.msg import MotorCommand
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.srv import Step
 from unexmin.topics import ESC_COMMAND_TOPIC, sync_publisher
 
@@ -39,10 +39,19 @@ A = {  # thesis eq. 5.12, rows used here
 AXES = ("X", "Y", "Z", "K", "M", "N")
 G = 9.80665
 # T200 16 V rows around +-0.5 N and +-40 N (signed rpm, kgf), from the published sheet
-T200 = [(-3465, -4.07), (-3207, -3.45), (-578, -0.10), (-317, -0.04), (0, 0.0), (308, 0.04), (573, 0.13),
-        (2888, 3.42), (3260, 4.51)]
+T200 = [
+    (-3465, -4.07),
+    (-3207, -3.45),
+    (-578, -0.10),
+    (-317, -0.04),
+    (0, 0.0),
+    (308, 0.04),
+    (573, 0.13),
+    (2888, 3.42),
+    (3260, 4.51),
+]
 RHO, R = 1000.0, 0.3
-V = 4.0 / 3.0 * math.pi * R ** 3
+V = 4.0 / 3.0 * math.pi * R**3
 
 
 def rpm_for(thrust):
@@ -73,16 +82,22 @@ class AllocatorInSimulator(unittest.TestCase):
         cls.sim = Simulation(node_name="allocator_test", timeout=60.0)
         cls.ux = cls.sim.robot("UX_1", streams="none")  # dynamics only: no sensor messages
         cls.cond = threading.Condition()
-        cls.thrusts = {}           # thruster -> list of values from the allocator
-        cls.motors = []            # MotorCommand values
-        cls.from_allocator = 0     # thruster messages published by the allocator node
-        cls.subs = [rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cls.on_thrust, i, queue_size=100)
-                    for i in range(8)]
+        cls.thrusts = {}  # thruster -> list of values from the allocator
+        cls.motors = []  # MotorCommand values
+        cls.from_allocator = 0  # thruster messages published by the allocator node
+        cls.subs = [
+            rospy.Subscriber(f"/UX_1/thrusters/{i}/input", Float64, cls.on_thrust, i, queue_size=100) for i in range(8)
+        ]
         cls.motor_sub = rospy.Subscriber(ESC_COMMAND_TOPIC, MotorCommand, cls.on_motors, queue_size=100)
         cls.wrench_pub = sync_publisher("/UX_1/force_moments", Wrench)
         cls.step_srv = rospy.ServiceProxy("/sim/step", Step, persistent=True)
-        wait_for(lambda: cls.wrench_pub.get_num_connections() > 0 and cls.motor_sub.get_num_connections() > 0
-                 and all(s.get_num_connections() > 0 for s in cls.subs), 60.0, "the allocator to connect")
+        wait_for(
+            lambda: cls.wrench_pub.get_num_connections() > 0
+            and cls.motor_sub.get_num_connections() > 0
+            and all(s.get_num_connections() > 0 for s in cls.subs),
+            60.0,
+            "the allocator to connect",
+        )
 
     @classmethod
     def on_thrust(cls, msg, i):
@@ -132,7 +147,7 @@ class AllocatorInSimulator(unittest.TestCase):
             for i in range(8):
                 self.assertAlmostEqual(thrusts[i], row[i], places=12, msg=f"{axis}: M{i}")
                 self.assertAlmostEqual(motors[i], rpm_for(row[i]), places=6, msg=f"{axis}: rpm of M{i}")
-        for axis in ("K", "M"):   # no thruster can roll or pitch the sphere in this layout
+        for axis in ("K", "M"):  # no thruster can roll or pitch the sphere in this layout
             thrusts, motors = self.send(axis, 1.0)
             self.assertEqual(thrusts, [0.0] * 8)
             self.assertEqual(motors, [0.0] * 8)
@@ -155,9 +170,9 @@ class AllocatorInSimulator(unittest.TestCase):
         for i in range(8):
             self.assertAlmostEqual(thrusts[i], raw[i] * scale, places=9, msg=f"M{i}")
         self.assertAlmostEqual(thrusts[4], 40.0, places=9)
-        self.assertAlmostEqual(motors[4], rpm_for(40.0), places=6)      # 3112.9 rpm
+        self.assertAlmostEqual(motors[4], rpm_for(40.0), places=6)  # 3112.9 rpm
         self.assertAlmostEqual(thrusts[2], -40.0, places=9)
-        self.assertAlmostEqual(motors[2], -3465.0, places=6)            # beyond the reverse maximum: table end
+        self.assertAlmostEqual(motors[2], -3465.0, places=6)  # beyond the reverse maximum: table end
         self.send("X", 0.0)
 
     def drive(self, axis, value, seconds):
@@ -187,7 +202,7 @@ class AllocatorInSimulator(unittest.TestCase):
         start, end, t = self.drive(axis, scale, 2.0)
         d = self.body_displacement(start, end)
         mass = 1.5 * RHO * V
-        k_quad = 0.5 * RHO * 0.47 * math.pi * R ** 2
+        k_quad = 0.5 * RHO * 0.47 * math.pi * R**2
         k_lin = 6.0 * math.pi * 1.0e-3 * R
         expected = response_1d(math.sqrt(2.0) * scale, t, mass, k_quad, k_lin)
         print(f"{axis} {scale}: moved {d} m in {t} s, expected {expected:.4f} m along the axis")
@@ -210,9 +225,9 @@ class AllocatorInSimulator(unittest.TestCase):
     def test_n_turns_counter_clockwise_in_place(self):
         scale = 4.0
         start, end, t = self.drive("N", scale, 2.0)
-        inertia = 0.4 * RHO * V * R ** 2
-        k_quad = 8 * 0.5 * RHO * 1.0 * 0.005 * R ** 3
-        k_lin = 8.0 * math.pi * 1.0e-3 * R ** 3
+        inertia = 0.4 * RHO * V * R**2
+        k_quad = 8 * 0.5 * RHO * 1.0 * 0.005 * R**3
+        k_lin = 8.0 * math.pi * 1.0e-3 * R**3
         expected = response_1d(0.3 * scale, t, inertia, k_quad, k_lin)
         turned = math.remainder(yaw_of(end.pose.pose.orientation) - yaw_of(start.pose.pose.orientation), 2 * math.pi)
         print(f"N {scale}: turned {math.degrees(turned):.3f} deg in {t} s, expected {math.degrees(expected):.3f} deg")

@@ -17,12 +17,12 @@ from unexmin import Simulation
 
 NS = "/UX_1/"
 CAMERAS = range(5)
-FPS = 10.0               # camera_overrides.xacro
-SCALE = 0.05             # camera_overrides.xacro: camera_render_scale
-WIDTH, HEIGHT = round(SCALE * 2054), round(SCALE * 1544)   # properties.xacro camera_width/height
-HFOV = math.radians(80.0)                                   # properties.xacro camera_hfov
-DISTORTION = [-0.1, 0.02, 0.0, 0.0, 0.0]                    # properties.xacro camera_distortion
-SECONDS = 1.0            # [s] of sim time per record
+FPS = 10.0  # camera_overrides.xacro
+SCALE = 0.05  # camera_overrides.xacro: camera_render_scale
+WIDTH, HEIGHT = round(SCALE * 2054), round(SCALE * 1544)  # properties.xacro camera_width/height
+HFOV = math.radians(80.0)  # properties.xacro camera_hfov
+DISTORTION = [-0.1, 0.02, 0.0, 0.0, 0.0]  # properties.xacro camera_distortion
+SECONDS = 1.0  # [s] of sim time per record
 
 
 class Cameras(unittest.TestCase):

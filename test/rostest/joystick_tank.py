@@ -22,13 +22,13 @@ from sensor_msgs.msg import Joy
 from std_msgs.msg import Float64
 
 from unexmin import Simulation
+from unexmin.control.joystick import JS_EVENT_AXIS, JS_EVENT_BUTTON, JS_EVENT_INIT, pack_event
 from unexmin.geometry import yaw_of
-from unexmin.joystick import JS_EVENT_AXIS, JS_EVENT_BUTTON, JS_EVENT_INIT, pack_event
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 
 LEFT_Y, RIGHT_X, BTN_LB = 1, 3, 4
 RHO, RADIUS = 1000.0, 0.3
-VOLUME = 4.0 / 3.0 * math.pi * RADIUS ** 3
+VOLUME = 4.0 / 3.0 * math.pi * RADIUS**3
 
 
 class FifoPad:
@@ -49,8 +49,10 @@ class FifoPad:
 
     def write(self, flags=0):
         with self.lock:
-            data = b"".join([pack_event(0, v, JS_EVENT_AXIS | flags, n) for n, v in self.axes.items()]
-                            + [pack_event(0, v, JS_EVENT_BUTTON | flags, n) for n, v in self.buttons.items()])
+            data = b"".join(
+                [pack_event(0, v, JS_EVENT_AXIS | flags, n) for n, v in self.axes.items()]
+                + [pack_event(0, v, JS_EVENT_BUTTON | flags, n) for n, v in self.buttons.items()]
+            )
             os.write(self.fd, data)
 
     def set(self, axes=None, buttons=None):
@@ -117,17 +119,17 @@ class Joystick(unittest.TestCase):
         return forward, lateral, p1.z - p0.z, turned
 
     def test_left_stick_up_with_the_deadman_moves_the_robot_forward(self):
-        self.pad.set(axes={LEFT_Y: -32767})                     # no dead-man: nothing moves
+        self.pad.set(axes={LEFT_Y: -32767})  # no dead-man: nothing moves
         self.hold(1.0, 0.0)
         forward, lateral, dz, turned = self.moved()
-        self.assertLess(math.sqrt(forward ** 2 + lateral ** 2 + dz ** 2), 1e-3)
+        self.assertLess(math.sqrt(forward**2 + lateral**2 + dz**2), 1e-3)
         self.pad.set(buttons={BTN_LB: 1})
         self.start = self.ux.odom()
         seconds = 3.0
-        self.hold(seconds, 5.0)                                 # X 10 N -> 0.5 * 10 N on thruster 0
+        self.hold(seconds, 5.0)  # X 10 N -> 0.5 * 10 N on thruster 0
         forward, lateral, dz, turned = self.moved()
-        force = 10.0 * 2.0 * math.cos(math.pi / 4)              # Σ|A_X| = 2
-        bound = force * seconds ** 2 / (2 * 1.5 * RHO * VOLUME)   # rigid + added mass 1/2 rho V
+        force = 10.0 * 2.0 * math.cos(math.pi / 4)  # Σ|A_X| = 2
+        bound = force * seconds**2 / (2 * 1.5 * RHO * VOLUME)  # rigid + added mass 1/2 rho V
         self.assertGreater(forward, 0.85 * bound)
         self.assertLess(forward, 0.94 * bound)
         self.assertLess(abs(lateral), 0.02 * forward)
@@ -137,11 +139,11 @@ class Joystick(unittest.TestCase):
     def test_right_stick_left_turns_the_robot_counter_clockwise(self):
         self.pad.set(axes={RIGHT_X: -32767}, buttons={BTN_LB: 1})
         seconds = 2.0
-        self.hold(seconds, -0.5)                                # N 2 N m -> -0.25 * 2 on thruster 0
+        self.hold(seconds, -0.5)  # N 2 N m -> -0.25 * 2 on thruster 0
         forward, lateral, dz, turned = self.moved()
-        moment = 2.0 * 1.0 * RADIUS                             # Σ|A_N| = 1, tangential arm 0.3 m
-        inertia = 0.4 * RHO * VOLUME * RADIUS ** 2
-        bound = moment * seconds ** 2 / (2 * inertia)
+        moment = 2.0 * 1.0 * RADIUS  # Σ|A_N| = 1, tangential arm 0.3 m
+        inertia = 0.4 * RHO * VOLUME * RADIUS**2
+        bound = moment * seconds**2 / (2 * inertia)
         self.assertGreater(turned, 0.85 * bound)
         self.assertLess(turned, 0.94 * bound)
         self.assertLess(math.hypot(forward, lateral), 0.01)

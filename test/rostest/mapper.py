@@ -26,20 +26,22 @@ import numpy as np
 import rosgraph
 import rospy
 import rostest
+from geometry_msgs.msg import TransformStamped
 from octomap_msgs.msg import Octomap
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import PointCloud2
-from geometry_msgs.msg import TransformStamped
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
 from unexmin import Simulation
-from unexmin.allocation import ThrusterAllocator
-from unexmin.launcher import wait_for
-from unexmin.map_quality import expand, read_bt, sample_surface, world_path, world_triangles
+from unexmin.control.allocation import ThrusterAllocator
+from unexmin.map_quality import expand, read_bt
 from unexmin.msg import MapperStats
+from unexmin.scripting.launcher import wait_for
 from unexmin.srv import SaveMap
+from unexmin.worlds.files import world_path, world_triangles
+from unexmin.worlds.meshes import sample_surface
 
 MAPPED = ("UX_1", "UX_3")
 CLOUDS_PER_S = 40 + 4 * 10
@@ -110,10 +112,16 @@ class Mapper(unittest.TestCase):
     @classmethod
     def settled(cls, received=0):
         """The stats once the mapper has received `received` clouds and inserted all it received."""
+
         def done():
             s = cls.stats
-            return s if s.clouds_received >= received and s.pending == 0 and \
-                s.clouds_inserted + s.clouds_dropped == s.clouds_received else None
+            return (
+                s
+                if s.clouds_received >= received
+                and s.pending == 0
+                and s.clouds_inserted + s.clouds_dropped == s.clouds_received
+                else None
+            )
 
         # One stats message is one consistent snapshot (the mapper inserts and reports in one thread).
         return wait_for(done, 60.0, f"the mapper to receive {received} clouds and insert them")
@@ -156,9 +164,11 @@ class Mapper(unittest.TestCase):
     def test_outputs_carry_the_map(self):
         leaves = self.stats.occupied_leaves
         got = {}
-        subs = [rospy.Subscriber("/octomap_binary", Octomap, lambda m: got.update(binary=m)),
-                rospy.Subscriber("/occupied_cells_vis_array", MarkerArray, lambda m: got.update(markers=m)),
-                rospy.Subscriber("/octomap_point_cloud_centers", PointCloud2, lambda m: got.update(centers=m))]
+        subs = [
+            rospy.Subscriber("/octomap_binary", Octomap, lambda m: got.update(binary=m)),
+            rospy.Subscriber("/occupied_cells_vis_array", MarkerArray, lambda m: got.update(markers=m)),
+            rospy.Subscriber("/octomap_point_cloud_centers", PointCloud2, lambda m: got.update(centers=m)),
+        ]
         try:
             wait_for(lambda: len(got) == 3, 30.0, "the three map outputs")
         finally:
@@ -223,8 +233,11 @@ class Mapper(unittest.TestCase):
         master = rosgraph.Master(rospy.get_name())
         pid = ServerProxy(master.lookupNode("/mapper")).getPid(rospy.get_name())[2]
         os.kill(pid, signal.SIGINT)
-        wait_for(lambda: not os.path.exists(f"/proc/{pid}") or open(f"/proc/{pid}/stat").read().split()[2] == "Z",
-                 30.0, "the mapper to exit on SIGINT")
+        wait_for(
+            lambda: not os.path.exists(f"/proc/{pid}") or open(f"/proc/{pid}/stat").read().split()[2] == "Z",
+            30.0,
+            "the mapper to exit on SIGINT",
+        )
         self.assertTrue(os.path.exists(map_file), map_file)
         self.assertEqual(bt2vrml_count(map_file), leaves)
         self.assertGreater(s.clouds_inserted, 0)

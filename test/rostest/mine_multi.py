@@ -25,7 +25,7 @@ from tf2_msgs.msg import TFMessage
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.topics import ESC_COMMAND_TOPIC
 
 NAMES = ["UX_1", "UX_2", "UX_3"]
@@ -49,8 +49,8 @@ def pose(odom):
 def surge_1d(force, seconds, dt=1e-4):
     """Distance [m] from rest of a UX-1 (rigid + added mass 1.5 rho V, quadratic drag 1/2 rho Cd pi R^2,
     Stokes drag 6 pi mu R) under a force [N] applied through first-order thrusters (tau 0.1 s)."""
-    rho, volume = 1000.0, 4.0 / 3.0 * math.pi * R_HULL ** 3
-    mass, k_quad, k_lin = 1.5 * rho * volume, 0.5 * rho * 0.47 * math.pi * R_HULL ** 2, 6.0 * math.pi * 1e-3 * R_HULL
+    rho, volume = 1000.0, 4.0 / 3.0 * math.pi * R_HULL**3
+    mass, k_quad, k_lin = 1.5 * rho * volume, 0.5 * rho * 0.47 * math.pi * R_HULL**2, 6.0 * math.pi * 1e-3 * R_HULL
     v = x = thrust = 0.0
     alpha = 1.0 - math.exp(-dt / 0.1)
     for _ in range(int(round(seconds / dt))):
@@ -93,8 +93,9 @@ class MineMulti(unittest.TestCase):
             np.testing.assert_allclose(together[n], alone[n], atol=1e-6, err_msg=f"{n} is moved by the others")
             for other in NAMES:
                 if other != n:
-                    np.testing.assert_allclose(alone[other], idle[other], atol=1e-6,
-                                               err_msg=f"{n}'s command moved {other}")
+                    np.testing.assert_allclose(
+                        alone[other], idle[other], atol=1e-6, err_msg=f"{n}'s command moved {other}"
+                    )
         # Each along its own axis, net of the current's drift (the idle run); surge by the distance of
         # the 1-D model of tank_thrust.py (the current, 0.03 m/s, shifts the quadratic drag by ~1 %).
         moved = {n: together[n] - idle[n] for n in NAMES}
@@ -118,13 +119,14 @@ class MineMulti(unittest.TestCase):
         subs = [rospy.Subscriber(t, TFMessage, on_tf, queue_size=100) for t in ("/tf", "/tf_static")]
         headers = {}
         master = rosgraph.Master(rospy.get_name())
-        for topic, type_name in master.getPublishedTopics("/"):
+        for topic, _ in master.getPublishedTopics("/"):
             if any(topic.startswith(f"/{n}/") for n in NAMES):
                 cls = rostopic.get_topic_class(topic)[0]
                 if cls is not None and "header" in cls.__slots__:
                     headers[topic] = None
-                    subs.append(rospy.Subscriber(topic, cls, lambda m, t=topic: headers.__setitem__(t, m.header),
-                                                 queue_size=1))
+                    subs.append(
+                        rospy.Subscriber(topic, cls, lambda m, t=topic: headers.__setitem__(t, m.header), queue_size=1)
+                    )
         wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 30.0, "connections to every robot topic")
         self.start()
 
@@ -132,8 +134,10 @@ class MineMulti(unittest.TestCase):
             self.sim.run_for(0.1)
             with lock:
                 nodes = set(frames)
-            return (all(headers.get(f"/{n}/{t}") is not None for n in NAMES for t in ("odom", "joint_states"))
-                    and {"/simulator", *(f"/{n}/robot_state_publisher" for n in NAMES)} <= nodes)
+            return (
+                all(headers.get(f"/{n}/{t}") is not None for n in NAMES for t in ("odom", "joint_states"))
+                and {"/simulator", *(f"/{n}/robot_state_publisher" for n in NAMES)} <= nodes
+            )
 
         wait_for(complete, 30.0, "odometry, joint states and tf of every robot")
         publishers, subscribers, _ = master.getSystemState()
@@ -144,8 +148,7 @@ class MineMulti(unittest.TestCase):
                 for node in nodes:
                     node_ns = next((n for n in NAMES if node.startswith(f"/{n}/")), None)
                     if owner is not None:
-                        self.assertTrue(node in ("/simulator", me) or node_ns == owner,
-                                        f"{topic} is {kind} by {node}")
+                        self.assertTrue(node in ("/simulator", me) or node_ns == owner, f"{topic} is {kind} by {node}")
                     elif node_ns is not None and topic not in GLOBAL_TOPICS:
                         # a robot's node on a global topic: only the real UX-1's ESC command
                         self.assertEqual((topic, node), (ESC_COMMAND_TOPIC, "/UX_1/thruster_allocator"))
@@ -165,8 +168,10 @@ class MineMulti(unittest.TestCase):
         for topic, header in received.items():
             robot = topic.split("/")[1]
             if header.frame_id:  # joint_states carry none
-                self.assertTrue(header.frame_id == "world" or header.frame_id.startswith(robot + "/"),
-                                f"{topic} stamped in frame {header.frame_id}")
+                self.assertTrue(
+                    header.frame_id == "world" or header.frame_id.startswith(robot + "/"),
+                    f"{topic} stamped in frame {header.frame_id}",
+                )
         for s in subs:
             s.unregister()
 
@@ -178,23 +183,23 @@ class MineMulti(unittest.TestCase):
             self.sim.run_for(0.1)
             p = {n: pose(self.ux[n].odom()) for n in ("UX_2", "UX_3")}
             closest = min(closest, float(np.linalg.norm(p["UX_2"][:3] - p["UX_3"][:3])))
-        self.assertGreater(closest, 2 * R_HULL - 0.02)              # touched, did not interpenetrate
-        self.assertLess(closest, 2 * R_HULL + 0.02)                 # and did touch
-        self.assertGreater(p["UX_3"][1] - start["UX_3"][1], 0.2)    # UX_3 was pushed along +y
+        self.assertGreater(closest, 2 * R_HULL - 0.02)  # touched, did not interpenetrate
+        self.assertLess(closest, 2 * R_HULL + 0.02)  # and did touch
+        self.assertGreater(p["UX_3"][1] - start["UX_3"][1], 0.2)  # UX_3 was pushed along +y
 
     def test_robot_stops_at_the_shaft_wall(self):
         m = manifest()
         axis_x, half, noise = m["shaft_xy"][0], m["preset"]["shaft_half"], m["wall_noise_max"]
         start = self.start()
         self.ux["UX_1"].thrusts(SCALE * A_X)  # 28 N forward: about 0.65 m/s in open water
-        self.sim.run_for(15.0)                # > 10 m of open water; the wall is 4 m ahead
+        self.sim.run_for(15.0)  # > 10 m of open water; the wall is 4 m ahead
         end = self.ux["UX_1"].odom()
         x = end.pose.pose.position.x
         # The wall ahead lies between axis + half -/+ noise (rounded square, rough walls).
         self.assertGreater(x, axis_x + half - noise - R_HULL - 0.05)
         self.assertLess(x, axis_x + half + noise - R_HULL + 0.02)
         self.assertGreater(x - start["UX_1"][0], 3.0)
-        self.assertLess(abs(end.twist.twist.linear.x), 0.05)     # held by the wall
+        self.assertLess(abs(end.twist.twist.linear.x), 0.05)  # held by the wall
 
 
 if __name__ == "__main__":

@@ -20,18 +20,27 @@ from unexmin.msg import Dvl, ImuRaw
 
 NS = "/UX_1/"
 TOPICS = {
-    "imu": Imu, "imu/mag": MagneticField, "kvh/raw": ImuRaw, "kvh/imu_raw": ImuRawKvh,
-    "kvh/imu_raw_translated": ImuRawKvh, "pressure": FluidPressure, "dvl": Dvl,
-    "dvl_sonar0": Range, "dvl_sonar1": Range, "dvl_sonar2": Range, "dvl_sonar3": Range,
-    "dvl_twist": TwistWithCovarianceStamped, "dvl_water_track": DvlBottomWaterTrack,
+    "imu": Imu,
+    "imu/mag": MagneticField,
+    "kvh/raw": ImuRaw,
+    "kvh/imu_raw": ImuRawKvh,
+    "kvh/imu_raw_translated": ImuRawKvh,
+    "pressure": FluidPressure,
+    "dvl": Dvl,
+    "dvl_sonar0": Range,
+    "dvl_sonar1": Range,
+    "dvl_sonar2": Range,
+    "dvl_sonar3": Range,
+    "dvl_twist": TwistWithCovarianceStamped,
+    "dvl_water_track": DvlBottomWaterTrack,
 }
 TYPE_NAMES = {t: c._type for t, c in TOPICS.items()}
-TRANSLATED = {"kvh/imu_raw_translated", "dvl_water_track"}   # published by translator nodes, not the simulator
-SECONDS = 2.0          # [s] of sim time per record
-G = 9.81               # [m/s^2] tank.world gravity
-SPAWN_Z = -1.0         # [m] UX_1 in tank.world
-FLOOR_Z = -3.0         # [m]
-HULL_R = 0.3           # [m]
+TRANSLATED = {"kvh/imu_raw_translated", "dvl_water_track"}  # published by translator nodes, not the simulator
+SECONDS = 2.0  # [s] of sim time per record
+G = 9.81  # [m/s^2] tank.world gravity
+SPAWN_Z = -1.0  # [m] UX_1 in tank.world
+FLOOR_Z = -3.0  # [m]
+HULL_R = 0.3  # [m]
 
 
 class Sensors(unittest.TestCase):
@@ -70,9 +79,9 @@ class Sensors(unittest.TestCase):
         # joined simulator, topics subscribed at setUpClass: asked first after the steps, exact at once
         self.sim.reset(seed=1)
         self.sim.run_for(0.7)
-        self.sim.step(300)                       # t = 1.3 s
+        self.sim.step(300)  # t = 1.3 s
         for topic, rate in (("kvh/imu_raw", 500), ("imu", 500), ("pressure", 10), ("dvl", 8), ("dvl_sonar1", 8)):
-            expected = math.floor(1.3 * rate + 1e-9) / rate   # 1.3, 1.3, 1.3, 1.25, 1.25: all on the 2 ms grid
+            expected = math.floor(1.3 * rate + 1e-9) / rate  # 1.3, 1.3, 1.3, 1.25, 1.25: all on the 2 ms grid
             self.assertAlmostEqual(self.ux.latest(topic).header.stamp.to_sec(), expected, delta=1e-9, msg=topic)
 
     def test_type_names(self):
@@ -84,8 +93,16 @@ class Sensors(unittest.TestCase):
 
     def test_rates_in_simulation_time(self):
         got = self.record()
-        for topic, rate in (("imu", 500), ("kvh/imu_raw", 500), ("kvh/imu_raw_translated", 500), ("kvh/raw", 500),
-                            ("pressure", 10), ("dvl", 8), ("dvl_water_track", 8), ("dvl_sonar2", 8)):
+        for topic, rate in (
+            ("imu", 500),
+            ("kvh/imu_raw", 500),
+            ("kvh/imu_raw_translated", 500),
+            ("kvh/raw", 500),
+            ("pressure", 10),
+            ("dvl", 8),
+            ("dvl_water_track", 8),
+            ("dvl_sonar2", 8),
+        ):
             stamps = [m.header.stamp.to_sec() for m in got[topic]]
             self.assertEqual(len(stamps), round(rate * SECONDS), topic)
             # Sample k at the first 2 ms physics step at or after k / rate.

@@ -17,8 +17,8 @@ from unexmin import Simulation
 NS = "/UX_1/"
 UNITS = range(4)
 TOPICS = {**{f"sls_{i}/points": PointCloud2 for i in UNITS}, **{f"sls_{i}/scan": LaserScan for i in UNITS}}
-RATE = 10.0                      # [Hz] urdf/properties.xacro camera_<i>_fps
-SECONDS = 3.0                    # [s] of sim time per record
+RATE = 10.0  # [Hz] urdf/properties.xacro camera_<i>_fps
+SECONDS = 3.0  # [s] of sim time per record
 MOTOR = (math.radians(-45), math.radians(45), math.radians(10))  # sls_motor_min, _max, _speed; start 0
 
 
@@ -55,8 +55,10 @@ class Sls(unittest.TestCase):
     def test_every_sample_arrives_at_the_camera_rate_in_its_frame(self):
         got = self.record()
         for i in UNITS:
-            for topic, frame in ((f"sls_{i}/points", f"UX_1/camera_{i}_optical_frame"),
-                                 (f"sls_{i}/scan", f"UX_1/sls_{i}_scan_link")):
+            for topic, frame in (
+                (f"sls_{i}/points", f"UX_1/camera_{i}_optical_frame"),
+                (f"sls_{i}/scan", f"UX_1/sls_{i}_scan_link"),
+            ):
                 msgs = got[topic]
                 self.assertEqual(len(msgs), round(RATE * SECONDS), topic)  # none lost, none extra
                 for k, m in enumerate(msgs, start=1):

@@ -16,11 +16,10 @@ from std_msgs.msg import Float64
 from unexmin import Simulation
 
 NS = "/UX_1/"
-TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan,
-          "m3/points": PointCloud2}
-SECONDS = 2.0            # [s] of sim time per record
-M3_RATE = 40.0           # [Hz] urdf/properties.xacro m3_rate
-MSIS_RATE = 25.0         # [steps/s] msis_step_rate
+TOPICS = {"tritech_micron/scan": PointCloud2, "msis/msis_r": Float64, "m3/scan": LaserScan, "m3/points": PointCloud2}
+SECONDS = 2.0  # [s] of sim time per record
+M3_RATE = 40.0  # [Hz] urdf/properties.xacro m3_rate
+MSIS_RATE = 25.0  # [steps/s] msis_step_rate
 MSIS_STEP = math.radians(0.9)
 
 
@@ -73,7 +72,7 @@ class Sonar(unittest.TestCase):
             pts = list(point_cloud2.read_points(cloud, field_names=("x", "y", "z")))
             self.assertEqual(len(pts), len(valid))
             self.assertLessEqual(len(pts), 256)
-            for (x, y, z), r in zip(pts, valid):
+            for (x, y, _), r in zip(pts, valid):
                 self.assertAlmostEqual(math.hypot(x, y), r, delta=1e-5 * max(1.0, r))
         # End to end (REP-103, the M3's order): beam 0 at -fov/2 (to the right), the last at +fov/2.
         scan = got["m3/scan"][-1]

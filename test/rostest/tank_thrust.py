@@ -10,7 +10,7 @@ from std_msgs.msg import Float64
 
 from unexmin import Simulation
 from unexmin.geometry import yaw_of
-from unexmin.launcher import wait_for
+from unexmin.scripting.launcher import wait_for
 from unexmin.topics import sync_publisher
 
 # Thesis allocation matrix (eq. 5.12) rows X and N, columns M0..M7.
@@ -55,9 +55,9 @@ class TankThrust(unittest.TestCase):
         # Net surge force of the four horizontal thrusters at 45 deg: sum |A_X| * scale * cos 45.
         force = scale * np.abs(A_X).sum() * math.cos(math.pi / 4)
         rho, radius = 1000.0, 0.3
-        volume = 4.0 / 3.0 * math.pi * radius ** 3
+        volume = 4.0 / 3.0 * math.pi * radius**3
         mass = 1.5 * rho * volume  # rigid body (neutral) + added mass 1/2 rho V
-        k_quad = 0.5 * rho * 0.47 * math.pi * radius ** 2
+        k_quad = 0.5 * rho * 0.47 * math.pi * radius**2
         k_lin = 6.0 * math.pi * 1.0e-3 * radius
         expected = surge_1d(force, seconds - 1.0 / self.sim.physics_rate, mass, k_quad, k_lin, tau=0.1)
         self.assertAlmostEqual(forward, expected, delta=0.02 * expected)
@@ -73,13 +73,18 @@ class TankThrust(unittest.TestCase):
         # Yaw moment of the four horizontal thrusters: thrust * arm (0.3 m, tangential).
         moment = scale * np.abs(A_N).sum() * 0.3
         rho, radius = 1000.0, 0.3
-        inertia = 0.4 * rho * 4.0 / 3.0 * math.pi * radius ** 3 * radius ** 2  # solid sphere, no added inertia
+        inertia = 0.4 * rho * 4.0 / 3.0 * math.pi * radius**3 * radius**2  # solid sphere, no added inertia
         # the protrusions' drag 1/2 rho Cd A r^3, itemised (docs/identification.md): (count, Cd, A [m^2], r [m])
-        items = [(4, 1.0, math.pi * 0.035 ** 2, radius), (4, 1.0, 0.07 * 0.08, radius / math.sqrt(2.0)),
-                 (4, 1.0, 0.05 * 0.04, 0.32), (4, 1.0, 0.04 * 0.04, 0.32), (1, 1.05, 0.15 * 0.10, radius),
-                 (1, 1.0, 0.0034, 0.13)]
-        k_quad = sum(n * 0.5 * rho * cd * a * r ** 3 for n, cd, a, r in items)
-        k_lin = 8.0 * math.pi * 1.0e-3 * radius ** 3
+        items = [
+            (4, 1.0, math.pi * 0.035**2, radius),
+            (4, 1.0, 0.07 * 0.08, radius / math.sqrt(2.0)),
+            (4, 1.0, 0.05 * 0.04, 0.32),
+            (4, 1.0, 0.04 * 0.04, 0.32),
+            (1, 1.05, 0.15 * 0.10, radius),
+            (1, 1.0, 0.0034, 0.13),
+        ]
+        k_quad = sum(n * 0.5 * rho * cd * a * r**3 for n, cd, a, r in items)
+        k_lin = 8.0 * math.pi * 1.0e-3 * radius**3
         t = seconds - 1.0 / self.sim.physics_rate
         expected_angle = surge_1d(moment, t, inertia, k_quad, k_lin, tau=0.1)
         expected_rate = (surge_1d(moment, t + 1e-3, inertia, k_quad, k_lin, tau=0.1) - expected_angle) / 1e-3
@@ -91,8 +96,11 @@ class TankThrust(unittest.TestCase):
 
     def test_bad_commands_are_rejected_at_the_ros_edge(self):
         bad, pend, vbs = (sync_publisher(f"/UX_1/{t}", Float64) for t in ("thrusters/0/input", "pendulum", "vbs"))
-        wait_for(lambda: all(p.get_num_connections() > 0 for p in (bad, pend, vbs)), 30.0,
-                 "the simulator to subscribe to the command topics")
+        wait_for(
+            lambda: all(p.get_num_connections() > 0 for p in (bad, pend, vbs)),
+            30.0,
+            "the simulator to subscribe to the command topics",
+        )
         for value in (float("nan"), float("inf"), -float("inf"), 1e9):
             bad.publish(Float64(value))
             pend.publish(Float64(value))

@@ -11,7 +11,7 @@ centre of gravity that makes it rest at 14 deg pitch and 8 deg roll. It is spawn
 UX_1 position already at that rest attitude (no swinging in from level). A fixed remote-control
 mission (MISSION below: forward, yaw, left, pendulum, down, VBS; thesis 6.5 "X, Y, Z and Yaw remote
 control") is turned into the real robot's ESC commands the way the robot's own software does it:
-thesis allocation matrix (unexmin.allocation) then thrust -> rpm with the ESC table (unexmin.esc),
+thesis allocation matrix (unexmin.control.allocation) then thrust -> rpm with the ESC table (unexmin.control.esc),
 published at 10 Hz as ux1_msgs/MotorCommand. The simulator runs in lockstep through the same
 runner as the replay (unexmin.replay.LockstepRunner: /ux1/command/motors -> ESC driver ->
 thrusters), seed 0, and the robot's ground-truth odometry stands in for the real robot's
@@ -47,19 +47,19 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 DEFAULT_OUT = REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"
 PERTURBED_DESCRIPTION = REPO / "urdf" / "ux1_perturbed.urdf.xacro"
-PERTURBED_ROLL_DEG, PERTURBED_PITCH_DEG = 8.0, 14.0   # must match urdf/ux1_perturbed.xacro
-COMMAND_PERIOD = 0.1                                  # [s] MotorCommand period of the mission
+PERTURBED_ROLL_DEG, PERTURBED_PITCH_DEG = 8.0, 14.0  # must match urdf/ux1_perturbed.xacro
+COMMAND_PERIOD = 0.1  # [s] MotorCommand period of the mission
 
 # (start [s], end [s], wrench [X Y Z K M N] in force_moments units: the teleop's "speeds")
 MISSION = (
-    (2.0, 7.0, (6.0, 0, 0, 0, 0, 0)),       # I: forward
-    (11.0, 14.0, (0, 0, 0, 0, 0, 1.5)),     # D: +yaw
-    (14.0, 16.5, (0, 0, 0, 0, 0, -1.5)),    # A: brake the turn
-    (21.0, 27.0, (0, 6.0, 0, 0, 0, 0)),     # J: left
-    (31.0, 35.0, (0, 0, -3.0, 0, 0, 0)),    # S: down
+    (2.0, 7.0, (6.0, 0, 0, 0, 0, 0)),  # I: forward
+    (11.0, 14.0, (0, 0, 0, 0, 0, 1.5)),  # D: +yaw
+    (14.0, 16.5, (0, 0, 0, 0, 0, -1.5)),  # A: brake the turn
+    (21.0, 27.0, (0, 6.0, 0, 0, 0, 0)),  # J: left
+    (31.0, 35.0, (0, 0, -3.0, 0, 0, 0)),  # S: down
 )
-PENDULUM = ((0.0, 0.0), (28.0, math.radians(10.0)), (36.0, 0.0))   # (t [s], angle [rad]), E/R
-VBS = ((0.0, 0.0), (36.0, 0.02))                                   # (t [s], mass [kg]), Y/U
+PENDULUM = ((0.0, 0.0), (28.0, math.radians(10.0)), (36.0, 0.0))  # (t [s], angle [rad]), E/R
+VBS = ((0.0, 0.0), (36.0, 0.02))  # (t [s], mass [kg]), Y/U
 DURATION = 42.0
 
 
@@ -72,8 +72,8 @@ def mission_events(duration, vbs_trim=0.0, level_roll_pitch=None):
     of pitch then runs level instead of diving along its tilted x axis (moments stay in the body frame)."""
     import numpy as np
 
-    from unexmin.allocation import ThrusterAllocator
-    from unexmin.esc import MODE_RPM, EscConverter
+    from unexmin.control.allocation import ThrusterAllocator
+    from unexmin.control.esc import MODE_RPM, EscConverter
     from unexmin.geometry import rpy_matrix
 
     alloc, esc = ThrusterAllocator(), EscConverter()
@@ -95,22 +95,43 @@ def perturbed_world_files(tmp, overrides=None, spawn_xyz=None):
     """A copy of tank.world spawning UX_1 at the perturbed rest attitude, and a launch file that starts
     it with urdf/ux1_perturbed.urdf.xacro as UX_1's description, or with ux1.urdf.xacro and
     `overrides` (spawned at that robot's rest attitude)."""
-    from unexmin.replay.world import world_launch_file
+    from unexmin.worlds.spawn import world_launch_file
 
     if overrides:
         from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
 
-        return world_launch_file(tmp, "tank", "UX_1", rest_attitude(load(ROBOT_FILE, "UX_1", overrides)),
-                                 overrides=overrides, spawn_xyz=spawn_xyz)
-    return world_launch_file(tmp, "tank", "UX_1", (math.radians(PERTURBED_ROLL_DEG), math.radians(PERTURBED_PITCH_DEG)),
-                             description=PERTURBED_DESCRIPTION)
+        return world_launch_file(
+            tmp,
+            "tank",
+            "UX_1",
+            rest_attitude(load(ROBOT_FILE, "UX_1", overrides)),
+            overrides=overrides,
+            spawn_xyz=spawn_xyz,
+        )
+    return world_launch_file(
+        tmp,
+        "tank",
+        "UX_1",
+        (math.radians(PERTURBED_ROLL_DEG), math.radians(PERTURBED_PITCH_DEG)),
+        description=PERTURBED_DESCRIPTION,
+    )
 
 
-SENSOR_TOPICS = ("imu", "dvl_twist", "pressure")   # under /UX_1/, recorded with --sensors
+SENSOR_TOPICS = ("imu", "dvl_twist", "pressure")  # under /UX_1/, recorded with --sensors
 
 
-def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_trim=0.0, spawn_xyz=None,
-           sensors=False, imu_every=10, level=False):
+def record(
+    out,
+    nominal=False,
+    duration=DURATION,
+    seed=0,
+    overrides=None,
+    vbs_trim=0.0,
+    spawn_xyz=None,
+    sensors=False,
+    imu_every=10,
+    level=False,
+):
     """Run the mission and write the bag `out` (the robot: perturbed, nominal, or ux1.urdf.xacro with
     the xacro file `overrides`); with `sensors`, the IMU (every imu_every-th sample), DVL twist and
     pressure messages too; with `level` (and `overrides`), the mission's forces in the level frame of
@@ -121,18 +142,22 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_tr
 
     from unexmin.bag import BagWriter
     from unexmin.replay import LockstepRunner
-    from unexmin.simulation import Simulation
+    from unexmin.scripting.simulation import Simulation
     from unexmin.topics import ESC_COMMAND_TOPIC
 
     tmp = tempfile.mkdtemp(prefix="unexmin_bag_")
     launch_file = None if nominal else perturbed_world_files(tmp, overrides, spawn_xyz)
     count = 0
-    with Simulation.launch("tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"), launch_file=launch_file,
-                           timeout=60.0) as sim, BagWriter(out, callerid="/make_sample_bag") as bag:
+    with (
+        Simulation.launch(
+            "tank", robots=1, seed=seed, log_dir=os.path.join(tmp, "log"), launch_file=launch_file, timeout=60.0
+        ) as sim,
+        BagWriter(out, callerid="/make_sample_bag") as bag,
+    ):
         runner = LockstepRunner(sim, "UX_1", ESC_COMMAND_TOPIC, sample_period=0.1)
         ux = sim.robot("UX_1", streams="none")
         collectors = [ux.collect(topic) for topic in SENSOR_TOPICS] if sensors else []
-        lead = runner.lead_steps / runner.rate          # mission time 0 is sim time `lead`
+        lead = runner.lead_steps / runner.rate  # mission time 0 is sim time `lead`
         level_rp = None
         if level:
             from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
@@ -159,7 +184,7 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_tr
                 collector.clear()
                 for m in msgs:
                     stamp = m.header.stamp.to_sec()
-                    if stamp < lead - 1e-9:      # mission time 0 is sim time `lead`
+                    if stamp < lead - 1e-9:  # mission time 0 is sim time `lead`
                         continue
                     if topic == "imu":
                         imu_seen += 1
@@ -174,10 +199,12 @@ def record(out, nominal=False, duration=DURATION, seed=0, overrides=None, vbs_tr
         runner.close()
         for collector in collectors:
             collector.stop()
-    print(f"{out}: {count} messages, {duration:.0f} s; robot went from "
-          f"({traj[0, 1]:.2f}, {traj[0, 2]:.2f}, {traj[0, 3]:.2f}) to ({traj[-1, 1]:.2f}, {traj[-1, 2]:.2f}, "
-          f"{traj[-1, 3]:.2f}) m, roll/pitch at start "
-          f"{math.degrees(traj[0, 4]):.1f}/{math.degrees(traj[0, 5]):.1f} deg")
+    print(
+        f"{out}: {count} messages, {duration:.0f} s; robot went from "
+        f"({traj[0, 1]:.2f}, {traj[0, 2]:.2f}, {traj[0, 3]:.2f}) to ({traj[-1, 1]:.2f}, {traj[-1, 2]:.2f}, "
+        f"{traj[-1, 3]:.2f}) m, roll/pitch at start "
+        f"{math.degrees(traj[0, 4]):.1f}/{math.degrees(traj[0, 5]):.1f} deg"
+    )
     return count
 
 
@@ -187,18 +214,44 @@ def main(argv=None):
     ap.add_argument("--nominal", action="store_true", help="the shipped robot in the shipped world")
     ap.add_argument("--duration", type=float, default=DURATION, help=f"[s] mission length (default {DURATION})")
     ap.add_argument("--seed", type=int, default=0, help="simulator seed (default 0)")
-    ap.add_argument("--overrides", help="xacro overrides file: record with ux1.urdf.xacro and these properties "
-                    "instead of the thesis prototype (spawned at its rest attitude)")
-    ap.add_argument("--vbs-trim", type=float, default=0.0, help="[kg] added to every VBS command: trims a robot "
-                    "of other buoyancy to near neutral so that it stays in mid-water (default 0)")
-    ap.add_argument("--spawn-xyz", type=float, nargs=3, metavar=("X", "Y", "Z"),
-                    help="[m] spawn position of UX_1 with --overrides (default the world's: -1.7 -0.85 -1)")
-    ap.add_argument("--sensors", action="store_true", help="record the IMU, DVL and pressure sensors too "
-                    "(/UX_1/imu, /UX_1/dvl_twist, /UX_1/pressure), for dead reckoning")
-    ap.add_argument("--imu-every", type=int, default=10, help="with --sensors: keep every n-th IMU sample of the "
-                    "500 Hz stream (default 10: 50 Hz, which keeps the sample bag under 2 MB)")
-    ap.add_argument("--level", action="store_true", help="with --overrides: the mission's forces in the level "
-                    "frame of the robot's rest attitude (attitude-compensated teleop), so a tilted robot runs level")
+    ap.add_argument(
+        "--overrides",
+        help="xacro overrides file: record with ux1.urdf.xacro and these properties "
+        "instead of the thesis prototype (spawned at its rest attitude)",
+    )
+    ap.add_argument(
+        "--vbs-trim",
+        type=float,
+        default=0.0,
+        help="[kg] added to every VBS command: trims a robot "
+        "of other buoyancy to near neutral so that it stays in mid-water (default 0)",
+    )
+    ap.add_argument(
+        "--spawn-xyz",
+        type=float,
+        nargs=3,
+        metavar=("X", "Y", "Z"),
+        help="[m] spawn position of UX_1 with --overrides (default the world's: -1.7 -0.85 -1)",
+    )
+    ap.add_argument(
+        "--sensors",
+        action="store_true",
+        help="record the IMU, DVL and pressure sensors too "
+        "(/UX_1/imu, /UX_1/dvl_twist, /UX_1/pressure), for dead reckoning",
+    )
+    ap.add_argument(
+        "--imu-every",
+        type=int,
+        default=10,
+        help="with --sensors: keep every n-th IMU sample of the "
+        "500 Hz stream (default 10: 50 Hz, which keeps the sample bag under 2 MB)",
+    )
+    ap.add_argument(
+        "--level",
+        action="store_true",
+        help="with --overrides: the mission's forces in the level "
+        "frame of the robot's rest attitude (attitude-compensated teleop), so a tilted robot runs level",
+    )
     args = ap.parse_args(argv)
     if args.level and not args.overrides:
         ap.error("--level goes with --overrides")
@@ -212,8 +265,18 @@ def main(argv=None):
         ap.error(f"--overrides {args.overrides}: no such file")
     if not math.isfinite(args.vbs_trim):
         ap.error(f"--vbs-trim {args.vbs_trim}: expected a finite mass [kg]")
-    record(args.out, args.nominal, args.duration, args.seed, args.overrides, args.vbs_trim, args.spawn_xyz,
-           args.sensors, args.imu_every, args.level)
+    record(
+        args.out,
+        args.nominal,
+        args.duration,
+        args.seed,
+        args.overrides,
+        args.vbs_trim,
+        args.spawn_xyz,
+        args.sensors,
+        args.imu_every,
+        args.level,
+    )
     return 0
 
 

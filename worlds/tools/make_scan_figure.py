@@ -6,6 +6,7 @@ missing patches), the world python -m unexmin.world_from_scan makes of it, and U
 Needs the generated mine (scripts/setup.sh), Xvfb, ImageMagick's import and rviz. rviz runs with a copy of
 launch/unexmin.rviz whose orbit view is centred on UX_1's spawn point.
 """
+
 import argparse
 import re
 import subprocess
@@ -14,9 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.launcher import WorldProcess, wait_for
-from unexmin.mesh_marker import read_mesh
+from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.world_from_scan import build_world, sample_scan
+from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -29,12 +30,19 @@ def rviz_shot(world_file, spawn, work):
     config = re.sub(r"      Distance: \S+\n", "      Distance: 14\n", config, count=1)
     (work / "view.rviz").write_text(config)
     launch = work / "figure.launch"
-    launch.write_text('<launch><include file="$(find unexmin)/launch/world.launch">'
-                      f'<arg name="world_file" value="{world_file}"/><arg name="robots" value="1"/>'
-                      '<arg name="sensors" value="none"/></include>'
-                      f'<node name="rviz" pkg="rviz" type="rviz" args="-d {work / "view.rviz"}"/></launch>\n')
-    xvfb = subprocess.Popen(["Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
-                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, start_new_session=True)
+    launch.write_text(
+        '<launch><include file="$(find unexmin)/launch/world.launch">'
+        f'<arg name="world_file" value="{world_file}"/><arg name="robots" value="1"/>'
+        '<arg name="sensors" value="none"/></include>'
+        f'<node name="rviz" pkg="rviz" type="rviz" args="-d {work / "view.rviz"}"/></launch>\n'
+    )
+    xvfb = subprocess.Popen(
+        ["Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        start_new_session=True,
+    )
     display = ":" + xvfb.stdout.readline().strip()
     import os
 
@@ -82,6 +90,7 @@ def main():
     shot = rviz_shot(work / "world" / rep["world"], spawn, work)
 
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.image import imread
@@ -91,9 +100,12 @@ def main():
     fig = plt.figure(figsize=(15, 5.2))
     rng = np.random.default_rng(0)
     sub = points[rng.choice(len(points), min(60000, len(points)), replace=False)]
-    for k, title in enumerate((f"scan: {len(points):,} points (noise 2 cm, 15 missing patches)",
-                               f"mesh: {rep['collision']['triangles']:,} triangles, closed, "
-                               f"{rep['holes_closed']} holes closed")):
+    for k, title in enumerate(
+        (
+            f"scan: {len(points):,} points (noise 2 cm, 15 missing patches)",
+            f"mesh: {rep['collision']['triangles']:,} triangles, closed, {rep['holes_closed']} holes closed",
+        )
+    ):
         ax = fig.add_subplot(1, 3, k + 1, projection="3d")
         if k == 0:
             ax.scatter(sub[:, 0], sub[:, 1], sub[:, 2], s=0.2, c=sub[:, 2], cmap="viridis")
@@ -105,11 +117,15 @@ def main():
             ax.add_collection3d(Poly3DCollection(vv[vt], facecolors=shade, linewidths=0))
             ax.scatter(*np.array([s["xyz"] for s in rep["spawns"]]).T, s=30, c="gold", depthshade=False)
         lo, hi = points.min(axis=0), points.max(axis=0)
-        ax.set_xlim(lo[0], hi[0]); ax.set_ylim(lo[1], hi[1]); ax.set_zlim(lo[2], hi[2])
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        ax.set_zlim(lo[2], hi[2])
         ax.set_box_aspect(hi - lo)
         ax.view_init(elev=18, azim=-60)
         ax.set_title(title, fontsize=9)
-        ax.set_xlabel("x [m]"); ax.set_ylabel("y [m]"); ax.set_zlabel("z [m]")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_zlabel("z [m]")
     ax = fig.add_subplot(1, 3, 3)
     ax.imshow(imread(str(shot)))
     ax.set_axis_off()

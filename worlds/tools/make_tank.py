@@ -12,6 +12,7 @@ Writes, into worlds/meshes/ (or --out):
 All dimensions are [m]. Deterministic: no randomness, so re-running reproduces the same files.
 Usage: python3 worlds/tools/make_tank.py [--out DIR]
 """
+
 import argparse
 import os
 
@@ -19,30 +20,30 @@ import numpy as np
 import trimesh
 
 # ---- tank (ours: the thesis gives no size) ----
-TANK_X = 6.0            # [m] interior length along x
-TANK_Y = 4.0            # [m] interior width along y
-TANK_FLOOR_Z = -3.0     # [m] interior floor height (3 m of water below the surface at z = 0)
-TANK_RIM_Z = 0.3        # [m] top of the walls
-WALL = 0.05             # [m] wall and floor thickness (tank and test box)
+TANK_X = 6.0  # [m] interior length along x
+TANK_Y = 4.0  # [m] interior width along y
+TANK_FLOOR_Z = -3.0  # [m] interior floor height (3 m of water below the surface at z = 0)
+TANK_RIM_Z = 0.3  # [m] top of the walls
+WALL = 0.05  # [m] wall and floor thickness (tank and test box)
 
 # ---- test box ----
-BOX_SIZE = 4.0          # [m] interior edge of the closed cube, centred on the origin
+BOX_SIZE = 4.0  # [m] interior edge of the closed cube, centred on the origin
 
 # ---- anchor (admiralty pattern, made of boxes and cylinders) ----
-RING_RADIUS = 0.04      # [m] ring: major radius
-RING_TUBE = 0.008       # [m] ring: tube radius
-SHANK_RADIUS = 0.02     # [m]
-SHANK_TOP = -0.08       # [m] shank from here ...
-SHANK_BOTTOM = -0.56    # [m] ... down to the crown
-STOCK_RADIUS = 0.015    # [m] stock: bar across the top, along y (perpendicular to the arms)
-STOCK_LENGTH = 0.5      # [m]
-STOCK_Z = -0.12         # [m]
-ARM_LENGTH = 0.30       # [m] each arm, from the crown
-ARM_SECTION = (0.035, 0.03)   # [m] arm cross-section (in the arms' plane, across it)
+RING_RADIUS = 0.04  # [m] ring: major radius
+RING_TUBE = 0.008  # [m] ring: tube radius
+SHANK_RADIUS = 0.02  # [m]
+SHANK_TOP = -0.08  # [m] shank from here ...
+SHANK_BOTTOM = -0.56  # [m] ... down to the crown
+STOCK_RADIUS = 0.015  # [m] stock: bar across the top, along y (perpendicular to the arms)
+STOCK_LENGTH = 0.5  # [m]
+STOCK_Z = -0.12  # [m]
+ARM_LENGTH = 0.30  # [m] each arm, from the crown
+ARM_SECTION = (0.035, 0.03)  # [m] arm cross-section (in the arms' plane, across it)
 ARM_ELEVATION = np.radians(45.0)  # [rad] arms rise from the crown at this angle, in the x-z plane
 FLUKE_SIZE = (0.12, 0.10, 0.01)  # [m] palm: along the arm, across (y), thickness
-CROWN_RADIUS = 0.03     # [m]
-SECTIONS = 24           # facets around cylinders and the ring
+CROWN_RADIUS = 0.03  # [m]
+SECTIONS = 24  # facets around cylinders and the ring
 
 
 def _quad(a, b, c, d):
@@ -56,24 +57,24 @@ def open_tank(x, y, floor_z, rim_z, t):
     # Corner order around a rectangle (counter-clockwise seen from +z).
     ring = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
     verts = []
-    for sx, sy in ring:                                   # 0..3 inner floor
+    for sx, sy in ring:  # 0..3 inner floor
         verts.append((sx * hx, sy * hy, floor_z))
-    for sx, sy in ring:                                   # 4..7 inner rim
+    for sx, sy in ring:  # 4..7 inner rim
         verts.append((sx * hx, sy * hy, rim_z))
-    for sx, sy in ring:                                   # 8..11 outer bottom
+    for sx, sy in ring:  # 8..11 outer bottom
         verts.append((sx * (hx + t), sy * (hy + t), floor_z - t))
-    for sx, sy in ring:                                   # 12..15 outer rim
+    for sx, sy in ring:  # 12..15 outer rim
         verts.append((sx * (hx + t), sy * (hy + t), rim_z))
     faces = []
     # Counter-clockwise seen from outside the wall solid: normals point out of the walls, which on
     # the inner faces is into the water.
-    faces += _quad(0, 1, 2, 3)                            # inner floor, +z
-    faces += _quad(11, 10, 9, 8)                          # outer bottom, -z
+    faces += _quad(0, 1, 2, 3)  # inner floor, +z
+    faces += _quad(11, 10, 9, 8)  # outer bottom, -z
     for i in range(4):
         j = (i + 1) % 4
-        faces += _quad(i, 4 + i, 4 + j, j)                # inner walls, towards the centre
-        faces += _quad(8 + i, 8 + j, 12 + j, 12 + i)      # outer walls, away from it
-        faces += _quad(4 + i, 12 + i, 12 + j, 4 + j)      # rim, +z
+        faces += _quad(i, 4 + i, 4 + j, j)  # inner walls, towards the centre
+        faces += _quad(8 + i, 8 + j, 12 + j, 12 + i)  # outer walls, away from it
+        faces += _quad(4 + i, 12 + i, 12 + j, 4 + j)  # rim, +z
     return trimesh.Trimesh(np.array(verts, float), np.array(faces, np.int64), process=True)
 
 
@@ -94,7 +95,7 @@ def _box_along(center, direction, extents):
     """Box with extents (along, across-y, thickness) whose first axis follows `direction` in x-z."""
     d = np.asarray(direction, float)
     d /= np.linalg.norm(d)
-    pitch = -np.arctan2(d[2], d[0])   # rotate +x onto d about y
+    pitch = -np.arctan2(d[2], d[0])  # rotate +x onto d about y
     tf = trimesh.transformations.rotation_matrix(pitch, [0, 1, 0])
     tf[:3, 3] = center
     return trimesh.creation.box(extents=extents, transform=tf)
@@ -103,20 +104,19 @@ def _box_along(center, direction, extents):
 def anchor():
     parts = []
     ring_centre_z = -(RING_RADIUS + RING_TUBE)
-    ring = trimesh.creation.torus(major_radius=RING_RADIUS, minor_radius=RING_TUBE,
-                                  major_sections=SECTIONS, minor_sections=12)
+    ring = trimesh.creation.torus(
+        major_radius=RING_RADIUS, minor_radius=RING_TUBE, major_sections=SECTIONS, minor_sections=12
+    )
     ring.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))  # ring in x-z plane
     ring.apply_translation([0, 0, ring_centre_z])
     parts.append(ring)
     parts.append(_cylinder_between([0, 0, SHANK_TOP], [0, 0, SHANK_BOTTOM], SHANK_RADIUS))
-    parts.append(_cylinder_between([0, -STOCK_LENGTH / 2, STOCK_Z], [0, STOCK_LENGTH / 2, STOCK_Z],
-                                   STOCK_RADIUS))
+    parts.append(_cylinder_between([0, -STOCK_LENGTH / 2, STOCK_Z], [0, STOCK_LENGTH / 2, STOCK_Z], STOCK_RADIUS))
     crown = np.array([0.0, 0.0, SHANK_BOTTOM])
     parts.append(trimesh.creation.icosphere(subdivisions=2, radius=CROWN_RADIUS).apply_translation(crown))
     for side in (-1.0, 1.0):
         d = np.array([side * np.cos(ARM_ELEVATION), 0.0, np.sin(ARM_ELEVATION)])
-        parts.append(_box_along(crown + d * ARM_LENGTH / 2, d,
-                                [ARM_LENGTH, ARM_SECTION[1], ARM_SECTION[0]]))
+        parts.append(_box_along(crown + d * ARM_LENGTH / 2, d, [ARM_LENGTH, ARM_SECTION[1], ARM_SECTION[0]]))
         # Palm on the upper (inner) face of the arm, near its tip.
         normal = np.array([-d[2] * side, 0.0, d[0] * side])  # perpendicular to d in x-z, pointing up
         centre = crown + d * (ARM_LENGTH - FLUKE_SIZE[0] / 2) + normal * (ARM_SECTION[0] / 2 + FLUKE_SIZE[2] / 2)
@@ -127,8 +127,9 @@ def anchor():
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=os.path.join(here, os.pardir, "meshes"),
-                        help="output folder (default: worlds/meshes)")
+    parser.add_argument(
+        "--out", default=os.path.join(here, os.pardir, "meshes"), help="output folder (default: worlds/meshes)"
+    )
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
 
@@ -143,8 +144,10 @@ def main():
         with open(path, "wb") as f:
             f.write(trimesh.exchange.stl.export_stl(mesh))
         lo, hi = mesh.bounds
-        print("%-9s %5d faces  bounds [%s] .. [%s]  -> %s" % (
-            name, len(mesh.faces), " ".join("%.3f" % v for v in lo), " ".join("%.3f" % v for v in hi), path))
+        print(
+            "%-9s %5d faces  bounds [%s] .. [%s]  -> %s"
+            % (name, len(mesh.faces), " ".join("%.3f" % v for v in lo), " ".join("%.3f" % v for v in hi), path)
+        )
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from unexmin.bind_shim import ros_environment
 from unexmin.hil.probe import link_drop, load
-from unexmin.launcher import marked_processes, stop_process_group, wait_for
+from unexmin.scripting.launcher import marked_processes, stop_process_group, wait_for
 
 SIM_ADDRESS, ROBOT_ADDRESS = "169.254.73.1", "169.254.73.2"
 ROBOT_MASTER = f"http://{ROBOT_ADDRESS}:11311"

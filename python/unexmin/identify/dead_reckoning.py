@@ -39,10 +39,10 @@ ATMOSPHERIC_PRESSURE = 101325.0
 class Mounts:
     """Sensor mounts in the body (base_link) frame."""
 
-    imu_R: np.ndarray        # 3 x 3, IMU frame -> body
-    dvl_R: np.ndarray        # 3 x 3, DVL frame -> body
-    dvl_r: np.ndarray        # [m] DVL origin in the body frame
-    pressure_r: np.ndarray   # [m] pressure sensor origin in the body frame
+    imu_R: np.ndarray  # 3 x 3, IMU frame -> body
+    dvl_R: np.ndarray  # 3 x 3, DVL frame -> body
+    dvl_r: np.ndarray  # [m] DVL origin in the body frame
+    pressure_r: np.ndarray  # [m] pressure sensor origin in the body frame
 
 
 def mounts_from_urdf(urdf, name="UX_1", imu_link="imu_link", dvl_link="dvl_link", pressure_link="pressure_link"):
@@ -109,10 +109,10 @@ def _skew_exp(phi):
     K = np.array([[0.0, -phi[2], phi[1]], [phi[2], 0.0, -phi[0]], [-phi[1], phi[0], 0.0]])
     if th < 1e-9:
         return np.eye(3) + K + 0.5 * K @ K
-    return np.eye(3) + math.sin(th) / th * K + (1.0 - math.cos(th)) / th ** 2 * K @ K
+    return np.eye(3) + math.sin(th) / th * K + (1.0 - math.cos(th)) / th**2 * K @ K
 
 
-def rpy_of(R):
+def matrices_to_rpy(R):
     """(n, 3) ZYX roll, pitch, yaw [rad] of (n, 3, 3) matrices (body -> world)."""
     roll = np.arctan2(R[:, 2, 1], R[:, 2, 2])
     pitch = np.arcsin(np.clip(-R[:, 2, 0], -1.0, 1.0))
@@ -126,9 +126,21 @@ def level(specific_force):
     return math.atan2(f[1], f[2]), math.atan2(-f[0], math.hypot(f[1], f[2]))
 
 
-def dead_reckon(imu, dvl, pressure, mounts, t_out, water_density=1000.0, gravity=9.81,
-                atmospheric_pressure=ATMOSPHERIC_PRESSURE, surface_z=0.0, level_time=1.0, initial_yaw=0.0,
-                initial_xy=(0.0, 0.0), depth_time_constant=10.0):
+def dead_reckon(
+    imu,
+    dvl,
+    pressure,
+    mounts,
+    t_out,
+    water_density=1000.0,
+    gravity=9.81,
+    atmospheric_pressure=ATMOSPHERIC_PRESSURE,
+    surface_z=0.0,
+    level_time=1.0,
+    initial_yaw=0.0,
+    initial_xy=(0.0, 0.0),
+    depth_time_constant=10.0,
+):
     """Pose rows (t, x, y, z, roll, pitch, yaw) [s, m, rad] of the hull centre at the times t_out [s].
 
     imu (n, 7), dvl (m, 4), pressure (k, 2): see sensor_arrays. The integration runs at the IMU's
@@ -168,8 +180,11 @@ def dead_reckon(imu, dvl, pressure, mounts, t_out, water_density=1000.0, gravity
     pos[:, 1] += initial_xy[1]
     # 3. depth: the pressure sensor's z, moved to the hull centre, fused with the integrated DVL heave
     k_p = np.clip(np.searchsorted(t, pressure[:, 0]), 0, len(t) - 1)
-    z_centre = surface_z - (pressure[:, 1] - atmospheric_pressure) / (water_density * gravity) \
+    z_centre = (
+        surface_z
+        - (pressure[:, 1] - atmospheric_pressure) / (water_density * gravity)
         - np.einsum("nj,j->n", R[k_p, 2, :], mounts.pressure_r)
+    )
     z_meas = np.interp(t, pressure[:, 0], z_centre)
     from scipy.signal import lfilter
 
@@ -182,7 +197,7 @@ def dead_reckon(imu, dvl, pressure, mounts, t_out, water_density=1000.0, gravity
     low, _ = lfilter([alpha], [1.0, alpha - 1.0], err, zi=[start * (1.0 - alpha)])
     pos[:, 2] += low
     # 4. sample the pose at t_out
-    rpy = rpy_of(R)
+    rpy = matrices_to_rpy(R)
     rpy[:, 2] = np.unwrap(rpy[:, 2])
     t_out = np.clip(np.asarray(t_out, float), t[0], t[-1])
     cols = [np.interp(t_out, t, pos[:, i]) for i in range(3)] + [np.interp(t_out, t, rpy[:, i]) for i in range(3)]

@@ -29,16 +29,16 @@ class DescriptionError(ValueError):
 @dataclass
 class Thruster:
     id: int
-    position: np.ndarray      # [m] body frame
-    direction: np.ndarray     # unit thrust direction, body frame
-    tau: float                # [s] first-order time constant (0: zero order)
-    thrust_min: float         # [N]
-    thrust_max: float         # [N]
-    command_min: float        # [command unit]
+    position: np.ndarray  # [m] body frame
+    direction: np.ndarray  # unit thrust direction, body frame
+    tau: float  # [s] first-order time constant (0: zero order)
+    thrust_min: float  # [N]
+    thrust_max: float  # [N]
+    command_min: float  # [command unit]
     command_max: float
-    timeout: float            # [s] watchdog (<= 0: off)
-    conversion: str           # identity | table | basic
-    gain: float = 1.0         # thrust gain of a linear table (thruster_gain_*: a two-point table), else 1
+    timeout: float  # [s] watchdog (<= 0: off)
+    conversion: str  # identity | table | basic
+    gain: float = 1.0  # thrust gain of a linear table (thruster_gain_*: a two-point table), else 1
 
     @property
     def horizontal(self):
@@ -49,35 +49,39 @@ class Thruster:
 class RobotPhysics:
     """Numbers of the <unexmin> block. Body frame x forward, y left, z up; origin at the hull centre."""
 
-    mass: float                    # [kg] dry mass incl. pendulum, VBS empty
-    volume: float                  # [m^3]
-    radius: float                  # [m]
-    cog_base: np.ndarray           # [m] CG of the vehicle less the pendulum
-    cob: np.ndarray                # [m]
-    inertia: np.ndarray            # [kg m^2] principal moments
-    added_mass: np.ndarray         # 6 x 6
-    linear_damping: np.ndarray     # 6
+    mass: float  # [kg] dry mass incl. pendulum, VBS empty
+    volume: float  # [m^3]
+    radius: float  # [m]
+    cog_base: np.ndarray  # [m] CG of the vehicle less the pendulum
+    cob: np.ndarray  # [m]
+    inertia: np.ndarray  # [kg m^2] principal moments
+    added_mass: np.ndarray  # 6 x 6
+    linear_damping: np.ndarray  # 6
     quadratic_damping: np.ndarray  # 6
     thrusters: list
-    pendulum_mass: float = 0.0     # [kg]
-    pendulum_arm: float = 0.0      # [m]
-    pendulum_speed: float = 1.0    # [rad/s]
-    pendulum_min: float = 0.0      # [rad]
+    pendulum_mass: float = 0.0  # [kg]
+    pendulum_arm: float = 0.0  # [m]
+    pendulum_speed: float = 1.0  # [rad/s]
+    pendulum_min: float = 0.0  # [rad]
     pendulum_max: float = 0.0
-    vbs_min: float = 0.0           # [kg]
+    vbs_min: float = 0.0  # [kg]
     vbs_max: float = 0.0
     vbs_position: np.ndarray = None  # [m]
 
     @property
     def cog(self):
         """[m] whole-vehicle centre of gravity, pendulum at 0 rad, VBS empty, body frame."""
-        return ((self.mass - self.pendulum_mass) * self.cog_base
-                + self.pendulum_mass * np.array([0.0, 0.0, -self.pendulum_arm])) / self.mass
+        return (
+            (self.mass - self.pendulum_mass) * self.cog_base
+            + self.pendulum_mass * np.array([0.0, 0.0, -self.pendulum_arm])
+        ) / self.mass
 
     def groups(self):
         """{'horizontal': [ids], 'vertical': [ids]} of the thrusters (vertical: any thrust along z)."""
-        return {"horizontal": [t.id for t in self.thrusters if t.horizontal],
-                "vertical": [t.id for t in self.thrusters if not t.horizontal]}
+        return {
+            "horizontal": [t.id for t in self.thrusters if t.horizontal],
+            "vertical": [t.id for t in self.thrusters if not t.horizontal],
+        }
 
 
 def xacro_executable():
@@ -114,8 +118,11 @@ def _table_gain(conversion):
     x = [float(v) for v in conversion.find("param[@name='input']").get("value").split()]
     y = [float(v) for v in conversion.find("param[@name='output']").get("value").split()]
     slopes = [b / a for a, b in zip(x, y) if a != 0.0]
-    if slopes and all(abs(k - slopes[0]) < 1e-9 * max(1.0, abs(slopes[0])) for k in slopes) and \
-            all(b == 0.0 for a, b in zip(x, y) if a == 0.0):
+    if (
+        slopes
+        and all(abs(k - slopes[0]) < 1e-9 * max(1.0, abs(slopes[0])) for k in slopes)
+        and all(b == 0.0 for a, b in zip(x, y) if a == 0.0)
+    ):
         return slopes[0]
     return 1.0
 
@@ -148,20 +155,34 @@ def parse(urdf):
         tau = 0.0
         if dyn.get("type") == "first_order":
             tau = float(dyn.find("param[@name='tau']").get("value"))
-        thrusters.append(Thruster(
-            id=int(el.get("id")), position=_floats(origin.get("xyz", "0 0 0"), 3, "joint xyz"),
-            direction=rot @ axis / np.linalg.norm(axis), tau=tau,
-            thrust_min=float(el.find("thrust").get("min")), thrust_max=float(el.find("thrust").get("max")),
-            command_min=float(el.find("command").get("min")), command_max=float(el.find("command").get("max")),
-            timeout=float(el.find("timeout").get("value")), conversion=el.find("conversion").get("type"),
-            gain=_table_gain(el.find("conversion"))))
+        thrusters.append(
+            Thruster(
+                id=int(el.get("id")),
+                position=_floats(origin.get("xyz", "0 0 0"), 3, "joint xyz"),
+                direction=rot @ axis / np.linalg.norm(axis),
+                tau=tau,
+                thrust_min=float(el.find("thrust").get("min")),
+                thrust_max=float(el.find("thrust").get("max")),
+                command_min=float(el.find("command").get("min")),
+                command_max=float(el.find("command").get("max")),
+                timeout=float(el.find("timeout").get("value")),
+                conversion=el.find("conversion").get("type"),
+                gain=_table_gain(el.find("conversion")),
+            )
+        )
     physics = RobotPhysics(
-        mass=attr("mass"), volume=attr("volume"), radius=attr("radius"),
-        cog_base=attr("center_of_gravity", "xyz", 3), cob=attr("center_of_buoyancy", "xyz", 3),
+        mass=attr("mass"),
+        volume=attr("volume"),
+        radius=attr("radius"),
+        cog_base=attr("center_of_gravity", "xyz", 3),
+        cob=attr("center_of_buoyancy", "xyz", 3),
         inertia=np.array([float(inertia.get(k)) for k in ("ixx", "iyy", "izz")]),
         added_mass=attr("added_mass", n=36).reshape(6, 6),
-        linear_damping=attr("linear_damping", n=6), quadratic_damping=attr("quadratic_damping", n=6),
-        thrusters=sorted(thrusters, key=lambda t: t.id), vbs_position=np.zeros(3))
+        linear_damping=attr("linear_damping", n=6),
+        quadratic_damping=attr("quadratic_damping", n=6),
+        thrusters=sorted(thrusters, key=lambda t: t.id),
+        vbs_position=np.zeros(3),
+    )
     pend = root.find("unexmin/pendulum")
     if pend is not None:
         physics.pendulum_mass, physics.pendulum_arm = float(pend.get("mass")), float(pend.get("arm"))

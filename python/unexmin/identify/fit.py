@@ -35,13 +35,13 @@ for _name in PARAMS:
 def tolerance(name, value, nominal, physics, signals):
     """1-sigma a parameter must reach to count as identified: half of the promised accuracy."""
     if name == "buoyancy_kg":
-        return 0.01                                   # [kg]
+        return 0.01  # [kg]
     if name.startswith("cog_"):
-        return 0.001                                  # [m]
+        return 0.001  # [m]
     if name.startswith("thrust_gain"):
         return 0.05 * max(abs(value), abs(nominal))
     if name == "added_mass":
-        return 0.05 * (physics.mass + max(value, nominal))   # of the mass the engine integrates
+        return 0.05 * (physics.mass + max(value, nominal))  # of the mass the engine integrates
     if name.startswith("added_inertia"):
         k = DOF.index(name.split("_")[-1]) - 3
         return 0.05 * (physics.inertia[k] + max(value, nominal))
@@ -50,7 +50,7 @@ def tolerance(name, value, nominal, physics, signals):
         return 0.05 * max(abs(value), abs(nominal))
     # linear damping: 5 % of the damping felt at the mission's RMS speed in that DOF (linear + quadratic)
     speed = signals.v[:, k] if k < 3 else signals.w[:, k - 3]
-    rms = float(np.sqrt(np.mean(speed ** 2)))
+    rms = float(np.sqrt(np.mean(speed**2)))
     return 0.05 * max(abs(value), abs(nominal), physics.quadratic_damping[k] * rms)
 
 
@@ -74,7 +74,7 @@ def _robust_scale(r):
     scale from the quiet samples alone would make every sample of the step an outlier of the robust
     loss, leaving the centre of gravity's height without support."""
     mad = 1.4826 * np.median(np.abs(r - np.median(r, axis=0)), axis=0)
-    scale = np.maximum(mad, np.sqrt(np.mean(r ** 2, axis=0)) / 3.0)
+    scale = np.maximum(mad, np.sqrt(np.mean(r**2, axis=0)) / 3.0)
     # a degree of freedom the mission never moves (the roll of a robot with its centre of gravity on
     # the axis) has a residual of rounding size: its weight is capped at SCALE_FLOOR_RATIO^-1 times that
     # of the best-fitting sibling (forces among forces, moments among moments), so that its rows do
@@ -101,8 +101,17 @@ def _solve(problem, x0, free, weights, max_nfev=200, loss="soft_l1"):
     x_lin = np.clip(lin.x / norms, lb, ub)
     sol = SimpleNamespace(x=x_lin, fun=fun(x_lin))
     if loss != "linear":
-        sol = least_squares(fun, np.clip(sol.x, lb + 1e-12, ub), jac=lambda xf: A_free, bounds=(lb, ub),
-                            x_scale="jac", max_nfev=max_nfev, method="trf", loss=loss, f_scale=F_SCALE)
+        sol = least_squares(
+            fun,
+            np.clip(sol.x, lb + 1e-12, ub),
+            jac=lambda xf: A_free,
+            bounds=(lb, ub),
+            x_scale="jac",
+            max_nfev=max_nfev,
+            method="trf",
+            loss=loss,
+            f_scale=F_SCALE,
+        )
     x = x0.copy()
     x[free] = sol.x
     return x, sol, A_free
@@ -162,4 +171,4 @@ def identify(signals, physics, nominal, fixed=(), progress=None):
         x = x.copy()
     x[~free] = nominal[~free]
     rms = np.sqrt(np.mean(problem.residual(x) ** 2, axis=0))
-    return Fit(x, sig, free, unidentifiable, dropped_sigma, rms, np.sqrt(np.mean(r0 ** 2, axis=0)), weights, problem)
+    return Fit(x, sig, free, unidentifiable, dropped_sigma, rms, np.sqrt(np.mean(r0**2, axis=0)), weights, problem)

@@ -28,10 +28,14 @@ DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 # Parameter vector: (name, group, index in the group)
-PARAMS = (["buoyancy_kg", "added_mass"] + [f"added_inertia_{d}" for d in DOF[3:]]
-          + ["thrust_gain_horizontal", "thrust_gain_vertical"]
-          + [f"damping_linear_{d}" for d in DOF] + [f"damping_quadratic_{d}" for d in DOF]
-          + ["cog_x", "cog_y", "cog_z"])
+PARAMS = (
+    ["buoyancy_kg", "added_mass"]
+    + [f"added_inertia_{d}" for d in DOF[3:]]
+    + ["thrust_gain_horizontal", "thrust_gain_vertical"]
+    + [f"damping_linear_{d}" for d in DOF]
+    + [f"damping_quadratic_{d}" for d in DOF]
+    + ["cog_x", "cog_y", "cog_z"]
+)
 INDEX = {name: i for i, name in enumerate(PARAMS)}
 
 
@@ -47,7 +51,7 @@ def nominal_vector(physics):
     for k, d in enumerate(DOF):
         x[INDEX[f"damping_linear_{d}"]] = physics.linear_damping[k]
         x[INDEX[f"damping_quadratic_{d}"]] = physics.quadratic_damping[k]
-    x[INDEX["cog_x"]:INDEX["cog_z"] + 1] = physics.cog - physics.cob
+    x[INDEX["cog_x"] : INDEX["cog_z"] + 1] = physics.cog - physics.cob
     return x
 
 
@@ -55,9 +59,14 @@ def rotations(rpy):
     """(n, 3, 3) matrices R = Rz(yaw) Ry(pitch) Rx(roll) (body -> world) of rows of rpy [rad]."""
     r, p, y = rpy[:, 0], rpy[:, 1], rpy[:, 2]
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    return np.stack([np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], -1),
-                     np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], -1),
-                     np.stack([-sp, cp * sr, cp * cr], -1)], 1)
+    return np.stack(
+        [
+            np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], -1),
+            np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], -1),
+            np.stack([-sp, cp * sr, cp * cr], -1),
+        ],
+        1,
+    )
 
 
 def body_rates(e, de, dde):
@@ -68,25 +77,29 @@ def body_rates(e, de, dde):
     ddph, ddth, ddps = dde.T
     sph, cph, sth, cth = np.sin(ph), np.cos(ph), np.sin(th), np.cos(th)
     w = np.stack([dph - dps * sth, dth * cph + dps * sph * cth, -dth * sph + dps * cph * cth], -1)
-    dw = np.stack([
-        ddph - ddps * sth - dps * dth * cth,
-        ddth * cph - dth * dph * sph + ddps * sph * cth + dps * dph * cph * cth - dps * dth * sph * sth,
-        -ddth * sph - dth * dph * cph + ddps * cph * cth - dps * dph * sph * cth - dps * dth * cph * sth], -1)
+    dw = np.stack(
+        [
+            ddph - ddps * sth - dps * dth * cth,
+            ddth * cph - dth * dph * sph + ddps * sph * cth + dps * dph * cph * cth - dps * dth * sph * sth,
+            -ddth * sph - dth * dph * cph + ddps * cph * cth - dps * dph * sph * cth - dps * dth * cph * sth,
+        ],
+        -1,
+    )
     return w, dw
 
 
 def submerged_fraction(z, surface_z, radius):
     """Submerged volume fraction of a sphere of `radius` [m] centred at world z [m] (simulator's formula)."""
     h = np.clip(surface_z - (np.asarray(z) - radius), 0.0, 2.0 * radius)
-    return np.clip(h * h * (3.0 * radius - h) / (4.0 * radius ** 3), 0.0, 1.0)
+    return np.clip(h * h * (3.0 * radius - h) / (4.0 * radius**3), 0.0, 1.0)
 
 
 def thrust_history(physics, motors, times, rate=500.0, converter=None):
     """Achieved thrust [N] of each thruster at unit gain at `times` [s] (mission time), from the
-    mission's motor commands [(t, mode, values[8])]: the ESC conversion (unexmin.esc), then each
+    mission's motor commands [(t, mode, values[8])]: the ESC conversion (unexmin.control.esc), then each
     thruster's command limits, watchdog and first-order dynamics at the physics `rate` [Hz], as the
     simulator applies them (a command acts from the physics step after its time)."""
-    from unexmin.esc import EscConverter
+    from unexmin.control.esc import EscConverter
 
     converter = converter or EscConverter()
     dt = 1.0 / rate
@@ -104,7 +117,7 @@ def thrust_history(physics, motors, times, rate=500.0, converter=None):
     k_cmd = 0
     for step in range(n_steps + 1):
         while k_cmd < len(cmd_steps) and cmd_steps[k_cmd][0] < step:
-            values = cmd_steps[k_cmd][1][:len(th)]
+            values = cmd_steps[k_cmd][1][: len(th)]
             ok = (values >= lo) & (values <= hi)
             command = np.where(ok, values, command)
             last = np.where(ok, cmd_steps[k_cmd][0], last)
@@ -144,26 +157,26 @@ def pendulum_history(physics, events, times, rate=500.0):
 class Signals:
     """The bag on two grids: navigation samples (t, filtered states) and the physics rate (commands)."""
 
-    t: np.ndarray            # [s] navigation grid (uniform)
-    R: np.ndarray            # (n, 3, 3) body -> world, smoothed
-    v: np.ndarray            # [m/s] body linear velocity
-    w: np.ndarray            # [rad/s] body angular velocity
-    acc: np.ndarray          # [m/s^2] world acceleration D2[x] (Savitzky-Golay second derivative)
-    dw: np.ndarray           # [rad/s^2] body angular acceleration R^T D1[w_world]
-    th: np.ndarray           # [s] physics-rate grid
-    Rh: np.ndarray           # (N, 3, 3) attitude on th
-    vh: np.ndarray           # body velocity on th
-    wh: np.ndarray           # body angular velocity on th
-    zh: np.ndarray           # [m] world z on th
-    thrust: np.ndarray       # (N, 8) [N] at unit gain on th
-    pendulum: np.ndarray     # [rad] on th
-    vbs: np.ndarray          # [kg] on th
-    vbs_nav: np.ndarray      # [kg] on t
+    t: np.ndarray  # [s] navigation grid (uniform)
+    R: np.ndarray  # (n, 3, 3) body -> world, smoothed
+    v: np.ndarray  # [m/s] body linear velocity
+    w: np.ndarray  # [rad/s] body angular velocity
+    acc: np.ndarray  # [m/s^2] world acceleration D2[x] (Savitzky-Golay second derivative)
+    dw: np.ndarray  # [rad/s^2] body angular acceleration R^T D1[w_world]
+    th: np.ndarray  # [s] physics-rate grid
+    Rh: np.ndarray  # (N, 3, 3) attitude on th
+    vh: np.ndarray  # body velocity on th
+    wh: np.ndarray  # body angular velocity on th
+    zh: np.ndarray  # [m] world z on th
+    thrust: np.ndarray  # (N, 8) [N] at unit gain on th
+    pendulum: np.ndarray  # [rad] on th
+    vbs: np.ndarray  # [kg] on th
+    vbs_nav: np.ndarray  # [kg] on t
     water_density: float
     surface_z: float
-    window: int              # samples of the Savitzky-Golay window
-    keep: np.ndarray         # navigation samples used in the fit (edges trimmed)
-    d1: object = None        # D1 of the navigation grid (callable)
+    window: int  # samples of the Savitzky-Golay window
+    keep: np.ndarray  # navigation samples used in the fit (edges trimmed)
+    d1: object = None  # D1 of the navigation grid (callable)
     d2: object = None
 
 
@@ -180,8 +193,10 @@ def prepare(mission, physics, window_s=0.7, water_density=1000.0, surface_z=0.0,
 
     nav = mission.nav
     if nav is None or len(nav) < 10:
-        raise ValueError(f"{mission.path}: the identification needs navigation (pose) samples; found "
-                         f"{0 if nav is None else len(nav)}")
+        raise ValueError(
+            f"{mission.path}: the identification needs navigation (pose) samples; found "
+            f"{0 if nav is None else len(nav)}"
+        )
     dt = float(np.median(np.diff(nav[:, 0])))
     if not dt > 0:
         raise ValueError(f"{mission.path}: navigation times are not increasing")
@@ -210,22 +225,38 @@ def prepare(mission, physics, window_s=0.7, water_density=1000.0, surface_z=0.0,
     Rh = rotations(_interp_rows(th, t, e))
     Rht = np.transpose(Rh, (0, 2, 1))
     keep = np.zeros(len(t), bool)
-    keep[win:len(t) - win] = True
+    keep[win : len(t) - win] = True
     # at the free surface the buoyancy changes by rho g pi R^2 per metre of z: a few mm of navigation
     # error would be newtons of force; such samples are left out (the hull must be 1 cm under)
     keep &= sg(pos, 0)[:, 2] + physics.radius < surface_z - 0.01
     if keep.sum() < 2 * win:
-        raise ValueError(f"{mission.path}: only {int(keep.sum())} navigation samples with the robot submerged "
-                         f"(centre more than {physics.radius + 0.01:.2f} m below the surface z = {surface_z} m)")
+        raise ValueError(
+            f"{mission.path}: only {int(keep.sum())} navigation samples with the robot submerged "
+            f"(centre more than {physics.radius + 0.01:.2f} m below the surface z = {surface_z} m)"
+        )
     return Signals(
-        t=t, R=R, v=v, w=w, acc=sg(pos, 2), dw=np.einsum("nij,nj->ni", Rt, sg(w_world, 1)),
-        th=th, Rh=Rh, vh=np.einsum("nij,nj->ni", Rht, _interp_rows(th, t, sg(pos, 1))),
-        wh=np.einsum("nij,nj->ni", Rht, _interp_rows(th, t, w_s)), zh=np.interp(th, t, sg(pos, 0)[:, 2]),
-        thrust=thrust_history(physics, mission.motors, th, rate), pendulum=pendulum_history(physics, mission.pendulum, th, rate),
+        t=t,
+        R=R,
+        v=v,
+        w=w,
+        acc=sg(pos, 2),
+        dw=np.einsum("nij,nj->ni", Rt, sg(w_world, 1)),
+        th=th,
+        Rh=Rh,
+        vh=np.einsum("nij,nj->ni", Rht, _interp_rows(th, t, sg(pos, 1))),
+        wh=np.einsum("nij,nj->ni", Rht, _interp_rows(th, t, w_s)),
+        zh=np.interp(th, t, sg(pos, 0)[:, 2]),
+        thrust=thrust_history(physics, mission.motors, th, rate),
+        pendulum=pendulum_history(physics, mission.pendulum, th, rate),
         vbs=step_signal(mission.vbs, th, 0.0, physics.vbs_min, physics.vbs_max),
         vbs_nav=step_signal(mission.vbs, t, 0.0, physics.vbs_min, physics.vbs_max),
-        water_density=water_density, surface_z=surface_z, window=win, keep=keep,
-        d1=lambda x: sg(x, 1), d2=lambda x: sg(x, 2))
+        water_density=water_density,
+        surface_z=surface_z,
+        window=win,
+        keep=keep,
+        d1=lambda x: sg(x, 1),
+        d2=lambda x: sg(x, 2),
+    )
 
 
 class EquationError:
@@ -250,12 +281,11 @@ class EquationError:
         n, k = len(s.t), len(PARAMS)
         idx = np.clip(np.round((s.t - s.th[0]) / dt_h).astype(int), 0, len(s.th) - 1)
 
-        def T(gw):   # world force history on th -> D2[double integral] on t
-            ii = cumulative_trapezoid(cumulative_trapezoid(gw, dx=dt_h, axis=0, initial=0), dx=dt_h, axis=0,
-                                      initial=0)
+        def T(gw):  # world force history on th -> D2[double integral] on t
+            ii = cumulative_trapezoid(cumulative_trapezoid(gw, dx=dt_h, axis=0, initial=0), dx=dt_h, axis=0, initial=0)
             return s.d2(ii[idx])
 
-        def U(hb):   # body moment history on th -> R^T D1[integral of R h] on t
+        def U(hb):  # body moment history on th -> R^T D1[integral of R h] on t
             hw = np.einsum("nij,nj->ni", s.Rh, hb)
             ii = cumulative_trapezoid(hw, dx=dt_h, axis=0, initial=0)
             return np.einsum("nji,nj->ni", s.R, s.d1(ii[idx]))
@@ -275,16 +305,16 @@ class EquationError:
         f_sub = submerged_fraction(s.zh, s.surface_z, p.radius)
         for j in range(3):
             col = s.Rh[:, :, j]
-            A[:, :3, INDEX[f"damping_linear_{DOF[j]}"]] = T(col * s.vh[:, j:j + 1])
+            A[:, :3, INDEX[f"damping_linear_{DOF[j]}"]] = T(col * s.vh[:, j : j + 1])
             A[:, :3, INDEX[f"damping_quadratic_{DOF[j]}"]] = T(col * (np.abs(s.vh[:, j]) * s.vh[:, j])[:, None])
         c[:, :3] = (rhoV + s.vbs_nav)[:, None] * s.acc - T(((rhoV * f_sub - rhoV - s.vbs) * g)[:, None] * ez)
         # rotation (body frame)
         for j in range(3):
             e_j = np.eye(3)[j]
             A[:, 3:, INDEX[f"added_inertia_{DOF[3 + j]}"]] = s.dw * e_j
-            A[:, 3:, INDEX[f"damping_linear_{DOF[3 + j]}"]] = U(e_j * s.wh[:, j:j + 1])
+            A[:, 3:, INDEX[f"damping_linear_{DOF[3 + j]}"]] = U(e_j * s.wh[:, j : j + 1])
             A[:, 3:, INDEX[f"damping_quadratic_{DOF[3 + j]}"]] = U(e_j * (np.abs(s.wh[:, j]) * s.wh[:, j])[:, None])
-        down = np.einsum("nji,j->ni", s.Rh, np.array([0.0, 0.0, -g]))       # R^T (0, 0, -g)
+        down = np.einsum("nji,j->ni", s.Rh, np.array([0.0, 0.0, -g]))  # R^T (0, 0, -g)
         m_nom = p.mass
         for j, name in enumerate(("cog_x", "cog_y", "cog_z")):
             A[:, 3:, INDEX[name]] = -U(m_nom * np.cross(np.eye(3)[j], down))

@@ -10,7 +10,7 @@
    PoseWithCovarianceStamped). A truncated or corrupt bag stops here with one error and exit
    status 2, before any simulator is started.
 2. runner: a headless lockstep world is launched (Simulation.launch, its own master). The motor
-   commands go through the simulated ESC driver (unexmin.esc_driver_node, run in this process) on
+   commands go through the simulated ESC driver (unexmin.control.esc_driver_node, run in this process) on
    /ux1/command/motors, exactly as a live robot's would; pendulum and VBS commands go to the robot's
    topics. Every command is applied at its bag time (mission time 0 = the first command) rounded to
    a physics step, and the simulator is advanced with /sim/step between commands, so the replay is
@@ -34,5 +34,20 @@ from unexmin.replay.metrics import TRAJ_COLUMNS, compare, path_length, pose_row,
 from unexmin.replay.plots import write_csv, write_plots
 from unexmin.replay.runner import LockstepRunner
 
-__all__ = ["MOTORS_TOPIC", "Mission", "read_bag", "main", "replay", "summary", "ReplayError", "TRAJ_COLUMNS",
-           "compare", "path_length", "pose_row", "to_start_frame", "write_csv", "write_plots", "LockstepRunner"]
+__all__ = [
+    "MOTORS_TOPIC",
+    "Mission",
+    "read_bag",
+    "main",
+    "replay",
+    "summary",
+    "ReplayError",
+    "TRAJ_COLUMNS",
+    "compare",
+    "path_length",
+    "pose_row",
+    "to_start_frame",
+    "write_csv",
+    "write_plots",
+    "LockstepRunner",
+]

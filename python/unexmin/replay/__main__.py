@@ -1,4 +1,5 @@
 """python -m unexmin.replay BAG --out DIR ... (docs/replay.md)."""
+
 import sys
 
 from unexmin.replay.cli import main

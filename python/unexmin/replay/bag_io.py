@@ -14,7 +14,7 @@ from unexmin.replay.errors import ReplayError
 from unexmin.replay.metrics import pose_row
 from unexmin.topics import ESC_COMMAND_TOPIC
 
-MOTORS_TOPIC = ESC_COMMAND_TOPIC                 # default motor command topic of a robot bag
+MOTORS_TOPIC = ESC_COMMAND_TOPIC  # default motor command topic of a robot bag
 MOTOR_TYPE = "ux1_msgs/msg/MotorCommand"
 FLOAT64_TYPE = "std_msgs/msg/Float64"
 NAV_TYPES = ("nav_msgs/msg/Odometry", "geometry_msgs/msg/PoseWithCovarianceStamped", "geometry_msgs/msg/PoseStamped")
@@ -25,11 +25,11 @@ class Mission:
     """What the replay needs from a bag. Times are mission times [s]: bag time minus t0."""
 
     path: str
-    t0: float                                   # bag time [s] of the first command
-    motors: list                                # (t, mode, values[8])
+    t0: float  # bag time [s] of the first command
+    motors: list  # (t, mode, values[8])
     pendulum: list = field(default_factory=list)  # (t, angle [rad])
-    vbs: list = field(default_factory=list)       # (t, mass [kg])
-    nav: np.ndarray = None                      # rows of metrics.TRAJ_COLUMNS, or None
+    vbs: list = field(default_factory=list)  # (t, mass [kg])
+    nav: np.ndarray = None  # rows of metrics.TRAJ_COLUMNS, or None
     topics: dict = field(default_factory=dict)  # role -> topic used
 
     def events(self):
@@ -66,8 +66,9 @@ def pick_topic(types, wanted, accepted, role, required):
     if len(candidates) == 1:
         return candidates[0]
     if len(candidates) > 1:
-        raise ReplayError(f"several {role} topics in the bag ({', '.join(candidates)}): choose one with "
-                          f"--{role.split()[0]}-topic")
+        raise ReplayError(
+            f"several {role} topics in the bag ({', '.join(candidates)}): choose one with --{role.split()[0]}-topic"
+        )
     if required:
         raise ReplayError(f"no {role} ({' or '.join(accepted)}) in the bag (topics: {listing})")
     return None
@@ -84,13 +85,24 @@ def read_bag(path, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum_topic=None,
         types = topic_types(path)
         chosen = {
             # The default topic falls back to the bag's only MotorCommand topic; an explicit one must exist.
-            "motors": pick_topic(types, None if motors_topic == MOTORS_TOPIC and motors_topic not in types
-                                 else motors_topic, (MOTOR_TYPE,), "motors command", True),
-            "pendulum": pick_topic(types, pendulum_topic or f"/{robot}/pendulum", (FLOAT64_TYPE,),
-                                   "pendulum command", bool(pendulum_topic)),
+            "motors": pick_topic(
+                types,
+                None if motors_topic == MOTORS_TOPIC and motors_topic not in types else motors_topic,
+                (MOTOR_TYPE,),
+                "motors command",
+                True,
+            ),
+            "pendulum": pick_topic(
+                types, pendulum_topic or f"/{robot}/pendulum", (FLOAT64_TYPE,), "pendulum command", bool(pendulum_topic)
+            ),
             "vbs": pick_topic(types, vbs_topic or f"/{robot}/vbs", (FLOAT64_TYPE,), "vbs command", bool(vbs_topic)),
-            "nav": pick_topic(types, nav_topic or (f"/{robot}/odom" if f"/{robot}/odom" in types else None),
-                              NAV_TYPES, "nav topic", bool(nav_topic)),
+            "nav": pick_topic(
+                types,
+                nav_topic or (f"/{robot}/odom" if f"/{robot}/odom" in types else None),
+                NAV_TYPES,
+                "nav topic",
+                bool(nav_topic),
+            ),
         }
         role_of = {t: r for r, t in chosen.items() if t}
         messages = read_messages(path, set(role_of))
@@ -119,8 +131,11 @@ def read_bag(path, robot="UX_1", motors_topic=MOTORS_TOPIC, pendulum_topic=None,
         if len(nav) < 2:
             nav = None
     return Mission(
-        path=str(path), t0=t0,
+        path=str(path),
+        t0=t0,
         motors=[(t - t0, m, v) for t, m, v in rows["motors"]],
         pendulum=[(t - t0, v) for t, v in rows["pendulum"]],
         vbs=[(t - t0, v) for t, v in rows["vbs"]],
-        nav=nav, topics={k: v for k, v in chosen.items() if v})
+        nav=nav,
+        topics={k: v for k, v in chosen.items() if v},
+    )

@@ -10,22 +10,35 @@ import time
 from pathlib import Path
 
 from unexmin.replay.bag_io import MOTORS_TOPIC, read_bag
-from unexmin.replay.errors import ReplayError
+from unexmin.replay.errors import ReplayError, print_summary
 from unexmin.replay.metrics import compare, to_start_frame
 from unexmin.replay.plots import write_csv, write_plots
 
 DESCRIPTION = "Rosbag mission replay (thesis 6.5): a real robot's motor commands, played into the simulator."
 
 
-def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0.1, duration=None, align=True,
-           pace=0.0, progress=True, connect=False, timeout=60.0, overrides=None):
+def replay(
+    mission,
+    out_dir,
+    world="tank",
+    seed=0,
+    robot="UX_1",
+    sample_period=0.1,
+    duration=None,
+    align=True,
+    pace=0.0,
+    progress=True,
+    connect=False,
+    timeout=60.0,
+    overrides=None,
+):
     """Run the replay of `mission` (from read_bag) and write the report, plots and CSV into out_dir;
     returns the report dict (fields: docs/replay.md). duration [s]: mission time to replay (default the
     bag's); sample_period [s]; pace [x real time], 0 = as fast as possible; timeout [s] of wall time;
     overrides: xacro overrides file of the replaying robot (e.g. from unexmin.identify); that robot is
     then spawned at the bag's first roll and pitch (the real robot's trim), not level."""
     from unexmin.replay.runner import LockstepRunner
-    from unexmin.simulation import Simulation
+    from unexmin.scripting.simulation import Simulation
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -39,15 +52,20 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
             raise ReplayError("--overrides needs a simulator of its own: not with --connect")
         if not Path(overrides).is_file():
             raise ReplayError(f"--overrides {overrides}: no such file")
-        from unexmin.replay.world import world_launch_file
+        from unexmin.worlds.spawn import world_launch_file
 
         roll_pitch = None if mission.nav is None else (float(mission.nav[0, 4]), float(mission.nav[0, 5]))
         try:
             launch_file = world_launch_file(out_dir, world, robot, roll_pitch, overrides=overrides, seed=seed)
         except (FileNotFoundError, ValueError) as e:
             raise ReplayError(str(e)) from None
-    sim = Simulation(timeout=timeout) if connect else Simulation.launch(
-        world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout, launch_file=launch_file)
+    sim = (
+        Simulation(timeout=timeout)
+        if connect
+        else Simulation.launch(
+            world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout, launch_file=launch_file
+        )
+    )
     bar = None
     with sim:
         if robot not in sim.robots:
@@ -56,12 +74,16 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
         if progress:
             from tqdm import tqdm
 
-            bar = tqdm(total=round(duration, 3), unit="sim s", desc="replay", leave=False,
-                       bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} sim s [{elapsed}<{remaining}]")
+            bar = tqdm(
+                total=round(duration, 3),
+                unit="sim s",
+                desc="replay",
+                leave=False,
+                bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} sim s [{elapsed}<{remaining}]",
+            )
         try:
             sim_start = time.monotonic()
-            traj = runner.run(mission.events(), duration, seed=seed, progress=bar.update if bar else None,
-                              pace=pace)
+            traj = runner.run(mission.events(), duration, seed=seed, progress=bar.update if bar else None, pace=pace)
             sim_wall = time.monotonic() - sim_start
         finally:
             if bar is not None:
@@ -70,13 +92,21 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
     report = {
         "bag": str(Path(mission.path).resolve()),
         "topics": mission.topics,
-        "messages": {"motors": len(mission.motors), "pendulum": len(mission.pendulum), "vbs": len(mission.vbs),
-                     "navigation": 0 if mission.nav is None else int(len(mission.nav))},
-        "world": "(running simulator)" if connect else world, "robot": robot, "seed": seed,
+        "messages": {
+            "motors": len(mission.motors),
+            "pendulum": len(mission.pendulum),
+            "vbs": len(mission.vbs),
+            "navigation": 0 if mission.nav is None else int(len(mission.nav)),
+        },
+        "world": "(running simulator)" if connect else world,
+        "robot": robot,
+        "seed": seed,
         "overrides": str(Path(overrides).resolve()) if overrides else None,
-        "physics_rate_hz": sim.physics_rate, "sample_period_s": sample_period,
+        "physics_rate_hz": sim.physics_rate,
+        "sample_period_s": sample_period,
         "mission_duration_s": duration,
-        "replay_wall_time_s": round(sim_wall, 3), "total_wall_time_s": round(time.monotonic() - wall0, 3),
+        "replay_wall_time_s": round(sim_wall, 3),
+        "total_wall_time_s": round(time.monotonic() - wall0, 3),
         "speed_vs_real_time": round(duration / sim_wall, 2) if sim_wall > 0 else None,
         "errors": None,
     }
@@ -97,20 +127,26 @@ def replay(mission, out_dir, world="tank", seed=0, robot="UX_1", sample_period=0
 
 def summary(report):
     """Human-readable lines of a report."""
-    lines = [f"replayed {report['mission_duration_s']:.1f} s of {report['bag']} "
-             f"in {report['replay_wall_time_s']:.1f} s "
-             f"({report['speed_vs_real_time']}x real time), {report['messages']['motors']} motor commands"]
+    lines = [
+        f"replayed {report['mission_duration_s']:.1f} s of {report['bag']} "
+        f"in {report['replay_wall_time_s']:.1f} s "
+        f"({report['speed_vs_real_time']}x real time), {report['messages']['motors']} motor commands"
+    ]
     e = report["errors"]
     before = report.get("errors_before")
     if before:
         p, y = before["position_error_m"], before["yaw_error_deg"]
-        lines.append(f"before (nominal robot): position error final {p['final']:.3f} m, rms {p['rms']:.3f} m; "
-                     f"yaw rms {y['rms']:.2f} deg")
+        lines.append(
+            f"before (nominal robot): position error final {p['final']:.3f} m, rms {p['rms']:.3f} m; "
+            f"yaw rms {y['rms']:.2f} deg"
+        )
         lines.append(f"after (--overrides {report['overrides']}):")
     if e:
         p, y = e["position_error_m"], e["yaw_error_deg"]
-        lines.append(f"position error: final {p['final']:.3f} m, rms {p['rms']:.3f} m, max {p['max']:.3f} m "
-                     f"(bag path {e['bag_path_length_m']:.2f} m)")
+        lines.append(
+            f"position error: final {p['final']:.3f} m, rms {p['rms']:.3f} m, max {p['max']:.3f} m "
+            f"(bag path {e['bag_path_length_m']:.2f} m)"
+        )
         lines.append(f"yaw error: final {y['final']:+.1f} deg, rms {y['rms']:.1f} deg, max {y['max_abs']:.1f} deg")
     else:
         lines.append("no navigation in the bag: simulated trajectory only")
@@ -122,6 +158,7 @@ def _ensure_rosbags(argv):
     Re-run this command with the venv's interpreter ($UNEXMIN_VENV, set by scripts/env.sh) if needed."""
     try:
         import rosbags  # noqa: F401
+
         return
     except ImportError:
         pass
@@ -129,8 +166,10 @@ def _ensure_rosbags(argv):
     if venv_python.exists() and os.environ.get("UNEXMIN_REPLAY_REEXEC") != "1":
         os.environ["UNEXMIN_REPLAY_REEXEC"] = "1"
         os.execv(str(venv_python), [str(venv_python), "-m", "unexmin.replay", *argv])
-    raise ReplayError(f"the Python package rosbags is not importable by {sys.executable}: source scripts/env.sh "
-                      "(it sets UNEXMIN_VENV) or run `<venv>/bin/python -m unexmin.replay`")
+    raise ReplayError(
+        f"the Python package rosbags is not importable by {sys.executable}: source scripts/env.sh "
+        "(it sets UNEXMIN_VENV) or run `<venv>/bin/python -m unexmin.replay`"
+    )
 
 
 def main(argv=None):
@@ -141,8 +180,11 @@ def main(argv=None):
     ap.add_argument("bag", help="ROS 1 bag of the real robot")
     ap.add_argument("--out", default="replay_out", help="output folder for report.json, plots, trajectory.csv")
     ap.add_argument("--world", default="tank", help="world to launch: <world>_world.launch (default tank)")
-    ap.add_argument("--connect", action="store_true", help="use the running simulator (ROS_MASTER_URI) instead "
-                    "of launching one; it is reset, and must be paused")
+    ap.add_argument(
+        "--connect",
+        action="store_true",
+        help="use the running simulator (ROS_MASTER_URI) instead of launching one; it is reset, and must be paused",
+    )
     ap.add_argument("--robot", default="UX_1", help="simulated robot that replays the bag (default UX_1)")
     ap.add_argument("--seed", type=int, default=0, help="simulator seed (default 0)")
     ap.add_argument("--motors-topic", default=MOTORS_TOPIC, help=f"MotorCommand topic (default {MOTORS_TOPIC})")
@@ -154,8 +196,11 @@ def main(argv=None):
     ap.add_argument("--no-align", action="store_true", help="compare world coordinates, not start frames")
     ap.add_argument("--pace", type=float, default=0.0, help="0 = as fast as possible (default); 1 = real time")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
-    ap.add_argument("--overrides", help="xacro overrides of the replaying robot (python -m unexmin.identify writes "
-                    "one): the bag is replayed with the nominal robot, then with this one, and both errors reported")
+    ap.add_argument(
+        "--overrides",
+        help="xacro overrides of the replaying robot (python -m unexmin.identify writes "
+        "one): the bag is replayed with the nominal robot, then with this one, and both errors reported",
+    )
     args = ap.parse_args(argv)
     try:
         _ensure_rosbags(argv)
@@ -163,15 +208,20 @@ def main(argv=None):
             raise ReplayError(f"--pace {args.pace}: expected >= 0")
         if not (args.sample_period > 0 and math.isfinite(args.sample_period)):
             raise ReplayError(f"--sample-period {args.sample_period}: expected a positive number of seconds")
-        mission = read_bag(args.bag, args.robot, args.motors_topic, args.pendulum_topic, args.vbs_topic,
-                           args.nav_topic)
-        before = None
-        if args.overrides:
-            before = replay(mission, Path(args.out) / "nominal", args.world, args.seed, args.robot,
-                            args.sample_period, args.duration, not args.no_align, args.pace, not args.quiet,
-                            args.connect)
-        report = replay(mission, args.out, args.world, args.seed, args.robot, args.sample_period, args.duration,
-                        not args.no_align, args.pace, not args.quiet, args.connect, overrides=args.overrides)
+        mission = read_bag(args.bag, args.robot, args.motors_topic, args.pendulum_topic, args.vbs_topic, args.nav_topic)
+        options = {
+            "world": args.world,
+            "seed": args.seed,
+            "robot": args.robot,
+            "sample_period": args.sample_period,
+            "duration": args.duration,
+            "align": not args.no_align,
+            "pace": args.pace,
+            "progress": not args.quiet,
+            "connect": args.connect,
+        }
+        before = replay(mission, Path(args.out) / "nominal", **options) if args.overrides else None
+        report = replay(mission, args.out, overrides=args.overrides, **options)
         if before is not None:
             report["errors_before"] = before["errors"]
             with open(Path(args.out) / "report.json", "w") as f:
@@ -182,7 +232,4 @@ def main(argv=None):
     except (RuntimeError, TimeoutError) as e:
         print(f"replay_mission: simulator failure: {e}", file=sys.stderr)
         return 1
-    for line in summary(report):
-        print(line)
-    print(f"report: {Path(args.out).resolve() / 'report.json'}")
-    return 0
+    return print_summary(summary(report), f"report: {Path(args.out).resolve() / 'report.json'}")

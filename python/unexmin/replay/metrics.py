@@ -11,7 +11,7 @@ import numpy as np
 from unexmin.geometry import quaternion_to_rpy, wrap_angle
 from unexmin.replay.errors import ReplayError
 
-TRAJ_COLUMNS = ("t", "x", "y", "z", "roll", "pitch", "yaw")   # [s], [m] world frame, [rad] ZYX Euler
+TRAJ_COLUMNS = ("t", "x", "y", "z", "roll", "pitch", "yaw")  # [s], [m] world frame, [rad] ZYX Euler
 
 
 def pose_row(t, pose):
@@ -53,8 +53,10 @@ def compare(sim_traj, nav, align=True):
     t_lo, t_hi = max(nav[0, 0], sim_traj[0, 0]), min(nav[-1, 0], sim_traj[-1, 0])
     keep = (sim_traj[:, 0] >= t_lo - 1e-9) & (sim_traj[:, 0] <= t_hi + 1e-9)
     if keep.sum() < 2:
-        raise ReplayError(f"the navigation ({nav[0, 0]:.2f}..{nav[-1, 0]:.2f} s) and the simulated trajectory "
-                          f"({sim_traj[0, 0]:.2f}..{sim_traj[-1, 0]:.2f} s) share fewer than 2 samples")
+        raise ReplayError(
+            f"the navigation ({nav[0, 0]:.2f}..{nav[-1, 0]:.2f} s) and the simulated trajectory "
+            f"({sim_traj[0, 0]:.2f}..{sim_traj[-1, 0]:.2f} s) share fewer than 2 samples"
+        )
     s = sim_traj[keep]
     n = np.empty_like(s)
     n[:, 0] = s[:, 0]
@@ -73,11 +75,18 @@ def compare(sim_traj, nav, align=True):
         "samples": int(len(s)),
         "t_start_s": float(s[0, 0]),
         "t_end_s": float(s[-1, 0]),
-        "position_error_m": {"final": float(err[-1]), "max": float(err.max()), "mean": float(err.mean()),
-                             "rms": float(np.sqrt(np.mean(err ** 2)))},
+        "position_error_m": {
+            "final": float(err[-1]),
+            "max": float(err.max()),
+            "mean": float(err.mean()),
+            "rms": float(np.sqrt(np.mean(err**2))),
+        },
         "final_error_xyz_m": [float(v) for v in (s[-1, 1:4] - n[-1, 1:4])],
-        "yaw_error_deg": {"final": float(yaw_err[-1]), "max_abs": float(np.abs(yaw_err).max()),
-                          "rms": float(np.sqrt(np.mean(yaw_err ** 2)))},
+        "yaw_error_deg": {
+            "final": float(yaw_err[-1]),
+            "max_abs": float(np.abs(yaw_err).max()),
+            "rms": float(np.sqrt(np.mean(yaw_err**2))),
+        },
         "bag_path_length_m": path_length(n),
         "sim_path_length_m": path_length(s),
         "bag_displacement_m": float(np.linalg.norm(n[-1, 1:4] - n[0, 1:4])),

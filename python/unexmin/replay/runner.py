@@ -29,8 +29,8 @@ class LockstepRunner:
         wall time for the ESC driver to connect and to handle each command."""
         from ux1_msgs.msg import MotorCommand
 
-        from unexmin.esc_driver_node import EscDriverNode
-        from unexmin.launcher import wait_for
+        from unexmin.control.esc_driver_node import EscDriverNode
+        from unexmin.scripting.launcher import wait_for
         from unexmin.topics import sync_publisher
 
         self.sim, self.timeout, self.MotorCommand = sim, timeout, MotorCommand
@@ -38,14 +38,18 @@ class LockstepRunner:
         self.lead_steps = max(1, round(self.LEAD * self.rate))
         self.sample_steps = round(sample_period * self.rate)
         if self.sample_steps < 1 or abs(self.sample_steps - sample_period * self.rate) > 1e-6:
-            raise ReplayError(f"--sample-period {sample_period} s must be a whole number of physics steps "
-                              f"({1.0 / self.rate} s)")
+            raise ReplayError(
+                f"--sample-period {sample_period} s must be a whole number of physics steps ({1.0 / self.rate} s)"
+            )
         self.ux = sim.robot(robot, streams="none")
         self.driver = EscDriverNode(robot=robot, motor_topic=motors_topic, announce=False)
         self.pub = sync_publisher(motors_topic, MotorCommand)
-        wait_for(lambda: self.pub.get_num_connections() > 0
-                 and all(p.get_num_connections() > 0 for p in self.driver.thruster_pubs),
-                 timeout, f"the ESC driver and the simulator to connect on {motors_topic} and /{robot}/thrusters")
+        wait_for(
+            lambda: self.pub.get_num_connections() > 0
+            and all(p.get_num_connections() > 0 for p in self.driver.thruster_pubs),
+            timeout,
+            f"the ESC driver and the simulator to connect on {motors_topic} and /{robot}/thrusters",
+        )
         self.sent = 0
 
     def close(self):
@@ -85,12 +89,16 @@ class LockstepRunner:
         self.sim.pause()
         self.sim.reset(seed=seed)
         lead = self.lead_steps
-        samples = list(range(lead, lead + int(math.floor(duration * self.rate / self.sample_steps + 1e-9))
-                             * self.sample_steps + 1, self.sample_steps))
-        timed = [(lead + round(t * self.rate), 1, kind, payload) for t, kind, payload in events
-                 if t <= duration + 1e-9]
+        samples = list(
+            range(
+                lead,
+                lead + int(math.floor(duration * self.rate / self.sample_steps + 1e-9)) * self.sample_steps + 1,
+                self.sample_steps,
+            )
+        )
+        timed = [(lead + round(t * self.rate), 1, kind, payload) for t, kind, payload in events if t <= duration + 1e-9]
         timed += [(s, 0, "sample", None) for s in samples]
-        timed.sort(key=lambda e: (e[0], e[1]))       # at one step: sample the state, then apply commands
+        timed.sort(key=lambda e: (e[0], e[1]))  # at one step: sample the state, then apply commands
         traj, step, wall0 = [], 0, time.monotonic()
         for target, _, kind, payload in timed:
             if target > step:

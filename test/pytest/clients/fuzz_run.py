@@ -14,7 +14,6 @@ import struct
 import subprocess
 import sys
 import time
-from io import BytesIO
 
 
 def raw_class(msg_class, payload):
@@ -32,6 +31,7 @@ def raw_class(msg_class, payload):
 
         def deserialize(self, s):
             return self
+
     return Raw
 
 
@@ -45,7 +45,7 @@ def main():
     from std_srvs.srv import Empty
     from ux1_msgs.msg import MotorCommand
 
-    from unexmin.launcher import WorldProcess, stop_process_group, wait_for
+    from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record, Reset, Step
 
     world = WorldProcess(world="tank", realtime=True, paused=False, log_dir=log_dir)
@@ -54,26 +54,37 @@ def main():
     try:
         wait_for(lambda: _up(world), 60.0, "the simulator")
         rospy.init_node("fuzzer", disable_signals=True)
-        esc = subprocess.Popen(["roslaunch", "--wait", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false",
-                                "esc_driver:=true"], stdout=open(os.path.join(log_dir, "esc.log"), "w"),
-                               stderr=subprocess.STDOUT, start_new_session=True)
+        esc = subprocess.Popen(
+            ["roslaunch", "--wait", "unexmin", "control.launch", "robot:=UX_1", "allocator:=false", "esc_driver:=true"],
+            stdout=open(os.path.join(log_dir, "esc.log"), "w"),
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
         odom, warnings = [], []
         rospy.Subscriber("/UX_1/odom", Odometry, lambda m: odom.append(m), queue_size=1000)
-        rospy.Subscriber("/rosout_agg", Log, lambda m: warnings.append((time.monotonic(), m.name, m.level, m.msg[:90])),
-                         queue_size=10000)
+        rospy.Subscriber(
+            "/rosout_agg",
+            Log,
+            lambda m: warnings.append((time.monotonic(), m.name, m.level, m.msg[:90])),
+            queue_size=10000,
+        )
         ns = "/UX_1/"
         floats = [rospy.Publisher(ns + f"thrusters/{i}/input", Float64, queue_size=100) for i in range(8)]
-        floats += [rospy.Publisher(ns + "pendulum", Float64, queue_size=100), rospy.Publisher(ns + "vbs", Float64,
-                                                                                               queue_size=100)]
+        floats += [
+            rospy.Publisher(ns + "pendulum", Float64, queue_size=100),
+            rospy.Publisher(ns + "vbs", Float64, queue_size=100),
+        ]
         wrench = rospy.Publisher(ns + "force_moments", Wrench, queue_size=100)
         motors = rospy.Publisher("/ux1/command/motors", MotorCommand, queue_size=100)
         raw_float = [rospy.Publisher(p.resolved_name, raw_class(Float64, b""), queue_size=100) for p in floats[:1]]
         raw_float += [rospy.Publisher(floats[8].resolved_name, raw_class(Float64, b"\x00\x00\x00"), queue_size=100)]
         raw_motors = rospy.Publisher("/ux1/command/motors", raw_class(MotorCommand, b"\x01\x02"), queue_size=100)
-        raw_wrench = rospy.Publisher(ns + "force_moments", raw_class(Wrench, struct.pack("<3d", 1, 2, 3)),
-                                     queue_size=100)
-        wait_for(lambda: all(p.get_num_connections() > 0 for p in floats + [wrench, motors]), 60.0,
-                 "the inputs to connect")
+        raw_wrench = rospy.Publisher(
+            ns + "force_moments", raw_class(Wrench, struct.pack("<3d", 1, 2, 3)), queue_size=100
+        )
+        wait_for(
+            lambda: all(p.get_num_connections() > 0 for p in floats + [wrench, motors]), 60.0, "the inputs to connect"
+        )
         wait_for(lambda: len(odom) > 0, 60.0, "odometry")
         start_pose = odom[-1].pose.pose.position
         bad = [float("nan"), float("inf"), float("-inf"), 1e300, -1e300, -5.0]
@@ -114,12 +125,14 @@ def main():
         record = rospy.ServiceProxy("/sim/record", Record)
         pause()
         errors = {}
-        for name, call in (("step duration -1", lambda: step(duration=-1.0)),
-                           ("step duration nan", lambda: step(duration=float("nan"))),
-                           ("step duration inf", lambda: step(duration=float("inf"))),
-                           ("step duration 1e9", lambda: step(duration=1e9)),
-                           ("step steps 2^32-1", lambda: step(steps=2**32 - 1)),
-                           ("reset_seed -1", lambda: reset_seed(seed=-1))):
+        for name, call in (
+            ("step duration -1", lambda: step(duration=-1.0)),
+            ("step duration nan", lambda: step(duration=float("nan"))),
+            ("step duration inf", lambda: step(duration=float("inf"))),
+            ("step duration 1e9", lambda: step(duration=1e9)),
+            ("step steps 2^32-1", lambda: step(steps=2**32 - 1)),
+            ("reset_seed -1", lambda: reset_seed(seed=-1)),
+        ):
             t = time.monotonic()
             try:
                 call()
@@ -134,9 +147,18 @@ def main():
         unpause()
         result["services"] = errors
         result["odom_messages"] = len(odom)
-        result["odom_finite"] = all(math.isfinite(v) for m in odom for v in (
-            m.pose.pose.position.x, m.pose.pose.position.y, m.pose.pose.position.z, m.pose.pose.orientation.w,
-            m.twist.twist.linear.x, m.twist.twist.angular.z))
+        result["odom_finite"] = all(
+            math.isfinite(v)
+            for m in odom
+            for v in (
+                m.pose.pose.position.x,
+                m.pose.pose.position.y,
+                m.pose.pose.position.z,
+                m.pose.pose.orientation.w,
+                m.twist.twist.linear.x,
+                m.twist.twist.angular.z,
+            )
+        )
         end = odom[-1].pose.pose.position
         result["moved_m"] = math.dist((start_pose.x, start_pose.y, start_pose.z), (end.x, end.y, end.z))
         per_second = {}
@@ -162,6 +184,7 @@ def main():
 
 def _up(world):
     import rosgraph
+
     if not world.alive():
         raise RuntimeError("the world exited")
     try:

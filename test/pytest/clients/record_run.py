@@ -10,8 +10,6 @@ usage: record_run.py <log dir> <seconds> <commands> [--world tank|mine] [--rosba
 """
 
 import json
-import os
-import signal
 import subprocess
 import sys
 import time
@@ -20,7 +18,7 @@ import time
 def main():
     argv = sys.argv[1:]
     sep = argv.index("--")
-    own, launch_args = argv[:sep], argv[sep + 1:]
+    own, launch_args = argv[:sep], argv[sep + 1 :]
     log_dir, seconds, commands = own[0], float(own[1]), int(own[2])
     rosbag_bag, rosbag_topics, world_name = None, [], "tank"
     rest = own[3:]
@@ -31,8 +29,9 @@ def main():
 
     import rosgraph
     import rospy
+
     from unexmin import Simulation
-    from unexmin.launcher import WorldProcess, stop_process_group, wait_for
+    from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
     from unexmin.srv import Record
 
     world = WorldProcess(world=world_name, paused=True, log_dir=log_dir, extra_args=launch_args)
@@ -40,8 +39,12 @@ def main():
     try:
         sim = Simulation(world=world, timeout=60.0)
         if rosbag_bag:
-            recorder = subprocess.Popen(["rosbag", "record", "--lz4", "-O", rosbag_bag, *rosbag_topics],
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, start_new_session=True)
+            recorder = subprocess.Popen(
+                ["rosbag", "record", "--lz4", "-O", rosbag_bag, *rosbag_topics],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
             master = rosgraph.Master("/record_run")
 
             def subscribed():
@@ -53,6 +56,7 @@ def main():
             # Registered is not connected: messages published before the TCP connection exists are not
             # queued for it. Wait until the simulator lists an outgoing connection to rosbag on each topic.
             import xmlrpc.client
+
             simulator = xmlrpc.client.ServerProxy(master.lookupNode("/simulator"))
 
             def connected():

@@ -1,0 +1,276 @@
+"""The main job: a headless, lockstep mapping survey of the flooded mine (docs/mapping.md, "The mission").
+
+    python -m unexmin.missions.mine --out DIR [--seed N] [--gallery M] [--resolution M]
+
+Launches the mine world (lockstep, paused) with the mapper on, records a bag (odometry, M3 scans, SLS
+clouds, the mapper's stats), and flies UX_1 with a waypoint controller on ground-truth odometry (thesis
+allocation, eq. 5.12): down the entry shaft to the first level, then along the level's gallery for
+--gallery metres. Then it stops the world with SIGINT (the mapper saves its map at shutdown) and scores the
+map against the mine's collision mesh (unexmin.map_quality). Leaves in DIR: mine_mission.bag, mine_map.bt,
+trajectory.csv, map_quality.json, map_quality.png, mission_map.png, summary.json, logs/.
+"""
+
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from unexmin.control.allocation import ThrusterAllocator
+from unexmin.geometry import yaw_of
+from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
+from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
+
+ROBOT = "UX_1"
+SPEED = 0.4  # [m/s] cruise speed
+TOLERANCE = 0.5  # [m] a waypoint is reached within this distance
+CONTROL_DT = 0.1  # [s] sim time between controller updates
+SLS_UNITS = 4
+
+
+def waypoints(gallery_length):
+    """The survey path [m, world frame]: the shaft's axis from the spawn depth down to the first level's
+    gallery, then that gallery's centreline (from the mine generator's layout, seed 7)."""
+    from unexmin.mine_generator.generator import PRESETS, make_layout, point_on
+
+    layout = make_layout(PRESETS["full"], 7)
+    sx, sy = layout.shaft_xy
+    gallery = next(t for t in layout.tunnels if t.kind == "gallery")
+    poly = np.asarray(gallery.points, dtype=float)
+    z0 = poly[0, 2]
+    path = [(sx, sy, -2.5), (sx, sy, z0 + 0.3)]
+    for x in np.arange(sx + 4.0, sx + gallery_length + 1e-9, 4.0):
+        p = point_on(poly, x)
+        path.append((float(p[0]), float(p[1]), float(p[2]) + 0.3))
+    return path
+
+
+def controller(pose, twist, target, yaw_target=0.0):
+    """Body wrench [X Y Z K M N] (allocation units) towards target: a velocity command along the error
+    (SPEED at most), feed-forward for the quadratic drag, proportional on the velocity error; yaw held."""
+    p = np.array([pose.position.x, pose.position.y, pose.position.z])
+    yaw = yaw_of(pose.orientation)
+    c, s = math.cos(yaw), math.sin(yaw)
+    err = np.array(target) - p
+    dist = float(np.linalg.norm(err))
+    v_des = err / dist * min(SPEED, 0.5 * dist) if dist > 1e-6 else np.zeros(3)
+    # to the body frame (yaw only; the UX-1 is kept level by its pendulum)
+    v_des_b = np.array([c * v_des[0] + s * v_des[1], -s * v_des[0] + c * v_des[1], v_des[2]])
+    v_b = np.array([twist.linear.x, twist.linear.y, twist.linear.z])  # odometry twist: child (body) frame
+    ff = 10.0 * (v_des_b / 0.4) * np.abs(v_des_b / 0.4)
+    force = np.clip(ff + 25.0 * (v_des_b - v_b), -15.0, 15.0)
+    yaw_err = math.remainder(yaw_target - yaw, 2 * math.pi)
+    n = float(np.clip(3.0 * yaw_err - 4.0 * twist.angular.z, -3.0, 3.0))
+    return (float(force[0]), float(force[1]), float(force[2]), 0.0, 0.0, n), dist
+
+
+def topics():
+    return [f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan", "/mapper/stats"] + [
+        f"/{ROBOT}/sls_{i}/points" for i in range(SLS_UNITS)
+    ]
+
+
+def plot_map(map_path, traj, out_png):
+    """Top and side views of the map's occupied voxels coloured by height, with the path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from unexmin.map_quality import read_bt
+
+    centres, _ = read_bt(map_path)
+    fig, axes = plt.subplots(2, 1, figsize=(12, 9))
+    for ax, (i, j, name) in zip(axes, [(0, 1, "top view"), (0, 2, "side view")]):
+        if len(centres):
+            ax.scatter(centres[:, i], centres[:, j], c=centres[:, 2], s=1, cmap="turbo")
+        ax.plot(traj[:, i], traj[:, j], "k-", lw=1.2, label="UX_1 path")
+        ax.set(
+            xlabel="xyz"[i] + " [m]",
+            ylabel="xyz"[j] + " [m]",
+            title=f"mine map ({name}, colour: height)",
+            aspect="equal",
+        )
+        ax.legend(loc="best")
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=110)
+    plt.close(fig)
+
+
+def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
+    from unexmin.scripting.simulation import Simulation
+
+    out = os.path.abspath(out)
+    log_dir = os.path.join(out, "logs")
+    os.makedirs(log_dir, exist_ok=True)
+    bag = os.path.join(out, "mine_mission.bag")
+    map_path = os.path.join(out, "mine_map.bt")
+    for stale in (bag, map_path):
+        if os.path.exists(stale):
+            os.remove(stale)
+    wall0 = time.monotonic()
+    world = WorldProcess(
+        world="mine",
+        robots=1,
+        seed=seed,
+        realtime=False,
+        paused=True,
+        log_dir=log_dir,
+        extra_args=("mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}"),
+    )
+    recorder = log = sim = stats_sub = None
+    stats = {}
+    legs = []
+    try:
+        sim = Simulation(timeout=120.0, world=world, node_name="unexmin_mine_mission")
+        import rosgraph
+        import rospy
+
+        from unexmin.msg import MapperStats
+
+        stats_sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
+        wait_for(lambda: "last" in stats, 120.0, "the mapper's /mapper/stats")
+        ux = sim.robot(ROBOT)
+        log = open(os.path.join(log_dir, "rosbag_record.log"), "w")
+        recorder = subprocess.Popen(
+            ["rosbag", "record", "--tcpnodelay", "-O", bag, *topics()],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
+        master = rosgraph.Master(rospy.get_name())
+        wait_for(
+            lambda: recorder_connected(master, ("/simulator",), [f"/{ROBOT}/odom", f"/{ROBOT}/m3/scan"]),
+            30.0,
+            "rosbag record to connect",
+        )
+        allocator = ThrusterAllocator()
+        sim.step(1)
+        path = waypoints(gallery)
+        steps = max(1, round(CONTROL_DT * sim.physics_rate))
+        sim_wall0 = time.monotonic()
+        print(f"{'waypoint':<10}{'t [s]':>8}{'x [m]':>9}{'y [m]':>9}{'z [m]':>9}{'clouds':>9}{'occupied':>10}")
+        for k, target in enumerate(path):
+            while True:
+                odom = ux.odom()
+                wrench, dist = controller(odom.pose.pose, odom.twist.twist, target)
+                if dist < TOLERANCE or sim.time > time_limit:
+                    break
+                ux.thrusts(allocator.allocate(wrench)[0])
+                sim.step(steps)
+            p = ux.odom().pose.pose.position
+            m = stats["last"]
+            legs.append({"waypoint": list(target), "t": sim.time, "reached": dist < TOLERANCE})
+            print(
+                f"{k:<10}{sim.time:8.1f}{p.x:9.2f}{p.y:9.2f}{p.z:9.2f}{m.clouds_inserted:9d}{m.occupied_leaves:10d}",
+                flush=True,
+            )
+            if sim.time > time_limit:
+                print(f"time limit {time_limit:.0f} s of sim time reached")
+                break
+        ux.thrusts([0.0] * 8)
+        sim.run_for(1.0)  # the clouds of the last step find their tf
+        sim_time, sim_wall = sim.time, time.monotonic() - sim_wall0
+        # Every cloud the simulator published reached the map: M3 at 40 Hz, each SLS unit at 10 Hz.
+        expected = int(round(sim_time * 40.0)) + int(round(sim_time * 10.0)) * SLS_UNITS
+        try:
+            wait_for(
+                lambda: stats["last"].clouds_inserted + stats["last"].clouds_dropped >= stats["last"].clouds_received
+                and stats["last"].pending == 0
+                and stats["last"].clouds_received >= expected - 5 * (1 + SLS_UNITS),
+                60.0,
+                "the mapper to insert every cloud",
+            )
+        except TimeoutError as e:
+            print(f"warning: {e}")
+        final = stats["last"]
+        wait_until_written(bag + ".active")
+    finally:
+        if recorder is not None:
+            stop_process_group(recorder, 20.0)
+            log.close()
+        if stats_sub is not None:
+            stats_sub.unregister()
+        # This script's topics go first, while the master is up (no "unable to communicate" at exit), then the
+        # world gets SIGINT: the mapper saves mine_map.bt.
+        if sim is not None:
+            sim.close(30.0)
+        else:
+            world.close(30.0)
+    wall = time.monotonic() - wall0
+    if not os.path.exists(map_path):
+        raise RuntimeError(f"the mapper did not save {map_path}: see {log_dir}")
+
+    from unexmin.map_quality import read_trajectory, write_trajectory
+    from unexmin.map_quality import run as quality
+
+    traj = read_trajectory(bag)
+    write_trajectory(os.path.join(out, "trajectory.csv"), traj)
+
+    q = quality(map_path, "mine", out, trajectory=os.path.join(out, "trajectory.csv"))
+    plot_map(map_path, traj[:, 1:4], os.path.join(out, "mission_map.png"))
+    summary = {
+        "world": "mine",
+        "robot": ROBOT,
+        "seed": seed,
+        "resolution_m": resolution,
+        "sim_time_s": sim_time,
+        "wall_time_s": round(wall, 2),
+        "stepping_wall_s": round(sim_wall, 2),
+        "rtf_while_stepping": round(sim_time / sim_wall, 2),
+        "path_length_m": float(np.linalg.norm(np.diff(traj[:, 1:4], axis=0), axis=1).sum()),
+        "start": dict(zip("xyz", traj[0, 1:4].round(3).tolist())),
+        "end": dict(zip("xyz", traj[-1, 1:4].round(3).tolist())),
+        "waypoints_reached": sum(leg["reached"] for leg in legs),
+        "waypoints": len(legs),
+        "clouds_expected": expected,
+        "clouds_received": int(final.clouds_received),
+        "clouds_inserted": int(final.clouds_inserted),
+        "clouds_dropped": int(final.clouds_dropped),
+        "points_inserted": int(final.points_inserted),
+        "insert_wall_s": round(final.insert_seconds, 3),
+        "map_memory_bytes": int(final.memory_bytes),
+        "map_file_bytes": os.path.getsize(map_path),
+        "occupied_leaves": q["occupied_leaves"],
+        "quality": {
+            k: q[k]
+            for k in ("precision", "recall", "f_score", "mean_distance_m", "p95_distance_m", "tau_m", "surface_area_m2")
+        },
+        "legs": legs,
+    }
+    return write_summary(out, summary)
+
+
+def main(argv=None):
+    parser = mission_parser("python -m unexmin.missions.mine", __doc__.splitlines()[0])
+    parser.add_argument("--gallery", type=float, default=40.0, help="metres flown along the gallery (default 40)")
+    parser.add_argument("--resolution", type=float, default=0.1, help="map voxel edge [m] (default 0.1)")
+    args = parser.parse_args(argv)
+    s = run(args.out, args.seed, args.gallery, args.resolution)
+    q = s["quality"]
+    print(
+        f"\nUX_1 surveyed {s['path_length_m']:.0f} m of the mine (shaft and gallery; {s['waypoints_reached']}/"
+        f"{s['waypoints']} waypoints) in {s['sim_time_s']:.0f} s of sim time, {s['wall_time_s']:.0f} s of wall "
+        f"time (RTF {s['rtf_while_stepping']:.1f} while stepping)."
+    )
+    print(
+        f"map: {s['clouds_inserted']}/{s['clouds_received']} clouds inserted ({s['clouds_dropped']} dropped, "
+        f"{s['clouds_expected']} published), {s['occupied_leaves']} occupied leaves, "
+        f"{s['map_memory_bytes'] / 1e6:.1f} MB in memory, {s['map_file_bytes'] / 1e6:.2f} MB .bt"
+    )
+    print(
+        f"quality at tau {q['tau_m']:g} m: precision {q['precision']:.3f}, recall {q['recall']:.3f} "
+        f"(over {q['surface_area_m2']:.0f} m2 within range of the path), F-score {q['f_score']:.3f}, "
+        f"distance mean {q['mean_distance_m']:.3f} m, 95th percentile {q['p95_distance_m']:.3f} m"
+    )
+    print(
+        f"outputs: {os.path.abspath(args.out)} (mine_mission.bag, mine_map.bt, map_quality.json, "
+        f"map_quality.png, mission_map.png, trajectory.csv, summary.json)"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

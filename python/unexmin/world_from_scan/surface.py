@@ -1,0 +1,202 @@
+"""The surface side of a world from a scan: screened Poisson reconstruction, trimming what the scan does not
+support, closing holes, simplification, ray casting against the result, spawn points and volumes. Units: [m]."""
+
+import math
+
+import numpy as np
+
+HULL_RADIUS = 0.3  # [m] the UX-1's sphere (docs/robot_description.md)
+
+
+def poisson_depth(points, resolution):
+    """Octree depth whose finest cell is about `resolution` over the scan's largest extent (x 1.1)."""
+    extent = float((points.max(axis=0) - points.min(axis=0)).max()) * 1.1
+    return int(np.clip(math.ceil(math.log2(max(extent / resolution, 2.0))), 5, 13))
+
+
+def reconstruct(points, normals, depth):
+    """Screened Poisson (Open3D, Kazhdan & Hoppe 2013) of the void as the solid: `normals` face the void
+    and are reversed, so the indicator's "inside" is the small void and its "outside" the rock that
+    fills the rest of the octree (a small solid in a large empty box, Poisson's usual case). Returns vertices V x 3 and
+    triangles T x 3 facing out of the void (build_world turns them)."""
+    import open3d as o3d
+
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
+    cloud.normals = o3d.utility.Vector3dVector(-normals)
+    mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(
+        cloud, depth=depth, scale=1.1, linear_fit=False, n_threads=-1
+    )
+    return np.asarray(mesh.vertices).copy(), np.asarray(mesh.triangles).astype(np.int64)
+
+
+def trim_unsupported(v, t, points, max_gap):
+    """Drop the triangles with a vertex farther than `max_gap` [m] from every scan point (an empty ball
+    of that radius: no scan density there, the surface would be invented), then the small pieces
+    (under 1 % of the triangles) that remain apart. Returns (v, t) compacted."""
+    import trimesh
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(points).query(v, distance_upper_bound=max_gap, workers=-1)
+    keep = np.isfinite(d)[t].all(axis=1)
+    t = t[keep]
+    if len(t) == 0:
+        return v[:0], t
+    labels = trimesh.graph.connected_component_labels(
+        trimesh.Trimesh(v, t, process=False).face_adjacency, node_count=len(t)
+    )
+    sizes = np.bincount(labels)
+    t = t[sizes[labels] >= 0.01 * len(t)]
+    used = np.unique(t)
+    remap = np.full(len(v), -1)
+    remap[used] = np.arange(len(used))
+    return v[used], remap[t]
+
+
+def boundary_loops(t):
+    """Closed loops of directed boundary edges (edges with no opposite half-edge), as vertex lists."""
+    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
+    n = int(t.max()) + 1
+    key = e[:, 0] * n + e[:, 1]
+    border = e[~np.isin(key, e[:, 1] * n + e[:, 0])]
+    nxt = {}
+    for a, b in border:
+        nxt.setdefault(int(a), []).append(int(b))
+    loops = []
+    while nxt:
+        start = next(iter(nxt))
+        loop, a = [start], start
+        while True:
+            b = nxt[a].pop()
+            if not nxt[a]:
+                del nxt[a]
+            if b == start or b not in nxt:
+                break
+            loop.append(b)
+            a = b
+        if len(loop) >= 3:
+            loops.append(loop)
+    return loops
+
+
+def close_holes(v, t):
+    """Close every boundary loop with a fan from its centroid, wound against the loop's edges so the
+    surface stays consistently oriented. Returns (v, t, number of holes, area closed [m^2], the cap
+    triangles' mask)."""
+    loops = boundary_loops(t) if len(t) else []
+    new_v, new_t = [v], [t]
+    nv, area = len(v), 0.0
+    for loop in loops:
+        ring = np.asarray(loop)
+        centre = v[ring].mean(axis=0)
+        a, b = ring, np.roll(ring, -1)
+        fan = np.column_stack([b, a, np.full(len(ring), nv)])
+        area += 0.5 * float(np.linalg.norm(np.cross(v[a] - centre, v[b] - centre), axis=1).sum())
+        new_v.append(centre[None])
+        new_t.append(fan)
+        nv += 1
+    cap = np.zeros(sum(len(x) for x in new_t), dtype=bool)
+    cap[len(t) :] = True
+    return np.concatenate(new_v), np.concatenate(new_t), len(loops), area, cap
+
+
+def simplify(v, t, edge):
+    """Quadric-error decimation (Open3D, Garland & Heckbert) to triangles of about `edge` [m] (equilateral
+    ones of that edge tiling the same area); the mesh as it is when it has fewer already."""
+    import open3d as o3d
+
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+    target = max(1000, int(area / (edge**2 * math.sqrt(3) / 4)))
+    if target >= len(t):
+        return v, t
+    mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(t.astype(np.int32)))
+    mesh = mesh.simplify_quadric_decimation(target_number_of_triangles=target)
+    mesh.remove_degenerate_triangles()
+    mesh.remove_unreferenced_vertices()
+    return np.asarray(mesh.vertices).copy(), np.asarray(mesh.triangles).astype(np.int64)
+
+
+def raycasting_scene(v, t):
+    import open3d as o3d
+
+    scene = o3d.t.geometry.RaycastingScene()
+    scene.add_triangles(o3d.core.Tensor(v.astype(np.float32)), o3d.core.Tensor(t.astype(np.uint32)))
+    return scene
+
+
+def distances(scene, points, chunk=1_000_000):
+    """Unsigned distance [m] from each point to the scene's triangles."""
+    import open3d as o3d
+
+    out = [
+        scene.compute_distance(o3d.core.Tensor(points[i : i + chunk].astype(np.float32))).numpy()
+        for i in range(0, len(points), chunk)
+    ]
+    return np.concatenate(out) if out else np.zeros(0)
+
+
+def inside(scene, points):
+    """True where the point is enclosed by the (closed) surface: in the void, the water."""
+    import open3d as o3d
+
+    return scene.compute_occupancy(o3d.core.Tensor(points.astype(np.float32)), nsamples=3).numpy() > 0.5
+
+
+def find_spawns(scene, points, normals, surface_z, clearance, count=3, spacing=1.5, seed=0):
+    """Up to `count` robot positions [m] in the water: inside the closed surface, at least `clearance`
+    [m] from every wall, the hull (R 0.3 m) at least 0.4 m under the surface, `spacing` [m] apart and
+    within 15 m of the first (the one with the most room). Candidates are scan points moved 0.5..6 m
+    along their normal into the void. Returns a list of (xyz, clearance)."""
+    rng = np.random.default_rng(seed)
+    pick = rng.choice(len(points), size=min(4000, len(points)), replace=False)
+    cand = np.concatenate([points[pick] + d * normals[pick] for d in (0.5, 1.0, 2.0, 3.0, 6.0)])
+    cand = cand[cand[:, 2] <= surface_z - HULL_RADIUS - 0.4]
+    if len(cand) == 0:
+        return []
+    room = distances(scene, cand)
+    ok = (room >= clearance) & inside(scene, cand)
+    cand, room = cand[ok], room[ok]
+    order = np.argsort(-room, kind="stable")
+    chosen = []
+    for i in order:
+        c = cand[i]
+        if chosen and (
+            np.linalg.norm(c - chosen[0][0]) > 15.0 or min(np.linalg.norm(c - s) for s, _ in chosen) < spacing
+        ):
+            continue
+        chosen.append((c, float(room[i])))
+        if len(chosen) == count:
+            break
+    return chosen
+
+
+def flooded_volume(v, t, surface_z):
+    """[m^3] of the void (enclosed by faces pointing into it) below z = surface_z (manifold3d), or None
+    when the surface is not a closed 2-manifold."""
+    import manifold3d
+
+    solid = manifold3d.Manifold(
+        manifold3d.Mesh(vert_properties=v.astype(np.float32), tri_verts=t[:, ::-1].astype(np.uint32))
+    )
+    if solid.status() != manifold3d.Error.NoError:
+        return None
+    return float(solid.trim_by_plane((0.0, 0.0, -1.0), -surface_z).volume())
+
+
+def scanned_area(mesh, cap, points, reach):
+    """([m^2] of the surface whose triangle centroids lie within `reach` [m] of a scan point: the walls
+    the scan saw; [m^2] of the rest of the Poisson surface: gaps it bridged), hole caps left out."""
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(points).query(mesh.triangles_center, distance_upper_bound=reach, workers=-1)
+    area = mesh.area_faces
+    seen = np.isfinite(d)
+    return float(area[seen & ~cap].sum()), float(area[~seen & ~cap].sum())
+
+
+def closed_surface(v, t):
+    """True when the triangles make a closed, consistently wound surface (trimesh, vertices as given)."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(v, t, process=False)
+    return bool(mesh.is_watertight and mesh.is_winding_consistent)
