@@ -7,6 +7,8 @@
 #include <unexmin/ros_layer/simulator_ros.h>
 #include <unexmin/sensors/sensor_params.h>
 
+#include "ros_test_main.h"
+
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -177,10 +179,4 @@ TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished)
 }  // namespace
 }  // namespace unexmin
 
-int main(int argc, char** argv)
-{
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "sensor_family_test");
-  ros::NodeHandle keep;  // keeps roscpp up between the tests
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return unexmin::test::runRosTests(argc, argv, "sensor_family_test"); }
