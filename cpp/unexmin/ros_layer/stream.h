@@ -8,11 +8,26 @@
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
 namespace unexmin {
 namespace ros_layer {
+
+/// Physics steps between two messages of a stream published at `rate` [Hz of sim time] by a simulator stepping at
+/// `physics_rate` [Hz]: at least 1; 0 (never) when `rate` is 0.
+inline std::uint64_t every(double physics_rate, double rate)
+{
+  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
+}
+
+/// Outgoing queue per subscriber of a stream published at `rate` [Hz of sim time] (a sensor topic, odometry,
+/// joint states, thrust): 20 s of sim time, at least 1000 messages, so that a subscriber (a rosbag recorder) can
+/// stall for 0.4 s of wall time at a real-time factor of 50, or a script step the world in bursts
+/// (python/unexmin/simulation.py), without a message being dropped here.
+inline int queueSize(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
 
 class Stream
 {
