@@ -1,5 +1,4 @@
 #include <unexmin/ros_layer/subscriber_pacer.h>
-#include <unexmin/ros_layer/tcp_port_view.h>
 
 #include <ros/connection_manager.h>
 #include <ros/poll_manager.h>
@@ -7,12 +6,15 @@
 #include <ros/topic_manager.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
-
 #include <chrono>
-#include <thread>
 
 namespace unexmin {
 namespace ros_layer {
+namespace {
+
+void wakePollThread() { ros::PollManager::instance()->getPollSet().signal(); }  // else it sleeps up to 100 ms
+
+}  // namespace
 
 SubscriberPacer::~SubscriberPacer()
 {
@@ -27,29 +29,6 @@ void SubscriberPacer::refresh()
   ros::TopicManager::instance()->getAdvertisedTopics(topics);
   for (const auto& t : topics)
     if (ros::PublicationPtr p = ros::TopicManager::instance()->lookupPublication(t)) publications_.push_back(p);
-}
-
-bool SubscriberPacer::awaitPollTurns(int turns)
-{
-  if (!listener_.connected())
-    listener_ = ros::PollManager::instance()->addPollThreadListener([this] {
-      {
-        std::lock_guard<std::mutex> lock(turn_mutex_);
-        ++turns_;
-      }
-      turn_cv_.notify_all();
-    });
-  std::unique_lock<std::mutex> lock(turn_mutex_);
-  const std::uint64_t target = turns_ + static_cast<std::uint64_t>(turns);
-  while (turns_ < target) {
-    if (!ros::ok()) return false;
-    const std::uint64_t seen = turns_;
-    lock.unlock();
-    ros::PollManager::instance()->getPollSet().signal();  // the poll thread otherwise sleeps up to 100 ms
-    lock.lock();
-    turn_cv_.wait_for(lock, std::chrono::milliseconds(100), [&] { return turns_ > seen; });
-  }
-  return true;
 }
 
 bool SubscriberPacer::anySubscriber() const
@@ -72,57 +51,89 @@ std::uint64_t SubscriberPacer::handedToConnections() const
   return handed;
 }
 
+void SubscriberPacer::finish(State state)
+{
+  state_ = state;
+  done_.notify_all();
+}
+
+// A wait, turn by turn of the poll thread (this listener runs after roscpp's own, which hands every publication's
+// queue to its connections; the turn's writes follow it):
+//  1. the turn may have begun before the messages were published: nothing to conclude;
+//  2. every message published before the wait is in a connection's queue or written. Nothing handed over since
+//     everything was last found taken: drained, the kernel is not asked (a dump of the TCP sockets walks the
+//     kernel's whole connection table, about 0.25 ms here). Else the kernel's first view;
+//  3. and on: drained when this view and the last one, a whole turn apart, find nothing unacknowledged, nothing
+//     unread and not one byte more written (a connection still holding a message would have written it).
+void SubscriberPacer::onPollTurn()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (state_ != State::kWaiting) return;
+  ++turn_;
+  if (turn_ == 1) {
+    wakePollThread();
+    return;
+  }
+  if (turn_ == 2) {
+    handed_ = handedToConnections();
+    if (drained_ && handed_ == drained_at_) return finish(State::kDrained);
+    drained_ = false;
+    if (!kernel_ok_) return finish(State::kNoKernel);
+    ++waits_;
+    before_ = viewTcpPort(port_);
+    if (!before_.ok) return finish(State::kNoKernel);
+    wakePollThread();
+    return;
+  }
+  TcpPortView now = viewTcpPort(port_);
+  if (!now.ok) return finish(State::kNoKernel);
+  if (before_.unsettled == 0 && now.unsettled == 0 && before_.written == now.written) {
+    drained_ = true;
+    drained_at_ = handed_;
+    return finish(State::kDrained);
+  }
+  if (now.moved != before_.moved) progress_ = ros::WallTime::now();
+  const bool settled = now.unsettled == 0;
+  before_ = std::move(now);
+  if (settled) wakePollThread();  // one more whole turn to confirm; else the subscribers are reading (poked below)
+}
+
 bool SubscriberPacer::waitDrained(double stall_timeout)
 {
   if (calls_++ % 1000 == 0) refresh();  // topics advertised later (and none go away while the simulator runs)
   if (!anySubscriber()) {
-    drained_ = false;
+    drained_ = false;  // no wait in progress: the poll thread does not touch it
     return true;
   }
-  // Two turns of the poll thread: every publication's queue has been handed to its connections.
-  if (!awaitPollTurns(2)) return false;
-  const std::uint64_t handed = handedToConnections();
-  // Nothing handed to any connection since everything was last found taken: the kernel is not asked (a dump of
-  // the TCP sockets walks the kernel's whole connection table, about 0.25 ms here).
-  if (drained_ && handed == drained_at_) return true;
-  drained_ = false;
-  if (!kernel_ok_) return true;
-
-  ++waits_;
-  const auto port = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
-  const ros::WallTime start = ros::WallTime::now();
-  ros::WallTime progress = start;
-  TcpPortView before = viewTcpPort(port);
-  while (before.ok && ros::ok()) {
-    // A whole turn of the poll thread after `before`: it wrote whatever its connections held, if anything.
-    if (!awaitPollTurns(2)) break;
-    TcpPortView now = viewTcpPort(port);
-    if (!now.ok) {
-      before = now;
-      break;
-    }
-    if (before.unsettled == 0 && now.unsettled == 0 && before.written == now.written) {
-      drained_ = true;
-      drained_at_ = handed;
-      break;
-    }
-    const ros::WallTime wall = ros::WallTime::now();
-    if (now.moved != before.moved) progress = wall;
-    if ((wall - progress).toSec() > stall_timeout) {
-      ROS_WARN_STREAM_THROTTLE(10.0, "lockstep_wait_subscribers: a subscriber has taken nothing for "
-                                         << stall_timeout << " s (" << now.unsettled << " bytes unread); stepping on");
-      break;
-    }
-    if (now.unsettled > 0) std::this_thread::sleep_for(std::chrono::microseconds(50));
-    before = std::move(now);
+  if (!listener_.connected()) {
+    port_ = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
+    listener_ = ros::PollManager::instance()->addPollThreadListener([this] { onPollTurn(); });
   }
-  if (!before.ok) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  state_ = State::kWaiting;
+  turn_ = 0;
+  progress_ = ros::WallTime::now();
+  while (state_ == State::kWaiting) {
+    lock.unlock();
+    wakePollThread();  // also every 0.1 ms while the subscribers read: the poll thread has no event to wake it
+    lock.lock();
+    if (done_.wait_for(lock, std::chrono::microseconds(100), [this] { return state_ != State::kWaiting; })) break;
+    if (!ros::ok()) break;
+    if ((ros::WallTime::now() - progress_).toSec() > stall_timeout) {
+      ROS_WARN_STREAM_THROTTLE(10.0, "lockstep_wait_subscribers: a subscriber has taken nothing for "
+                                         << stall_timeout << " s (" << before_.unsettled
+                                         << " bytes unread); stepping on");
+      break;
+    }
+  }
+  const State state = state_;
+  state_ = State::kIdle;
+  if (state == State::kNoKernel && kernel_ok_) {
     kernel_ok_ = false;
     ROS_WARN("lockstep_wait_subscribers: the kernel's socket queues cannot be read (sock_diag with tcp_info); "
              "waiting only until roscpp has handed the messages to its connections");
   }
-  waited_ += (ros::WallTime::now() - start).toSec();
-  return drained_;
+  return state == State::kDrained || state == State::kNoKernel;
 }
 
 }  // namespace ros_layer

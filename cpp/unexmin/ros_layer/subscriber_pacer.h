@@ -11,13 +11,16 @@
 //    (ros::PollManager::addPollThreadListener; roscpp's own hands every publication's queue to its connections), then
 //    writes what the connections hold while their sockets take it. Two turns after publish() returned, a message is
 //    in a connection's queue or written; a whole turn that writes nothing into sockets that hold nothing means the
-//    connections' queues are empty.
+//    connections' queues are empty. The pacer's own listener does the looking, in that thread, between its turns.
 //  * Linux's sock_diag reports each TCP socket's queues and byte counters: on this process's TCPROS port, bytes
 //    written and not yet acknowledged, and on a subscriber's end of the same connection (subscribers on this machine,
 //    IPv4), bytes received and not yet read by it.
 #pragma once
 
+#include <unexmin/ros_layer/tcp_port_view.h>
+
 #include <ros/publication.h>
+#include <ros/time.h>
 
 #include <boost/signals2/connection.hpp>
 
@@ -45,30 +48,38 @@ public:
   /// subscriber.
   bool waitDrained(double stall_timeout = 5.0);
 
-  /// Wall time spent waiting so far [s], and how many waits had something to wait for.
-  double waitedSeconds() const { return waited_; }
+  /// Waits so far that had something to wait for (the kernel was asked).
   std::size_t waits() const { return waits_; }
 
 private:
+  enum class State { kIdle, kWaiting, kDrained, kNoKernel };
+
   void refresh();
-  /// Wakes roscpp's poll thread until it has called its listeners `turns` more times (false when ROS shuts down).
-  bool awaitPollTurns(int turns);
   /// Whether a topic of this process has a subscriber.
   bool anySubscriber() const;
   /// Messages ever handed to the subscriber connections open now (their statistics).
   std::uint64_t handedToConnections() const;
+  /// roscpp's poll thread, at each of its turns: one step of the wait in progress, if any.
+  void onPollTurn();
+  void finish(State state);
 
   std::vector<ros::PublicationPtr> publications_;
   std::size_t calls_ = 0;
-  double waited_ = 0.0;
-  std::size_t waits_ = 0;
-  bool kernel_ok_ = true;
-  bool drained_ = false;           ///< the last wait found everything taken ...
-  std::uint64_t drained_at_ = 0;   ///< ... when this many messages had been handed to the open connections
   boost::signals2::connection listener_;
-  std::mutex turn_mutex_;
-  std::condition_variable turn_cv_;
-  std::uint64_t turns_ = 0;  ///< poll-thread turns seen since the listener was added
+  std::uint16_t port_ = 0;  ///< this process's TCPROS port
+
+  // Shared with the poll thread, under mutex_.
+  std::mutex mutex_;
+  std::condition_variable done_;
+  State state_ = State::kIdle;
+  int turn_ = 0;                  ///< turns of the poll thread since the wait began
+  std::uint64_t handed_ = 0;      ///< messages handed to the connections, counted at the wait's second turn
+  TcpPortView before_;            ///< the kernel's view at the last turn
+  ros::WallTime progress_;        ///< when bytes last moved
+  bool kernel_ok_ = true;
+  bool drained_ = false;          ///< the last wait found everything taken ...
+  std::uint64_t drained_at_ = 0;  ///< ... when this many messages had been handed to the open connections
+  std::size_t waits_ = 0;
 };
 
 }  // namespace ros_layer

@@ -27,10 +27,14 @@ TcpPortView viewTcpPort(std::uint16_t port)
   TcpPortView view;
   const int fd = ::socket(AF_NETLINK, SOCK_DGRAM | SOCK_CLOEXEC, NETLINK_SOCK_DIAG);
   if (fd < 0) return view;
+  // The request, and a filter so that the kernel describes only the port's sockets (sport == port or dport ==
+  // port; inet_diag's bytecode: each test jumps `yes` bytes on, or `no` bytes, past the end to reject).
   struct
   {
     nlmsghdr nlh;
     inet_diag_req_v2 req;
+    rtattr filter;
+    inet_diag_bc_op ops[5];
   } request{};
   request.nlh.nlmsg_len = sizeof(request);
   request.nlh.nlmsg_type = SOCK_DIAG_BY_FAMILY;
@@ -39,6 +43,13 @@ TcpPortView viewTcpPort(std::uint16_t port)
   request.req.sdiag_protocol = IPPROTO_TCP;
   request.req.idiag_states = 1u << kTcpEstablished;
   request.req.idiag_ext = 1u << (INET_DIAG_INFO - 1);  // tcp_info: the byte counters
+  request.filter.rta_type = INET_DIAG_REQ_BYTECODE;
+  request.filter.rta_len = RTA_LENGTH(sizeof(request.ops));
+  request.ops[0] = {INET_DIAG_BC_S_EQ, 8, 12};  // source port: accepted through the jump at 8, else on to 12
+  request.ops[1] = {0, 0, port};
+  request.ops[2] = {INET_DIAG_BC_JMP, 4, 12};  // to the end (20): accepted
+  request.ops[3] = {INET_DIAG_BC_D_EQ, 8, 12};  // destination port: to the end (20), or past it (24): rejected
+  request.ops[4] = {0, 0, port};
   sockaddr_nl kernel{};
   kernel.nl_family = AF_NETLINK;
   bool ok = ::sendto(fd, &request, sizeof(request), 0, reinterpret_cast<sockaddr*>(&kernel), sizeof(kernel)) >= 0;
