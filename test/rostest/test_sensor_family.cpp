@@ -64,7 +64,7 @@ public:
   AltimeterPublisher(const Altimeter& sensor, const ros_layer::PublisherContext& ctx) : sensor_(sensor)
   {
     pub_ = ctx.nh.advertise<sensor_msgs::Range>(resolve(ctx.ns, topicParam(sensor, "topic", sensor.name())),
-                                                queueSize(sensor.rate()));
+                                                ros_layer::queueSize(sensor.rate()));
   }
   void publish() override
   {
