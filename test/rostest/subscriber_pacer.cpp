@@ -2,6 +2,7 @@
 // on how roscpp's poll thread moves messages and on sock_diag's byte counters, and these tests fail (they never
 // skip) when either behaves otherwise. The subscriber is a raw TCPROS client in this process that reads exactly
 // when the test tells it to, so what "taken" means is known to the byte.
+#include <unexmin/ros_layer/stream.h>
 #include <unexmin/ros_layer/subscriber_pacer.h>
 #include <unexmin/ros_layer/tcp_port_view.h>
 
@@ -117,8 +118,8 @@ struct Connected
   {
     subscriber.startCounting();
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(10.0);
-    while (pub.getNumSubscribers() == 0 && ros::WallTime::now() < deadline) ros::WallDuration(0.001).sleep();
-    if (pub.getNumSubscribers() == 0) throw std::runtime_error(topic + ": roscpp never counted the raw subscriber");
+    while (pub.subscribers() == 0 && ros::WallTime::now() < deadline) ros::WallDuration(0.001).sleep();
+    if (pub.subscribers() == 0) throw std::runtime_error(topic + ": roscpp never counted the raw subscriber");
   }
   /// Publishes a message of `size` characters; returns its bytes on the wire.
   std::size_t publish(std::size_t size)
@@ -128,7 +129,7 @@ struct Connected
     pub.publish(m);
     return 4 + 4 + size;  // TCPROS length, then the string's length and characters
   }
-  ros::Publisher pub;
+  ros_layer::Stream pub;  // the simulator's way to publish (the pacer counts what goes out through it)
   RawSubscriber subscriber;
 };
 

@@ -154,7 +154,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
         t.transform.rotation = o.pose.pose.orientation;
         tf2_msgs::TFMessage m;
         m.transforms.push_back(t);
-        tf_pub_.publisher().publish(m);
+        tf_pub_.publish(m);
       }
       if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
     }

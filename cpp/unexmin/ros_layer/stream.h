@@ -9,6 +9,7 @@
 #include <ros/topic_manager.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -50,6 +51,15 @@ public:
   /// Resolved topic name ("" for an empty stream).
   const std::string& topic() const { return topic_; }
   const ros::Publisher& publisher() const { return pub_; }
+  /// Publishes `m` to the subscribers there are now, and counts it in sent().
+  template <class M>
+  void publish(const M& m) const
+  {
+    pub_.publish(m);
+    sent_.fetch_add(1, std::memory_order_relaxed);
+  }
+  /// Messages published through every Stream of this process so far (SubscriberPacer: has anything gone out).
+  static std::uint64_t sent() { return sent_.load(std::memory_order_relaxed); }
   /// Whether it was advertised.
   explicit operator bool() const { return static_cast<bool>(pub_); }
 
@@ -57,6 +67,7 @@ private:
   ros::Publisher pub_;
   std::string topic_;
   ros::PublicationPtr publication_;
+  static inline std::atomic<std::uint64_t> sent_{0};
 };
 
 }  // namespace ros_layer

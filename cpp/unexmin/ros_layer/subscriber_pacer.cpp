@@ -1,10 +1,10 @@
 #include <unexmin/ros_layer/subscriber_pacer.h>
+#include <unexmin/ros_layer/stream.h>
 
 #include <ros/connection_manager.h>
 #include <ros/poll_manager.h>
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
-#include <xmlrpcpp/XmlRpcValue.h>
 
 #include <chrono>
 
@@ -38,19 +38,6 @@ bool SubscriberPacer::anySubscriber() const
   return false;
 }
 
-std::uint64_t SubscriberPacer::handedToConnections() const
-{
-  std::uint64_t handed = 0;
-  for (const auto& p : publications_) {
-    if (p->getNumSubscribers() == 0) continue;
-    // [topic, [[connection id, bytes, data bytes, messages, connected], ...]]: messages counted when handed over.
-    XmlRpc::XmlRpcValue stats = p->getStats();
-    XmlRpc::XmlRpcValue& links = stats[1];
-    for (int i = 0; i < links.size(); ++i) handed += static_cast<std::uint32_t>(static_cast<int>(links[i][3]));
-  }
-  return handed;
-}
-
 void SubscriberPacer::finish(State state)
 {
   state_ = state;
@@ -60,9 +47,7 @@ void SubscriberPacer::finish(State state)
 // A wait, turn by turn of the poll thread (this listener runs after roscpp's own, which hands every publication's
 // queue to its connections; the turn's writes follow it):
 //  1. the turn may have begun before the messages were published: nothing to conclude;
-//  2. every message published before the wait is in a connection's queue or written. Nothing handed over since
-//     everything was last found taken: drained, the kernel is not asked (a dump of the TCP sockets walks the
-//     kernel's whole connection table, about 0.25 ms here). Else the kernel's first view;
+//  2. every message published before the wait is in a connection's queue or written: the kernel's first view;
 //  3. and on: drained when this view and the last one, a whole turn apart, find nothing unacknowledged, nothing
 //     unread and not one byte more written (a connection still holding a message would have written it).
 void SubscriberPacer::onPollTurn()
@@ -75,9 +60,6 @@ void SubscriberPacer::onPollTurn()
     return;
   }
   if (turn_ == 2) {
-    handed_ = handedToConnections();
-    if (drained_ && handed_ == drained_at_) return finish(State::kDrained);
-    drained_ = false;
     if (!kernel_ok_) return finish(State::kNoKernel);
     ++waits_;
     before_ = viewTcpPort(port_);
@@ -88,8 +70,6 @@ void SubscriberPacer::onPollTurn()
   TcpPortView now = viewTcpPort(port_);
   if (!now.ok) return finish(State::kNoKernel);
   if (before_.unsettled == 0 && now.unsettled == 0 && before_.written == now.written) {
-    drained_ = true;
-    drained_at_ = handed_;
     return finish(State::kDrained);
   }
   if (now.moved != before_.moved) progress_ = ros::WallTime::now();
@@ -102,9 +82,13 @@ bool SubscriberPacer::waitDrained(double stall_timeout)
 {
   if (calls_++ % 1000 == 0) refresh();  // topics advertised later (and none go away while the simulator runs)
   if (!anySubscriber()) {
-    drained_ = false;  // no wait in progress: the poll thread does not touch it
+    drained_ = false;
     return true;
   }
+  // Nothing published by the simulator's streams since everything was last found taken: nothing to wait for, and
+  // no need to wake the poll thread.
+  const std::uint64_t sent = Stream::sent();
+  if (drained_ && sent == drained_at_) return true;
   if (!listener_.connected()) {
     port_ = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
     listener_ = ros::PollManager::instance()->addPollThreadListener([this] { onPollTurn(); });
@@ -128,6 +112,8 @@ bool SubscriberPacer::waitDrained(double stall_timeout)
   }
   const State state = state_;
   state_ = State::kIdle;
+  drained_ = state == State::kDrained;
+  drained_at_ = sent;
   if (state == State::kNoKernel && kernel_ok_) {
     kernel_ok_ = false;
     ROS_WARN("lockstep_wait_subscribers: the kernel's socket queues cannot be read (sock_diag with tcp_info); "

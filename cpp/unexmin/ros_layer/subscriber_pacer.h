@@ -45,7 +45,7 @@ public:
   /// them (those on this machine; acknowledged by those elsewhere), or ros::ok() turns false, or the subscribers have
   /// taken nothing for `stall_timeout` [s of wall time] (then warns, throttled, and returns false: a dead subscriber
   /// does not stop the simulation). Returns true when drained. Returns at once when no topic of this process has a
-  /// subscriber.
+  /// subscriber, or when nothing was published through a Stream since the last wait found everything taken.
   bool waitDrained(double stall_timeout = 5.0);
 
   /// Waits so far that had something to wait for (the kernel was asked).
@@ -57,8 +57,6 @@ private:
   void refresh();
   /// Whether a topic of this process has a subscriber.
   bool anySubscriber() const;
-  /// Messages ever handed to the subscriber connections open now (their statistics).
-  std::uint64_t handedToConnections() const;
   /// roscpp's poll thread, at each of its turns: one step of the wait in progress, if any.
   void onPollTurn();
   void finish(State state);
@@ -67,18 +65,17 @@ private:
   std::size_t calls_ = 0;
   boost::signals2::connection listener_;
   std::uint16_t port_ = 0;  ///< this process's TCPROS port
+  bool drained_ = false;          ///< the last wait found everything taken ...
+  std::uint64_t drained_at_ = 0;  ///< ... when Stream::sent() was this
 
   // Shared with the poll thread, under mutex_.
   std::mutex mutex_;
   std::condition_variable done_;
   State state_ = State::kIdle;
   int turn_ = 0;                  ///< turns of the poll thread since the wait began
-  std::uint64_t handed_ = 0;      ///< messages handed to the connections, counted at the wait's second turn
   TcpPortView before_;            ///< the kernel's view at the last turn
   ros::WallTime progress_;        ///< when bytes last moved
   bool kernel_ok_ = true;
-  bool drained_ = false;          ///< the last wait found everything taken ...
-  std::uint64_t drained_at_ = 0;  ///< ... when this many messages had been handed to the open connections
   std::size_t waits_ = 0;
 };
 
