@@ -14,15 +14,16 @@ venv=${UNEXMIN_VENV:-$ws/venv}
 
 apt_packages=(
   # ROS 1 from Debian
-  ros-core-dev rosbash python3-rostest python3-rosbag ros-robot-state-publisher tf2-tools
-  libtf2-ros-dev python3-tf2-ros liburdf-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
+  ros-core-dev rosbash python3-rostest python3-rosbag ros-robot-state-publisher
+  libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
   libvisualization-msgs-dev python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-visualization-msgs
-  libstd-srvs-dev python3-std-srvs librosbag-dev librosbag-storage-dev pluginlib-dev
+  libstd-srvs-dev python3-std-srvs librosbag-storage-dev
   # C++ core
-  libbullet-dev libeigen3-dev liboctomap-dev libpcl-dev libpcl-conversions-dev libembree-dev
-  libassimp-dev octomap-tools libyaml-cpp-dev libbenchmark-dev libtinyxml2-dev liburdfdom-dev
-  # tests, viewer, Python
-  libgtest-dev googletest rviz xvfb xauth x11-apps imagemagick tmux python3-venv python3-numpy python3-yaml
+  libbullet-dev libeigen3-dev liboctomap-dev libembree-dev libassimp-dev libyaml-cpp-dev libtinyxml2-dev
+  # OctoMap's bt2vrml and binvox2bt (map_quality, its tests); urdfdom (test_urdf.py checks the description with it)
+  octomap-tools liburdfdom-dev
+  # tests, viewer (rviz under Xvfb, screenshots with ImageMagick's import, teleop's test in tmux), Python
+  libgtest-dev googletest rviz xvfb imagemagick tmux python3-venv python3-numpy python3-yaml
   build-essential cmake
   # test/pytest/test_loopback.py: ss and ip netns (not in a minimal Debian 12 image)
   iproute2
@@ -30,7 +31,7 @@ apt_packages=(
   xterm
 )
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
-  trimesh==4.5.3 opensimplex==0.4.5.1 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3
+  trimesh==4.5.3 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3
   open3d-cpu==0.20.0 laspy==2.5.4 lazrs==0.6.2)
 # batch missions on Dask (docs/batch.md): scheduler/workers, results table (Parquet), dashboard
 pip_packages+=("dask[distributed]==2025.1.0" distributed==2025.1.0 pandas==2.2.3 pyarrow==18.1.0 bokeh==3.6.2)

@@ -7,6 +7,8 @@
 #include <unexmin/ros_layer/simulator_ros.h>
 #include <unexmin/sensors/sensor_params.h>
 
+#include "ros_test_main.h"
+
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -62,7 +64,7 @@ public:
   AltimeterPublisher(const Altimeter& sensor, const ros_layer::PublisherContext& ctx) : sensor_(sensor)
   {
     pub_ = ctx.nh.advertise<sensor_msgs::Range>(resolve(ctx.ns, topicParam(sensor, "topic", sensor.name())),
-                                                queueSize(sensor.rate()));
+                                                ros_layer::queueSize(sensor.rate()));
   }
   void publish() override
   {
@@ -177,10 +179,4 @@ TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished)
 }  // namespace
 }  // namespace unexmin
 
-int main(int argc, char** argv)
-{
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "sensor_family_test");
-  ros::NodeHandle keep;  // keeps roscpp up between the tests
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return unexmin::test::runRosTests(argc, argv, "sensor_family_test"); }

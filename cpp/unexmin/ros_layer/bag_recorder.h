@@ -95,7 +95,7 @@ template <class M>
 void publishRecorded(const Stream& stream, BagRecorder* recorder, const M& m)
 {
   if (recorder && recorder->active()) recorder->write(stream.topic(), m);
-  if (stream.subscribers() > 0) stream.publisher().publish(m);
+  if (stream.subscribers() > 0) stream.publish(m);
 }
 
 /// Whether a message for `stream` is needed: someone subscribes or the recorder records its topic.

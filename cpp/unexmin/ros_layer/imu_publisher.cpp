@@ -20,6 +20,28 @@ void set(V& out, const Eigen::Vector3d& v, double scale = 1.0)
   out.z = scale * v.z();
 }
 
+/// The fields of a raw IMU message (unexmin/ImuRaw, kvh_1775/ImuRawKvh: the same quantities under other names).
+struct RawFields
+{
+  geometry_msgs::Vector3& specific_force;
+  geometry_msgs::Vector3& angular_velocity;
+  geometry_msgs::Vector3& magnetic_field;
+  double& temperature;
+  double& pressure;
+  double& pressure_temperature;
+};
+
+/// Fills `out` from `s`: the magnetic field [mG] times `field_scale`, the pressure [Pa] times `pressure_scale`.
+void setRaw(const RawFields& out, const sensors::ImuSample& s, double field_scale, double pressure_scale)
+{
+  set(out.specific_force, s.specific_force);
+  set(out.angular_velocity, s.angular_velocity);
+  set(out.magnetic_field, s.magnetic_field, field_scale);
+  out.temperature = s.temperature;
+  out.pressure = s.pressure * pressure_scale;
+  out.pressure_temperature = s.pressure_temperature;
+}
+
 }  // namespace
 
 ImuPublisher::ImuPublisher(const sensors::ImuSensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
@@ -67,24 +89,17 @@ void ImuPublisher::publish()
   if (raw_ && wanted(raw_)) {
     unexmin::ImuRaw m;
     m.header = header;
-    set(m.linear_acceleration, s.specific_force);
-    set(m.angular_velocity, s.angular_velocity);
-    set(m.magnetic_field, s.magnetic_field, kTeslaPerMilliGauss);
-    m.temperature = s.temperature;
-    m.pressure = s.pressure;
-    m.pressure_temperature = s.pressure_temperature;
+    setRaw({m.linear_acceleration, m.angular_velocity, m.magnetic_field, m.temperature, m.pressure,
+            m.pressure_temperature},
+           s, kTeslaPerMilliGauss, 1.0);
     emit(raw_, m);
   }
   if (kvh_ && wanted(kvh_)) {
     // Same conversion as python/unexmin/kvh_translator.py (checked by test/rostest/sensors.py).
     kvh_1775::ImuRawKvh m;
     m.header = header;
-    set(m.accelerometer, s.specific_force);
-    set(m.gyroscope, s.angular_velocity);
-    set(m.magnetometer, s.magnetic_field);
-    m.temperature_imu = s.temperature;
-    m.pressure = s.pressure * kBarPerPascal;
-    m.temperature_pressure = s.pressure_temperature;
+    setRaw({m.accelerometer, m.gyroscope, m.magnetometer, m.temperature_imu, m.pressure, m.temperature_pressure}, s,
+           1.0, kBarPerPascal);
     emit(kvh_, m);
   }
 }

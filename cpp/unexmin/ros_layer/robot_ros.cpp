@@ -12,18 +12,6 @@ namespace unexmin {
 namespace ros_layer {
 namespace {
 
-std::uint64_t every(double physics_rate, double rate)
-{
-  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
-}
-
-/// Outgoing queue per subscriber of a stream published at `rate` [Hz of sim time]: 20 s of sim time,
-/// at least 1000 messages, as the sensors' (SensorPublisher::queueSize), so that a script stepping the
-/// world in bursts (python/unexmin/simulation.py) loses no odometry, joint state or thrust message.
-int streamQueue(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
-
-using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
-
 /// Command subscriber whose callback sees the publisher's name (to count applied commands).
 ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
                                  const boost::function<void(const Float64Event&)>& callback)
@@ -44,15 +32,15 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
     const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
     subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
-    thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", streamQueue(rates.thrust)));
+    thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", queueSize(rates.thrust)));
   }
   subs_.push_back(subscribeCommand(command_nh, ns + "pendulum", [this](const Float64Event& e) { onPendulum(e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
-  odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", streamQueue(rates.odom));
-  joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", streamQueue(rates.joint_states));
+  odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", queueSize(rates.odom));
+  joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", queueSize(rates.joint_states));
   // One publication per topic and node, its queue set by the first robot: room for every robot's (up to 8)
   // samples of 20 s of simulated time, like a sensor stream's queue.
-  tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 8 * streamQueue(rates.odom));
+  tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 8 * queueSize(rates.odom));
   odom_every_ = every(physics_rate, rates.odom);
   joint_every_ = every(physics_rate, rates.joint_states);
   thrust_every_ = every(physics_rate, rates.thrust);
@@ -144,7 +132,7 @@ nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const
 void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
 {
   now_ = stamp.toSec();
-  sensors_->publish(step);  // samples due at this step (nothing extra when `all`)
+  sensors_->publish(step);  // the samples of this step (nothing extra when `all`)
   // A stream is published when its schedule says so or when `all` asks, once per step at most.
   auto due = [&](std::uint64_t every, std::uint64_t& last) {
     if (!every || last == step || !(all || step % every == 0)) return false;
@@ -166,7 +154,7 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
         t.transform.rotation = o.pose.pose.orientation;
         tf2_msgs::TFMessage m;
         m.transforms.push_back(t);
-        tf_pub_.publisher().publish(m);
+        tf_pub_.publish(m);
       }
       if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
     }

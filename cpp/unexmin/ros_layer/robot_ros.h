@@ -16,6 +16,9 @@
 namespace unexmin {
 namespace ros_layer {
 
+/// A command message with its publisher's name (to count applied commands).
+using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
+
 struct PublishRates
 {
   double odom = 50.0;         ///< nav_msgs/Odometry and tf [Hz of sim time]
@@ -34,10 +37,11 @@ public:
            double physics_rate, std::map<std::string, std::uint64_t>& received, const raycast::RayCaster* rays,
            const SensorRegistry& registry, const sensors::SensorSelection& selection, bool visual = false);
 
-  /// Publishes whatever is due at this physics step; everything when `all` (end of a /sim/step, reset).
-  void publish(std::uint64_t step, const ros::Time& stamp, bool all = false);
-  /// Samples the sensors due at this physics step without publishing (publish() then only publishes them).
+  /// Samples the sensors due at this physics step (after every step, before publish()).
   void sample(std::uint64_t step) { sensors_->sample(step); }
+  /// Publishes whatever is due at this physics step: the robot's state streams (all of them when `all`: end of a
+  /// /sim/step, reset) and the samples sample() took at this step.
+  void publish(std::uint64_t step, const ros::Time& stamp, bool all = false);
 
   /// Ground truth of the base link: pose in `world`, twist in the body frame (REP-105).
   nav_msgs::Odometry odometry(const ros::Time& stamp) const;
@@ -66,7 +70,6 @@ public:
   }
 
 private:
-  using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
   void onThrusterInput(std::size_t i, const Float64Event& event);
   void onPendulum(const Float64Event& event);
   void onVbs(const Float64Event& event);

@@ -27,11 +27,6 @@ struct PublisherContext
 class SensorPublisher
 {
 public:
-  /// Outgoing queue per subscriber of a sensor topic sampled at `rate` [Hz of sim time]: 20 s of sim
-  /// time, at least 1000 messages, so that a subscriber (a rosbag recorder) can stall for 0.4 s of
-  /// wall time at a real-time factor of 50 without a message being dropped here.
-  static int queueSize(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
-
   virtual ~SensorPublisher() = default;
   /// Publishes the sensor's latest sample, stamped with its sample time, on every topic that has
   /// a subscriber or is recorded (other messages are not built). Implementations test a topic with

@@ -29,9 +29,8 @@ void SensorsRos::sample(std::uint64_t step)
 
 void SensorsRos::publish(std::uint64_t step)
 {
-  if (step == last_step_) return;
+  if (step == last_step_ || step != last_sampled_) return;
   last_step_ = step;
-  sample(step);
   for (std::size_t i = 0; i < publishers_.size(); ++i)
     if (suite_->fresh(i)) publishers_[i]->publish();
 }

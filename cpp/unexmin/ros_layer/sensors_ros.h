@@ -27,12 +27,12 @@ public:
   SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays, const SensorRegistry& registry,
              const sensors::SensorSelection& selection, ros::NodeHandle& nh, bool visual = false);
 
-  /// Call after every physics step with the world's step count; a repeated call for the same step
-  /// (end of a /sim/step, after a reset) does nothing.
-  void publish(std::uint64_t step);
-  /// Samples what is due at this physics step (the cameras render, the ray sensors cast) without publishing it;
-  /// publish() of the same step then only publishes. A repeated call for the same step does nothing.
+  /// Samples what is due at this physics step (the cameras render, the ray sensors cast). Call after every physics
+  /// step with the world's step count; a repeated call for the same step does nothing.
   void sample(std::uint64_t step);
+  /// Publishes the samples sample() took at this step. Nothing for a step that was not sampled, nor again for the
+  /// same step (end of a /sim/step, after a reset).
+  void publish(std::uint64_t step);
   /// The world was reset (new seed, step 0): sensors back to turn-on.
   void restart();
   /// Hands every sensor message to `recorder` too (null: none); it must outlive this.

@@ -13,11 +13,6 @@ namespace unexmin {
 namespace ros_layer {
 namespace {
 
-std::uint64_t every(double physics_rate, double rate)
-{
-  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
-}
-
 [[noreturn]] void badParam(const std::string& name, const std::string& value, const std::string& expected)
 {
   throw ParameterError("parameter ~" + name + " = " + value + ": expected " + expected);
@@ -153,13 +148,6 @@ void SimulatorRos::loadParams()
   }
   recorder_ = std::make_unique<BagRecorder>(topics);
   pnh_.param("lockstep_wait_subscribers", wait_subscribers_, false);
-  // Before a step's messages go out (after its physics and its sensors' samples, which overlap with the
-  // subscribers' reading): one step's messages (one per stream at most) are in flight at a time, so
-  // neither roscpp's queue on our side nor a subscriber's own queue (rosbag record: 100 per topic, a user's
-  // node often 10) can overflow. Waiting every 10 ms of sim time instead lost ~0.3 % of a stock rosbag
-  // record's IMU messages here (its reader ran ahead of its callbacks), every step lost none
-  // (test/pytest/test_recording.py).
-  pace_every_ = 1;
 }
 
 void SimulatorRos::publishClock()
@@ -183,12 +171,12 @@ void SimulatorRos::stepOnce()
   world_->step();
   if (caster_) caster_->update();  // the robots where the sensors of this step see them
   const std::uint64_t n = world_->stepCount();
-  if (wait_subscribers_ && !realtime_ && n % pace_every_ == 0) {  // lockstep
-    // The sensors sample (the cameras render) while the subscribers are still taking the last step's messages;
-    // nothing of this step goes out before they have taken them all.
-    for (auto& r : robots_) r->sample(n);
-    pacer_.waitDrained();
-  }
+  for (auto& r : robots_) r->sample(n);
+  // lockstep_wait_subscribers: the sensors have sampled (the cameras rendered) while the subscribers were still
+  // taking the last step's messages; nothing of this step goes out before they have taken them all. One step's
+  // messages (one per stream at most) are then in flight at a time, so neither roscpp's queue on our side nor a
+  // subscriber's own queue (rosbag record: 100 per topic, a user's node often 10) can overflow.
+  if (wait_subscribers_ && !realtime_) pacer_.waitDrained();
   const ros::Time stamp(world_->time());
   recorder_->setTime(world_->time());
   // In real time the sim-time schedules are also wall-time rates. In lockstep, /clock and the
@@ -243,13 +231,18 @@ bool SimulatorRos::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Respons
   return true;
 }
 
-bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+void SimulatorRos::resetWorld(std::uint64_t seed)
 {
-  world_->reset(world_->seed());
+  world_->reset(seed);
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = 0.0;
   for (auto& r : robots_) r->restart();
   publishNow();
+}
+
+bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+{
+  resetWorld(world_->seed());
   return true;
 }
 
@@ -259,11 +252,7 @@ bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Res
     ROS_WARN_STREAM("/sim/reset_seed: rejected seed " << req.seed << ", expected >= 0");
     return false;
   }
-  world_->reset(static_cast<std::uint64_t>(req.seed));
-  pace_wall_ = ros::WallTime::now();
-  pace_sim_ = 0.0;
-  for (auto& r : robots_) r->restart();
-  publishNow();
+  resetWorld(static_cast<std::uint64_t>(req.seed));
   res.time = world_->time();
   return true;
 }

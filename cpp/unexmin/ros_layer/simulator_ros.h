@@ -42,6 +42,8 @@ private:
   void publishClock();
   /// /clock and every robot's state now (end of a /sim/step, after a reset).
   void publishNow();
+  /// Back to step 0 with `seed`: the world, the real-time pacing, every robot's streams; publishes the new state.
+  void resetWorld(std::uint64_t seed);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -88,9 +90,8 @@ private:
   // The simulator's own recorder (~record, ~record_topics, /sim/record; docs/recording.md).
   std::string record_path_;
   std::unique_ptr<BagRecorder> recorder_;
-  // ~lockstep_wait_subscribers: before every `pace_every_`-th lockstep step, wait until subscribers took their messages.
+  // ~lockstep_wait_subscribers: before a lockstep step's messages go out, wait until subscribers took the last ones.
   bool wait_subscribers_ = false;
-  std::uint64_t pace_every_ = 1;
   SubscriberPacer pacer_;
 };
 

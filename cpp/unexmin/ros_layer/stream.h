@@ -8,11 +8,27 @@
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
 namespace unexmin {
 namespace ros_layer {
+
+/// Physics steps between two messages of a stream published at `rate` [Hz of sim time] by a simulator stepping at
+/// `physics_rate` [Hz]: at least 1; 0 (never) when `rate` is 0.
+inline std::uint64_t every(double physics_rate, double rate)
+{
+  return rate > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(physics_rate / rate))) : 0;
+}
+
+/// Outgoing queue per subscriber of a stream published at `rate` [Hz of sim time] (a sensor topic, odometry,
+/// joint states, thrust): 20 s of sim time, at least 1000 messages, so that a subscriber (a rosbag recorder) can
+/// stall for 0.4 s of wall time at a real-time factor of 50, or a script step the world in bursts
+/// (python/unexmin/simulation.py), without a message being dropped here.
+inline int queueSize(double rate) { return static_cast<int>(std::max(1000.0, 20.0 * rate)); }
 
 class Stream
 {
@@ -35,6 +51,15 @@ public:
   /// Resolved topic name ("" for an empty stream).
   const std::string& topic() const { return topic_; }
   const ros::Publisher& publisher() const { return pub_; }
+  /// Publishes `m` to the subscribers there are now, and counts it in sent().
+  template <class M>
+  void publish(const M& m) const
+  {
+    pub_.publish(m);
+    sent_.fetch_add(1, std::memory_order_relaxed);
+  }
+  /// Messages published through every Stream of this process so far (SubscriberPacer: has anything gone out).
+  static std::uint64_t sent() { return sent_.load(std::memory_order_relaxed); }
   /// Whether it was advertised.
   explicit operator bool() const { return static_cast<bool>(pub_); }
 
@@ -42,6 +67,7 @@ private:
   ros::Publisher pub_;
   std::string topic_;
   ros::PublicationPtr publication_;
+  static inline std::atomic<std::uint64_t> sent_{0};
 };
 
 }  // namespace ros_layer

@@ -1,100 +1,26 @@
 #include <unexmin/ros_layer/subscriber_pacer.h>
+#include <unexmin/ros_layer/stream.h>
 
 #include <ros/connection_manager.h>
+#include <ros/poll_manager.h>
 #include <ros/ros.h>
 #include <ros/topic_manager.h>
-#include <ros/transport_subscriber_link.h>
 
-#include <boost/thread/mutex.hpp>
-
-#include <linux/inet_diag.h>
-#include <linux/netlink.h>
-#include <linux/sock_diag.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
-#include <cstring>
-#include <queue>
-#include <thread>
+#include <chrono>
 
 namespace unexmin {
 namespace ros_layer {
 namespace {
 
-// Access to roscpp's private queue members: an explicit instantiation may name private members
-// ([temp.explicit]), and the friend function defined in it hands the member pointer out.
-template <class Tag, typename Tag::type Member>
-struct Expose
-{
-  friend typename Tag::type member(Tag) { return Member; }
-};
-struct Links { using type = ros::V_SubscriberLink ros::Publication::*; friend type member(Links); };
-struct LinksMutex { using type = boost::mutex ros::Publication::*; friend type member(LinksMutex); };
-struct Outbox { using type = std::queue<ros::SerializedMessage> ros::TransportSubscriberLink::*; friend type member(Outbox); };
-struct OutboxMutex { using type = boost::mutex ros::TransportSubscriberLink::*; friend type member(OutboxMutex); };
-struct Writing { using type = bool ros::TransportSubscriberLink::*; friend type member(Writing); };
-struct PublishQueue { using type = std::vector<ros::SerializedMessage> ros::Publication::*; friend type member(PublishQueue); };
-struct PublishQueueMutex { using type = boost::mutex ros::Publication::*; friend type member(PublishQueueMutex); };
-template struct Expose<Links, &ros::Publication::subscriber_links_>;
-template struct Expose<LinksMutex, &ros::Publication::subscriber_links_mutex_>;
-template struct Expose<Outbox, &ros::TransportSubscriberLink::outbox_>;
-template struct Expose<OutboxMutex, &ros::TransportSubscriberLink::outbox_mutex_>;
-template struct Expose<Writing, &ros::TransportSubscriberLink::writing_message_>;
-template struct Expose<PublishQueue, &ros::Publication::publish_queue_>;
-template struct Expose<PublishQueueMutex, &ros::Publication::publish_queue_mutex_>;
-
-/// Bytes in flight on the TCP connections of this process's TCPROS port `port` (IPv4), from the kernel
-/// (sock_diag): written by us but not yet acknowledged, and received by a peer process on this machine but
-/// not yet read by it. Returns false when the kernel cannot be asked.
-bool kernelBacklog(std::uint16_t port, std::size_t& bytes)
-{
-  const int fd = ::socket(AF_NETLINK, SOCK_DGRAM | SOCK_CLOEXEC, NETLINK_SOCK_DIAG);
-  if (fd < 0) return false;
-  struct
-  {
-    nlmsghdr nlh;
-    inet_diag_req_v2 req;
-  } request{};
-  request.nlh.nlmsg_len = sizeof(request);
-  request.nlh.nlmsg_type = SOCK_DIAG_BY_FAMILY;
-  request.nlh.nlmsg_flags = NLM_F_REQUEST | NLM_F_DUMP;
-  request.req.sdiag_family = AF_INET;
-  request.req.sdiag_protocol = IPPROTO_TCP;
-  request.req.idiag_states = 1u << TCP_ESTABLISHED;
-  sockaddr_nl kernel{};
-  kernel.nl_family = AF_NETLINK;
-  bool ok = ::sendto(fd, &request, sizeof(request), 0, reinterpret_cast<sockaddr*>(&kernel), sizeof(kernel)) >= 0;
-  bytes = 0;
-  alignas(nlmsghdr) char buffer[32768];
-  for (bool done = !ok; !done;) {
-    const ssize_t n = ::recv(fd, buffer, sizeof(buffer), 0);
-    if (n <= 0) {
-      ok = false;
-      break;
-    }
-    int left = static_cast<int>(n);
-    for (auto* h = reinterpret_cast<nlmsghdr*>(buffer); NLMSG_OK(h, left); h = NLMSG_NEXT(h, left)) {
-      if (h->nlmsg_type == NLMSG_DONE) {
-        done = true;
-        break;
-      }
-      if (h->nlmsg_type == NLMSG_ERROR) {
-        ok = false;
-        done = true;
-        break;
-      }
-      const auto* m = static_cast<const inet_diag_msg*>(NLMSG_DATA(h));
-      if (ntohs(m->id.idiag_sport) == port) bytes += m->idiag_wqueue;  // ours: sent, not acknowledged
-      if (ntohs(m->id.idiag_dport) == port) bytes += m->idiag_rqueue;  // a subscriber's: received, not read
-    }
-  }
-  ::close(fd);
-  return ok;
-}
+void wakePollThread() { ros::PollManager::instance()->getPollSet().signal(); }  // else it sleeps up to 100 ms
 
 }  // namespace
+
+SubscriberPacer::~SubscriberPacer()
+{
+  // Under the poll manager's lock: once this returns, the listener is not running and will not run again.
+  if (listener_.connected()) ros::PollManager::instance()->removePollThreadListener(listener_);
+}
 
 void SubscriberPacer::refresh()
 {
@@ -105,69 +31,95 @@ void SubscriberPacer::refresh()
     if (ros::PublicationPtr p = ros::TopicManager::instance()->lookupPublication(t)) publications_.push_back(p);
 }
 
-SubscriberPacer::Backlog SubscriberPacer::backlog()
+bool SubscriberPacer::anySubscriber() const
 {
-  if (calls_++ % 1000 == 0) refresh();  // topics advertised later (and none go away while the simulator runs)
-  Backlog b;
-  std::uint64_t queued_ever = 0;  // messages ever queued to the links now open
-  for (const auto& p : publications_) {
-    {
-      // publish() only appends to the publication's queue; roscpp's poll thread hands it to the links later.
-      boost::mutex::scoped_lock lock((*p).*member(PublishQueueMutex()));
-      b.queued += ((*p).*member(PublishQueue())).size();
-    }
-    ros::V_SubscriberLink links;
-    {
-      boost::mutex::scoped_lock lock((*p).*member(LinksMutex()));
-      links = (*p).*member(Links());
-    }
-    for (const auto& l : links) {
-      auto* link = dynamic_cast<ros::TransportSubscriberLink*>(l.get());
-      if (!link) continue;  // intra-process: delivered in the publish call
-      boost::mutex::scoped_lock lock(link->*member(OutboxMutex()));
-      b.queued += (link->*member(Outbox())).size();
-      b.writing += (link->*member(Writing())) ? 1 : 0;
-      queued_ever += link->getStats().messages_sent_;  // counted when handed to the link
-    }
+  for (const auto& p : publications_)
+    if (p->getNumSubscribers() > 0) return true;
+  return false;
+}
+
+void SubscriberPacer::finish(State state)
+{
+  state_ = state;
+  done_.notify_all();
+}
+
+// A wait, turn by turn of the poll thread (this listener runs after roscpp's own, which hands every publication's
+// queue to its connections; the turn's writes follow it):
+//  1. the turn may have begun before the messages were published: nothing to conclude;
+//  2. every message published before the wait is in a connection's queue or written: the kernel's first view;
+//  3. and on: drained when this view and the last one, a whole turn apart, find nothing unacknowledged, nothing
+//     unread and not one byte more written (a connection still holding a message would have written it).
+void SubscriberPacer::onPollTurn()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (state_ != State::kWaiting) return;
+  ++turn_;
+  if (turn_ == 1) {
+    wakePollThread();
+    return;
   }
-  // Nothing handed to any link since everything was last found taken, and nothing waiting in a publication's
-  // queue: the kernel holds nothing of ours either, and is not asked. (A dump of the TCP sockets walks the kernel's
-  // whole connection table, about 0.25 ms here: every physics step would pay it.)
-  if (b.queued == 0 && b.writing == 0 && drained_ && queued_ever == drained_at_) return b;
-  if (b.queued == 0 && kernel_ok_) {
-    std::size_t bytes = 0;
-    kernel_ok_ = kernelBacklog(static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort()), bytes);
-    if (!kernel_ok_) ROS_WARN("lockstep_wait_subscribers: the kernel's socket queues cannot be read (sock_diag); "
-                              "waiting on roscpp's queues only");
-    b.in_kernel = bytes;
+  if (turn_ == 2) {
+    if (!kernel_ok_) return finish(State::kNoKernel);
+    ++waits_;
+    before_ = viewTcpPort(port_);
+    if (!before_.ok) return finish(State::kNoKernel);
+    wakePollThread();
+    return;
   }
-  drained_ = b.empty();
-  drained_at_ = queued_ever;
-  return b;
+  TcpPortView now = viewTcpPort(port_);
+  if (!now.ok) return finish(State::kNoKernel);
+  if (before_.unsettled == 0 && now.unsettled == 0 && before_.written == now.written) {
+    return finish(State::kDrained);
+  }
+  if (now.moved != before_.moved) progress_ = ros::WallTime::now();
+  const bool settled = now.unsettled == 0;
+  before_ = std::move(now);
+  if (settled) wakePollThread();  // one more whole turn to confirm; else the subscribers are reading (poked below)
 }
 
 bool SubscriberPacer::waitDrained(double stall_timeout)
 {
-  Backlog b = backlog();
-  if (b.empty()) return true;
-  ++waits_;
-  const ros::WallTime start = ros::WallTime::now();
-  ros::WallTime progress = start;
-  std::size_t last = b.queued + b.in_kernel;
-  while (!b.empty() && ros::ok()) {
-    std::this_thread::sleep_for(std::chrono::microseconds(50));
-    b = backlog();
-    const ros::WallTime now = ros::WallTime::now();
-    if (b.queued + b.in_kernel < last) progress = now;
-    last = b.queued + b.in_kernel;
-    if ((now - progress).toSec() > stall_timeout) {
-      ROS_WARN_STREAM_THROTTLE(10.0, "lockstep_wait_subscribers: a subscriber has taken nothing for " << stall_timeout
-                                         << " s (" << b.queued << " messages queued); stepping on");
+  if (calls_++ % 1000 == 0) refresh();  // topics advertised later (and none go away while the simulator runs)
+  if (!anySubscriber()) {
+    drained_ = false;
+    return true;
+  }
+  // Nothing published by the simulator's streams since everything was last found taken: nothing to wait for, and
+  // no need to wake the poll thread.
+  const std::uint64_t sent = Stream::sent();
+  if (drained_ && sent == drained_at_) return true;
+  if (!listener_.connected()) {
+    port_ = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
+    listener_ = ros::PollManager::instance()->addPollThreadListener([this] { onPollTurn(); });
+  }
+  std::unique_lock<std::mutex> lock(mutex_);
+  state_ = State::kWaiting;
+  turn_ = 0;
+  progress_ = ros::WallTime::now();
+  while (state_ == State::kWaiting) {
+    lock.unlock();
+    wakePollThread();  // also every 0.1 ms while the subscribers read: the poll thread has no event to wake it
+    lock.lock();
+    if (done_.wait_for(lock, std::chrono::microseconds(100), [this] { return state_ != State::kWaiting; })) break;
+    if (!ros::ok()) break;
+    if ((ros::WallTime::now() - progress_).toSec() > stall_timeout) {
+      ROS_WARN_STREAM_THROTTLE(10.0, "lockstep_wait_subscribers: a subscriber has taken nothing for "
+                                         << stall_timeout << " s (" << before_.unsettled
+                                         << " bytes unread); stepping on");
       break;
     }
   }
-  waited_ += (ros::WallTime::now() - start).toSec();
-  return b.empty();
+  const State state = state_;
+  state_ = State::kIdle;
+  drained_ = state == State::kDrained;
+  drained_at_ = sent;
+  if (state == State::kNoKernel && kernel_ok_) {
+    kernel_ok_ = false;
+    ROS_WARN("lockstep_wait_subscribers: the kernel's socket queues cannot be read (sock_diag with tcp_info); "
+             "waiting only until roscpp has handed the messages to its connections");
+  }
+  return state == State::kDrained || state == State::kNoKernel;
 }
 
 }  // namespace ros_layer

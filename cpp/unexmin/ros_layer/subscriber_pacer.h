@@ -1,23 +1,33 @@
-// lockstep_wait_subscribers (docs/recording.md): lockstep waits, before a step's messages go out, until every TCP
-// subscriber connection of every topic this process publishes has taken its queued messages, so a stock
+// lockstep_wait_subscribers (docs/recording.md): before a lockstep step's messages go out, wait until every TCP
+// subscriber connection of every topic this process publishes has taken the messages sent before, so that a stock
 // `rosbag record` or a user's node receives everything (at the speed it can take).
 //
-// roscpp 1.15/1.16 has no public call for a subscriber connection's outgoing queue: ros::Publisher only
-// counts subscribers, and a SubscriberStatusCallback sees connects and disconnects. Each connection's queue
-// is TransportSubscriberLink::outbox_ (its messages_sent statistic counts messages queued, not written),
-// and before it Publication::publish_queue_ (publish() only appends there; roscpp's poll thread moves it on),
-// which this class reads under their own mutexes through the standard explicit-instantiation access rule;
-// it depends on roscpp's member names, which have not changed since 2010 (checked against the headers at build time).
-// An empty outbox is not enough: the kernel buffers megabytes between two processes, and a subscriber that
-// reads them in a burst overflows its own queue (rosbag record: 100 messages per topic) and drops silently. So
-// the pacer also waits until the kernel holds nothing for this process's TCPROS connections: nothing unacknowledged
-// on our side and nothing unread on a subscriber's side (sock_diag; subscribers on this machine, IPv4).
+// roscpp's user API cannot tell that a message has left: ros::Publisher counts subscribers, a
+// SubscriberStatusCallback sees connects and disconnects, and a subscriber link's statistics count messages queued,
+// not written. This class (with the kernel's side in tcp_port_view.h) is the one place that works around it, with
+// public calls only (no private member, no dependence on roscpp's object layout) and two behaviours, which
+// test/rostest/subscriber_pacer.cpp checks against the installed roscpp and kernel:
+//  * roscpp's poll thread does the I/O of every TCPROS connection: at each turn it first calls its listeners
+//    (ros::PollManager::addPollThreadListener; roscpp's own hands every publication's queue to its connections), then
+//    writes what the connections hold while their sockets take it. Two turns after publish() returned, a message is
+//    in a connection's queue or written; a whole turn that writes nothing into sockets that hold nothing means the
+//    connections' queues are empty. The pacer's own listener does the looking, in that thread, between its turns.
+//  * Linux's sock_diag reports each TCP socket's queues and byte counters: on this process's TCPROS port, bytes
+//    written and not yet acknowledged, and on a subscriber's end of the same connection (subscribers on this machine,
+//    IPv4), bytes received and not yet read by it.
 #pragma once
 
-#include <ros/publication.h>
+#include <unexmin/ros_layer/tcp_port_view.h>
 
+#include <ros/publication.h>
+#include <ros/time.h>
+
+#include <boost/signals2/connection.hpp>
+
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 namespace unexmin {
@@ -26,36 +36,47 @@ namespace ros_layer {
 class SubscriberPacer
 {
 public:
-  /// Messages queued for subscribers of every topic this process publishes (TCP connections), and whether
-  /// one is being written right now.
-  struct Backlog
-  {
-    std::size_t queued = 0;
-    std::size_t writing = 0;  ///< connections in the middle of writing a message
-    std::size_t in_kernel = 0;  ///< [bytes] written, not yet read by the subscriber (same machine) or acknowledged
-    bool empty() const { return queued == 0 && writing == 0 && in_kernel == 0; }
-  };
-  Backlog backlog();
+  SubscriberPacer() = default;
+  SubscriberPacer(const SubscriberPacer&) = delete;
+  SubscriberPacer& operator=(const SubscriberPacer&) = delete;
+  ~SubscriberPacer();
 
-  /// Blocks until backlog() is empty, or ros::ok() turns false, or a subscriber has not taken a message for
-  /// `stall_timeout` [s of wall time] (then warns, throttled, and returns false: a dead subscriber does not
-  /// stop the simulation). Returns true when drained.
+  /// Blocks until every message published before the call has been written to its TCP subscribers and read by
+  /// them (those on this machine; acknowledged by those elsewhere), or ros::ok() turns false, or the subscribers have
+  /// taken nothing for `stall_timeout` [s of wall time] (then warns, throttled, and returns false: a dead subscriber
+  /// does not stop the simulation). Returns true when drained. Returns at once when no topic of this process has a
+  /// subscriber, or when nothing was published through a Stream since the last wait found everything taken.
   bool waitDrained(double stall_timeout = 5.0);
 
-  /// Wall time spent waiting so far [s], and how many waits had something to wait for.
-  double waitedSeconds() const { return waited_; }
+  /// Waits so far that had something to wait for (the kernel was asked).
   std::size_t waits() const { return waits_; }
 
 private:
+  enum class State { kIdle, kWaiting, kDrained, kNoKernel };
+
   void refresh();
+  /// Whether a topic of this process has a subscriber.
+  bool anySubscriber() const;
+  /// roscpp's poll thread, at each of its turns: one step of the wait in progress, if any.
+  void onPollTurn();
+  void finish(State state);
 
   std::vector<ros::PublicationPtr> publications_;
   std::size_t calls_ = 0;
-  double waited_ = 0.0;
-  std::size_t waits_ = 0;
+  boost::signals2::connection listener_;
+  std::uint16_t port_ = 0;  ///< this process's TCPROS port
+  bool drained_ = false;          ///< the last wait found everything taken ...
+  std::uint64_t drained_at_ = 0;  ///< ... when Stream::sent() was this
+
+  // Shared with the poll thread, under mutex_.
+  std::mutex mutex_;
+  std::condition_variable done_;
+  State state_ = State::kIdle;
+  int turn_ = 0;                  ///< turns of the poll thread since the wait began
+  TcpPortView before_;            ///< the kernel's view at the last turn
+  ros::WallTime progress_;        ///< when bytes last moved
   bool kernel_ok_ = true;
-  bool drained_ = false;          ///< the last backlog() found everything taken ...
-  std::uint64_t drained_at_ = 0;  ///< ... when this many messages had been handed to the open links
+  std::size_t waits_ = 0;
 };
 
 }  // namespace ros_layer
