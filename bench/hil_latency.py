@@ -55,27 +55,38 @@ def main(argv=None):
             down, up, _ = rig.drop_link(args.drop)
             rig.wait_recovered(down, up, clock["offset"])
             drop = link_drop(load(rig.record), down, up, clock["offset"])
-    print(f"clock offset (robot - simulator host): {clock['offset'] * 1e6:+.1f} us, "
-          f"round trip of the exchange {clock['delay'] * 1e6:.1f} us (best of {len(clock['samples'])})")
+    print(
+        f"clock offset (robot - simulator host): {clock['offset'] * 1e6:+.1f} us, "
+        f"round trip of the exchange {clock['delay'] * 1e6:.1f} us (best of {len(clock['samples'])})"
+    )
     print("| from the command's stamp to | median | max | steps |\n| --- | --- | --- | --- |")
     print(row("its arrival on the simulator's host (every command)", one_way["link"]))
     print(row("the ESC driver's thruster input", one_way["input"]))
     print(row("the simulator's thrust responding", one_way["thrust"]))
     print(row("that thrust back on the robot (round trip)", round_trip["thrust"]))
     if drop:
-        print(f"link down {args.drop:g} s: thrust held {drop['held_until']:.2f} s after the last command's input, "
-              f"within 1 % of 0 after {drop['zero_at']:.2f} s; simulator advanced {drop['sim_advance']:.2f} s of "
-              f"sim time (longest /clock gap {drop['clock_gap'] * 1e3:.0f} ms); first fresh command "
-              f"{drop['recovered_after']:.2f} s after the link came up, {drop['late_commands']} commands of the drop "
-              f"delivered late, thrust on the fresh level {drop['thrust_follows_after']:.2f} s after it")
+        print(
+            f"link down {args.drop:g} s: thrust held {drop['held_until']:.2f} s after the last command's input, "
+            f"within 1 % of 0 after {drop['zero_at']:.2f} s; simulator advanced {drop['sim_advance']:.2f} s of "
+            f"sim time (longest /clock gap {drop['clock_gap'] * 1e3:.0f} ms); first fresh command "
+            f"{drop['recovered_after']:.2f} s after the link came up, {drop['late_commands']} commands of the drop "
+            f"delivered late, thrust on the fresh level {drop['thrust_follows_after']:.2f} s after it"
+        )
     if args.keep:
         print(f"records: {folder}")
     else:
         import shutil
 
         shutil.rmtree(folder, ignore_errors=True)
-    json.dump({"clock": {k: clock[k] for k in ("offset", "delay")}, "one_way": one_way, "round_trip": round_trip,
-               "drop": drop}, sys.stderr)
+    json.dump(
+        {
+            "clock": {k: clock[k] for k in ("offset", "delay")},
+            "one_way": one_way,
+            "round_trip": round_trip,
+            "drop": drop,
+        },
+        sys.stderr,
+    )
     sys.stderr.write("\n")
 
 

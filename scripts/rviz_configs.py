@@ -44,7 +44,7 @@ def display_name(lines, first, end, indent):
     """The `Name:` of the display item lines[first:end] whose keys stand at `indent`."""
     for line in lines[first:end]:
         if indent_of(line) == indent and line.strip().startswith("Name: "):
-            return line.strip()[len("Name: "):]
+            return line.strip()[len("Name: ") :]
     return ""
 
 

@@ -21,8 +21,10 @@ def library_path(env=None):
         candidate = Path(folder) / LIBRARY
         if candidate.is_file():
             return str(candidate.resolve())
-    raise FileNotFoundError(f"{LIBRARY} is in none of {folders} (LD_LIBRARY_PATH, CMAKE_PREFIX_PATH/lib): "
-                            "expected a built catkin workspace with the unexmin package, sourced")
+    raise FileNotFoundError(
+        f"{LIBRARY} is in none of {folders} (LD_LIBRARY_PATH, CMAKE_PREFIX_PATH/lib): "
+        "expected a built catkin workspace with the unexmin package, sourced"
+    )
 
 
 def advertised_host(env=None):

@@ -45,26 +45,37 @@ def run(tmp_path, **names):
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_IP", "ROS_HOSTNAME", "LD_PRELOAD")}
     env.update(names, LD_PRELOAD=library_path())
     inside = 'ip link set lo up && mount --bind "$0" /etc/hosts && exec /usr/bin/python3 -c "$1"'
-    run = subprocess.run(["unshare", "--mount", "--net", "sh", "-c", inside, str(tmp_path / "hosts"), PROGRAM],
-                         capture_output=True, text=True, timeout=30, env=env)
+    run = subprocess.run(
+        ["unshare", "--mount", "--net", "sh", "-c", inside, str(tmp_path / "hosts"), PROGRAM],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=env,
+    )
     assert run.returncode == 0, run.stderr
     return json.loads(run.stdout), run.stderr
 
 
 def expect(v4, v6):
     """The program's results when wildcard binds go to `v4` (IPv4) and `v6` (IPv6), an errno where they fail."""
-    return {"tcp4": v4, "udp4": v4, "tcp6": v6, "listen4": v4, "given": "127.0.0.2",
-            "unix": True}
+    return {"tcp4": v4, "udp4": v4, "tcp6": v6, "listen4": v4, "given": "127.0.0.2", "unix": True}
 
 
-@pytest.mark.parametrize("names, result", [
-    ({}, expect("127.0.0.1", "::ffff:127.0.0.1")),
-    ({"ROS_IP": "127.0.0.5"}, expect("127.0.0.5", "::ffff:127.0.0.5")),
-    ({"ROS_IP": "::1"}, expect("127.0.0.1", "::1")),
-    ({"ROS_HOSTNAME": "localhost"}, expect("127.0.0.1", "::ffff:127.0.0.1")),
-    ({"ROS_HOSTNAME": "ux-test-host"}, expect("127.0.0.7", "::ffff:127.0.0.7")),  # resolved (the test's hosts)
-    ({"ROS_IP": "127.0.0.6", "ROS_HOSTNAME": "ux-test-host"}, expect("127.0.0.6", "::ffff:127.0.0.6")),  # ROS_IP first
-], ids=["default", "ros_ip", "ros_ip_v6_loopback", "localhost", "hostname", "ros_ip_before_hostname"])
+@pytest.mark.parametrize(
+    "names, result",
+    [
+        ({}, expect("127.0.0.1", "::ffff:127.0.0.1")),
+        ({"ROS_IP": "127.0.0.5"}, expect("127.0.0.5", "::ffff:127.0.0.5")),
+        ({"ROS_IP": "::1"}, expect("127.0.0.1", "::1")),
+        ({"ROS_HOSTNAME": "localhost"}, expect("127.0.0.1", "::ffff:127.0.0.1")),
+        ({"ROS_HOSTNAME": "ux-test-host"}, expect("127.0.0.7", "::ffff:127.0.0.7")),  # resolved (the test's hosts)
+        (
+            {"ROS_IP": "127.0.0.6", "ROS_HOSTNAME": "ux-test-host"},
+            expect("127.0.0.6", "::ffff:127.0.0.6"),
+        ),  # ROS_IP first
+    ],
+    ids=["default", "ros_ip", "ros_ip_v6_loopback", "localhost", "hostname", "ros_ip_before_hostname"],
+)
 def test_wildcard_binds_go_to_the_address_asked(tmp_path, names, result):
     got, stderr = run(tmp_path, **names)
     assert got == result
@@ -74,15 +85,19 @@ def test_wildcard_binds_go_to_the_address_asked(tmp_path, names, result):
 def test_an_address_of_no_interface_fails_the_bind_with_one_line(tmp_path):
     got, stderr = run(tmp_path, ROS_IP="192.0.2.1")  # TEST-NET-1: on no interface of the namespace
     assert got == expect(UNAVAILABLE, UNAVAILABLE)
-    assert stderr.splitlines() == ["unexmin bind shim: cannot listen on ROS_IP='192.0.2.1': Cannot assign requested "
-                                   "address: expected ROS_IP (or ROS_HOSTNAME) naming an address of this machine"]
+    assert stderr.splitlines() == [
+        "unexmin bind shim: cannot listen on ROS_IP='192.0.2.1': Cannot assign requested "
+        "address: expected ROS_IP (or ROS_HOSTNAME) naming an address of this machine"
+    ]
 
 
 def test_a_host_name_that_does_not_resolve_fails_the_bind_with_one_line(tmp_path):
     got, stderr = run(tmp_path, ROS_HOSTNAME="ux-no-such-host.invalid")
     assert got == expect(UNAVAILABLE, UNAVAILABLE)
-    assert stderr.splitlines() == ["unexmin bind shim: no IPv4 address for ROS_HOSTNAME='ux-no-such-host.invalid': "
-                                   "expected ROS_IP (or ROS_HOSTNAME) naming an address of this machine"]
+    assert stderr.splitlines() == [
+        "unexmin bind shim: no IPv4 address for ROS_HOSTNAME='ux-no-such-host.invalid': "
+        "expected ROS_IP (or ROS_HOSTNAME) naming an address of this machine"
+    ]
 
 
 def test_an_ipv6_only_name_leaves_ipv4_sockets_unbound(tmp_path):

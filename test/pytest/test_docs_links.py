@@ -4,6 +4,7 @@
   of the repository, and an anchor into a Markdown page names one of that page's headings (GitHub's slugs).
 - No page of docs/ or the README cites an issue number or a work log: docs describe the product as it is.
 """
+
 import re
 import sys
 from pathlib import Path
@@ -21,9 +22,11 @@ HEADING = re.compile(r"^#{1,6}\s+(.*?)\s*#*\s*$")
 # An issue cited by number: "issue 10", "issues 13, 10", "(#12)", "issue #4".
 ISSUE = re.compile(r"\bissues?\s+#?\d+|\(#\d+\)|\bPR\s+#?\d+", re.IGNORECASE)
 # A work log: a session, a numbered pass, something merged or tried and dropped.
-WORK_LOG = re.compile(r"\bthis session\b|\b(first|second|third|fourth|fifth) pass\b|\bnot kept\b|\bthis branch\b|"
-                      r"\bafter every branch\b|\bUntil 20\d\d-\d\d-\d\d|\bAn earlier version\b|\bthe lead\b",
-                      re.IGNORECASE)
+WORK_LOG = re.compile(
+    r"\bthis session\b|\b(first|second|third|fourth|fifth) pass\b|\bnot kept\b|\bthis branch\b|"
+    r"\bafter every branch\b|\bUntil 20\d\d-\d\d-\d\d|\bAn earlier version\b|\bthe lead\b",
+    re.IGNORECASE,
+)
 
 
 def prose_lines(text):
@@ -39,7 +42,7 @@ def prose_lines(text):
 
 def slug(heading):
     """GitHub's anchor for a heading: lower case, markup and punctuation dropped, spaces to hyphens."""
-    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", heading)   # a link keeps its text
+    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", heading)  # a link keeps its text
     text = text.replace("`", "").strip().lower()
     text = re.sub(r"[^\w\- ]", "", text)
     return text.replace(" ", "-")
@@ -64,7 +67,7 @@ def anchors(page):
 def relative_links(page):
     for number, line in prose_lines(page.read_text()):
         for target in LINK.findall(line):
-            if re.match(r"^[a-z][a-z0-9+.-]*:", target, re.IGNORECASE):   # http:, https:, mailto:, file:
+            if re.match(r"^[a-z][a-z0-9+.-]*:", target, re.IGNORECASE):  # http:, https:, mailto:, file:
                 continue
             yield number, target
 
@@ -92,8 +95,11 @@ def test_every_relative_link_names_a_file_of_the_repository(page):
 
 @pytest.mark.parametrize("page", PRODUCT_PAGES, ids=lambda p: str(p.relative_to(REPO)))
 def test_no_issue_numbers_or_work_log_in_the_docs(page):
-    hits = [f"{page.relative_to(REPO)}:{n}: {line.strip()}" for n, line in prose_lines(page.read_text())
-            if ISSUE.search(line) or WORK_LOG.search(line)]
+    hits = [
+        f"{page.relative_to(REPO)}:{n}: {line.strip()}"
+        for n, line in prose_lines(page.read_text())
+        if ISSUE.search(line) or WORK_LOG.search(line)
+    ]
     assert not hits, "docs describe the product, not its history:\n" + "\n".join(hits)
 
 
@@ -104,16 +110,26 @@ def test_the_checks_find_what_they_are_for(tmp_path, monkeypatch):
     (tmp_path / "docs").mkdir()
     (tmp_path / "docs" / "b.md").write_text("# Title\n## The rviz configuration (`launch/x.rviz`)\n## Title\n")
     page = tmp_path / "docs" / "a.md"
-    page.write_text("[ok](b.md#the-rviz-configuration-launchxrviz) [ok2](b.md#title-1) [self](#top)\n"
-                    "# Top\n[gone](missing.md)\n[out](../../etc/passwd)\n[anchor](b.md#nowhere)\n"
-                    "```\n[in code](nothing.md)\n```\n`[span](nothing.md)` [web](https://example.org/x)\n")
+    page.write_text(
+        "[ok](b.md#the-rviz-configuration-launchxrviz) [ok2](b.md#title-1) [self](#top)\n"
+        "# Top\n[gone](missing.md)\n[out](../../etc/passwd)\n[anchor](b.md#nowhere)\n"
+        "```\n[in code](nothing.md)\n```\n`[span](nothing.md)` [web](https://example.org/x)\n"
+    )
     problems = broken_links(page)
     assert len(problems) == 3, problems
     assert "missing.md" in problems[0] and "no file" in problems[0]
     assert "passwd" in problems[1]
     assert "#nowhere" in problems[2]
-    for bad in ("as issue 10 measured", "(#12)", "issues 13, 10", "in this session", "the fourth pass",
-                "Tried and not kept:", "(Until 2026-11-23 the frame", "An earlier version solved it"):
+    for bad in (
+        "as issue 10 measured",
+        "(#12)",
+        "issues 13, 10",
+        "in this session",
+        "the fourth pass",
+        "Tried and not kept:",
+        "(Until 2026-11-23 the frame",
+        "An earlier version solved it",
+    ):
         assert ISSUE.search(bad) or WORK_LOG.search(bad), bad
     for good in ("the sonar equation (thesis 5.4.1)", "12 passed in 25.9 s", "`--passes 2`", "a tissue 10 mm"):
         assert not (ISSUE.search(good) or WORK_LOG.search(good)), good

@@ -66,8 +66,14 @@ def test_time_server_refuses_an_address_of_no_interface():
 
 def test_stand_in_takes_its_levels_in_turn_and_refuses_bad_rates():
     levels = [2129.0, -2140.0, 0.0]
-    assert [robot_standin.level_at(levels, 1.0, t) for t in (0.0, 0.99, 1.0, 2.5, 3.0, 4.2)] == \
-        [2129.0, 2129.0, -2140.0, 0.0, 2129.0, -2140.0]
+    assert [robot_standin.level_at(levels, 1.0, t) for t in (0.0, 0.99, 1.0, 2.5, 3.0, 4.2)] == [
+        2129.0,
+        2129.0,
+        -2140.0,
+        0.0,
+        2129.0,
+        -2140.0,
+    ]
     with pytest.raises(SystemExit):
         robot_standin.parse_args(["--rate", "0"])
     with pytest.raises(SystemExit):
@@ -145,13 +151,16 @@ def test_link_drop_without_any_input_is_an_error_not_a_figure():
         probe.link_drop(events, 0.0, 1.0, 0.0)
 
 
-@pytest.mark.parametrize("env, message", [
-    ({}, "ROS_MASTER_URI is not set"),
-    ({"ROS_MASTER_URI": "robot:11311", "ROS_IP": "127.0.0.1"}, "expected http://<robot address>:<port>"),
-    ({"ROS_MASTER_URI": "http://127.0.0.1:11311"}, "neither ROS_IP nor ROS_HOSTNAME is set"),
-    ({"ROS_MASTER_URI": "http://127.0.0.1:11311", "ROS_IP": "192.0.2.1"}, "ROS_IP=192.0.2.1 is not an address of"),
-    ({"ROS_MASTER_URI": "http://192.0.2.7:11311", "ROS_IP": "127.0.0.1"}, "ROS_IP=127.0.0.1 is the loopback but"),
-])
+@pytest.mark.parametrize(
+    "env, message",
+    [
+        ({}, "ROS_MASTER_URI is not set"),
+        ({"ROS_MASTER_URI": "robot:11311", "ROS_IP": "127.0.0.1"}, "expected http://<robot address>:<port>"),
+        ({"ROS_MASTER_URI": "http://127.0.0.1:11311"}, "neither ROS_IP nor ROS_HOSTNAME is set"),
+        ({"ROS_MASTER_URI": "http://127.0.0.1:11311", "ROS_IP": "192.0.2.1"}, "ROS_IP=192.0.2.1 is not an address of"),
+        ({"ROS_MASTER_URI": "http://192.0.2.7:11311", "ROS_IP": "127.0.0.1"}, "ROS_IP=127.0.0.1 is the loopback but"),
+    ],
+)
 def test_checker_names_a_wrong_environment(env, message):
     with pytest.raises(check.LinkProblem, match=message.replace("(", r"\(").replace(")", r"\)")):
         check.check_environment(env)
@@ -169,6 +178,7 @@ def test_checker_gives_up_on_an_unreachable_master_within_its_timeout():
 
 
 # ------------------------------------------------------------------------------------------ two hosts
+
 
 @pytest.fixture(scope="module")
 def rig(tmp_path_factory):
@@ -242,20 +252,44 @@ def test_checker_names_what_is_wrong_on_the_robot_side(rig):
         return status, out.strip().splitlines()[-1]
 
     status, line = check_line("--motor-topic", "/hil_test/motors")
-    assert status == 1 and line == ("link problem: nobody publishes /hil_test/motors on the master "
-                                    "http://169.254.73.2:11311: is the robot's software running?"), line
+    assert status == 1 and line == (
+        "link problem: nobody publishes /hil_test/motors on the master "
+        "http://169.254.73.2:11311: is the robot's software running?"
+    ), line
     # Stamps 1 us old at most: no real link is that fast, so the clocks are blamed.
     status, line = check_line("--max-stamp-age", 1e-6)
-    assert status == 1 and re.fullmatch(r"link problem: /ux1/command/motors arrives \+\d+\.\d ms after its stamps "
-                                        r"\(median of 10\): the clocks .* \(chrony\)", line), line
+    assert status == 1 and re.fullmatch(
+        r"link problem: /ux1/command/motors arrives \+\d+\.\d ms after its stamps "
+        r"\(median of 10\): the clocks .* \(chrony\)",
+        line,
+    ), line
     # A robot node that advertises its loopback address (ROS_IP=127.0.0.1 on the robot) cannot be reached.
-    rig.python(rig.robot_ns, "127.0.0.1", "loopback_standin", "unexmin.hil.robot_standin", "--node-name",
-               "loopback_standin", "--motor-topic", "/hil_test/motors", "--nav-topic", "/hil_test/nav")
-    status, line = wait_for(lambda: (lambda r: r if "nobody publishes" not in r[1] else None)(
-        check_line("--motor-topic", "/hil_test/motors")), 30, "the second stand-in to register", poll=0.2)
-    assert status == 1 and re.fullmatch(r"link problem: /loopback_standin \(publisher of /hil_test/motors\) advertises "
-                                        r"http://127\.0\.0\.1:\d+/, which this host cannot reach \(.*\): set "
-                                        r"ROS_IP on the robot to its address on this link", line), line
+    rig.python(
+        rig.robot_ns,
+        "127.0.0.1",
+        "loopback_standin",
+        "unexmin.hil.robot_standin",
+        "--node-name",
+        "loopback_standin",
+        "--motor-topic",
+        "/hil_test/motors",
+        "--nav-topic",
+        "/hil_test/nav",
+    )
+    status, line = wait_for(
+        lambda: (lambda r: r if "nobody publishes" not in r[1] else None)(
+            check_line("--motor-topic", "/hil_test/motors")
+        ),
+        30,
+        "the second stand-in to register",
+        poll=0.2,
+    )
+    assert status == 1 and re.fullmatch(
+        r"link problem: /loopback_standin \(publisher of /hil_test/motors\) advertises "
+        r"http://127\.0\.0\.1:\d+/, which this host cannot reach \(.*\): set "
+        r"ROS_IP on the robot to its address on this link",
+        line,
+    ), line
 
 
 def test_a_5_s_link_drop_zeroes_the_thrust_after_the_watchdog_and_the_link_recovers(rig):

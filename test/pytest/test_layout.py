@@ -1,7 +1,9 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its sub-folders sonar, vision) -> ros_layer. No folder
-includes a folder above it (the sub-folders of sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and every project header is included
-with its package prefix (<unexmin/<folder>/...>) so nothing collides with roscpp's <ros/...>.
+in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its
+sub-folders sonar, vision) -> ros_layer. No folder includes a folder above it (the sub-folders of sensors stand
+side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and
+every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing collides with
+roscpp's <ros/...>.
 
 Names follow folders: every file of cpp/unexmin/<a>/<b> declares its code in namespace unexmin::<a>::<b> (or in
 namespaces nested inside it: anonymous ones, detail helpers such as vision::shading), and opens no other namespace
@@ -18,8 +20,24 @@ CPP = REPO / "cpp" / "unexmin"
 LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros_layer"]
 SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
-ROS_ROOTS = {"ros", "roscpp", "rosbag", "rosconsole", "tf", "tf2", "tf2_ros", "tf2_eigen", "image_transport",
-             "kvh_1775", "ux1_msgs", "dvl_nortek", "std_srvs", "pluginlib", "nodelet", "urdf"}
+ROS_ROOTS = {
+    "ros",
+    "roscpp",
+    "rosbag",
+    "rosconsole",
+    "tf",
+    "tf2",
+    "tf2_ros",
+    "tf2_eigen",
+    "image_transport",
+    "kvh_1775",
+    "ux1_msgs",
+    "dvl_nortek",
+    "std_srvs",
+    "pluginlib",
+    "nodelet",
+    "urdf",
+}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
 
@@ -78,8 +96,13 @@ def test_no_folder_includes_a_folder_above_it():
 
 
 def test_the_core_includes_no_ros_header():
-    bad = [f"{p.relative_to(REPO)}: <{h}>" for p in sources() if folder_of(p) != "ros_layer"
-           for _, h in includes(p) if is_ros_header(h)]
+    bad = [
+        f"{p.relative_to(REPO)}: <{h}>"
+        for p in sources()
+        if folder_of(p) != "ros_layer"
+        for _, h in includes(p)
+        if is_ros_header(h)
+    ]
     assert not bad, "ROS headers in the ROS-free core:\n" + "\n".join(bad)
 
 
@@ -102,9 +125,17 @@ def test_each_library_links_only_libraries_below_it_and_only_ros_links_ros():
                 assert folder == "ros_layer", f"unexmin_{folder} links the ROS library {dep}"
 
 
-@pytest.mark.parametrize("header,expected", [("ros/ros.h", True), ("sensor_msgs/Imu.h", True),
-                                             ("unexmin/Step.h", True), ("unexmin/sim/world.h", False),
-                                             ("Eigen/Core", False), ("embree3/rtcore.h", False)])
+@pytest.mark.parametrize(
+    "header,expected",
+    [
+        ("ros/ros.h", True),
+        ("sensor_msgs/Imu.h", True),
+        ("unexmin/Step.h", True),
+        ("unexmin/sim/world.h", False),
+        ("Eigen/Core", False),
+        ("embree3/rtcore.h", False),
+    ],
+)
 def test_ros_headers_are_recognised(header, expected):
     assert is_ros_header(header) is expected
 
@@ -124,8 +155,12 @@ def namespace_of(folder):
 def code_only(text):
     """The text without comments, string and character literals, and preprocessor lines; of each #if/#else, the
     first branch only (lanes.h opens one of two inline namespaces so)."""
-    text = re.sub(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'',
-                  lambda m: re.sub(r"[^\n]", " ", m.group(0)), text, flags=re.S)
+    text = re.sub(
+        r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'',
+        lambda m: re.sub(r"[^\n]", " ", m.group(0)),
+        text,
+        flags=re.S,
+    )
     kept, skipping = [], []  # skipping: per open #if, whether its current branch is dropped
     for line in re.sub(r"\\\n", " ", text).split("\n"):
         directive = re.match(r"\s*#\s*(\w+)", line)
@@ -154,7 +189,7 @@ def namespace_blocks(text):
     for m in NAMESPACE_OR_BRACE.finditer(code):
         inner = blocks[next(i for i in reversed(stack) if i is not None)]
         if stack[-1] is not None:
-            inner[1].append(code[pos:m.start()])
+            inner[1].append(code[pos : m.start()])
         pos = m.end()
         if m.group(0).startswith(("namespace", "inline")):
             names = tuple(n.strip() for n in m.group(1).split("::")) if m.group(1) else ("",)
@@ -187,9 +222,9 @@ def namespace_errors(name, text, expected, main=False):
         if path == ():
             if not FORWARD_DECLARATIONS.match(code):
                 bad.append(f"{name}: code at file scope (expected it in namespace {'::'.join(expected)})")
-        elif path[:len(expected)] == expected:
+        elif path[: len(expected)] == expected:
             opened = True
-        elif path == expected[:len(path)]:
+        elif path == expected[: len(path)]:
             if code.strip():
                 bad.append(f"{name}: code in namespace {shown}, above {'::'.join(expected)}")
         elif "" in path or not FORWARD_DECLARATIONS.match(code):
@@ -203,28 +238,35 @@ def test_every_file_declares_its_code_in_its_folders_namespace():
     bad = []
     for path in sources():
         expected = namespace_of(folder_of(path))
-        bad += namespace_errors(path.relative_to(REPO).as_posix(), path.read_text(), expected,
-                                main=path.name.endswith("_main.cpp"))
+        bad += namespace_errors(
+            path.relative_to(REPO).as_posix(), path.read_text(), expected, main=path.name.endswith("_main.cpp")
+        )
     assert not bad, "namespaces that do not follow folders:\n" + "\n".join(bad)
 
 
 SONAR = ("unexmin", "sensors", "sonar")
 
 
-@pytest.mark.parametrize("text,errors", [
-    ("namespace unexmin {\nnamespace sensors {\nnamespace sonar {\nclass M3 {};\n}\n}\n}\n", 0),
-    ("namespace unexmin::sensors::sonar {\nnamespace {\nint f() { return 1; }\n}\n}\n", 0),
-    ("namespace unexmin {\nnamespace sim {\nclass World;\n}\nnamespace sensors::sonar {\nstruct A {};\n}\n}\n", 0),
-    ('namespace unexmin {\nnamespace sensors {\nnamespace sonar {\n#if X\ninline namespace a {\n#else\n'
-     'inline namespace b {\n#endif\nint g(char c = \'{\') { return "}"[0]; }  // {\n}\n}\n}\n}\n', 0),
-    ("namespace unexmin {\nnamespace sonar {\nclass M3 {};\n}\n}\n", 2),          # the folder's old namespace
-    ("namespace unexmin {\nnamespace sensors {\nclass M3 {};\n}\n}\n", 2),        # the parent folder's
-    ("namespace unexmin {\nnamespace sensors {\nint x;\nnamespace sonar {\n}\n}\n}\n", 1),  # code above it
-    ("namespace unexmin {\nnamespace sim {\nclass World { int x; };\n}\nnamespace sensors::sonar {\n}\n}\n", 1),
-    ("class M3 {};\nnamespace unexmin::sensors::sonar {\n}\n", 1),                # code at file scope
-    ("namespace {\nint f();\n}\nnamespace unexmin::sensors::sonar {\n}\n", 1),     # anonymous, outside it
-    ("class btRigidBody;\nnamespace unexmin::sensors::sonar {\n}\n", 0),           # forward declaration
-])
+@pytest.mark.parametrize(
+    "text,errors",
+    [
+        ("namespace unexmin {\nnamespace sensors {\nnamespace sonar {\nclass M3 {};\n}\n}\n}\n", 0),
+        ("namespace unexmin::sensors::sonar {\nnamespace {\nint f() { return 1; }\n}\n}\n", 0),
+        ("namespace unexmin {\nnamespace sim {\nclass World;\n}\nnamespace sensors::sonar {\nstruct A {};\n}\n}\n", 0),
+        (
+            "namespace unexmin {\nnamespace sensors {\nnamespace sonar {\n#if X\ninline namespace a {\n#else\n"
+            "inline namespace b {\n#endif\nint g(char c = '{') { return \"}\"[0]; }  // {\n}\n}\n}\n}\n",
+            0,
+        ),
+        ("namespace unexmin {\nnamespace sonar {\nclass M3 {};\n}\n}\n", 2),  # the folder's old namespace
+        ("namespace unexmin {\nnamespace sensors {\nclass M3 {};\n}\n}\n", 2),  # the parent folder's
+        ("namespace unexmin {\nnamespace sensors {\nint x;\nnamespace sonar {\n}\n}\n}\n", 1),  # code above it
+        ("namespace unexmin {\nnamespace sim {\nclass World { int x; };\n}\nnamespace sensors::sonar {\n}\n}\n", 1),
+        ("class M3 {};\nnamespace unexmin::sensors::sonar {\n}\n", 1),  # code at file scope
+        ("namespace {\nint f();\n}\nnamespace unexmin::sensors::sonar {\n}\n", 1),  # anonymous, outside it
+        ("class btRigidBody;\nnamespace unexmin::sensors::sonar {\n}\n", 0),  # forward declaration
+    ],
+)
 def test_the_namespace_check_tells_right_from_wrong(text, errors):
     assert len(namespace_errors("x.h", text, SONAR)) == errors, namespace_errors("x.h", text, SONAR)
 

@@ -23,8 +23,15 @@ SIM_ADDRESS, PEER_ADDRESS = "169.254.73.1", "169.254.73.2"
 ENV_SH = 'source "$UNEXMIN_REPO/scripts/env.sh" && exec roslaunch "$@"'
 # The nodes the checked worlds start (the tank with the mapper and a rospy translator on).
 WORLD_ARGS = ["unexmin", "tank_world.launch", "mapping:=true", "kvh_translator:=true"]
-NODES = {"/simulator", "/rosout", "/mapper", "/mesh_marker", "/UX_1/thruster_allocator", "/UX_1/kvh_translator",
-         "/UX_1/robot_state_publisher"}
+NODES = {
+    "/simulator",
+    "/rosout",
+    "/mapper",
+    "/mesh_marker",
+    "/UX_1/thruster_allocator",
+    "/UX_1/kvh_translator",
+    "/UX_1/robot_state_publisher",
+}
 
 
 def listening(pids, netns=None):
@@ -44,8 +51,11 @@ def listening(pids, netns=None):
 
 def clean_environment(**extra):
     """os.environ without any choice of address or preload (as a fresh shell), plus `extra`."""
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("ROS_IP", "ROS_HOSTNAME", "ROS_MASTER_URI", "LD_PRELOAD", "UNEXMIN_RUN")}
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("ROS_IP", "ROS_HOSTNAME", "ROS_MASTER_URI", "LD_PRELOAD", "UNEXMIN_RUN")
+    }
     wrappers = str(REPO / "scripts" / "bind_shim")  # scripts/env.sh puts it first on PATH
     env["PATH"] = ":".join(f for f in env["PATH"].split(":") if f != wrappers)
     env["UNEXMIN_REPO"] = str(REPO)
@@ -85,9 +95,13 @@ def test_world_started_as_the_readme_says_listens_on_loopback_only(tmp_path):
     port = free_port()
     marker = f"loopback-test-{os.getpid()}"
     env = clean_environment(ROS_HOME=str(tmp_path), UNEXMIN_RUN=marker)
-    proc = subprocess.Popen(["bash", "-c", ENV_SH, "roslaunch", "--port", str(port), *WORLD_ARGS], env=env,
-                            stdout=open(tmp_path / "roslaunch.out", "w"), stderr=subprocess.STDOUT,
-                            start_new_session=True)
+    proc = subprocess.Popen(
+        ["bash", "-c", ENV_SH, "roslaunch", "--port", str(port), *WORLD_ARGS],
+        env=env,
+        stdout=open(tmp_path / "roslaunch.out", "w"),
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     try:
         import rosgraph
 
@@ -105,8 +119,7 @@ def test_world_started_by_the_launcher_listens_on_loopback_only(tmp_path, monkey
     monkeypatch.setenv("PATH", clean_environment()["PATH"])
     monkeypatch.setenv("ROS_MASTER_URI", "http://127.0.0.1:11311")  # WorldProcess changes them: restored after
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
-    world = WorldProcess("tank", realtime=True, paused=False, log_dir=str(tmp_path / "log"),
-                         extra_args=WORLD_ARGS[2:])
+    world = WorldProcess("tank", realtime=True, paused=False, log_dir=str(tmp_path / "log"), extra_args=WORLD_ARGS[2:])
     try:
         import rosgraph
 
@@ -119,6 +132,7 @@ def test_world_started_by_the_launcher_listens_on_loopback_only(tmp_path, monkey
 
 
 # ---------------------------------------------------------------- seen from another host (network namespaces)
+
 
 @contextmanager
 def two_hosts():
@@ -148,8 +162,13 @@ def two_hosts():
 
 def in_namespace(netns, code, *args, timeout=30):
     """Run the Python `code` (argv[1:] = args) in the network namespace `netns`; its stdout parsed as JSON."""
-    run = subprocess.run(["ip", "netns", "exec", netns, sys.executable, "-c", code, *map(str, args)],
-                         capture_output=True, text=True, timeout=timeout, env=clean_environment())
+    run = subprocess.run(
+        ["ip", "netns", "exec", netns, sys.executable, "-c", code, *map(str, args)],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=clean_environment(),
+    )
     assert run.returncode == 0, run.stderr
     return json.loads(run.stdout)
 
@@ -217,13 +236,21 @@ def simulator_seen_from_the_peer(hosts, ros_ip, tmp_path):
     marker = f"loopback-netns-{os.getpid()}-{ros_ip}"
     env = clean_environment(ROS_HOME=str(tmp_path), UNEXMIN_RUN=marker, **({"ROS_IP": ros_ip} if ros_ip else {}))
     # A fresh namespace: the default master port 11311 is free, ROS_MASTER_URI is env.sh's default.
-    proc = subprocess.Popen(["ip", "netns", "exec", sim, "bash", "-c", ENV_SH, "roslaunch", "unexmin",
-                             "tank_world.launch"], env=env, stdout=open(tmp_path / "roslaunch.out", "w"),
-                            stderr=subprocess.STDOUT, start_new_session=True)
+    proc = subprocess.Popen(
+        ["ip", "netns", "exec", sim, "bash", "-c", ENV_SH, "roslaunch", "unexmin", "tank_world.launch"],
+        env=env,
+        stdout=open(tmp_path / "roslaunch.out", "w"),
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     try:
         master_uri = f"http://{ros_ip or '127.0.0.1'}:11311"
-        simulator = wait_for(lambda: proc.poll() is not None or in_namespace(sim, SIMULATOR, master_uri), 120,
-                             "the simulator to register", poll=0.5)
+        simulator = wait_for(
+            lambda: proc.poll() is not None or in_namespace(sim, SIMULATOR, master_uri),
+            120,
+            "the simulator to register",
+            poll=0.5,
+        )
         assert proc.poll() is None, (tmp_path / "roslaunch.out").read_text()[-3000:]
         pid = simulator["pid"]
         own = listening({pid}, sim)

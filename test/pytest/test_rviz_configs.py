@@ -4,6 +4,7 @@ launch/unexmin.rviz names UX_1..UX_3; launch/unexmin_1.rviz and launch/unexmin_2
 scripts/rviz_configs.py; simulation.launch opens the one that matches `robots`. A display of a robot that does not
 exist is a red error row in rviz (test_rviz_screenshot.py checks that on screen).
 """
+
 import importlib.util
 import re
 import subprocess
@@ -53,8 +54,12 @@ def display_names(config):
 
 def launched_config(robots):
     """The configuration file `tank_world.launch rviz:=true robots:=<robots>` passes to rviz (roslaunch --args)."""
-    out = subprocess.run(["roslaunch", "--args", "rviz", "unexmin", "tank_world.launch", "rviz:=true",
-                          f"robots:={robots}"], capture_output=True, text=True, timeout=60)
+    out = subprocess.run(
+        ["roslaunch", "--args", "rviz", "unexmin", "tank_world.launch", "rviz:=true", f"robots:={robots}"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert out.returncode == 0, out.stderr
     args = out.stdout.split()
     return Path(args[args.index("-d") + 1])

@@ -52,7 +52,7 @@ def displays_names(img):
     """The name column of the Displays dock's tree (right of the icons, left of the check boxes) in the shipped
     config's 1024 x 768 layout."""
     h, w = img.shape[:2]
-    return img[int(0.34 * h):int(0.66 * h), int(0.043 * w):int(0.165 * w)].astype(int)
+    return img[int(0.34 * h) : int(0.66 * h), int(0.043 * w) : int(0.165 * w)].astype(int)
 
 
 def error_rows(img):
@@ -288,16 +288,23 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
     from unexmin.scripting.launcher import free_port, wait_for
 
     port = free_port()
-    env = dict(os.environ, DISPLAY=xvfb, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=str(tmp_path / "log"), ROS_HOME=str(tmp_path))
+    env = dict(
+        os.environ,
+        DISPLAY=xvfb,
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1",
+        ROS_LOG_DIR=str(tmp_path / "log"),
+        ROS_HOME=str(tmp_path),
+    )
     master = rosgraph.Master("/rviz_robots_test", master_uri=env["ROS_MASTER_URI"])
     seen = {}
 
     def rviz_ready(node, proc):
         assert proc.poll() is None, f"exited: see {tmp_path}"
         try:
-            return all(subscribed(master, t, node) for t in ("/tf", "/world_meshes", "/UX_1/odom",
-                                                               "/UX_1/tritech_micron/scan"))
+            return all(
+                subscribed(master, t, node) for t in ("/tf", "/world_meshes", "/UX_1/odom", "/UX_1/tritech_micron/scan")
+            )
         except (OSError, rosgraph.MasterError):
             return False
 
@@ -310,32 +317,55 @@ def test_one_robot_in_the_tank_shows_no_display_in_error(xvfb, tmp_path):
             seen["rows"], seen["text"] = error_rows(screenshot(xvfb, shot))
             count[0] = count[0] + 1 if seen["text"] > 300 and test(seen["rows"]) else 0
             return count[0] >= shots
+
         return check
 
     log = open(tmp_path / "roslaunch.log", "w")
-    launch = subprocess.Popen(["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "robots:=1",
-                               "rviz:=true"], env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    launch = subprocess.Popen(
+        ["roslaunch", "--port", str(port), "unexmin", "tank_world.launch", "robots:=1", "rviz:=true"],
+        env=env,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
     control = None
     try:
         wait_for(lambda: rviz_ready("/rviz", launch), 120, "rviz of tank_world.launch subscribed to its topics")
         try:
-            wait_for(rows_over(3, lambda rows: rows == 0, tmp_path / "one_robot.png"), 60,
-                     "a drawn Displays tree without error rows", poll=1.0)
+            wait_for(
+                rows_over(3, lambda rows: rows == 0, tmp_path / "one_robot.png"),
+                60,
+                "a drawn Displays tree without error rows",
+                poll=1.0,
+            )
         except TimeoutError:
-            pytest.fail(f"one robot, its own config: {seen['rows']} error rows in the Displays tree ({seen}; "
-                        f"{tmp_path / 'one_robot.png'})")
+            pytest.fail(
+                f"one robot, its own config: {seen['rows']} error rows in the Displays tree ({seen}; "
+                f"{tmp_path / 'one_robot.png'})"
+            )
 
         subprocess.run(["rosnode", "kill", "/rviz"], env=env, capture_output=True, timeout=30)
         wait_for(lambda: not subscribed(master, "/UX_1/odom", "/rviz"), 30, "the launch file's rviz to stop")
-        control = subprocess.Popen(["rviz", "-d", str(REPO / "launch" / "unexmin.rviz"), "__name:=rviz_three"],
-                                   env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        control = subprocess.Popen(
+            ["rviz", "-d", str(REPO / "launch" / "unexmin.rviz"), "__name:=rviz_three"],
+            env=env,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
         wait_for(lambda: rviz_ready("/rviz_three", control), 120, "rviz with the three-robot config subscribed")
         try:
-            wait_for(rows_over(1, lambda rows: rows >= 2, tmp_path / "three_robot_config.png"), 60,
-                     "the missing robots' error rows", poll=1.0)
+            wait_for(
+                rows_over(1, lambda rows: rows >= 2, tmp_path / "three_robot_config.png"),
+                60,
+                "the missing robots' error rows",
+                poll=1.0,
+            )
         except TimeoutError:
-            pytest.fail(f"three-robot config with one robot: expected >= 2 error rows, saw {seen['rows']} ({seen}; "
-                        f"{tmp_path / 'three_robot_config.png'})")
+            pytest.fail(
+                f"three-robot config with one robot: expected >= 2 error rows, saw {seen['rows']} ({seen}; "
+                f"{tmp_path / 'three_robot_config.png'})"
+            )
     finally:
         if control is not None:
             stop_process_group(control, 30.0)

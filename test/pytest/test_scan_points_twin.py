@@ -6,6 +6,7 @@ test/pytest/clients/scan_points_twin.cpp (built with the workspace). Each point 
 
 Run: python -m pytest test/pytest/test_scan_points_twin.py (workspace built and sourced).
 """
+
 import math
 import os
 import random
@@ -34,8 +35,13 @@ def twin():
 
 
 def scan(angle_min, increment, range_min, range_max, ranges):
-    return SimpleNamespace(angle_min=f32(angle_min), angle_increment=f32(increment), range_min=f32(range_min),
-                           range_max=f32(range_max), ranges=[f32(r) for r in ranges])
+    return SimpleNamespace(
+        angle_min=f32(angle_min),
+        angle_increment=f32(increment),
+        range_min=f32(range_min),
+        range_max=f32(range_max),
+        ranges=[f32(r) for r in ranges],
+    )
 
 
 def scans():
@@ -64,8 +70,9 @@ def line(s):
 
 def test_python_and_cpp_give_the_same_float32_points():
     cases = scans()
-    out = subprocess.run([str(twin())], input="\n".join(line(s) for s in cases) + "\n", capture_output=True,
-                         text=True, timeout=60)
+    out = subprocess.run(
+        [str(twin())], input="\n".join(line(s) for s in cases) + "\n", capture_output=True, text=True, timeout=60
+    )
     assert out.returncode == 0, out.stderr
     rows = out.stdout.splitlines()
     assert len(rows) == len(cases)

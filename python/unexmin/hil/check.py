@@ -62,23 +62,30 @@ def check_environment(env):
         raise LinkProblem(f"ROS_MASTER_URI={master!r}: expected http://<robot address>:<port>")
     own = env.get("ROS_IP") or env.get("ROS_HOSTNAME")
     if not own:
-        raise LinkProblem("neither ROS_IP nor ROS_HOSTNAME is set: the robot would be given this host's name, which "
-                          "it may not resolve; export ROS_IP=<this host's address on the link to the robot>")
+        raise LinkProblem(
+            "neither ROS_IP nor ROS_HOSTNAME is set: the robot would be given this host's name, which "
+            "it may not resolve; export ROS_IP=<this host's address on the link to the robot>"
+        )
     try:
         own_address = socket.getaddrinfo(own, None)[0][4][0]
     except socket.gaierror as e:
         raise LinkProblem(f"ROS_HOSTNAME={own!r} does not resolve here ({e.strerror}): use ROS_IP=<address>") from e
     if not is_local_address(own_address):
-        raise LinkProblem(f"ROS_IP={own} is not an address of this host: expected this host's address on the link "
-                          f"to the robot (see `ip addr`)")
+        raise LinkProblem(
+            f"ROS_IP={own} is not an address of this host: expected this host's address on the link "
+            f"to the robot (see `ip addr`)"
+        )
     try:
         master_address = socket.getaddrinfo(host, None)[0][4][0]
     except socket.gaierror as e:
-        raise LinkProblem(f"the master's host {host!r} (ROS_MASTER_URI) does not resolve here ({e.strerror}): "
-                          "use its address") from e
+        raise LinkProblem(
+            f"the master's host {host!r} (ROS_MASTER_URI) does not resolve here ({e.strerror}): " "use its address"
+        ) from e
     if own_address.startswith("127.") and not master_address.startswith("127."):
-        raise LinkProblem(f"ROS_IP={own} is the loopback but the master {master} is on another host: the robot "
-                          "could not reach this host's nodes; export ROS_IP=<this host's address on that link>")
+        raise LinkProblem(
+            f"ROS_IP={own} is the loopback but the master {master} is on another host: the robot "
+            "could not reach this host's nodes; export ROS_IP=<this host's address on that link>"
+        )
     return master, own
 
 
@@ -89,8 +96,10 @@ def check_link(motor_topic=ESC_COMMAND_TOPIC, timeout=3.0, max_stamp_age=0.05, e
     try:
         state = xmlrpc_call(master, timeout, "getSystemState", caller)[2]
     except (OSError, xmlrpc.client.Error) as e:
-        raise LinkProblem(f"cannot reach the master {master} within {timeout:g} s ({e}): is the link up "
-                          f"(ping {urlparse(master).hostname}) and roscore running on the robot?") from None
+        raise LinkProblem(
+            f"cannot reach the master {master} within {timeout:g} s ({e}): is the link up "
+            f"(ping {urlparse(master).hostname}) and roscore running on the robot?"
+        ) from None
     publishers = next((nodes for topic, nodes in state[0] if topic == motor_topic), [])
     if not publishers:
         raise LinkProblem(f"nobody publishes {motor_topic} on the master {master}: is the robot's software running?")
@@ -99,18 +108,24 @@ def check_link(motor_topic=ESC_COMMAND_TOPIC, timeout=3.0, max_stamp_age=0.05, e
         try:
             xmlrpc_call(uri, timeout, "getPid", caller)
         except (OSError, xmlrpc.client.Error) as e:
-            raise LinkProblem(f"{node} (publisher of {motor_topic}) advertises {uri}, which this host cannot reach "
-                              f"({e}): set ROS_IP on the robot to its address on this link") from None
+            raise LinkProblem(
+                f"{node} (publisher of {motor_topic}) advertises {uri}, which this host cannot reach "
+                f"({e}): set ROS_IP on the robot to its address on this link"
+            ) from None
     subscribers = [n for topic, nodes in state[1] if topic == motor_topic for n in nodes]
     ages, span = receive(motor_topic, timeout, own, publishers)
     age = statistics.median(ages)
     if abs(age) > max_stamp_age:
-        raise LinkProblem(f"{motor_topic} arrives {age * 1e3:+.1f} ms after its stamps (median of {len(ages)}): the "
-                          f"clocks of the two hosts differ by about that much; synchronise them (chrony)")
+        raise LinkProblem(
+            f"{motor_topic} arrives {age * 1e3:+.1f} ms after its stamps (median of {len(ages)}): the "
+            f"clocks of the two hosts differ by about that much; synchronise them (chrony)"
+        )
     rate = (len(ages) - 1) / span if span > 0 else float("nan")
     esc = f"subscribed by {', '.join(subscribers)}" if subscribers else "no subscriber yet (start the ESC driver)"
-    return (f"link OK: master {master}, {motor_topic} from {', '.join(publishers)} at {rate:.1f} Hz, stamp age "
-            f"{age * 1e3:+.1f} ms (latency + clock offset), {esc}")
+    return (
+        f"link OK: master {master}, {motor_topic} from {', '.join(publishers)} at {rate:.1f} Hz, stamp age "
+        f"{age * 1e3:+.1f} ms (latency + clock offset), {esc}"
+    )
 
 
 def receive(topic, timeout, own, publishers, count=10):
@@ -133,8 +148,10 @@ def receive(topic, timeout, own, publishers, count=10):
         time.sleep(0.02)
     sub.unregister()
     if not ages:
-        raise LinkProblem(f"no message on {topic} within {timeout:g} s although {', '.join(publishers)} publishes it: "
-                          f"the robot cannot connect to this host's ROS_IP={own} (its route or firewall towards it)")
+        raise LinkProblem(
+            f"no message on {topic} within {timeout:g} s although {', '.join(publishers)} publishes it: "
+            f"the robot cannot connect to this host's ROS_IP={own} (its route or firewall towards it)"
+        )
     return ages, arrivals[-1] - arrivals[0]
 
 
@@ -142,8 +159,9 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m unexmin.hil.check", description=__doc__.split("\n\n")[0])
     p.add_argument("--motor-topic", default=ESC_COMMAND_TOPIC, help="the robot's ESC commands (default %(default)s)")
     p.add_argument("--timeout", type=float, default=3.0, help="time allowed to each step [s] (default %(default)s)")
-    p.add_argument("--max-stamp-age", type=float, default=0.05,
-                   help="largest accepted |arrival - stamp| [s] (default %(default)s)")
+    p.add_argument(
+        "--max-stamp-age", type=float, default=0.05, help="largest accepted |arrival - stamp| [s] (default %(default)s)"
+    )
     args = p.parse_args(argv)
     if not 0 < args.timeout <= 60:
         p.error(f"--timeout {args.timeout:g}: expected a time in (0, 60] s")

@@ -37,8 +37,10 @@ class TimeServer:
             self.sock.bind((address, port))
         except OSError as e:
             self.sock.close()
-            raise OSError(f"time server: cannot listen on UDP {address}:{port}: {e.strerror}: expected an address "
-                          "of this machine and a free port") from e
+            raise OSError(
+                f"time server: cannot listen on UDP {address}:{port}: {e.strerror}: expected an address "
+                "of this machine and a free port"
+            ) from e
         self.sock.settimeout(0.2)
         self.port = self.sock.getsockname()[1]
         self._stop = threading.Event()
@@ -86,11 +88,14 @@ def measure_offset(address, port, samples=20, timeout=1.0, clock=time.time):
                 try:
                     data = sock.recv(64)
                 except socket.timeout:
-                    raise TimeoutError(f"no answer from the time server at {address}:{port} (UDP) within "
-                                       f"{timeout:g} s") from None
+                    raise TimeoutError(
+                        f"no answer from the time server at {address}:{port} (UDP) within " f"{timeout:g} s"
+                    ) from None
                 except ConnectionRefusedError:  # the host said nothing listens on that port
-                    raise ConnectionRefusedError(f"no time server at {address}:{port} (UDP): the host refused; is "
-                                                 "the stand-in started with --time-port?") from None
+                    raise ConnectionRefusedError(
+                        f"no time server at {address}:{port} (UDP): the host refused; is "
+                        "the stand-in started with --time-port?"
+                    ) from None
                 t4 = clock()
                 if len(data) == _REPLY.size and _REPLY.unpack(data)[0] == t1:
                     break  # not a late answer to an earlier request

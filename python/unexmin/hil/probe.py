@@ -41,8 +41,11 @@ def load(path):
 def summary(values):
     """{count, median, max} of `values` [s] (None figures when empty)."""
     values = sorted(values)
-    return {"count": len(values), "median": statistics.median(values) if values else None,
-            "max": values[-1] if values else None}
+    return {
+        "count": len(values),
+        "median": statistics.median(values) if values else None,
+        "max": values[-1] if values else None,
+    }
 
 
 def step_latencies(events, offset):
@@ -60,8 +63,9 @@ def step_latencies(events, offset):
             if old is not None and new is not None:
                 to_input.append(new["t"] - sent)
                 step = new["v"] - old
-                moved = next((e for e in events["thrust"]
-                              if e["t"] >= sent and (e["v"] - old) / step >= RESPONSE_FRACTION), None)
+                moved = next(
+                    (e for e in events["thrust"] if e["t"] >= sent and (e["v"] - old) / step >= RESPONSE_FRACTION), None
+                )
                 if moved is not None:
                     to_thrust.append(moved["t"] - sent)
         previous = c
@@ -91,13 +95,16 @@ def link_drop(events, down, up, offset, settle=0.02, zero=0.01):
     ticks = [e for e in events["clock"] if down <= e["t"] <= up]
     gaps = [b["t"] - a["t"] for a, b in zip(ticks, ticks[1:])]
     fresh = next((c for c in events["cmd"] if c["stamp"] - offset >= up), None)
-    result = {"last_input": {"t": last["t"], "level": level},
-              "held_until": held_until - last["t"], "zero_at": None if zero_at is None else zero_at - last["t"],
-              "sim_advance": ticks[-1]["sim"] - ticks[0]["sim"] if ticks else 0.0,
-              "clock_gap": max(gaps) if gaps else None,
-              "recovered_after": None if fresh is None else fresh["t"] - up,
-              "late_commands": sum(1 for c in events["cmd"] if c["t"] >= up and down <= c["stamp"] - offset < up),
-              "thrust_follows_after": None}
+    result = {
+        "last_input": {"t": last["t"], "level": level},
+        "held_until": held_until - last["t"],
+        "zero_at": None if zero_at is None else zero_at - last["t"],
+        "sim_advance": ticks[-1]["sim"] - ticks[0]["sim"] if ticks else 0.0,
+        "clock_gap": max(gaps) if gaps else None,
+        "recovered_after": None if fresh is None else fresh["t"] - up,
+        "late_commands": sum(1 for c in events["cmd"] if c["t"] >= up and down <= c["stamp"] - offset < up),
+        "thrust_follows_after": None,
+    }
     if fresh is not None:
         inputs = [e for e in events["in"] if e["t"] >= fresh["t"]]  # the ESC driver's inputs from the fresh command on
         k = 0
@@ -113,8 +120,7 @@ def link_drop(events, down, up, offset, settle=0.02, zero=0.01):
 class Probe:
     """The recording node: subscribers that write one JSON line per message to `out` (a text file)."""
 
-    def __init__(self, out, robot="UX_1", thruster=0, motor_topic=ESC_COMMAND_TOPIC, nav_topic=None,
-                 sensor_topic=None):
+    def __init__(self, out, robot="UX_1", thruster=0, motor_topic=ESC_COMMAND_TOPIC, nav_topic=None, sensor_topic=None):
         import time
 
         import rospy
@@ -128,13 +134,18 @@ class Probe:
         self.out, self.lock, self.clock = out, threading.Lock(), time.time
         ns = f"/{robot}/thrusters/{thruster}/"
         self.subs = [
-            rospy.Subscriber(motor_topic, MotorCommand, lambda m: self.write(
-                "cmd", stamp=m.header.stamp.to_sec(), v=m.values[thruster]), tcp_nodelay=True),
+            rospy.Subscriber(
+                motor_topic,
+                MotorCommand,
+                lambda m: self.write("cmd", stamp=m.header.stamp.to_sec(), v=m.values[thruster]),
+                tcp_nodelay=True,
+            ),
             rospy.Subscriber(ns + "input", Float64, lambda m: self.write("in", v=m.data), tcp_nodelay=True),
             rospy.Subscriber(ns + "thrust", Float64, lambda m: self.write("thrust", v=m.data), tcp_nodelay=True),
             rospy.Subscriber("/clock", Clock, lambda m: self.write("clock", sim=m.clock.to_sec()), tcp_nodelay=True),
-            rospy.Subscriber(nav_topic or NAV_TOPIC, Odometry, lambda m: self.write(
-                "nav", stamp=m.header.stamp.to_sec())),
+            rospy.Subscriber(
+                nav_topic or NAV_TOPIC, Odometry, lambda m: self.write("nav", stamp=m.header.stamp.to_sec())
+            ),
         ]
         if sensor_topic:
             self.subs.append(rospy.Subscriber(sensor_topic, rospy.AnyMsg, lambda m: self.write("sensor")))
@@ -152,8 +163,9 @@ def main(argv=None):
     p.add_argument("--robot", default="UX_1", help="the simulated robot (default %(default)s)")
     p.add_argument("--thruster", type=int, default=0, choices=range(8), help="thruster watched (default 0)")
     p.add_argument("--motor-topic", default=ESC_COMMAND_TOPIC)
-    p.add_argument("--nav-topic", default=None,
-                   help="the robot's navigation topic, nav_msgs/Odometry (default: the stand-in's)")
+    p.add_argument(
+        "--nav-topic", default=None, help="the robot's navigation topic, nav_msgs/Odometry (default: the stand-in's)"
+    )
     p.add_argument("--sensor-topic", default=None, help="a topic whose arrivals are recorded (default: none)")
     args = p.parse_args(argv)
     with_bind_shim("unexmin.hil.probe", argv)

@@ -56,8 +56,20 @@ class HilRig:
     def _network(self):
         for ns in (self.robot_ns, self.sim_ns):
             ip("netns", "add", ns)
-        ip("link", "add", "hil-sim", "netns", self.sim_ns, "type", "veth", "peer", "name", ROBOT_DEVICE, "netns",
-           self.robot_ns)
+        ip(
+            "link",
+            "add",
+            "hil-sim",
+            "netns",
+            self.sim_ns,
+            "type",
+            "veth",
+            "peer",
+            "name",
+            ROBOT_DEVICE,
+            "netns",
+            self.robot_ns,
+        )
         ends = ((self.sim_ns, "hil-sim", SIM_ADDRESS), (self.robot_ns, ROBOT_DEVICE, ROBOT_ADDRESS))
         for ns, device, address in ends:
             ip("-n", ns, "addr", "add", f"{address}/30", "dev", device)
@@ -68,8 +80,13 @@ class HilRig:
         """This process's environment for a process of the host at `address`: ROS_IP, the robot's master, the
         bind shim preloaded, ROS's logs in the rig's folder."""
         env = {k: v for k, v in os.environ.items() if k not in ("ROS_IP", "ROS_HOSTNAME", "LD_PRELOAD")}
-        env.update(ROS_IP=address, ROS_MASTER_URI=ROBOT_MASTER, ROS_HOME=str(self.folder / "ros_home"),
-                   UNEXMIN_RUN=self.marker, PYTHONUNBUFFERED="1")
+        env.update(
+            ROS_IP=address,
+            ROS_MASTER_URI=ROBOT_MASTER,
+            ROS_HOME=str(self.folder / "ros_home"),
+            UNEXMIN_RUN=self.marker,
+            PYTHONUNBUFFERED="1",
+        )
         return ros_environment(env)
 
     def start(self, ns, address, name, *command, preload=True):
@@ -79,8 +96,9 @@ class HilRig:
         env = self.environment(address)
         if not preload:
             del env["LD_PRELOAD"]
-        proc = subprocess.Popen(["ip", "netns", "exec", ns, *command], env=env, stdout=out,
-                                stderr=subprocess.STDOUT, start_new_session=True)
+        proc = subprocess.Popen(
+            ["ip", "netns", "exec", ns, *command], env=env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True
+        )
         self.procs.append((name, proc))
         return proc
 
@@ -91,19 +109,56 @@ class HilRig:
     def _start(self):
         self.start(self.robot_ns, ROBOT_ADDRESS, "roscore", "roscore", "-p", "11311")
         wait_for(lambda: self.master_up() or self.died(), 60, "the robot's master")
-        self.python(self.robot_ns, ROBOT_ADDRESS, "robot_standin", "unexmin.hil.robot_standin", "--period",
-                    self.period, "--rate", self.rate, "--time-port", TIME_PORT)
-        self.start(self.sim_ns, SIM_ADDRESS, "simulator", "roslaunch", "unexmin", "tank_world.launch", "control:=false",
-                   f"sensors:={self.sensors}")
-        self.start(self.sim_ns, SIM_ADDRESS, "esc_driver", "roslaunch", "unexmin", "control.launch",
-                   "allocator:=false", "esc_driver:=true")
+        self.python(
+            self.robot_ns,
+            ROBOT_ADDRESS,
+            "robot_standin",
+            "unexmin.hil.robot_standin",
+            "--period",
+            self.period,
+            "--rate",
+            self.rate,
+            "--time-port",
+            TIME_PORT,
+        )
+        self.start(
+            self.sim_ns,
+            SIM_ADDRESS,
+            "simulator",
+            "roslaunch",
+            "unexmin",
+            "tank_world.launch",
+            "control:=false",
+            f"sensors:={self.sensors}",
+        )
+        self.start(
+            self.sim_ns,
+            SIM_ADDRESS,
+            "esc_driver",
+            "roslaunch",
+            "unexmin",
+            "control.launch",
+            "allocator:=false",
+            "esc_driver:=true",
+        )
         self.python(self.sim_ns, SIM_ADDRESS, "sim_probe", "unexmin.hil.probe", "--out", self.record)
-        self.python(self.robot_ns, ROBOT_ADDRESS, "robot_probe", "unexmin.hil.probe", "--out", self.robot_record,
-                    "--sensor-topic", "/UX_1/kvh/imu_raw")
+        self.python(
+            self.robot_ns,
+            ROBOT_ADDRESS,
+            "robot_probe",
+            "unexmin.hil.probe",
+            "--out",
+            self.robot_record,
+            "--sensor-topic",
+            "/UX_1/kvh/imu_raw",
+        )
         # Running: the commands' steps reach the simulator's thrust, and the sensors come back to the robot.
-        wait_for(lambda: self.died() or (self.steps() >= 2 and self.robot_record.exists()
-                                                     and load(self.robot_record)["sensor"]), 120,
-                 "the simulator to follow the robot's commands")
+        wait_for(
+            lambda: self.died()
+            or (self.steps() >= 2 and self.robot_record.exists() and load(self.robot_record)["sensor"]),
+            120,
+            "the simulator to follow the robot's commands",
+        )
         failed = self.died()
         if failed:
             raise RuntimeError(f"{failed} stopped: {(self.folder / (failed + '.out')).read_text()[-3000:]}")
@@ -114,8 +169,12 @@ class HilRig:
         return next((name for name, proc in self.procs if proc.poll() is not None), None)
 
     def master_up(self):
-        run = subprocess.run(["ip", "netns", "exec", self.robot_ns, "ss", "-ltnH", "sport = :11311"],
-                             capture_output=True, text=True, timeout=30)
+        run = subprocess.run(
+            ["ip", "netns", "exec", self.robot_ns, "ss", "-ltnH", "sport = :11311"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
         return ROBOT_ADDRESS in run.stdout
 
     def steps(self):
@@ -128,8 +187,13 @@ class HilRig:
     def run_in(self, ns, address, module, *args, timeout=30):
         """Run `python -m module args` in `ns` to its end: (exit status, stdout, seconds taken)."""
         start = time.monotonic()
-        run = subprocess.run(["ip", "netns", "exec", ns, sys.executable, "-m", module, *map(str, args)],
-                             env=self.environment(address), capture_output=True, text=True, timeout=timeout)
+        run = subprocess.run(
+            ["ip", "netns", "exec", ns, sys.executable, "-m", module, *map(str, args)],
+            env=self.environment(address),
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+        )
         return run.returncode, run.stdout + run.stderr, time.monotonic() - start
 
     def listening(self, ns):
@@ -145,10 +209,17 @@ class HilRig:
     def clock_offset(self, samples=20):
         """The four-timestamp exchange from the simulator's host with the stand-in's time server: {offset, delay}
         [s], offset = robot clock - simulator host's clock."""
-        code = ("import json, sys; from unexmin.hil.clock_sync import measure_offset; "
-                f"print(json.dumps(measure_offset('{ROBOT_ADDRESS}', {TIME_PORT}, {samples})))")
-        run = subprocess.run(["ip", "netns", "exec", self.sim_ns, sys.executable, "-c", code],
-                             env=self.environment(SIM_ADDRESS), capture_output=True, text=True, timeout=30)
+        code = (
+            "import json, sys; from unexmin.hil.clock_sync import measure_offset; "
+            f"print(json.dumps(measure_offset('{ROBOT_ADDRESS}', {TIME_PORT}, {samples})))"
+        )
+        run = subprocess.run(
+            ["ip", "netns", "exec", self.sim_ns, sys.executable, "-c", code],
+            env=self.environment(SIM_ADDRESS),
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
         if run.returncode != 0:
             raise RuntimeError(f"clock offset: {run.stderr.strip()}")
         return json.loads(run.stdout)
@@ -182,14 +253,16 @@ class HilRig:
     def wait_recovered(self, down, up, offset, timeout=30):
         """Wait until a command stamped after `up` (robot clock - `offset` = this host's) has reached the simulator
         and its thrust has followed; unexmin.hil.probe.link_drop's figures of the drop from `down` to `up`."""
+
         def recovered():
             figures = link_drop(load(self.record), down, up, offset)
             return figures if figures["thrust_follows_after"] is not None or self.died() else None
+
         return wait_for(recovered, timeout, "the link to recover (a fresh command followed by the thrust)", poll=0.2)
 
     # --------------------------------------------------------------------------------------------- tear-down
     def close(self):
-        for name, proc in reversed(self.procs):
+        for _name, proc in reversed(self.procs):
             stop_process_group(proc, 10.0)
         for pid in marked_processes(self.marker):  # anything a roslaunch left behind
             try:

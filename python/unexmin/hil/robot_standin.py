@@ -33,16 +33,31 @@ def parse_args(argv=None):
     p.add_argument("--node-name", default="robot_standin", help="the node's name (default %(default)s)")
     p.add_argument("--motor-topic", default=ESC_COMMAND_TOPIC, help="ESC command topic (default %(default)s)")
     p.add_argument("--rate", type=float, default=10.0, help="ESC command rate [Hz] (default %(default)s)")
-    p.add_argument("--levels", type=float, nargs="+", default=[2129.0, -2140.0],
-                   help="propeller speeds [rev/min] taken in turn (default %(default)s: 17.85 N and -14.12 N with "
-                        "the ESC driver's default table)")
+    p.add_argument(
+        "--levels",
+        type=float,
+        nargs="+",
+        default=[2129.0, -2140.0],
+        help="propeller speeds [rev/min] taken in turn (default %(default)s: 17.85 N and -14.12 N with "
+        "the ESC driver's default table)",
+    )
     p.add_argument("--period", type=float, default=1.0, help="time each level is held [s] (default %(default)s)")
     p.add_argument("--nav-topic", default=NAV_TOPIC, help="navigation topic (default %(default)s)")
     p.add_argument("--nav-rate", type=float, default=10.0, help="navigation rate [Hz] (default %(default)s)")
-    p.add_argument("--position", type=float, nargs=3, default=[0.0, 0.0, -1.8], metavar=("X", "Y", "Z"),
-                   help="the navigation's position [m] (default %(default)s)")
-    p.add_argument("--time-port", type=int, default=None,
-                   help="answer clock-offset requests on this UDP port of ROS_IP (default: no)")
+    p.add_argument(
+        "--position",
+        type=float,
+        nargs=3,
+        default=[0.0, 0.0, -1.8],
+        metavar=("X", "Y", "Z"),
+        help="the navigation's position [m] (default %(default)s)",
+    )
+    p.add_argument(
+        "--time-port",
+        type=int,
+        default=None,
+        help="answer clock-offset requests on this UDP port of ROS_IP (default: no)",
+    )
     args = p.parse_args(argv)
     for name in ("rate", "nav_rate", "period"):
         value = getattr(args, name)
@@ -103,8 +118,10 @@ class RobotStandIn:
         def navigation(t):
             self.nav.publish(self.navigation(t))
 
-        threads = [threading.Thread(target=self.loop, args=(self.args.rate, commands), daemon=True),
-                   threading.Thread(target=self.loop, args=(self.args.nav_rate, navigation), daemon=True)]
+        threads = [
+            threading.Thread(target=self.loop, args=(self.args.rate, commands), daemon=True),
+            threading.Thread(target=self.loop, args=(self.args.nav_rate, navigation), daemon=True),
+        ]
         for t in threads:
             t.start()
         rospy.spin()
@@ -124,9 +141,16 @@ def main(argv=None):
     server = None
     if args.time_port is not None:
         server = TimeServer(os.environ.get("ROS_IP", "127.0.0.1"), args.time_port)
-    rospy.loginfo("robot stand-in: %s (RPM %s, %g s each) at %g Hz, %s at %g Hz, wall-clock stamps%s",
-                  args.motor_topic, args.levels, args.period, args.rate, args.nav_topic, args.nav_rate,
-                  f"; clock-offset server on UDP {server.sock.getsockname()[0]}:{server.port}" if server else "")
+    rospy.loginfo(
+        "robot stand-in: %s (RPM %s, %g s each) at %g Hz, %s at %g Hz, wall-clock stamps%s",
+        args.motor_topic,
+        args.levels,
+        args.period,
+        args.rate,
+        args.nav_topic,
+        args.nav_rate,
+        f"; clock-offset server on UDP {server.sock.getsockname()[0]}:{server.port}" if server else "",
+    )
     try:
         RobotStandIn(args).run()
     finally:
