@@ -15,16 +15,15 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <iterator>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
 
 /// CPU time of this process, every thread [s].
-double cpuTime()
-{
+double cpuTime() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
@@ -32,22 +31,23 @@ double cpuTime()
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+/// The whole text of the file at `path`.
+std::string readText(const char* path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+int main(int argc, char** argv) {
   using namespace unexmin;
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: imaging_sonar_cost <urdf> <world> [seconds] [threads]\n");
-    return 2;
-  }
-  std::ifstream in(argv[1]);
-  std::stringstream urdf;
-  urdf << in.rdbuf();
+  if (argc < 3)
+    return std::fprintf(stderr, "usage: imaging_sonar_cost <urdf> <world> [seconds] [threads]\n"), 2;
+  const std::string urdf = readText(argv[1]);
   const sim::WorldConfig config = sim::loadWorldConfig(argv[2]);
   const double seconds = argc > 3 ? std::atof(argv[3]) : 10.0;
   raycast::RayCasterOptions options;
   options.threads = argc > 4 ? std::atoi(argv[4]) : 1;
   std::map<std::string, sim::RobotDescription> d;
-  d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf.str(), argv[1]));
+  d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf, argv[1]));
   const ros_layer::SensorRegistry registry = ros_layer::SensorRegistry::builtin();
   const auto only = sensors::SensorSelection::parse("imaging_sonar", registry.types(), "imaging_sonar_cost");
   double cost[2] = {0.0, 0.0};
@@ -68,7 +68,8 @@ int main(int argc, char** argv)
     double render = 0.0;
     for (long i = 0; i < steps; ++i) {
       world.step();
-      if (!with) continue;
+      if (!with)
+        continue;
       caster->update();
       suite.update();
       if (suite.fresh(0)) {

@@ -16,8 +16,7 @@ namespace {
 
 using sensors::sonar::FanImage;
 
-TEST(FanImage, EveryPixelShowsTheBinAndBeamOfItsCentre)
-{
+TEST(FanImage, EveryPixelShowsTheBinAndBeamOfItsCentre) {
   const std::size_t beams = 64, bins = 50;
   const double fov = 130.0 * M_PI / 180.0, r0 = 0.5, r1 = 10.0;
   const FanImage fan(beams, fov, bins, r0, r1, 40);
@@ -39,19 +38,20 @@ TEST(FanImage, EveryPixelShowsTheBinAndBeamOfItsCentre)
   EXPECT_NEAR(inside, fov / 2.0 * (r1 * r1 - r0 * r0) / (s * s), 0.05 * inside);
   // Port is on the left: the top-left pixel inside the fan shows beam 0's side.
   std::vector<std::uint8_t> polar(bins * beams, 0), out;
-  for (std::size_t i = 0; i < bins; ++i) polar[i * beams] = 200;  // beam 0 lit
+  for (std::size_t i = 0; i < bins; ++i)
+    polar[i * beams] = 200;  // beam 0 lit
   fan.render(polar, out);
   ASSERT_EQ(out.size(), static_cast<std::size_t>(fan.width() * fan.height()));
   int left = 0, right = 0;
   for (int row = 0; row < fan.height(); ++row)
     for (int col = 0; col < fan.width(); ++col)
-      if (out[row * fan.width() + col] == 200) (col < fan.width() / 2 ? left : right)++;
+      if (out[row * fan.width() + col] == 200)
+        (col < fan.width() / 2 ? left : right)++;
   EXPECT_GT(left, 0);
   EXPECT_EQ(right, 0);
 }
 
-TEST(FanImage, BadFiguresAreNamed)
-{
+TEST(FanImage, BadFiguresAreNamed) {
   EXPECT_TRUE(contains(thrownMessage([] { FanImage(64, 4.0, 10, 0.0, 1.0, 10); }), "fov_h"));
   EXPECT_TRUE(contains(thrownMessage([] { FanImage(64, 1.0, 10, 2.0, 1.0, 10); }), "range_max"));
   EXPECT_TRUE(contains(thrownMessage([] { FanImage(0, 1.0, 10, 0.0, 1.0, 10); }), "beams"));

@@ -17,17 +17,17 @@ using sensors::sonar::ImagingSonarSensor;
 
 const Eigen::Vector3d kAt(0, 0, -50);  // the robot, deep below the surface
 
-ImagingSonarSensor& sonar(SonarWorld& w) { return w.sensor<ImagingSonarSensor>("sonar"); }
+ImagingSonarSensor& sonar(SonarWorld& w) {
+  return w.sensor<ImagingSonarSensor>("sonar");
+}
 
 /// One ping (the sensor at 10 Hz: the first sample at t = 0.1 s).
-const sensors::sonar::PolarImage& ping(SonarWorld& w)
-{
+const sensors::sonar::PolarImage& ping(SonarWorld& w) {
   w.samples(sonar(w), 1);
   return sonar(w).last();
 }
 
-TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing)
-{
+TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing) {
   // 65 rays per beam (0.31 deg apart, the middle one level). The sphere's centre on the axis of beam 100 at 12 m.
   const std::map<std::string, std::string> params = {{"noise", "none"}, {"rays_per_beam", "65"}};
   const double D = 12.0, rho = 0.3;
@@ -36,7 +36,8 @@ TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing)
   const double bearing = sonar(*probe).azimuth(k0);
   EXPECT_NEAR(bearing, 65.0 * kDegree - 100.5 * 130.0 * kDegree / 512.0, 1e-12);  // fov_h/2 - (k + 1/2) fov_h / beams
   const Eigen::Vector3d centre = kAt + D * Eigen::Vector3d(std::cos(bearing), std::sin(bearing), 0.0);
-  auto w = sonarRig({{"sphere", icosphere(centre, rho, 4)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0, params);
+  auto w =
+      sonarRig({{"sphere", icosphere(centre, rho, 4)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0, params);
   const ImagingSonarSensor& s = sonar(*w);
   const auto& image = ping(*w);
   ASSERT_EQ(image.beams, 512u);
@@ -48,7 +49,8 @@ TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing)
   std::size_t nearest = image.bins, first_beam = image.beams, last_beam = 0;
   for (std::size_t i = 0; i < image.bins; ++i) {
     for (std::size_t k = 0; k < image.beams; ++k) {
-      if (image.at(i, k) == 0) continue;
+      if (image.at(i, k) == 0)
+        continue;
       nearest = std::min(nearest, i);
       first_beam = std::min(first_beam, k);
       last_beam = std::max(last_beam, k);
@@ -66,8 +68,7 @@ TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing)
   EXPECT_NEAR(static_cast<double>(brightest / image.beams), s.receiver().echo().bin(D - rho), 1.0);
 }
 
-TEST(ImagingSonar, TheShadowBehindABoxOnTheFloorHasTheLengthOfSimilarTriangles)
-{
+TEST(ImagingSonar, TheShadowBehindABoxOnTheFloorHasTheLengthOfSimilarTriangles) {
   // The sonar 2 m above a flat floor, pitched 15 deg down; a box 0.5 m high, 0.2 m deep and 2 m wide whose near face is
   // 8 m ahead. Many rays per beam, so that the footprints are short.
   const double H = 2.0, d = 8.0, t = 0.2, h = 0.5;
@@ -80,7 +81,8 @@ TEST(ImagingSonar, TheShadowBehindABoxOnTheFloorHasTheLengthOfSimilarTriangles)
   const Shadow expected = boxShadow(H, d, t, h);
   for (const std::size_t k : {255u, 256u}) {  // the two beams either side of the axis: in the vertical plane
     std::vector<std::uint8_t> beam(image.bins);
-    for (std::size_t i = 0; i < image.bins; ++i) beam[i] = image.at(i, k);
+    for (std::size_t i = 0; i < image.bins; ++i)
+      beam[i] = image.at(i, k);
     const auto gap = longestGap(beam);
     ASSERT_GE(gap.first, 0) << "beam " << k << ": no shadow";
     // Tolerances: one bin, and the footprint of the first floor ray behind the box (half of it before its range).
@@ -94,28 +96,26 @@ TEST(ImagingSonar, TheShadowBehindABoxOnTheFloorHasTheLengthOfSimilarTriangles)
 }
 
 /// Input level of bin i of a code q: the receiver's chain undone, display_min + q step - G - TVG(r_i) [dB re 1 uPa].
-double inputLevel(const ImagingSonarSensor& s, std::size_t i, int q)
-{
+double inputLevel(const ImagingSonarSensor& s, std::size_t i, int q) {
   const auto& e = s.receiver().echo();
   return e.params().display_min + q * e.step() - e.gainDb() - e.tvg(s.binCenter(i));
 }
 
 /// The echo level of beam k: the power of its bins summed, as their codes say [dB re 1 uPa].
-double beamLevel(const ImagingSonarSensor& s, const sensors::sonar::PolarImage& image, std::size_t k)
-{
+double beamLevel(const ImagingSonarSensor& s, const sensors::sonar::PolarImage& image, std::size_t k) {
   double power = 0.0;
   for (std::size_t i = 0; i < image.bins; ++i)
-    if (image.at(i, k) > 0) power += std::pow(10.0, inputLevel(s, i, image.at(i, k)) / 10.0);
+    if (image.at(i, k) > 0)
+      power += std::pow(10.0, inputLevel(s, i, image.at(i, k)) / 10.0);
   return 10.0 * std::log10(power);
 }
 
-TEST(ImagingSonar, TheEchoLevelFollowsTheSpreadingAndAbsorptionOfTheSonarEquation)
-{
+TEST(ImagingSonar, TheEchoLevelFollowsTheSpreadingAndAbsorptionOfTheSonarEquation) {
   // The sonar at the centre of spheres of radius 4 m and 12 m: every ray head-on at R. Each beam's rays share its
   // solid angle: EL(R) = SL + BS0 + 10 log10(Omega) - 20 log10(R) - 2 alpha R.
   const double alpha = 0.5;  // [dB/m]: absorption as large as the spreading here
-  const std::map<std::string, std::string> params = {{"noise", "none"}, {"absorption", "0.5"}, {"range_max", "15"},
-                                                     {"gain", "0"}, {"tvg_spreading", "10"}};
+  const std::map<std::string, std::string> params = {
+      {"noise", "none"}, {"absorption", "0.5"}, {"range_max", "15"}, {"gain", "0"}, {"tvg_spreading", "10"}};
   double level[2];
   const double radius[2] = {4.0, 12.0};
   for (int n = 0; n < 2; ++n) {
@@ -124,7 +124,8 @@ TEST(ImagingSonar, TheEchoLevelFollowsTheSpreadingAndAbsorptionOfTheSonarEquatio
     const ImagingSonarSensor& s = sonar(*w);
     const auto& image = ping(*w);
     const double omega = 130.0 * kDegree / 512.0 * 2.0 * std::sin(10.0 * kDegree);
-    const double expected = 210.0 - 20.0 + 10.0 * std::log10(omega) - 20.0 * std::log10(radius[n]) - 2.0 * alpha * radius[n];
+    const double expected =
+        210.0 - 20.0 + 10.0 * std::log10(omega) - 20.0 * std::log10(radius[n]) - 2.0 * alpha * radius[n];
     for (const std::size_t k : {0u, 200u, 511u}) {
       EXPECT_NEAR(beamLevel(s, image, k), expected, 0.6) << "R " << radius[n] << " beam " << k;
     }
@@ -134,8 +135,7 @@ TEST(ImagingSonar, TheEchoLevelFollowsTheSpreadingAndAbsorptionOfTheSonarEquatio
   EXPECT_NEAR(level[0] - level[1], 20.0 * std::log10(3.0) + 2.0 * alpha * 8.0, 0.6);
 }
 
-TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt)
-{
+TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt) {
   const auto image = [](std::uint64_t seed) {
     auto w = sonarRig({{"shell", icosphere(kAt, 6.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
                       {{"rays_per_beam", "4"}}, seed);
@@ -152,7 +152,8 @@ TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt)
   const std::size_t bin = static_cast<std::size_t>(sonar(*w).receiver().echo().bin(6.0 - 0.01));
   int low = 0, high = 0;
   std::vector<int> codes;
-  for (std::size_t k = 0; k < p.beams; ++k) codes.push_back(std::max(p.at(bin, k), p.at(bin + 1, k)));
+  for (std::size_t k = 0; k < p.beams; ++k)
+    codes.push_back(std::max(p.at(bin, k), p.at(bin + 1, k)));
   const int median = [&] {
     std::vector<int> c = codes;
     std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
@@ -170,8 +171,7 @@ TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt)
   EXPECT_NEAR(high / n, 0.112, 4.0 * std::sqrt(0.112 * 0.888 / n));
 }
 
-TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter)
-{
+TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {
   const auto build = [](double rate, const std::map<std::string, std::string>& params) {
     sonarRig({}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", rate, params);
   };

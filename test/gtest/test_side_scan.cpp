@@ -19,15 +19,15 @@ using sensors::sonar::SideScanSensor;
 
 const Eigen::Vector3d kAt(0, 0, -50);
 
-SideScanSensor& sonar(SonarWorld& w) { return w.sensor<SideScanSensor>("sonar"); }
+SideScanSensor& sonar(SonarWorld& w) {
+  return w.sensor<SideScanSensor>("sonar");
+}
 
-int firstEcho(const std::vector<std::uint8_t>& line)
-{
+int firstEcho(const std::vector<std::uint8_t>& line) {
   return static_cast<int>(std::find_if(line.begin(), line.end(), [](std::uint8_t q) { return q > 0; }) - line.begin());
 }
 
-TEST(SideScan, TheNadirGapIsTheSlantRangeOfTheSteepestRayAndTheAltitudeForAFanReachingTheVertical)
-{
+TEST(SideScan, TheNadirGapIsTheSlantRangeOfTheSteepestRayAndTheAltitudeForAFanReachingTheVertical) {
   const double H = 5.0;
   // tilt 60 deg + fov_v / 2 = 30 deg: the steepest ray (half a ray spacing from it) points straight down.
   for (const double tilt : {60.0, 30.0}) {
@@ -56,14 +56,13 @@ TEST(SideScan, TheNadirGapIsTheSlantRangeOfTheSteepestRayAndTheAltitudeForAFanRe
   }
 }
 
-TEST(SideScan, AnObjectOnTheFloorCastsTheShadowOfSimilarTriangles)
-{
+TEST(SideScan, AnObjectOnTheFloorCastsTheShadowOfSimilarTriangles) {
   // 5 m above the floor; a box 1 m high, 0.5 m wide across-track, 40 m long, 12 m to port.
   const double H = 5.0, d = 12.0, t = 0.5, h = 1.0;
   const double floor_z = kAt.z() - H;
   const Geometry object = box(Eigen::Vector3d(-20.0, d, floor_z), Eigen::Vector3d(20.0, d + t, floor_z + h));
-  auto w = sonarRig({{"floor", floorBelow(kAt, H)}, {"object", object}}, kAt, Eigen::Vector3d::Zero(), "side_scan", 10.0,
-                    {{"noise", "none"}, {"rays", "1024"}});
+  auto w = sonarRig({{"floor", floorBelow(kAt, H)}, {"object", object}}, kAt, Eigen::Vector3d::Zero(), "side_scan",
+                    10.0, {{"noise", "none"}, {"rays", "1024"}});
   const SideScanSensor& s = sonar(*w);
   w->samples(s, 1);
   const Shadow expected = boxShadow(H, d, t, h);
@@ -78,8 +77,7 @@ TEST(SideScan, AnObjectOnTheFloorCastsTheShadowOfSimilarTriangles)
   EXPECT_EQ(other.first, -1) << "a gap to starboard at " << s.binCenter(other.first) << " m";
 }
 
-TEST(SideScan, TheWaterfallStacksThePingsNewestFirstPortReversed)
-{
+TEST(SideScan, TheWaterfallStacksThePingsNewestFirstPortReversed) {
   auto w = sonarRig({{"floor", floorBelow(kAt, 5.0)}}, kAt, Eigen::Vector3d::Zero(), "side_scan", 10.0,
                     {{"nbins", "200"}, {"waterfall_lines", "3"}});
   const SideScanSensor& s = sonar(*w);
@@ -105,8 +103,7 @@ TEST(SideScan, TheWaterfallStacksThePingsNewestFirstPortReversed)
   EXPECT_EQ(image, std::vector<std::uint8_t>(12, 0));  // nothing yet: zeros
 }
 
-TEST(SideScan, LinesRepeatWithTheSeed)
-{
+TEST(SideScan, LinesRepeatWithTheSeed) {
   const auto lines = [](std::uint64_t seed) {
     auto w = sonarRig({{"floor", floorBelow(kAt, 5.0)}}, kAt, Eigen::Vector3d::Zero(), "side_scan", 10.0, {}, seed);
     w->samples(sonar(*w), 2);
@@ -116,8 +113,7 @@ TEST(SideScan, LinesRepeatWithTheSeed)
   EXPECT_FALSE(lines(3) == lines(4));
 }
 
-TEST(SideScan, BadParametersNameTheSensorAndTheParameter)
-{
+TEST(SideScan, BadParametersNameTheSensorAndTheParameter) {
   const auto build = [](double rate, const std::map<std::string, std::string>& params) {
     sonarRig({}, kAt, Eigen::Vector3d::Zero(), "side_scan", rate, params);
   };

@@ -11,14 +11,16 @@ namespace ros_layer {
 ImagingSonarPublisher::ImagingSonarPublisher(const sensors::sonar::ImagingSonarSensor& sensor,
                                              const PublisherContext& ctx)
     : sensor_(sensor),
-      fan_(sensor.beams(), sensor.fovH(), sensor.bins(), sensor.rangeMin(), sensor.rangeMax(), sensor.fanHeight())
-{
+      fan_(sensor.beams(), sensor.fovH(), sensor.bins(), sensor.rangeMin(), sensor.rangeMax(), sensor.fanHeight()) {
   // Images are large: a short queue (a slow subscriber drops images rather than filling the memory).
   const int queue = std::max(2, static_cast<int>(2.0 * sensor.rate()));
-  polar_pub_ = ctx.nh.advertise<sensor_msgs::Image>(resolve(ctx.ns, topicParam(sensor, "topic", sensor.name() + "/polar")), queue);
-  fan_pub_ = ctx.nh.advertise<sensor_msgs::Image>(resolve(ctx.ns, topicParam(sensor, "fan_topic", sensor.name() + "/fan")), queue);
+  polar_pub_ = ctx.nh.advertise<sensor_msgs::Image>(
+      resolve(ctx.ns, topicParam(sensor, "topic", sensor.name() + "/polar")), queue);
+  fan_pub_ = ctx.nh.advertise<sensor_msgs::Image>(
+      resolve(ctx.ns, topicParam(sensor, "fan_topic", sensor.name() + "/fan")), queue);
   std::vector<double> azimuths(sensor.beams());
-  for (std::size_t k = 0; k < azimuths.size(); ++k) azimuths[k] = sensor.azimuth(k);
+  for (std::size_t k = 0; k < azimuths.size(); ++k)
+    azimuths[k] = sensor.azimuth(k);
   const std::string params = ctx.ns + sensor.name() + "/";
   ctx.nh.setParam(params + "beam_azimuths", azimuths);
   ctx.nh.setParam(params + "range_min", sensor.rangeMin());
@@ -28,8 +30,7 @@ ImagingSonarPublisher::ImagingSonarPublisher(const sensors::sonar::ImagingSonarS
 }
 
 sensor_msgs::Image ImagingSonarPublisher::mono8(double time, const std::string& frame, std::size_t rows,
-                                                std::size_t cols)
-{
+                                                std::size_t cols) {
   sensor_msgs::Image m;
   m.header.stamp.fromSec(time);
   m.header.frame_id = frame;
@@ -42,26 +43,25 @@ sensor_msgs::Image ImagingSonarPublisher::mono8(double time, const std::string& 
   return m;
 }
 
-sensor_msgs::Image ImagingSonarPublisher::polar() const
-{
+sensor_msgs::Image ImagingSonarPublisher::polar() const {
   const sensors::sonar::PolarImage& p = sensor_.last();
   sensor_msgs::Image m = mono8(p.time, sensor_.frame(), p.bins, p.beams);
   m.data = p.codes;
   return m;
 }
 
-sensor_msgs::Image ImagingSonarPublisher::fan() const
-{
+sensor_msgs::Image ImagingSonarPublisher::fan() const {
   const sensors::sonar::PolarImage& p = sensor_.last();
   sensor_msgs::Image m = mono8(p.time, sensor_.frame(), fan_.height(), fan_.width());
   fan_.render(p.codes, m.data);
   return m;
 }
 
-void ImagingSonarPublisher::publish()
-{
-  if (wanted(polar_pub_)) emit(polar_pub_, polar());
-  if (wanted(fan_pub_)) emit(fan_pub_, fan());
+void ImagingSonarPublisher::publish() {
+  if (wanted(polar_pub_))
+    emit(polar_pub_, polar());
+  if (wanted(fan_pub_))
+    emit(fan_pub_, fan());
 }
 
 }  // namespace ros_layer

@@ -3,7 +3,8 @@
 //   topic      (default <sensor name>/polar)  sensor_msgs/Image mono8, one ping: height = nbins rows (row i = range bin
 //              i, row 0 the nearest), width = beams columns (column k = beam k, column 0 the leftmost, to port),
 //              frame = the sensor link, stamp = the ping time
-//   fan_topic  (default <sensor name>/fan)    sensor_msgs/Image mono8: the Cartesian fan (fan_image.h), the sonar at the
+//   fan_topic  (default <sensor name>/fan)    sensor_msgs/Image mono8: the Cartesian fan (fan_image.h), the sonar at
+//   the
 //              middle of the bottom edge, +x up, port left; fan_height rows
 // The geometry, for receivers of the images, as ROS parameters under /<robot>/<sensor name>/: beam_azimuths [rad]
 // (one per column), range_min, range_max, range_resolution (bin width) and fan_pixel_size [m].
@@ -18,8 +19,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class ImagingSonarPublisher : public SensorPublisher
-{
+class ImagingSonarPublisher : public SensorPublisher {
 public:
   ImagingSonarPublisher(const sensors::sonar::ImagingSonarSensor& sensor, const PublisherContext& ctx);
   void publish() override;

@@ -16,8 +16,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SideScanPublisher : public SensorPublisher
-{
+class SideScanPublisher : public SensorPublisher {
 public:
   SideScanPublisher(const sensors::sonar::SideScanSensor& sensor, const PublisherContext& ctx);
   void publish() override;

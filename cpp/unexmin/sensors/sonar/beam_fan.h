@@ -27,8 +27,7 @@ namespace unexmin {
 namespace sensors {
 namespace sonar {
 
-class BeamFan
-{
+class BeamFan {
 public:
   /// `axis`: beam coordinates -> sensor frame (a rotation); `aperture` [rad] in (0, pi], `width` [rad] > 0;
   /// `rays` >= 1. The caller checks the numbers (the sensors name the parameters).
@@ -58,7 +57,7 @@ public:
 private:
   double aperture_ = 0.0, width_ = 0.0, ray_angle_ = 0.0;
   std::vector<Eigen::Vector3d> dirs_, along_;  ///< d_j and t_e (sensor frame)
-  Eigen::Vector3d across_{0, 1, 0};           ///< t_w (sensor frame)
+  Eigen::Vector3d across_{0, 1, 0};            ///< t_w (sensor frame)
 };
 
 }  // namespace sonar

@@ -5,7 +5,8 @@
 //   noise_floor  + 10^(noise_level / 10) uPa^2 x an exponential draw (Rayleigh noise) at the receiver input
 //   output       L_i = 10 log10(P_i) + G + TVG(r_i), code q_i = round((L_i - display_min) / display_span 255)
 //                clamped to 0 .. 255 (EchoModel::code)
-// Two uniform draws per bin whatever the echoes (the stream does not depend on the geometry). Knows no ROS.
+// One 64-bit draw per bin whatever the echoes (the stream does not depend on the geometry): its high and low 24-bit
+// halves are the speckle's and the noise's uniform draws. Knows no ROS.
 #pragma once
 
 #include <unexmin/sensors/random.h>
@@ -29,27 +30,24 @@ using ::unexmin::sonar::EchoParams;
 using ::unexmin::sonar::readEquationParams;
 
 /// The receiver's noise models.
-struct ReceiverNoise
-{
+struct ReceiverNoise {
   bool speckle = true;        ///< exponential factor on each bin's echo power
   bool noise_floor = true;    ///< Rayleigh noise at the receiver input
   double noise_level = 85.0;  ///< noise power per bin [dB re 1 uPa]
 };
 
 /// The defaults of a sonar family's receiver parameters.
-struct ReceiverDefaults
-{
-  double range_max = 30.0;     ///< [m]
-  double nbins = 500.0;        ///< [-]
-  double source_level = 210.0; ///< [dB re 1 uPa at 1 m]
-  double noise_level = 85.0;   ///< [dB re 1 uPa]
+struct ReceiverDefaults {
+  double range_max = 30.0;      ///< [m]
+  double nbins = 500.0;         ///< [-]
+  double source_level = 210.0;  ///< [dB re 1 uPa at 1 m]
+  double noise_level = 85.0;    ///< [dB re 1 uPa]
 };
 
 /// A whole-number parameter in [lo, hi]; fails naming it otherwise.
 int wholeNumber(SensorParams& p, const std::string& key, double fallback, double lo, double hi);
 
-class BeamReceiver
-{
+class BeamReceiver {
 public:
   /// Reads range_min (0.1 m), range_max, nbins, gain (0.5), the sonar equation's parameters (equation_params.h),
   /// noise (gaussian|none), speckle (true), noise_floor (true), noise_level and sound_speed (1500 m/s), and checks
@@ -73,6 +71,7 @@ private:
   ReceiverNoise noise_;
   double noise_power_ = 0.0;     ///< 10^(noise_level / 10) [uPa^2]
   std::vector<double> visible_;  ///< per bin: the uniform draw from which the noise alone makes code >= 1
+  std::vector<float> offset_;    ///< per bin: (G + TVG(r_i) - display_min) / step, in codes
 };
 
 }  // namespace sonar

@@ -16,15 +16,14 @@ namespace unexmin {
 namespace sensors {
 namespace sonar {
 
-class FanImage
-{
+class FanImage {
 public:
   /// A polar image of `beams` beams over fov_h [rad] in (0, pi] and `bins` equal bins from range_min to range_max
   /// [m]; `height` >= 1 rows. Throws ParameterError for a bad figure.
   FanImage(std::size_t beams, double fov_h, std::size_t bins, double range_min, double range_max, int height);
 
-  int width() const { return width_; }    ///< [px]
-  int height() const { return height_; }  ///< [px]
+  int width() const { return width_; }         ///< [px]
+  int height() const { return height_; }       ///< [px]
   double pixelSize() const { return pixel_; }  ///< [m]
   /// Index bin * beams + beam of the polar image shown at pixel (row, col); -1: none.
   long source(int row, int col) const { return source_[static_cast<std::size_t>(row) * width_ + col]; }

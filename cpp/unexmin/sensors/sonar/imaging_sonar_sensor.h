@@ -20,6 +20,7 @@
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/sonar/beam_fan.h>
 #include <unexmin/sensors/sonar/beam_receiver.h>
+#include <unexmin/sensors/sonar/beam_set.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -30,8 +31,7 @@ namespace sensors {
 namespace sonar {
 
 /// One ping of the imaging sonar: range bins x beams.
-struct PolarImage
-{
+struct PolarImage {
   double time = -1.0;               ///< ping time [s]
   std::size_t beams = 0;            ///< columns
   std::size_t bins = 0;             ///< rows
@@ -39,28 +39,27 @@ struct PolarImage
   std::uint8_t at(std::size_t bin, std::size_t beam) const { return codes[bin * beams + beam]; }
 };
 
-class ImagingSonarSensor : public Sensor
-{
+class ImagingSonarSensor : public Sensor {
 public:
   /// Throws ConfigError naming the robot, the sensor and the parameter.
   ImagingSonarSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
   const PolarImage& last() const { return last_; }
-  std::size_t beams() const { return fans_.size(); }
-  std::size_t bins() const { return static_cast<std::size_t>(receiver_.echo().params().nbins); }
+  std::size_t beams() const { return beams_.size(); }
+  std::size_t bins() const { return static_cast<std::size_t>(beams_.receiver().echo().params().nbins); }
   double fovH() const { return fov_h_; }  ///< [rad]
   double fovV() const { return fov_v_; }  ///< [rad]
   /// Azimuth of beam k about the link's z [rad]: fov_h/2 - (k + 1/2) fov_h / beams.
   double azimuth(std::size_t k) const;
-  double rangeMin() const { return receiver_.echo().params().range_min; }  ///< [m]
-  double rangeMax() const { return receiver_.echo().params().range_max; }  ///< [m]
-  double rangeResolution() const { return receiver_.echo().binWidth(); }  ///< bin width [m]
-  double binCenter(std::size_t i) const { return receiver_.echo().binCenter(i); }  ///< [m]
+  double rangeMin() const { return beams_.receiver().echo().params().range_min; }          ///< [m]
+  double rangeMax() const { return beams_.receiver().echo().params().range_max; }          ///< [m]
+  double rangeResolution() const { return beams_.receiver().echo().binWidth(); }           ///< bin width [m]
+  double binCenter(std::size_t i) const { return beams_.receiver().echo().binCenter(i); }  ///< [m]
   /// Height of the Cartesian fan image [px] (the publisher's).
   int fanHeight() const { return fan_height_; }
-  const BeamReceiver& receiver() const { return receiver_; }
-  const BeamFan& fan(std::size_t k) const { return fans_[k]; }
-  std::size_t raysPerPing() const { return rays_.size(); }
+  const BeamReceiver& receiver() const { return beams_.receiver(); }
+  const BeamFan& fan(std::size_t k) const { return beams_.fan(k); }
+  std::size_t raysPerPing() const { return beams_.raysPerPing(); }
 
 protected:
   void onReset() override;
@@ -68,13 +67,10 @@ protected:
 
 private:
   double fov_h_ = 0.0, fov_v_ = 0.0;
-  int beams_ = 1;
+  int beam_count_ = 1;
   int fan_height_ = 500;
-  BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
-  std::vector<BeamFan> fans_;
-  std::vector<raycast::Ray> rays_;
+  BeamSet beams_;
   std::vector<raycast::Hit> hits_;
-  std::vector<double> energy_;
   PolarImage last_;
 };
 

@@ -19,6 +19,7 @@
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/sonar/beam_fan.h>
 #include <unexmin/sensors/sonar/beam_receiver.h>
+#include <unexmin/sensors/sonar/beam_set.h>
 #include <unexmin/sensors/sonar/waterfall.h>
 
 #include <cstddef>
@@ -30,30 +31,28 @@ namespace sensors {
 namespace sonar {
 
 /// One ping of both sides.
-struct SideScanPing
-{
+struct SideScanPing {
   double time = -1.0;                   ///< ping time [s]
   std::vector<std::uint8_t> port;       ///< nbins codes 0 .. 255, bin 0 the nearest
   std::vector<std::uint8_t> starboard;  ///< likewise
 };
 
-class SideScanSensor : public Sensor
-{
+class SideScanSensor : public Sensor {
 public:
   /// Throws ConfigError naming the robot, the sensor and the parameter.
   SideScanSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
   const SideScanPing& last() const { return last_; }
   const Waterfall& waterfall() const { return waterfall_; }
-  std::size_t bins() const { return static_cast<std::size_t>(receiver_.echo().params().nbins); }
-  double rangeMin() const { return receiver_.echo().params().range_min; }  ///< [m]
-  double rangeMax() const { return receiver_.echo().params().range_max; }  ///< [m]
-  double rangeResolution() const { return receiver_.echo().binWidth(); }  ///< bin width [m]
-  double binCenter(std::size_t i) const { return receiver_.echo().binCenter(i); }  ///< [m]
-  double tilt() const { return tilt_; }  ///< [rad]
-  const BeamReceiver& receiver() const { return receiver_; }
+  std::size_t bins() const { return static_cast<std::size_t>(beams_.receiver().echo().params().nbins); }
+  double rangeMin() const { return beams_.receiver().echo().params().range_min; }          ///< [m]
+  double rangeMax() const { return beams_.receiver().echo().params().range_max; }          ///< [m]
+  double rangeResolution() const { return beams_.receiver().echo().binWidth(); }           ///< bin width [m]
+  double binCenter(std::size_t i) const { return beams_.receiver().echo().binCenter(i); }  ///< [m]
+  double tilt() const { return tilt_; }                                                    ///< [rad]
+  const BeamReceiver& receiver() const { return beams_.receiver(); }
   /// The fans: 0 port, 1 starboard.
-  const BeamFan& fan(std::size_t side) const { return fans_[side]; }
+  const BeamFan& fan(std::size_t side) const { return beams_.fan(side); }
 
 protected:
   void onReset() override;
@@ -61,13 +60,10 @@ protected:
 
 private:
   double tilt_ = 0.0;
-  BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
-  std::vector<BeamFan> fans_;
-  Waterfall waterfall_{1, 1};
-  std::vector<raycast::Ray> rays_;
-  std::vector<raycast::Hit> hits_;
-  std::vector<double> energy_;
   SideScanPing last_;
+  Waterfall waterfall_{1, 1};
+  BeamSet beams_;
+  std::vector<raycast::Hit> hits_;
 };
 
 }  // namespace sonar

@@ -12,8 +12,7 @@ namespace unexmin {
 namespace sensors {
 namespace sonar {
 
-class Waterfall
-{
+class Waterfall {
 public:
   /// `lines` rows of 2 x `bins` columns (both >= 1).
   Waterfall(std::size_t lines, std::size_t bins);
@@ -31,8 +30,8 @@ public:
 private:
   std::size_t lines_, bins_;
   std::size_t filled_ = 0;
-  std::size_t newest_ = 0;            ///< ring index of the newest row
-  std::vector<std::uint8_t> rows_;   ///< ring of rows, each already in the image's column order
+  std::size_t newest_ = 0;          ///< ring index of the newest row
+  std::vector<std::uint8_t> rows_;  ///< ring of rows, each already in the image's column order
 };
 
 }  // namespace sonar
