@@ -9,7 +9,9 @@
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
+#include <unexmin/sensors/sonar/side_scan_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include "sphere_fixture.h"
@@ -87,6 +89,8 @@ inline const sensors::SensorFactory& coreModels()
     f.add<sensors::PressureSensor>("pressure");
     f.add<sensors::sonar::MsisSensor>("msis");
     f.add<sensors::sonar::M3Sensor>("m3");
+    f.add<sensors::sonar::ImagingSonarSensor>("imaging_sonar");
+    f.add<sensors::sonar::SideScanSensor>("side_scan");
     f.add<sensors::vision::SlsSensor>("sls");
     return f;
   }();

@@ -4,10 +4,12 @@
 
 #include <unexmin/ros_layer/camera_publisher.h>
 #include <unexmin/ros_layer/dvl_publisher.h>
+#include <unexmin/ros_layer/imaging_sonar_publisher.h>
 #include <unexmin/ros_layer/imu_publisher.h>
 #include <unexmin/ros_layer/m3_publisher.h>
 #include <unexmin/ros_layer/msis_publisher.h>
 #include <unexmin/ros_layer/pressure_publisher.h>
+#include <unexmin/ros_layer/side_scan_publisher.h>
 #include <unexmin/ros_layer/sls_publisher.h>
 
 namespace unexmin {
@@ -21,6 +23,8 @@ SensorRegistry SensorRegistry::builtin()
   r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
   r.add<sensors::sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
   r.add<sensors::sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
+  r.add<sensors::sonar::ImagingSonarSensor, ImagingSonarPublisher>("imaging_sonar");  // docs/sonars.md
+  r.add<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");             // docs/sonars.md
   r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/sls.md
   r.add<sensors::vision::CameraSensor, CameraPublisher>("camera");  // docs/vision.md
   return r;

@@ -38,6 +38,8 @@ public:
   double gauss() { return normal_(engine_); }
   /// A uniform draw in [0, 1).
   double uniform() { return std::generate_canonical<double, 53>(engine_); }
+  /// 64 uniform random bits (one step of the engine).
+  std::uint64_t bits() { return engine_(); }
 
 private:
   std::mt19937_64 engine_;

@@ -1,0 +1,72 @@
+// The receiver of one sonar beam (docs/sonars.md "Receiver"): the echoes of the beam's rays, each spread over the
+// ranges of its footprint (beam_fan.h), summed per range bin as echo power by the sonar equation of the echo
+// model (echo_model.h), then the receiver noise and the 8-bit output:
+//   speckle      each bin's echo power x an exponential draw of mean 1 (Rayleigh amplitude)
+//   noise_floor  + 10^(noise_level / 10) uPa^2 x an exponential draw (Rayleigh noise) at the receiver input
+//   output       L_i = 10 log10(P_i) + G + TVG(r_i), code q_i = round((L_i - display_min) / display_span 255)
+//                clamped to 0 .. 255 (EchoModel::code)
+// One 64-bit draw per bin whatever the echoes (the stream does not depend on the geometry): its high and low 24-bit
+// halves are the speckle's and the noise's uniform draws. Knows no ROS.
+#pragma once
+
+#include <unexmin/sensors/random.h>
+#include <unexmin/sensors/sensor_params.h>
+#include <unexmin/sensors/sonar/echo_model.h>
+#include <unexmin/sensors/sonar/equation_params.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace unexmin {
+namespace sensors {
+namespace sonar {
+
+/// The receiver's noise models.
+struct ReceiverNoise {
+  bool speckle = true;        ///< exponential factor on each bin's echo power
+  bool noise_floor = true;    ///< Rayleigh noise at the receiver input
+  double noise_level = 85.0;  ///< noise power per bin [dB re 1 uPa]
+};
+
+/// The defaults of a sonar family's receiver parameters.
+struct ReceiverDefaults {
+  double range_max = 30.0;      ///< [m]
+  double nbins = 500.0;         ///< [-]
+  double source_level = 210.0;  ///< [dB re 1 uPa at 1 m]
+  double noise_level = 85.0;    ///< [dB re 1 uPa]
+};
+
+/// A whole-number parameter in [lo, hi]; fails naming it otherwise.
+int wholeNumber(SensorParams& p, const std::string& key, double fallback, double lo, double hi);
+
+class BeamReceiver {
+public:
+  /// Reads range_min (0.1 m), range_max, nbins, gain (0.5), the sonar equation's parameters (equation_params.h),
+  /// noise (gaussian|none), speckle (true), noise_floor (true), noise_level and sound_speed (1500 m/s), and checks
+  /// that a ping at `rate` [Hz] hears range_max (rate <= sound_speed / (2 range_max)). `beam_solid_angle` [sr]: the
+  /// beam's (BeamFan::solidAngle()).
+  static BeamReceiver read(SensorParams& p, const ReceiverDefaults& defaults, double rate, double beam_solid_angle);
+
+  /// `params.levels` is set to 255 (8-bit codes). Throws ParameterError for a bad echo parameter.
+  BeamReceiver(EchoParams params, const ReceiverNoise& noise);
+
+  const EchoModel& echo() const { return echo_; }
+  const ReceiverNoise& noise() const { return noise_; }
+  /// Adds the power of `e` (one of `rays` rays of the beam) spread evenly over [r - extent/2, r + extent/2] [m]
+  /// to `energy` (nbins) [uPa^2]; what falls outside the range window is lost.
+  void add(const Echo& e, double extent, std::size_t rays, std::vector<double>& energy) const;
+  /// Speckle and noise floor on `energy` (nbins, changed), then the codes: bin i to codes[i * stride].
+  void receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const;
+
+private:
+  EchoModel echo_;
+  ReceiverNoise noise_;
+  double noise_power_ = 0.0;     ///< 10^(noise_level / 10) [uPa^2]
+  std::vector<double> visible_;  ///< per bin: the uniform draw from which the noise alone makes code >= 1
+  std::vector<float> offset_;    ///< per bin: (G + TVG(r_i) - display_min) / step, in codes
+};
+
+}  // namespace sonar
+}  // namespace sensors
+}  // namespace unexmin

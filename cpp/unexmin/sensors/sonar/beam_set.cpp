@@ -1,0 +1,33 @@
+#include <unexmin/sensors/sonar/beam_set.h>
+
+#include <algorithm>
+#include <utility>
+
+namespace unexmin {
+namespace sensors {
+namespace sonar {
+
+BeamSet::BeamSet(std::vector<BeamFan> fans, BeamReceiver receiver)
+    : fans_(std::move(fans)),
+      receiver_(std::move(receiver)),
+      rays_(fans_.size() * (fans_.empty() ? 0 : fans_.front().size())),
+      energy_(static_cast<std::size_t>(receiver_.echo().params().nbins), 0.0) {}
+
+const std::vector<raycast::Ray>& BeamSet::aim(const Eigen::Isometry3d& pose, double surface_z) {
+  const std::size_t n = fans_.front().size();
+  const double range_max = receiver_.echo().params().range_max;
+  for (std::size_t k = 0; k < fans_.size(); ++k)
+    fans_[k].aim(pose, range_max, surface_z, &rays_[k * n]);
+  return rays_;
+}
+
+void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+                     Random& random, std::uint8_t* codes, std::size_t stride) {
+  std::fill(energy_.begin(), energy_.end(), 0.0);
+  fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy_);
+  receiver_.receive(energy_, random, codes, stride);
+}
+
+}  // namespace sonar
+}  // namespace sensors
+}  // namespace unexmin

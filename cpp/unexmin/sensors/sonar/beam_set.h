@@ -1,0 +1,48 @@
+// The beams of one sonar (docs/sonars.md "Beams, rays and footprints"): its fans (beam_fan.h, one per beam, all of
+// the same size), its receiver (beam_receiver.h), and the rays and echo energies of a ping. The imaging sonar has one
+// fan per beam, the side-scan one per side. Knows no ROS.
+#pragma once
+
+#include <unexmin/raycast/ray_caster.h>
+#include <unexmin/sensors/random.h>
+#include <unexmin/sensors/sonar/beam_fan.h>
+#include <unexmin/sensors/sonar/beam_receiver.h>
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace unexmin {
+namespace sensors {
+namespace sonar {
+
+class BeamSet {
+public:
+  BeamSet() = default;
+  /// `fans`: at least one, all with the same number of rays.
+  BeamSet(std::vector<BeamFan> fans, BeamReceiver receiver);
+
+  std::size_t size() const { return fans_.size(); }
+  const BeamFan& fan(std::size_t k) const { return fans_[k]; }
+  const BeamReceiver& receiver() const { return receiver_; }
+  std::size_t raysPerPing() const { return rays_.size(); }
+  /// The rays of every beam of a sensor at `pose` (world frame; beam k's at [k n, (k + 1) n), n rays per fan), up to
+  /// range_max or the free surface at height surface_z [m] (BeamFan::aim).
+  const std::vector<raycast::Ray>& aim(const Eigen::Isometry3d& pose, double surface_z);
+  /// Beam k's line from `hits` (the answers to aim()'s rays, the sensor at `pose`): echoes, receiver noise from
+  /// `random`, codes[i * stride] = the code of bin i.
+  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, Random& random,
+              std::uint8_t* codes, std::size_t stride);
+
+private:
+  std::vector<BeamFan> fans_;
+  BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
+  std::vector<raycast::Ray> rays_;
+  std::vector<double> energy_;
+};
+
+}  // namespace sonar
+}  // namespace sensors
+}  // namespace unexmin

@@ -1,0 +1,62 @@
+#include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
+
+#include <unexmin/sensors/sensor_params.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace unexmin {
+namespace sensors {
+namespace sonar {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+}  // namespace
+
+ImagingSonarSensor::ImagingSonarSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
+  SensorParams p(spec, setup.robot);
+  beam_count_ = wholeNumber(p, "beams", 512.0, 1.0, 4096.0);
+  fov_h_ = p.number("fov_h", 130.0 * kDeg, 1e-6, M_PI, "rad");
+  fov_v_ = p.number("fov_v", 20.0 * kDeg, 1e-6, M_PI, "rad");
+  const int rays = wholeNumber(p, "rays_per_beam", 16.0, 1.0, 256.0);
+  const double width = fov_h_ / beam_count_;
+  std::vector<BeamFan> fans;
+  for (int k = 0; k < beam_count_; ++k)
+    fans.emplace_back(Eigen::AngleAxisd(azimuth(k), Eigen::Vector3d::UnitZ()).toRotationMatrix(), fov_v_, width, rays);
+  BeamReceiver receiver =
+      BeamReceiver::read(p, ReceiverDefaults{30.0, 500.0, 210.0, 85.0}, rate(), fans.front().solidAngle());
+  fan_height_ = wholeNumber(p, "fan_height", 500.0, 16.0, 4096.0);
+  p.finish();
+
+  beams_ = BeamSet(std::move(fans), std::move(receiver));
+}
+
+double ImagingSonarSensor::azimuth(std::size_t k) const {
+  return fov_h_ / 2.0 - (static_cast<double>(k) + 0.5) * fov_h_ / beam_count_;
+}
+
+void ImagingSonarSensor::onReset() {
+  last_ = PolarImage();
+}
+
+void ImagingSonarSensor::sample(const SensorContext& ctx) {
+  const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
+  const auto& rays = beams_.aim(pose, ctx.world.water().surface_z);
+  castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
+
+  PolarImage& out = last_;
+  out.time = ctx.world.time();
+  out.beams = beams();
+  out.bins = bins();
+  out.codes.resize(out.beams * out.bins);
+  for (std::size_t k = 0; k < out.beams; ++k)
+    beams_.listen(k, pose, hits_, random(), &out.codes[k], out.beams);
+}
+
+}  // namespace sonar
+}  // namespace sensors
+}  // namespace unexmin

@@ -1,0 +1,190 @@
+// The imaging sonar (cpp/unexmin/sensors/sonar/imaging_sonar_sensor.h) against closed forms: a sphere at a known
+// range and bearing in its bin and beam, the acoustic shadow of a box on a flat floor by similar triangles, the echo
+// level against the sonar equation's spreading and absorption at two ranges, seeded speckle, parameter errors.
+#include "expect_error.h"
+#include "sonar_image_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace unexmin {
+namespace test {
+namespace {
+
+using sensors::sonar::ImagingSonarSensor;
+
+const Eigen::Vector3d kAt(0, 0, -50);  // the robot, deep below the surface
+
+ImagingSonarSensor& sonar(SonarWorld& w) {
+  return w.sensor<ImagingSonarSensor>("sonar");
+}
+
+/// One ping (the sensor at 10 Hz: the first sample at t = 0.1 s).
+const sensors::sonar::PolarImage& ping(SonarWorld& w) {
+  w.samples(sonar(w), 1);
+  return sonar(w).last();
+}
+
+TEST(ImagingSonar, ASphereLandsInTheBinOfItsNearestPointAndTheBeamOfItsBearing) {
+  // 65 rays per beam (0.31 deg apart, the middle one level). The sphere's centre on the axis of beam 100 at 12 m.
+  const std::map<std::string, std::string> params = {{"noise", "none"}, {"rays_per_beam", "65"}};
+  const double D = 12.0, rho = 0.3;
+  auto probe = sonarRig({}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0, params);
+  const std::size_t k0 = 100;
+  const double bearing = sonar(*probe).azimuth(k0);
+  EXPECT_NEAR(bearing, 65.0 * kDegree - 100.5 * 130.0 * kDegree / 512.0, 1e-12);  // fov_h/2 - (k + 1/2) fov_h / beams
+  const Eigen::Vector3d centre = kAt + D * Eigen::Vector3d(std::cos(bearing), std::sin(bearing), 0.0);
+  auto w =
+      sonarRig({{"sphere", icosphere(centre, rho, 4)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0, params);
+  const ImagingSonarSensor& s = sonar(*w);
+  const auto& image = ping(*w);
+  ASSERT_EQ(image.beams, 512u);
+  ASSERT_EQ(image.bins, 500u);
+  // Every echo within the sphere's angular radius asin(rho / D) and between its nearest point and its silhouette
+  // (one bin, and one ray's footprint r de beyond it where the rim's rays spread).
+  const double half_angle = std::asin(rho / D);
+  const double far = std::sqrt(D * D - rho * rho) + D * 20.0 * kDegree / 65.0;
+  std::size_t nearest = image.bins, first_beam = image.beams, last_beam = 0;
+  for (std::size_t i = 0; i < image.bins; ++i) {
+    for (std::size_t k = 0; k < image.beams; ++k) {
+      if (image.at(i, k) == 0)
+        continue;
+      nearest = std::min(nearest, i);
+      first_beam = std::min(first_beam, k);
+      last_beam = std::max(last_beam, k);
+      EXPECT_LE(std::abs(s.azimuth(k) - bearing), half_angle + 130.0 * kDegree / 512.0) << "beam " << k;
+      EXPECT_LE(s.binCenter(i), far + s.rangeResolution()) << "bin " << i;
+    }
+  }
+  // The nearest echo: the head-on ray of beam k0 at D - rho; the echo's beams symmetric about the bearing.
+  EXPECT_EQ(static_cast<int>(nearest), s.receiver().echo().bin(D - rho));
+  EXPECT_GE(static_cast<int>(first_beam), static_cast<int>(k0) - 7);  // asin(0.3 / 12) = 5.6 beams
+  EXPECT_NEAR(0.5 * static_cast<double>(first_beam + last_beam), static_cast<double>(k0), 0.5);
+  // The brightest pixel: near head-on, in the bin of the nearest point, within two beams of the bearing.
+  const auto brightest = std::max_element(image.codes.begin(), image.codes.end()) - image.codes.begin();
+  EXPECT_NEAR(static_cast<double>(static_cast<std::size_t>(brightest) % image.beams), static_cast<double>(k0), 2.0);
+  EXPECT_NEAR(static_cast<double>(brightest / image.beams), s.receiver().echo().bin(D - rho), 1.0);
+}
+
+TEST(ImagingSonar, TheShadowBehindABoxOnTheFloorHasTheLengthOfSimilarTriangles) {
+  // The sonar 2 m above a flat floor, pitched 15 deg down; a box 0.5 m high, 0.2 m deep and 2 m wide whose near face is
+  // 8 m ahead. Many rays per beam, so that the footprints are short.
+  const double H = 2.0, d = 8.0, t = 0.2, h = 0.5;
+  const double floor_z = kAt.z() - H;
+  const Geometry object = box(Eigen::Vector3d(d, -1.0, floor_z), Eigen::Vector3d(d + t, 1.0, floor_z + h));
+  auto w = sonarRig({{"floor", floorBelow(kAt, H)}, {"object", object}}, kAt, Eigen::Vector3d(0, 15.0 * kDegree, 0),
+                    "imaging_sonar", 10.0, {{"noise", "none"}, {"rays_per_beam", "128"}});
+  const ImagingSonarSensor& s = sonar(*w);
+  const auto& image = ping(*w);
+  const Shadow expected = boxShadow(H, d, t, h);
+  for (const std::size_t k : {255u, 256u}) {  // the two beams either side of the axis: in the vertical plane
+    std::vector<std::uint8_t> beam(image.bins);
+    for (std::size_t i = 0; i < image.bins; ++i)
+      beam[i] = image.at(i, k);
+    const auto gap = longestGap(beam);
+    ASSERT_GE(gap.first, 0) << "beam " << k << ": no shadow";
+    // Tolerances: one bin, and the footprint of the first floor ray behind the box (half of it before its range).
+    const double grazing = std::asin(H / expected.end);
+    const double footprint = expected.end * (20.0 * kDegree / 128.0) / std::tan(grazing);
+    const double last_echo = s.binCenter(gap.first - 1), first_echo = s.binCenter(gap.second + 1);
+    EXPECT_NEAR(last_echo, expected.start, 1.5 * s.rangeResolution()) << "beam " << k;
+    EXPECT_NEAR(first_echo, expected.end, 0.5 * footprint + 1.5 * s.rangeResolution()) << "beam " << k;
+    EXPECT_NEAR(first_echo - last_echo, expected.end - expected.start, 0.5 * footprint + 3.0 * s.rangeResolution());
+  }
+}
+
+/// Input level of bin i of a code q: the receiver's chain undone, display_min + q step - G - TVG(r_i) [dB re 1 uPa].
+double inputLevel(const ImagingSonarSensor& s, std::size_t i, int q) {
+  const auto& e = s.receiver().echo();
+  return e.params().display_min + q * e.step() - e.gainDb() - e.tvg(s.binCenter(i));
+}
+
+/// The echo level of beam k: the power of its bins summed, as their codes say [dB re 1 uPa].
+double beamLevel(const ImagingSonarSensor& s, const sensors::sonar::PolarImage& image, std::size_t k) {
+  double power = 0.0;
+  for (std::size_t i = 0; i < image.bins; ++i)
+    if (image.at(i, k) > 0)
+      power += std::pow(10.0, inputLevel(s, i, image.at(i, k)) / 10.0);
+  return 10.0 * std::log10(power);
+}
+
+TEST(ImagingSonar, TheEchoLevelFollowsTheSpreadingAndAbsorptionOfTheSonarEquation) {
+  // The sonar at the centre of spheres of radius 4 m and 12 m: every ray head-on at R. Each beam's rays share its
+  // solid angle: EL(R) = SL + BS0 + 10 log10(Omega) - 20 log10(R) - 2 alpha R.
+  const double alpha = 0.5;  // [dB/m]: absorption as large as the spreading here
+  const std::map<std::string, std::string> params = {
+      {"noise", "none"}, {"absorption", "0.5"}, {"range_max", "15"}, {"gain", "0"}, {"tvg_spreading", "10"}};
+  double level[2];
+  const double radius[2] = {4.0, 12.0};
+  for (int n = 0; n < 2; ++n) {
+    auto w = sonarRig({{"shell", icosphere(kAt, radius[n], 4)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                      params);
+    const ImagingSonarSensor& s = sonar(*w);
+    const auto& image = ping(*w);
+    const double omega = 130.0 * kDegree / 512.0 * 2.0 * std::sin(10.0 * kDegree);
+    const double expected =
+        210.0 - 20.0 + 10.0 * std::log10(omega) - 20.0 * std::log10(radius[n]) - 2.0 * alpha * radius[n];
+    for (const std::size_t k : {0u, 200u, 511u}) {
+      EXPECT_NEAR(beamLevel(s, image, k), expected, 0.6) << "R " << radius[n] << " beam " << k;
+    }
+    level[n] = beamLevel(s, image, 256);
+  }
+  // Between the two: 20 log10(12 / 4) = 9.54 dB of spreading and 2 alpha 8 m = 8 dB of absorption.
+  EXPECT_NEAR(level[0] - level[1], 20.0 * std::log10(3.0) + 2.0 * alpha * 8.0, 0.6);
+}
+
+TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt) {
+  const auto image = [](std::uint64_t seed) {
+    auto w = sonarRig({{"shell", icosphere(kAt, 6.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                      {{"rays_per_beam", "4"}}, seed);
+    w->samples(sonar(*w), 2);
+    return sonar(*w).last().codes;
+  };
+  const auto a = image(7), b = image(7), c = image(8);
+  EXPECT_TRUE(a == b);
+  EXPECT_FALSE(a == c);
+  // Speckle: the echoes of the shell (one bin per beam, the same mean power) differ from beam to beam.
+  auto w = sonarRig({{"shell", icosphere(kAt, 6.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                    {{"rays_per_beam", "4"}, {"noise_floor", "false"}});
+  const auto& p = ping(*w);
+  const std::size_t bin = static_cast<std::size_t>(sonar(*w).receiver().echo().bin(6.0 - 0.01));
+  int low = 0, high = 0;
+  std::vector<int> codes;
+  for (std::size_t k = 0; k < p.beams; ++k)
+    codes.push_back(std::max(p.at(bin, k), p.at(bin + 1, k)));
+  const int median = [&] {
+    std::vector<int> c = codes;
+    std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
+    return c[c.size() / 2];
+  }();
+  // An exponential power: 10 log10 of it is below its median by more than 10 dB in 1 - exp(-0.0693) = 6.7 % of the
+  // beams (P(E < ln 2 / 10)), above by more than 5 dB in exp(-ln 2 10^0.5) = 11.2 % (P(E > 2.19 ln 2)).
+  const double step = sonar(*w).receiver().echo().step();
+  for (const int q : codes) {
+    low += (median - q) * step > 10.0;
+    high += (q - median) * step > 5.0;
+  }
+  const double n = static_cast<double>(codes.size());
+  EXPECT_NEAR(low / n, 0.067, 4.0 * std::sqrt(0.067 * 0.933 / n));
+  EXPECT_NEAR(high / n, 0.112, 4.0 * std::sqrt(0.112 * 0.888 / n));
+}
+
+TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {
+  const auto build = [](double rate, const std::map<std::string, std::string>& params) {
+    sonarRig({}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", rate, params);
+  };
+  std::string m = thrownMessage<ConfigError>([&] { build(30.0, {}); });  // 1500 / (2 x 30 m) = 25 Hz at most
+  EXPECT_TRUE(contains(m, "sensor 'sonar'") && contains(m, "'rate'") && contains(m, "25")) << m;
+  m = thrownMessage<ConfigError>([&] { build(10.0, {{"fov_h", "4"}}); });
+  EXPECT_TRUE(contains(m, "'fov_h'")) << m;
+  m = thrownMessage<ConfigError>([&] { build(10.0, {{"beams", "12.5"}}); });
+  EXPECT_TRUE(contains(m, "'beams'") && contains(m, "whole")) << m;
+  m = thrownMessage<ConfigError>([&] { build(10.0, {{"beam", "12"}}); });
+  EXPECT_TRUE(contains(m, "beam")) << m;
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace unexmin
