@@ -46,6 +46,9 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
     subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
     thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", streamQueue(rates.thrust)));
   }
+  for (std::size_t i = 0; i < robot.finCount(); ++i)
+    subs_.push_back(subscribeCommand(command_nh, ns + "fins/" + std::to_string(i) + "/input",
+                                     [this, i](const Float64Event& e) { onFinInput(i, e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "pendulum", [this](const Float64Event& e) { onPendulum(e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", streamQueue(rates.odom));
@@ -84,6 +87,20 @@ void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
     ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected command " << msg->data
                                       << ", expected [" << th.params().min_command << ", "
                                       << th.params().max_command << "]");
+}
+
+void RobotRos::onFinInput(std::size_t i, const Float64Event& event)
+{
+  ++received_[event.getPublisherName()];
+  const auto& msg = event.getConstMessage();
+  const std::string topic = "fins/" + std::to_string(i) + "/input";
+  record(topic, event);
+  if (!finite(topic, msg->data)) return;
+  auto& fin = robot_.fin(i);
+  if (!fin.setCommand(msg->data, now_))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected angle " << msg->data
+                                      << " rad, expected [" << fin.params().min_angle << ", "
+                                      << fin.params().max_angle << "]");
 }
 
 void RobotRos::onPendulum(const Float64Event& event)
@@ -190,6 +207,8 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
       double position = 0.0, velocity = 0.0;
       for (std::size_t i = 0; i < d.thruster_joints.size(); ++i)
         if (d.thruster_joints[i] == name) position = robot_.propellerAngle(i);
+      for (std::size_t i = 0; i < d.fin_joints.size(); ++i)
+        if (d.fin_joints[i] == name) position = robot_.fin(i).angle();
       if (name == d.pendulum_joint && robot_.hasPendulum()) {
         position = robot_.pendulum().angle();
         velocity = robot_.pendulum().velocity();

@@ -26,7 +26,7 @@ struct PublishRates
 class RobotRos
 {
 public:
-  /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
+  /// Subscribes /<robot>/thrusters/<i>/input, fins/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
   /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`, in
   /// visual mode when `visual` (SensorSetup::visual).
@@ -68,6 +68,8 @@ public:
 private:
   using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
   void onThrusterInput(std::size_t i, const Float64Event& event);
+  /// /<robot>/fins/<i>/input [rad]: NaN or out-of-range angles are rejected with a throttled warning.
+  void onFinInput(std::size_t i, const Float64Event& event);
   void onPendulum(const Float64Event& event);
   void onVbs(const Float64Event& event);
   /// Writes a received command to the recording (when its topic is recorded).
