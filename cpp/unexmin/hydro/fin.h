@@ -52,14 +52,14 @@ public:
   void reset();
 
 private:
-  /// The flow past the fin (water velocity relative to it, spanwise part removed), body frame [m/s].
-  Eigen::Vector3d flow(const Vector6d& nu_r) const;
-
   FinParams params_;
   std::unique_ptr<FinLiftModel> model_;
-  double command_ = 0.0;
-  double command_time_ = 0.0;
-  double angle_ = 0.0;
+  double command_ = 0.0;       ///< [rad]
+  double command_time_ = 0.0;  ///< [s]
+  double angle_ = 0.0;         ///< [rad]
+
+  /// The flow past the fin (water velocity relative to it, spanwise part removed), body frame [m/s].
+  Eigen::Vector3d flow(const Vector6d& nu_r) const;
 };
 
 }  // namespace hydro

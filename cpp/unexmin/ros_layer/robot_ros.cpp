@@ -75,32 +75,33 @@ void RobotRos::record(const std::string& topic, const Float64Event& event) const
   if (recorder_ && recorder_->active()) recorder_->write("/" + robot_.name() + "/" + topic, *event.getConstMessage());
 }
 
-void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
+void RobotRos::onActuatorInput(const std::string& topic, const Float64Event& event,
+                               const std::function<bool(double)>& set, double min, double max, const char* what,
+                               const char* unit)
 {
   ++received_[event.getPublisherName()];
   const auto& msg = event.getConstMessage();
-  const std::string topic = "thrusters/" + std::to_string(i) + "/input";
   record(topic, event);
   if (!finite(topic, msg->data)) return;
+  if (!set(msg->data))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected " << what << " " << msg->data
+                                      << unit << ", expected [" << min << ", " << max << "]");
+}
+
+void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
+{
   auto& th = robot_.thruster(i);
-  if (!th.setCommand(msg->data, now_))
-    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected command " << msg->data
-                                      << ", expected [" << th.params().min_command << ", "
-                                      << th.params().max_command << "]");
+  onActuatorInput("thrusters/" + std::to_string(i) + "/input", event,
+                  [&](double command) { return th.setCommand(command, now_); }, th.params().min_command,
+                  th.params().max_command, "command", "");
 }
 
 void RobotRos::onFinInput(std::size_t i, const Float64Event& event)
 {
-  ++received_[event.getPublisherName()];
-  const auto& msg = event.getConstMessage();
-  const std::string topic = "fins/" + std::to_string(i) + "/input";
-  record(topic, event);
-  if (!finite(topic, msg->data)) return;
   auto& fin = robot_.fin(i);
-  if (!fin.setCommand(msg->data, now_))
-    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected angle " << msg->data
-                                      << " rad, expected [" << fin.params().min_angle << ", "
-                                      << fin.params().max_angle << "]");
+  onActuatorInput("fins/" + std::to_string(i) + "/input", event,
+                  [&](double angle) { return fin.setCommand(angle, now_); }, fin.params().min_angle,
+                  fin.params().max_angle, "angle", " rad");
 }
 
 void RobotRos::onPendulum(const Float64Event& event)

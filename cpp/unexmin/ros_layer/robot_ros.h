@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -67,6 +68,10 @@ public:
 
 private:
   using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
+  /// Counts and records a command on `topic`, drops a non-finite one, hands the rest to `set`; a command `set`
+  /// refuses is warned about (throttled) as outside [min, max] `unit`.
+  void onActuatorInput(const std::string& topic, const Float64Event& event, const std::function<bool(double)>& set,
+                       double min, double max, const char* what, const char* unit);
   void onThrusterInput(std::size_t i, const Float64Event& event);
   /// /<robot>/fins/<i>/input [rad]: NaN or out-of-range angles are rejected with a throttled warning.
   void onFinInput(std::size_t i, const Float64Event& event);

@@ -94,6 +94,33 @@ std::string xyz(const Eigen::Vector3d& v)
   return "(" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")";
 }
 
+/// The id of an actuator element <tag id="...">: a non-negative integer.
+int actuatorId(const Parser& p, const tinyxml2::XMLElement* e, const std::string& tag)
+{
+  const double id = p.attr(e, "id", "<" + tag + ">");
+  if (id < 0 || id != std::floor(id)) p.fail("<" + tag + ">@id must be a non-negative integer");
+  return static_cast<int>(id);
+}
+
+/// Sorts actuators (and their joints, same order) by id; the ids must be 0..n-1. `what` names them in the error.
+template <class Params>
+void sortById(const Parser& p, std::vector<Params>& items, std::vector<std::string>& joints, const std::string& what)
+{
+  std::vector<std::size_t> order(items.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return items[a].id < items[b].id; });
+  std::vector<Params> sorted;
+  std::vector<std::string> sorted_joints;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (items[order[k]].id != static_cast<int>(k))
+      p.fail(what + " ids must be 0.." + formatNumber(order.size() - 1) + " without gaps or repeats");
+    sorted.push_back(items[order[k]]);
+    sorted_joints.push_back(joints[order[k]]);
+  }
+  items = sorted;
+  joints = sorted_joints;
+}
+
 /// An actuator at `at` [m, body] must lie inside the hull: its box when the description gives one, else its sphere.
 void requireInsideHull(const Parser& p, const RobotDescription& d, const Eigen::Vector3d& at, const std::string& where)
 {
@@ -116,17 +143,17 @@ void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescriptio
                InsideHull inside_hull)
 {
   for (const auto* f = ext->FirstChildElement("fin"); f; f = f->NextSiblingElement("fin")) {
+    const int id = actuatorId(p, f, "fin");
+    const std::string fw = "<fin id=" + formatNumber(id) + ">";
     hydro::FinParams fp;
-    const double id = p.attr(f, "id", "<fin>");
-    if (id < 0 || id != std::floor(id)) p.fail("<fin>@id must be a non-negative integer");
-    fp.id = static_cast<int>(id);
-    const std::string fw = "<fin id=" + formatNumber(fp.id) + ">";
+    fp.id = id;
     const JointInfo& j = joint(f->Attribute("joint"), fw);
-    const Eigen::Isometry3d pose = d.linkPose(j.parent) * j.origin;
-    fp.position = pose.translation();
+    // The joint frame in the body frame: origin = centre of pressure, axis = span, x = chord at angle 0.
+    const Eigen::Isometry3d frame = d.linkPose(j.parent) * j.origin;
+    fp.axis = frame.linear() * j.axis;
+    fp.chord = frame.linear().col(0);
+    fp.position = frame.translation();
     inside_hull(fp.position, fw);
-    fp.axis = pose.linear() * j.axis;
-    fp.chord = pose.linear() * Eigen::Vector3d::UnitX();
     const auto* model = f->FirstChildElement("model");
     if (!model) p.fail(fw + ": missing <model type=...> (a fin lift family, e.g. linear_lift)");
     fp.model = model->Attribute("type") ? model->Attribute("type") : "";
@@ -151,19 +178,7 @@ void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescriptio
     d.fins.push_back(fp);
     d.fin_joints.push_back(j.name);
   }
-  std::vector<std::size_t> order(d.fins.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return d.fins[a].id < d.fins[b].id; });
-  std::vector<hydro::FinParams> sorted;
-  std::vector<std::string> sorted_joints;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (d.fins[order[k]].id != static_cast<int>(k))
-      p.fail("fin ids must be 0.." + formatNumber(order.size() - 1) + " without gaps or repeats");
-    sorted.push_back(d.fins[order[k]]);
-    sorted_joints.push_back(d.fin_joints[order[k]]);
-  }
-  d.fins = sorted;
-  d.fin_joints = sorted_joints;
+  sortById(p, d.fins, d.fin_joints, "fin");
 }
 
 }  // namespace
@@ -285,9 +300,7 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
 
   for (const auto* t = ext->FirstChildElement("thruster"); t; t = t->NextSiblingElement("thruster")) {
     hydro::ThrusterParams tp;
-    const double id = p.attr(t, "id", "<thruster>");
-    if (id < 0 || id != std::floor(id)) p.fail("<thruster>@id must be a non-negative integer");
-    tp.id = static_cast<int>(id);
+    tp.id = actuatorId(p, t, "thruster");
     const std::string tw = "<thruster id=" + formatNumber(tp.id) + ">";
     const JointInfo& j = joint(t->Attribute("joint"), tw);
     const Eigen::Isometry3d pose = d.linkPose(j.parent) * j.origin;
@@ -315,19 +328,7 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     d.thrusters.push_back(tp);
     d.thruster_joints.push_back(j.name);
   }
-  std::vector<std::size_t> order(d.thrusters.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return d.thrusters[a].id < d.thrusters[b].id; });
-  std::vector<hydro::ThrusterParams> sorted;
-  std::vector<std::string> sorted_joints;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (d.thrusters[order[k]].id != static_cast<int>(k))
-      p.fail("thruster ids must be 0.." + formatNumber(order.size() - 1) + " without gaps or repeats");
-    sorted.push_back(d.thrusters[order[k]]);
-    sorted_joints.push_back(d.thruster_joints[order[k]]);
-  }
-  d.thrusters = sorted;
-  d.thruster_joints = sorted_joints;
+  sortById(p, d.thrusters, d.thruster_joints, "thruster");
   parseFins(p, ext, d, joint, inside_hull);
 
   if (const auto* pend = ext->FirstChildElement("pendulum")) {
