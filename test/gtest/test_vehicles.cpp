@@ -8,11 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 /// The message of the error of type `type` that `expr` throws equals `message`.
 #define EXPECT_ERROR(expr, type, message) EXPECT_EQ(unexmin::test::thrownMessage<type>([&] { (void)(expr); }), message)
@@ -54,12 +57,38 @@ std::unique_ptr<World> openWater(const std::string& xml, const std::string& name
   return std::make_unique<World>(w, d, 1, dt, 1);
 }
 
-/// Run for `seconds`, re-sending thruster and fin commands (a pulse width [us] or rpm, an angle [rad]) every step.
-void run(World& world, double seconds, const std::vector<double>& thrusts, const std::vector<double>& fins = {})
+/// Pitch angle [rad], positive nose down (a rotation about body +y), and the pitch rate [rad/s].
+std::pair<double, double> pitchAndRate(const World& world)
+{
+  const auto s = world.robot(0).state();
+  const Eigen::Vector3d x = s.pose.linear().col(0);
+  return {std::atan2(-x.z(), std::hypot(x.x(), x.y())), (s.pose.linear().transpose() * s.angular_velocity).y()};
+}
+
+/// T200 pulse width [us] for a signed offset from the dead band (1476..1524 us), clamped to 1100..1900.
+double pulse(double offset) { return std::clamp(offset >= 0.0 ? 1524.0 + offset : 1476.0 + offset, 1100.0, 1900.0); }
+
+/// The ROV's four vertical thrusters (4, 5 front at x = +0.12 m; 6, 7 rear) holding the pitch at 0 by a PD law: the
+/// hull's Munk moment (Z_wdot - X_udot) u w turns it over at speed otherwise (about 10 N m/rad at 0.9 m/s against
+/// 1.3 N m/rad of buoyancy), and the paper's benchmark flies under attitude control as well. Gains [us/rad],
+/// [us s/rad]: about 100 N m/rad and 14 N m s/rad.
+void holdPitch(const World& world, std::vector<double>& thrusts)
+{
+  const auto [pitch, rate] = pitchAndRate(world);
+  const double u = std::clamp(2000.0 * pitch + 300.0 * rate, -370.0, 370.0);
+  thrusts[4] = thrusts[5] = pulse(u);   // nose down: front thrusters up
+  thrusts[6] = thrusts[7] = pulse(-u);
+}
+
+/// Run for `seconds`, re-sending thruster and fin commands (a pulse width [us] or rpm, an angle [rad]) every step;
+/// with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
+void run(World& world, double seconds, std::vector<double> thrusts, const std::vector<double>& fins = {},
+         bool pitch_hold = false)
 {
   auto& robot = world.robot(0);
   const auto n = static_cast<long>(std::llround(seconds / world.dt()));
   for (long i = 0; i < n; ++i) {
+    if (pitch_hold) holdPitch(world, thrusts);
     for (std::size_t k = 0; k < thrusts.size(); ++k) ASSERT_TRUE(robot.thruster(k).setCommand(thrusts[k], world.time()));
     for (std::size_t k = 0; k < fins.size(); ++k) ASSERT_TRUE(robot.fin(k).setCommand(fins[k], world.time()));
     world.step();
@@ -86,7 +115,8 @@ const double kYawArm = (0.156 + 0.111) * std::sqrt(0.5);
 TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust)
 {
   auto world = openWater(expand("bluerov2_heavy.urdf.xacro", "name:=R"), "R", 1000.0);
-  run(*world, 20.0, {1900, 1900, 1900, 1900, 1500, 1500, 1500, 1500});
+  run(*world, 20.0, {1900, 1900, 1900, 1900, 1500, 1500, 1500, 1500}, {}, true);
+  EXPECT_NEAR(pitchAndRate(*world).first, 0.0, 0.02) << "the pitch hold should keep the ROV level";
   const double force = 4.0 * kT200Max * std::sqrt(0.5);
   const double expected = terminal(force, kXu, kXuu);  // 0.969 m/s
   const Eigen::Vector3d v = bodyVelocity(*world);
@@ -110,8 +140,11 @@ TEST(BlueRov2Heavy, YawStepFollowsTheQuadraticDampingTimeConstant)
 {
   // The hull's yaw response: thruster lag removed (zero_order) so that the step in moment is a step.
   std::string xml = expand("bluerov2_heavy.urdf.xacro", "name:=R");
-  const std::string lag = "<dynamics type=\"first_order\"><param name=\"tau\" value=\"0.05\"/></dynamics>";
-  for (auto at = xml.find(lag); at != std::string::npos; at = xml.find(lag)) xml.replace(at, lag.size(), "<dynamics type=\"zero_order\"/>");
+  int lags = 0;
+  for (auto at = xml.find("<dynamics type=\"first_order\">"); at != std::string::npos;
+       at = xml.find("<dynamics type=\"first_order\">"), ++lags)
+    xml.replace(at, xml.find("</dynamics>", at) + 11 - at, "<dynamics type=\"zero_order\"/>");
+  ASSERT_EQ(lags, 8);
   auto world = openWater(xml, "R", 1000.0, 0.001);
   // Thrusters 1, 3 at +7.5 N (1600 us), 0, 2 at -7.5 N: 1379 us interpolates -5.4 N (1400) and -15.4 N (1300).
   const double pulse_back = 1400.0 - 100.0 * (7.5 - 5.4) / (15.4 - 5.4);
@@ -139,7 +172,9 @@ constexpr double kCla = 3.12, kSfin = 0.00665, kXfin = -0.638, kD = 0.191, kCydb
 
 TEST(Remus100, SteadySpeedAtThePapersPropellerSetting)
 {
-  auto world = openWater(expand("remus100.urdf.xacro", "name:=A"), "A", 1030.0);
+  // Trimmed neutral (the thesis' speed runs hold depth with the elevators): water of density W / (V g).
+  const double neutral = kAuvW / (kAuvB / 1030.0);
+  auto world = openWater(expand("remus100.urdf.xacro", "name:=A"), "A", neutral);
   run(*world, 40.0, {1500.0});
   const double expected = std::sqrt(kXprop / kAuvXuu);  // 1.54 m/s, the speed Prestero states at 1500 rpm
   const double u = bodyVelocity(*world).x();
@@ -179,7 +214,7 @@ Eigen::Vector3d turnResidual(const Eigen::Vector3d& x, double rudder, double rho
 TEST(Remus100, TurningCircleAtFixedRudder)
 {
   const double mass = kAuvW / kG;
-  const double rho = kAuvW / (kAuvB / (1030.0 * kG) * kG);  // neutral water, so the turn stays level
+  const double rho = kAuvW / (kAuvB / 1030.0);  // neutral water, so that the turn stays level
   const double rudder = 10.0 * M_PI / 180.0;
   Eigen::Vector3d x(1.5, 0.0, 0.0);
   for (int it = 0; it < 50; ++it) {
@@ -204,9 +239,10 @@ TEST(Remus100, TurningCircleAtFixedRudder)
 }
 
 // -------------------------------------------------------------------------------------------- bad descriptions
-std::string replaced(std::string xml, const std::string& from, const std::string& to)
+/// `xml` with the first `from` after `after` replaced by `to`.
+std::string replaced(std::string xml, const std::string& from, const std::string& to, const std::string& after = "")
 {
-  const auto at = xml.find(from);
+  const auto at = xml.find(from, xml.find(after));
   if (at == std::string::npos) throw std::runtime_error("not in the description: " + from);
   return xml.replace(at, from.size(), to);
 }
@@ -216,13 +252,13 @@ TEST(VehicleDescriptions, OutOfRangeParametersStopStartUpWithOneLine)
   const std::string rov = expand("bluerov2_heavy.urdf.xacro", "name:=R");
   const std::string auv = expand("remus100.urdf.xacro", "name:=A");
   using unexmin::sim::parseRobotDescription;
-  EXPECT_ERROR(parseRobotDescription(replaced(rov, "<mass value=\"13.5\"/>", "<mass value=\"-13.5\"/>"), "rov.urdf"),
+  EXPECT_ERROR(parseRobotDescription(replaced(rov, "<mass value=\"13.5\"/>", "<mass value=\"-13.5\"/>", "<hydrodynamics"), "rov.urdf"),
                unexmin::ConfigError, "rov.urdf: <hydrodynamics>: hydro: parameter 'mass' = -13.5 must be > 0 [kg]");
   EXPECT_ERROR(parseRobotDescription(replaced(rov, "xyz=\"0.156 0.111 0.0\"", "xyz=\"0.5 0.111 0.0\""), "rov.urdf"),
                unexmin::ConfigError,
                "rov.urdf: <thruster id=0>: position (0.5, 0.111, 0) [m] is outside the hull's bounding box "
                "(accepted: |x| <= 0.2285, |y| <= 0.2875, |z| <= 0.127 [m])");
-  const auto open = auv.find("<angle min=");
+  const auto open = auv.find("<angle ");
   ASSERT_NE(open, std::string::npos);
   std::string no_limits = auv;
   no_limits.erase(open, auv.find("/>", open) + 2 - open);
