@@ -28,21 +28,22 @@ using unexmin::sim::World;
 constexpr double kG = 9.81;
 
 /// The expansion of urdf/<file> with `args` (xacro from PATH: scripts/env.sh puts the venv's on it).
-std::string expand(const std::string& file, const std::string& args = "")
-{
+std::string expand(const std::string& file, const std::string& args = "") {
   const std::string cmd = "xacro " + std::string(UNEXMIN_SOURCE_DIR) + "/urdf/" + file + " " + args + " 2>&1";
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  if (!pipe) throw std::runtime_error("cannot run: " + cmd);
+  if (!pipe)
+    throw std::runtime_error("cannot run: " + cmd);
   std::string out;
   std::array<char, 4096> buf{};
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe.get())) out.append(buf.data(), n);
-  if (out.find("<robot") == std::string::npos) throw std::runtime_error(cmd + " failed: " + out);
+  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe.get()))
+    out.append(buf.data(), n);
+  if (out.find("<robot") == std::string::npos)
+    throw std::runtime_error(cmd + " failed: " + out);
   return out;
 }
 
 /// One robot `name` of description `xml` at 100 m depth in still water of density rho [kg/m^3].
-std::unique_ptr<World> openWater(const std::string& xml, const std::string& name, double rho, double dt = 0.002)
-{
+std::unique_ptr<World> openWater(const std::string& xml, const std::string& name, double rho, double dt = 0.002) {
   unexmin::sim::WorldConfig w;
   w.file = "(test world)";
   w.name = "open_water";
@@ -58,51 +59,54 @@ std::unique_ptr<World> openWater(const std::string& xml, const std::string& name
 }
 
 /// Pitch angle [rad], positive nose down (a rotation about body +y), and the pitch rate [rad/s].
-std::pair<double, double> pitchAndRate(const World& world)
-{
+std::pair<double, double> pitchAndRate(const World& world) {
   const auto s = world.robot(0).state();
   const Eigen::Vector3d x = s.pose.linear().col(0);
   return {std::atan2(-x.z(), std::hypot(x.x(), x.y())), (s.pose.linear().transpose() * s.angular_velocity).y()};
 }
 
 /// T200 pulse width [us] for a signed offset from the dead band (1476..1524 us), clamped to 1100..1900.
-double pulse(double offset) { return std::clamp(offset >= 0.0 ? 1524.0 + offset : 1476.0 + offset, 1100.0, 1900.0); }
+double pulse(double offset) {
+  return std::clamp(offset >= 0.0 ? 1524.0 + offset : 1476.0 + offset, 1100.0, 1900.0);
+}
 
 /// The ROV's four vertical thrusters (4, 5 front at x = +0.12 m; 6, 7 rear) holding the pitch at 0 by a PD law: the
 /// hull's Munk moment (Z_wdot - X_udot) u w turns it over at speed otherwise (about 10 N m/rad at 0.9 m/s against
 /// 1.3 N m/rad of buoyancy), and the paper's benchmark flies under attitude control as well. Gains [us/rad],
 /// [us s/rad]: about 100 N m/rad and 14 N m s/rad.
-void holdPitch(const World& world, std::vector<double>& thrusts)
-{
+void holdPitch(const World& world, std::vector<double>& thrusts) {
   const auto [pitch, rate] = pitchAndRate(world);
   const double u = std::clamp(2000.0 * pitch + 300.0 * rate, -370.0, 370.0);
-  thrusts[4] = thrusts[5] = pulse(u);   // nose down: front thrusters up
+  thrusts[4] = thrusts[5] = pulse(u);  // nose down: front thrusters up
   thrusts[6] = thrusts[7] = pulse(-u);
 }
 
 /// Run for `seconds`, re-sending thruster and fin commands (a pulse width [us] or rpm, an angle [rad]) every step;
 /// with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
 void run(World& world, double seconds, std::vector<double> thrusts, const std::vector<double>& fins = {},
-         bool pitch_hold = false)
-{
+         bool pitch_hold = false) {
   auto& robot = world.robot(0);
   const auto n = static_cast<long>(std::llround(seconds / world.dt()));
   for (long i = 0; i < n; ++i) {
-    if (pitch_hold) holdPitch(world, thrusts);
-    for (std::size_t k = 0; k < thrusts.size(); ++k) ASSERT_TRUE(robot.thruster(k).setCommand(thrusts[k], world.time()));
-    for (std::size_t k = 0; k < fins.size(); ++k) ASSERT_TRUE(robot.fin(k).setCommand(fins[k], world.time()));
+    if (pitch_hold)
+      holdPitch(world, thrusts);
+    for (std::size_t k = 0; k < thrusts.size(); ++k)
+      ASSERT_TRUE(robot.thruster(k).setCommand(thrusts[k], world.time()));
+    for (std::size_t k = 0; k < fins.size(); ++k)
+      ASSERT_TRUE(robot.fin(k).setCommand(fins[k], world.time()));
     world.step();
   }
 }
 
-Eigen::Vector3d bodyVelocity(const World& world)
-{
+Eigen::Vector3d bodyVelocity(const World& world) {
   const auto s = world.robot(0).state();
   return s.pose.linear().transpose() * s.linear_velocity;
 }
 
 /// Root of d_l x + d_q x^2 = f, x >= 0.
-double terminal(double f, double dl, double dq) { return (-dl + std::sqrt(dl * dl + 4.0 * dq * f)) / (2.0 * dq); }
+double terminal(double f, double dl, double dq) {
+  return (-dl + std::sqrt(dl * dl + 4.0 * dq * f)) / (2.0 * dq);
+}
 
 // ---------------------------------------------------------------------------------------------- BlueROV2 Heavy
 // von Benzon et al. 2022, parameter table.
@@ -112,8 +116,7 @@ constexpr double kXu = 13.7, kXuu = 141.0, kZw = 33.0, kZww = 190.0, kNrr = 1.5;
 constexpr double kT200Max = 51.5;
 const double kYawArm = (0.156 + 0.111) * std::sqrt(0.5);
 
-TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust)
-{
+TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust) {
   auto world = openWater(expand("bluerov2_heavy.urdf.xacro", "name:=R"), "R", 1000.0);
   run(*world, 20.0, {1900, 1900, 1900, 1900, 1500, 1500, 1500, 1500}, {}, true);
   EXPECT_NEAR(pitchAndRate(*world).first, 0.0, 0.02) << "the pitch hold should keep the ROV level";
@@ -125,19 +128,17 @@ TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust)
   EXPECT_NEAR(v.y(), 0.0, 0.01);
 }
 
-TEST(BlueRov2Heavy, SteadyHeaveAtFullUpwardThrust)
-{
+TEST(BlueRov2Heavy, SteadyHeaveAtFullUpwardThrust) {
   auto world = openWater(expand("bluerov2_heavy.urdf.xacro", "name:=R"), "R", 1000.0);
   run(*world, 20.0, {1500, 1500, 1500, 1500, 1900, 1900, 1900, 1900});
   const double net = 4.0 * kT200Max + (1000.0 * kRovVolume - kRovMass) * kG;  // thrust + buoyancy - weight
-  const double expected = terminal(net, kZw, kZww);  // 0.955 m/s
+  const double expected = terminal(net, kZw, kZww);                           // 0.955 m/s
   const double w = bodyVelocity(*world).z();
   EXPECT_NEAR(w, expected, 0.10 * expected);
   EXPECT_NEAR(w, expected, 0.01 * expected);
 }
 
-TEST(BlueRov2Heavy, YawStepFollowsTheQuadraticDampingTimeConstant)
-{
+TEST(BlueRov2Heavy, YawStepFollowsTheQuadraticDampingTimeConstant) {
   // The hull's yaw response: thruster lag removed (zero_order) so that the step in moment is a step.
   std::string xml = expand("bluerov2_heavy.urdf.xacro", "name:=R");
   int lags = 0;
@@ -149,14 +150,16 @@ TEST(BlueRov2Heavy, YawStepFollowsTheQuadraticDampingTimeConstant)
   // Thrusters 1, 3 at +7.5 N (1600 us), 0, 2 at -7.5 N: 1379 us interpolates -5.4 N (1400) and -15.4 N (1300).
   const double pulse_back = 1400.0 - 100.0 * (7.5 - 5.4) / (15.4 - 5.4);
   const double moment = 4.0 * 7.5 * kYawArm;
-  // (I_z + N_rdot) r' = N - N_rr r^2  ->  r = r_ss tanh(t / T), r_ss = sqrt(N / N_rr), T = (I_z + N_rdot) / sqrt(N N_rr)
+  // (I_z + N_rdot) r' = N - N_rr r^2  ->  r = r_ss tanh(t / T), r_ss = sqrt(N / N_rr), T = (I_z + N_rdot) / sqrt(N
+  // N_rr)
   const double r_ss = std::sqrt(moment / kNrr);
   const double time_constant = (kRovIz + kRovAddedR) / std::sqrt(moment * kNrr);  // 0.21 s
   double reached = -1.0;
   const std::vector<double> cmd = {pulse_back, 1600, pulse_back, 1600, 1500, 1500, 1500, 1500};
   for (int i = 0; i < 3000 && reached < 0.0; ++i) {
     run(*world, world->dt(), cmd);
-    if (world->robot(0).state().angular_velocity.z() >= std::tanh(1.0) * r_ss) reached = world->time();
+    if (world->robot(0).state().angular_velocity.z() >= std::tanh(1.0) * r_ss)
+      reached = world->time();
   }
   ASSERT_GT(reached, 0.0) << "yaw rate never reached tanh(1) r_ss = " << std::tanh(1.0) * r_ss;
   EXPECT_NEAR(reached, time_constant, 0.10 * time_constant);
@@ -170,8 +173,7 @@ constexpr double kAuvW = 299.0, kAuvB = 306.0, kXprop = 3.86, kAuvXuu = 1.62, kY
 constexpr double kM11 = 0.93, kM22 = 35.5, kM26 = -1.93;
 constexpr double kCla = 3.12, kSfin = 0.00665, kXfin = -0.638, kD = 0.191, kCydb = 1.2, kXcp = -0.321;
 
-TEST(Remus100, SteadySpeedAtThePapersPropellerSetting)
-{
+TEST(Remus100, SteadySpeedAtThePapersPropellerSetting) {
   // Trimmed neutral (the thesis' speed runs hold depth with the elevators): water of density W / (V g).
   const double neutral = kAuvW / (kAuvB / 1030.0);
   auto world = openWater(expand("remus100.urdf.xacro", "name:=A"), "A", neutral);
@@ -182,8 +184,7 @@ TEST(Remus100, SteadySpeedAtThePapersPropellerSetting)
   EXPECT_NEAR(u, expected, 0.02 * expected);
 }
 
-TEST(Remus100, CannotHoverItRisesInSeaWaterAndSinksInFreshWater)
-{
+TEST(Remus100, CannotHoverItRisesInSeaWaterAndSinksInFreshWater) {
   const double volume = kAuvB / (1030.0 * kG);
   for (double rho : {1030.0, 1000.0}) {
     auto world = openWater(expand("remus100.urdf.xacro", "name:=A"), "A", rho);
@@ -198,8 +199,7 @@ TEST(Remus100, CannotHoverItRisesInSeaWaterAndSinksInFreshWater)
 
 /// Prestero's horizontal-plane steady turn (FLU): surge, sway and yaw balances of the propeller, axial and cross-flow
 /// drag, added-mass (Munk) terms, body lift at x_cp and the rudder pair's lift, linearised in the fin angles.
-Eigen::Vector3d turnResidual(const Eigen::Vector3d& x, double rudder, double rho, double mass)
-{
+Eigen::Vector3d turnResidual(const Eigen::Vector3d& x, double rudder, double rho, double mass) {
   const double u = x[0], v = x[1], r = x[2];
   const double fins = rho * kSfin * kCla * (u * u * rudder - u * (v + kXfin * r));
   const double lift = -0.5 * rho * kD * kD * kCydb * u * (v + kXcp * r);
@@ -211,8 +211,7 @@ Eigen::Vector3d turnResidual(const Eigen::Vector3d& x, double rudder, double rho
   return res;
 }
 
-TEST(Remus100, TurningCircleAtFixedRudder)
-{
+TEST(Remus100, TurningCircleAtFixedRudder) {
   const double mass = kAuvW / kG;
   const double rho = kAuvW / (kAuvB / 1030.0);  // neutral water, so that the turn stays level
   const double rudder = 10.0 * M_PI / 180.0;
@@ -240,19 +239,19 @@ TEST(Remus100, TurningCircleAtFixedRudder)
 
 // -------------------------------------------------------------------------------------------- bad descriptions
 /// `xml` with the first `from` after `after` replaced by `to`.
-std::string replaced(std::string xml, const std::string& from, const std::string& to, const std::string& after = "")
-{
+std::string replaced(std::string xml, const std::string& from, const std::string& to, const std::string& after = "") {
   const auto at = xml.find(from, xml.find(after));
-  if (at == std::string::npos) throw std::runtime_error("not in the description: " + from);
+  if (at == std::string::npos)
+    throw std::runtime_error("not in the description: " + from);
   return xml.replace(at, from.size(), to);
 }
 
-TEST(VehicleDescriptions, OutOfRangeParametersStopStartUpWithOneLine)
-{
+TEST(VehicleDescriptions, OutOfRangeParametersStopStartUpWithOneLine) {
   const std::string rov = expand("bluerov2_heavy.urdf.xacro", "name:=R");
   const std::string auv = expand("remus100.urdf.xacro", "name:=A");
   using unexmin::sim::parseRobotDescription;
-  EXPECT_ERROR(parseRobotDescription(replaced(rov, "<mass value=\"13.5\"/>", "<mass value=\"-13.5\"/>", "<hydrodynamics"), "rov.urdf"),
+  EXPECT_ERROR(parseRobotDescription(
+                   replaced(rov, "<mass value=\"13.5\"/>", "<mass value=\"-13.5\"/>", "<hydrodynamics"), "rov.urdf"),
                unexmin::ConfigError, "rov.urdf: <hydrodynamics>: hydro: parameter 'mass' = -13.5 must be > 0 [kg]");
   EXPECT_ERROR(parseRobotDescription(replaced(rov, "xyz=\"0.156 0.111 0.0\"", "xyz=\"0.5 0.111 0.0\""), "rov.urdf"),
                unexmin::ConfigError,
@@ -262,8 +261,9 @@ TEST(VehicleDescriptions, OutOfRangeParametersStopStartUpWithOneLine)
   ASSERT_NE(open, std::string::npos);
   std::string no_limits = auv;
   no_limits.erase(open, auv.find("/>", open) + 2 - open);
-  EXPECT_ERROR(parseRobotDescription(no_limits, "auv.urdf"), unexmin::ConfigError,
-               "auv.urdf: <fin id=0>: missing <angle min=... max=...> (limits [rad], -pi/2 <= min <= 0 <= max <= pi/2)");
+  EXPECT_ERROR(
+      parseRobotDescription(no_limits, "auv.urdf"), unexmin::ConfigError,
+      "auv.urdf: <fin id=0>: missing <angle min=... max=...> (limits [rad], -pi/2 <= min <= 0 <= max <= pi/2)");
   EXPECT_ERROR(parseRobotDescription(replaced(auv, "<rate value=\"1.0\"/>", "<rate value=\"0\"/>"), "auv.urdf"),
                unexmin::ConfigError, "auv.urdf: <fin id=0>: fin 0: parameter 'rate' = 0 must be > 0 [rad/s]");
   EXPECT_ERROR(parseRobotDescription(replaced(auv, "type=\"linear_lift\"", "type=\"flat_plate\""), "auv.urdf"),
@@ -271,8 +271,7 @@ TEST(VehicleDescriptions, OutOfRangeParametersStopStartUpWithOneLine)
                "auv.urdf: <fin id=0>: fin 0: fin model: unknown type 'flat_plate'; expected one of: linear_lift");
 }
 
-TEST(VehicleDescriptions, FinCommandsAreCheckedAndRateLimited)
-{
+TEST(VehicleDescriptions, FinCommandsAreCheckedAndRateLimited) {
   auto world = openWater(expand("remus100.urdf.xacro", "name:=A"), "A", 1030.0);
   auto& fin = world->robot(0).fin(0);
   const double max = fin.params().max_angle, rate = fin.params().rate;

@@ -78,8 +78,8 @@ class VehiclesTank(unittest.TestCase):
                                       lambda: self.auv.position()[0] - x0 > 0.3 and self.auv.yaw() - yaw0 < -0.05)
         self.assertTrue(turned, "AUV_1 did not move forward and turn to starboard: x %.3f -> %.3f, yaw %.3f -> %.3f"
                         % (x0, self.auv.position()[0], yaw0, self.auv.yaw()))
-        # NaN and an angle beyond the limit are rejected at the ROS edge: the fins keep the rudder angle, and the
-        # vehicle keeps turning the same way.
+        # NaN and an angle beyond the limit are rejected at the ROS edge (a throttled warning): the fins keep the
+        # rudder angle until their 1 s watchdog, and the vehicle keeps turning the same way.
         yaw1 = self.auv.yaw()
         still_turning = self.auv.drive_until([1500.0], [float("nan"), 1.0, 0, 0, 0, 0],
                                              lambda: self.auv.yaw() - yaw1 < -0.05)

@@ -24,8 +24,8 @@ struct FinParams {
   double area = 0.0;       ///< Planform area [m^2] > 0.
   double min_angle = 0.0;  ///< Angle limits [rad], min <= 0 <= max (0 is the rest angle).
   double max_angle = 0.0;
-  double rate = 0.0;       ///< Largest angular speed of the fin [rad/s] > 0.
-  double timeout = 1.0;    ///< Command watchdog: the command returns to 0 after this [s]; <= 0 off.
+  double rate = 0.0;     ///< Largest angular speed of the fin [rad/s] > 0.
+  double timeout = 1.0;  ///< Command watchdog: the command returns to 0 after this [s]; <= 0 off.
 };
 
 class Fin {
