@@ -5,6 +5,7 @@
 
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
+#include <unexmin/sim/world_config.h>
 
 #include <gtest/gtest.h>
 
@@ -285,6 +286,26 @@ TEST(VehicleDescriptions, FinCommandsAreCheckedAndRateLimited) {
   EXPECT_NEAR(fin.angle(), max, 1e-12);
   fin.update(5.0, 10.0);  // no command for longer than the timeout: back to 0
   EXPECT_NEAR(fin.angle(), 0.0, 1e-12);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(VehicleTeams, TheWorldsRobotsAreSelectedByNameInOrder) {
+  auto config = unexmin::sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank_team.world");
+  ASSERT_EQ(config.robots.size(), 3u);
+  const Eigen::Vector3d ux_at = config.robots[2].pose.translation();
+  unexmin::sim::selectRobots(config, {"UX_1", "AUV_1"});
+  ASSERT_EQ(config.robots.size(), 3u);
+  EXPECT_EQ(config.robots[0].name, "UX_1");
+  EXPECT_EQ(config.robots[1].name, "AUV_1");
+  EXPECT_EQ(config.robots[2].name, "ROV_1");
+  EXPECT_TRUE(config.robots[0].pose.translation().isApprox(ux_at)) << "a robot keeps its spawn pose";
+  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"UX_9"}), unexmin::ConfigError,
+               config.file + ": no robot 'UX_9' in 'robots' (expected one of: UX_1, AUV_1, ROV_1)");
+  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"AUV_1", "AUV_1"}), unexmin::ConfigError,
+               config.file + ": robot 'AUV_1' is selected twice");
 }
 
 }  // namespace

@@ -64,6 +64,9 @@ class VehiclesTank(unittest.TestCase):
         cls.auv = Vehicle("AUV_1", thrusters=1, fins=6)
         assert wait_for(lambda: cls.rov.odom is not None and cls.auv.odom is not None), "no odometry"
 
+    def test_the_simulator_runs_the_listed_vehicles_in_order(self):
+        self.assertEqual(rospy.get_param("/sim/robots"), ["AUV_1", "ROV_1"])
+
     def test_rov_surges_forward_on_its_horizontal_thrusters(self):
         x0, y0, _ = self.rov.position()
         moved = self.rov.drive_until([1700] * 4 + [1500] * 4, [], lambda: self.rov.position()[0] - x0 > 0.3)
