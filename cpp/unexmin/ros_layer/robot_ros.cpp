@@ -34,6 +34,9 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
     subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
     thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", queueSize(rates.thrust)));
   }
+  for (std::size_t i = 0; i < robot.finCount(); ++i)
+    subs_.push_back(subscribeCommand(command_nh, ns + "fins/" + std::to_string(i) + "/input",
+                                     [this, i](const Float64Event& e) { onFinInput(i, e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "pendulum", [this](const Float64Event& e) { onPendulum(e); }));
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", queueSize(rates.odom));
@@ -60,18 +63,33 @@ void RobotRos::record(const std::string& topic, const Float64Event& event) const
   if (recorder_ && recorder_->active()) recorder_->write("/" + robot_.name() + "/" + topic, *event.getConstMessage());
 }
 
-void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
+void RobotRos::onActuatorInput(const std::string& topic, const Float64Event& event,
+                               const std::function<bool(double)>& set, double min, double max, const char* what,
+                               const char* unit)
 {
   ++received_[event.getPublisherName()];
   const auto& msg = event.getConstMessage();
-  const std::string topic = "thrusters/" + std::to_string(i) + "/input";
   record(topic, event);
   if (!finite(topic, msg->data)) return;
+  if (!set(msg->data))
+    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected " << what << " " << msg->data
+                                      << unit << ", expected [" << min << ", " << max << "]");
+}
+
+void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
+{
   auto& th = robot_.thruster(i);
-  if (!th.setCommand(msg->data, now_))
-    ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected command " << msg->data
-                                      << ", expected [" << th.params().min_command << ", "
-                                      << th.params().max_command << "]");
+  onActuatorInput("thrusters/" + std::to_string(i) + "/input", event,
+                  [&](double command) { return th.setCommand(command, now_); }, th.params().min_command,
+                  th.params().max_command, "command", "");
+}
+
+void RobotRos::onFinInput(std::size_t i, const Float64Event& event)
+{
+  auto& fin = robot_.fin(i);
+  onActuatorInput("fins/" + std::to_string(i) + "/input", event,
+                  [&](double angle) { return fin.setCommand(angle, now_); }, fin.params().min_angle,
+                  fin.params().max_angle, "angle", " rad");
 }
 
 void RobotRos::onPendulum(const Float64Event& event)
@@ -178,6 +196,8 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
       double position = 0.0, velocity = 0.0;
       for (std::size_t i = 0; i < d.thruster_joints.size(); ++i)
         if (d.thruster_joints[i] == name) position = robot_.propellerAngle(i);
+      for (std::size_t i = 0; i < d.fin_joints.size(); ++i)
+        if (d.fin_joints[i] == name) position = robot_.fin(i).angle();
       if (name == d.pendulum_joint && robot_.hasPendulum()) {
         position = robot_.pendulum().angle();
         velocity = robot_.pendulum().velocity();

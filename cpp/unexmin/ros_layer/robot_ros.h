@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ struct PublishRates
 class RobotRos
 {
 public:
-  /// Subscribes /<robot>/thrusters/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
+  /// Subscribes /<robot>/thrusters/<i>/input, fins/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
   /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`, in
   /// visual mode when `visual` (SensorSetup::visual).
@@ -70,7 +71,13 @@ public:
   }
 
 private:
+  /// Counts and records a command on `topic`, drops a non-finite one, hands the rest to `set`; a command `set`
+  /// refuses is warned about (throttled) as outside [min, max] `unit`.
+  void onActuatorInput(const std::string& topic, const Float64Event& event, const std::function<bool(double)>& set,
+                       double min, double max, const char* what, const char* unit);
   void onThrusterInput(std::size_t i, const Float64Event& event);
+  /// /<robot>/fins/<i>/input [rad]: NaN or out-of-range angles are rejected with a throttled warning.
+  void onFinInput(std::size_t i, const Float64Event& event);
   void onPendulum(const Float64Event& event);
   void onVbs(const Float64Event& event);
   /// Writes a received command to the recording (when its topic is recorded).

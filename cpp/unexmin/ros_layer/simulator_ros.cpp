@@ -29,6 +29,10 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
 
   sim::WorldConfig config = sim::loadWorldConfig(world_file_);
   if (!visibility_.empty()) config.visibility = visibility_;  // before the world (and every sensor) sees it
+  if (!spawns_.empty()) {  // ~spawns: the world's robots to run, by name, in this order
+    sim::selectRobots(config, spawns_);
+    robot_count_ = static_cast<int>(spawns_.size());
+  }
   if (robot_count_ > static_cast<int>(config.robots.size()))
     badParam("robots", formatNumber(robot_count_),
              "at most " + formatNumber(config.robots.size()) + " (spawn poses in " + world_file_ + ")");
@@ -102,6 +106,11 @@ void SimulatorRos::loadParams()
     badParam("world_file", "(unset)", "the path of a world file (YAML), e.g. $(find unexmin)/worlds/tank.world");
   pnh_.param("robots", robot_count_, 1);
   if (robot_count_ < 1 || robot_count_ > 3) badParam("robots", formatNumber(robot_count_), "1, 2 or 3");
+  std::string spawns;
+  pnh_.param<std::string>("spawns", spawns, "");
+  std::istringstream names(spawns);
+  for (std::string name; std::getline(names, name, ',');)
+    if (!name.empty()) spawns_.push_back(name);
   pnh_.param("realtime", realtime_, false);
   pnh_.param("realtime_factor", realtime_factor_, 1.0);
   if (!(realtime_factor_ > 0.0)) badParam("realtime_factor", formatNumber(realtime_factor_), "> 0");

@@ -58,6 +58,7 @@ private:
 
   std::string world_file_;
   int robot_count_ = 1;
+  std::vector<std::string> spawns_;  ///< ~spawns: robot names of the world to run (empty: the first robot_count_)
   bool realtime_ = false;
   double realtime_factor_ = 1.0;
   int seed_ = 0;

@@ -31,6 +31,7 @@ Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
     rotor_speed_state_.push_back(thrusters_.back()->stateIsRotorSpeed());
   }
   propeller_angle_.assign(thrusters_.size(), 0.0);
+  for (const auto& fp : description.fins) fins_.push_back(std::make_unique<hydro::Fin>(fp, description.fin_families));
   if (!description.pendulum_joint.empty()) pendulum_ = std::make_unique<hydro::Pendulum>(description.pendulum);
 
   const double radius = description.hydro.radius > 0.0 ? description.hydro.radius
@@ -112,7 +113,15 @@ void Robot::applyForces(double t, double dt, const WaterState& water)
     thrust_wrench_ += th->wrench();
   }
 
-  const hydro::Vector6d total = hydro_wrench_ + restoring_wrench_ + thrust_wrench_;
+  hydro::Vector6d total = hydro_wrench_ + restoring_wrench_ + thrust_wrench_;
+  if (!fins_.empty()) {
+    fin_wrench_.setZero();
+    for (auto& fin : fins_) {
+      fin->update(t, dt);
+      fin_wrench_ += fin->wrench(nu_r_, water.density);
+    }
+    total += fin_wrench_;
+  }
   body_->applyCentralForce(toBt(R * total.head<3>()));
   body_->applyTorque(toBt(R * total.tail<3>()));
   velocity_before_ = v_world;
@@ -165,6 +174,7 @@ void Robot::setPose(const Eigen::Isometry3d& pose)
 void Robot::reset()
 {
   for (auto& th : thrusters_) th->reset();
+  for (auto& fin : fins_) fin->reset();
   propeller_angle_.assign(thrusters_.size(), 0.0);
   if (pendulum_) pendulum_->reset();
   vbs_.reset();

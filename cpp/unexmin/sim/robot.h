@@ -3,6 +3,7 @@
 #pragma once
 
 #include <unexmin/hydro/current.h>
+#include <unexmin/hydro/fin.h>
 #include <unexmin/hydro/fossen_model.h>
 #include <unexmin/hydro/pendulum.h>
 #include <unexmin/hydro/thruster.h>
@@ -67,6 +68,11 @@ public:
   const hydro::Thruster& thruster(std::size_t i) const { return *thrusters_.at(i); }
   /// Propeller joint angle for the visual [rad].
   double propellerAngle(std::size_t i) const { return propeller_angle_.at(i); }
+  std::size_t finCount() const { return fins_.size(); }
+  hydro::Fin& fin(std::size_t i) { return *fins_.at(i); }
+  const hydro::Fin& fin(std::size_t i) const { return *fins_.at(i); }
+  /// Body wrench of the fins in the last applyForces [N | N m] (zero without fins).
+  const hydro::Vector6d& finWrench() const { return fin_wrench_; }
   bool hasPendulum() const { return pendulum_ != nullptr; }
   hydro::Pendulum& pendulum() { return *pendulum_; }
   const hydro::Pendulum& pendulum() const { return *pendulum_; }
@@ -95,6 +101,7 @@ private:
   std::vector<double> propeller_angle_;
   /// Per thruster: its dynamics state is a rotor speed (hydro::ThrustConversion::stateIsRotorSpeed), decided once.
   std::vector<bool> rotor_speed_state_;
+  std::vector<std::unique_ptr<hydro::Fin>> fins_;
   std::unique_ptr<hydro::Pendulum> pendulum_;
   hydro::Vbs vbs_;
   double engine_vbs_mass_ = 0.0;
@@ -112,6 +119,7 @@ private:
   hydro::Vector6d thrust_wrench_ = hydro::Vector6d::Zero();
   hydro::Vector6d hydro_wrench_ = hydro::Vector6d::Zero();
   hydro::Vector6d restoring_wrench_ = hydro::Vector6d::Zero();
+  hydro::Vector6d fin_wrench_ = hydro::Vector6d::Zero();
 };
 
 }  // namespace sim

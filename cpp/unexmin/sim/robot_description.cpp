@@ -89,6 +89,98 @@ private:
 
 Eigen::Vector3d vec(const std::vector<double>& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
+std::string xyz(const Eigen::Vector3d& v)
+{
+  return "(" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")";
+}
+
+/// The id of an actuator element <tag id="...">: a non-negative integer.
+int actuatorId(const Parser& p, const tinyxml2::XMLElement* e, const std::string& tag)
+{
+  const double id = p.attr(e, "id", "<" + tag + ">");
+  if (id < 0 || id != std::floor(id)) p.fail("<" + tag + ">@id must be a non-negative integer");
+  return static_cast<int>(id);
+}
+
+/// Sorts actuators (and their joints, same order) by id; the ids must be 0..n-1. `what` names them in the error.
+template <class Params>
+void sortById(const Parser& p, std::vector<Params>& items, std::vector<std::string>& joints, const std::string& what)
+{
+  std::vector<std::size_t> order(items.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return items[a].id < items[b].id; });
+  std::vector<Params> sorted;
+  std::vector<std::string> sorted_joints;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (items[order[k]].id != static_cast<int>(k))
+      p.fail(what + " ids must be 0.." + formatNumber(order.size() - 1) + " without gaps or repeats");
+    sorted.push_back(items[order[k]]);
+    sorted_joints.push_back(joints[order[k]]);
+  }
+  items = sorted;
+  joints = sorted_joints;
+}
+
+/// An actuator at `at` [m, body] must lie inside the hull: its box when the description gives one, else its sphere.
+void requireInsideHull(const Parser& p, const RobotDescription& d, const Eigen::Vector3d& at, const std::string& where)
+{
+  constexpr double kSlack = 1e-6;  // [m] rounding of the expanded description
+  if (d.hull_box.minCoeff() > 0.0) {
+    const Eigen::Vector3d half = 0.5 * d.hull_box;
+    if ((at.cwiseAbs() - half).maxCoeff() > kSlack)
+      p.fail(where + ": position " + xyz(at) + " [m] is outside the hull's bounding box (accepted: |x| <= " +
+             formatNumber(half.x()) + ", |y| <= " + formatNumber(half.y()) + ", |z| <= " + formatNumber(half.z()) +
+             " [m])");
+  } else if (d.hydro.radius > 0.0 && at.norm() > d.hydro.radius + kSlack) {
+    p.fail(where + ": position " + xyz(at) + " [m] is outside the hull (accepted: distance from the centre <= " +
+           formatNumber(d.hydro.radius) + " [m])");
+  }
+}
+
+/// <fin> elements (docs/robot_description.md): pose from the joint, model by family name, limits required.
+template <class JointLookup, class InsideHull>
+void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescription& d, JointLookup joint,
+               InsideHull inside_hull)
+{
+  for (const auto* f = ext->FirstChildElement("fin"); f; f = f->NextSiblingElement("fin")) {
+    const int id = actuatorId(p, f, "fin");
+    const std::string fw = "<fin id=" + formatNumber(id) + ">";
+    hydro::FinParams fp;
+    fp.id = id;
+    const JointInfo& j = joint(f->Attribute("joint"), fw);
+    // The joint frame in the body frame: origin = centre of pressure, axis = span, x = chord at angle 0.
+    const Eigen::Isometry3d frame = d.linkPose(j.parent) * j.origin;
+    fp.axis = frame.linear() * j.axis;
+    fp.chord = frame.linear().col(0);
+    fp.position = frame.translation();
+    inside_hull(fp.position, fw);
+    const auto* model = f->FirstChildElement("model");
+    if (!model) p.fail(fw + ": missing <model type=...> (a fin lift family, e.g. linear_lift)");
+    fp.model = model->Attribute("type") ? model->Attribute("type") : "";
+    fp.model_params = p.params(model, fw + "/model");
+    const auto* area = f->FirstChildElement("area");
+    if (!area) p.fail(fw + ": missing <area value=...> (planform area > 0 [m^2])");
+    fp.area = p.attr(area, "value", fw + "/area");
+    const auto* angle = f->FirstChildElement("angle");
+    if (!angle || !angle->Attribute("min") || !angle->Attribute("max"))
+      p.fail(fw + ": missing <angle min=... max=...> (limits [rad], -pi/2 <= min <= 0 <= max <= pi/2)");
+    fp.min_angle = p.attr(angle, "min", fw + "/angle");
+    fp.max_angle = p.attr(angle, "max", fw + "/angle");
+    const auto* rate = f->FirstChildElement("rate");
+    if (!rate) p.fail(fw + ": missing <rate value=...> (largest fin speed > 0 [rad/s])");
+    fp.rate = p.attr(rate, "value", fw + "/rate");
+    if (const auto* to = f->FirstChildElement("timeout")) fp.timeout = p.attr(to, "value", fw + "/timeout");
+    try {
+      hydro::Fin check(fp, d.fin_families);
+    } catch (const ParameterError& e) {
+      p.fail(fw + ": " + e.what());
+    }
+    d.fins.push_back(fp);
+    d.fin_joints.push_back(j.name);
+  }
+  sortById(p, d.fins, d.fin_joints, "fin");
+}
+
 }  // namespace
 
 Eigen::Isometry3d RobotDescription::linkPose(const std::string& link) const
@@ -199,16 +291,21 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
   } catch (const ParameterError& e) {
     p.fail(hw + ": " + e.what());
   }
+  if (const auto* box = hyd->FirstChildElement("bounding_box")) {
+    d.hull_box = vec(p.attrNumbers(box, "size", 3, hw + "/bounding_box"));
+    if (!(d.hull_box.minCoeff() > 0.0))
+      p.fail(hw + "/bounding_box@size must be three lengths > 0 [m]");
+  }
+  auto inside_hull = [&](const Eigen::Vector3d& at, const std::string& where) { requireInsideHull(p, d, at, where); };
 
   for (const auto* t = ext->FirstChildElement("thruster"); t; t = t->NextSiblingElement("thruster")) {
     hydro::ThrusterParams tp;
-    const double id = p.attr(t, "id", "<thruster>");
-    if (id < 0 || id != std::floor(id)) p.fail("<thruster>@id must be a non-negative integer");
-    tp.id = static_cast<int>(id);
+    tp.id = actuatorId(p, t, "thruster");
     const std::string tw = "<thruster id=" + formatNumber(tp.id) + ">";
     const JointInfo& j = joint(t->Attribute("joint"), tw);
     const Eigen::Isometry3d pose = d.linkPose(j.parent) * j.origin;
     tp.position = pose.translation();
+    inside_hull(tp.position, tw);
     tp.axis = pose.linear() * j.axis;
     const auto* dyn = p.child(t, "dynamics", tw);
     tp.dynamics = dyn->Attribute("type") ? dyn->Attribute("type") : "";
@@ -231,19 +328,8 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     d.thrusters.push_back(tp);
     d.thruster_joints.push_back(j.name);
   }
-  std::vector<std::size_t> order(d.thrusters.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return d.thrusters[a].id < d.thrusters[b].id; });
-  std::vector<hydro::ThrusterParams> sorted;
-  std::vector<std::string> sorted_joints;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (d.thrusters[order[k]].id != static_cast<int>(k))
-      p.fail("thruster ids must be 0.." + formatNumber(order.size() - 1) + " without gaps or repeats");
-    sorted.push_back(d.thrusters[order[k]]);
-    sorted_joints.push_back(d.thruster_joints[order[k]]);
-  }
-  d.thrusters = sorted;
-  d.thruster_joints = sorted_joints;
+  sortById(p, d.thrusters, d.thruster_joints, "thruster");
+  parseFins(p, ext, d, joint, inside_hull);
 
   if (const auto* pend = ext->FirstChildElement("pendulum")) {
     const std::string pw = "<pendulum>";

@@ -3,6 +3,7 @@
 // parameters. See docs/robot_description.md for the schema.
 #pragma once
 
+#include <unexmin/hydro/fin.h>
 #include <unexmin/hydro/fossen_model.h>
 #include <unexmin/hydro/pendulum.h>
 #include <unexmin/hydro/thruster.h>
@@ -51,6 +52,13 @@ struct RobotDescription
   std::vector<std::string> thruster_joints;      ///< Same order as `thrusters`.
   /// The families that know the thrusters' <dynamics type> and <conversion type> (the parser's), and build them.
   hydro::ThrusterFactory thruster_families = hydro::ThrusterFactory::builtin();
+  std::vector<hydro::FinParams> fins;  ///< Control surfaces, sorted by id 0..n-1 (none on the UX-1).
+  std::vector<std::string> fin_joints;  ///< Same order as `fins`.
+  /// The families that know the fins' <model type> (the parser's), and build them.
+  hydro::FinFactory fin_families = hydro::FinFactory::builtin();
+  /// Length, width, height of the hull's box centred on the body origin [m] (<bounding_box size>); zero when the
+  /// description gives none, the actuators must then lie within the hull radius.
+  Eigen::Vector3d hull_box{0, 0, 0};
   hydro::PendulumParams pendulum;
   std::string pendulum_joint;                    ///< Empty when the robot has no pendulum.
   hydro::VbsParams vbs;

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -232,6 +233,25 @@ WorldConfig loadWorldConfig(const std::string& path)
     w.robots.push_back(s);
   }
   return w;
+}
+
+void selectRobots(WorldConfig& config, const std::vector<std::string>& names)
+{
+  std::vector<RobotSpawn> chosen;
+  std::string known;
+  for (const auto& r : config.robots) known += (known.empty() ? "" : ", ") + r.name;
+  for (const auto& name : names) {
+    const auto it = std::find_if(config.robots.begin(), config.robots.end(),
+                                 [&](const RobotSpawn& r) { return r.name == name; });
+    if (it == config.robots.end())
+      throw ConfigError(config.file + ": no robot '" + name + "' in 'robots' (expected one of: " + known + ")");
+    if (std::any_of(chosen.begin(), chosen.end(), [&](const RobotSpawn& r) { return r.name == name; }))
+      throw ConfigError(config.file + ": robot '" + name + "' is selected twice");
+    chosen.push_back(*it);
+  }
+  for (const auto& r : config.robots)
+    if (std::find(names.begin(), names.end(), r.name) == names.end()) chosen.push_back(r);
+  config.robots = chosen;
 }
 
 }  // namespace sim

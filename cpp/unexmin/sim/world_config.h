@@ -59,6 +59,10 @@ struct WorldConfig
 /// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect.
 WorldConfig loadWorldConfig(const std::string& path);
 
+/// Puts the world's robots named in `names` first, in that order (the simulator then runs the first names.size()
+/// robots). Throws ConfigError naming a name the world does not spawn, or one given twice.
+void selectRobots(WorldConfig& config, const std::vector<std::string>& names);
+
 /// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
 Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 
