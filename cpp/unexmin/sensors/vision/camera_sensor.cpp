@@ -173,10 +173,7 @@ void CameraSensor::prepare(const SensorContext& ctx)
     sensor_.encode = encode_.data();
     sensor_.encode_last = static_cast<float>(kEncodeEntries);
   }
-  albedo_.clear();
-  for (const auto& m : config.meshes)
-    albedo_.emplace_back(static_cast<float>(m.albedo.x()), static_cast<float>(m.albedo.y()),
-                         static_cast<float>(m.albedo.z()), 0.0f);
+  SurfaceMaterials::of(config, materials_);
 }
 
 void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd)
@@ -307,9 +304,16 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   for (int i = 0; i < n; ++i) {
     const raycast::Hit& hit = hits[i];
     if (hit.hit()) {
-      const float* albedo = hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)].data()
-                                                                : hull;
-      batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
+      const auto mesh = static_cast<std::size_t>(hit.index);
+      if (hit.kind == raycast::HitKind::mesh && materials_->textured(mesh)) {
+        float albedo[3];
+        Eigen::Vector3f normal;
+        materials_->shade(mesh, hit.point(rays[i]), hit.normal, albedo, normal);
+        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * normal, albedo, lit[i]);
+      } else {
+        const float* albedo = hit.kind == raycast::HitKind::mesh ? materials_->meanAlbedo(mesh).data() : hull;
+        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
+      }
       frame_.range[pixel[i]] = hit.range;
     } else {
       batch.setWater(i, pu[i], pv[i], far);
