@@ -12,8 +12,7 @@
 namespace unexmin {
 namespace sim {
 
-struct Material
-{
+struct Material {
   /// plain (one albedo, no texture) | rock | painted | rusty (materialKinds()): a kind is a set of defaults and of
   /// weights of the texture's components.
   std::string kind = "plain";

@@ -299,16 +299,48 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   const Eigen::Matrix3f to_camera = rot.transpose();
   const float hull[3] = {static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
                          static_cast<float>(kHullAlbedo.z())};
+  const bool simd = simd_ && ImageFormation::simdAvailable();
+  // Textured surfaces: albedo and shading normal at each hit, the pixels of one mesh at a time (eight in lanes).
+  std::size_t material_of[kMax];  // the textured mesh hit, or kNone
+  constexpr std::size_t kNone = ~std::size_t(0);
+  float tex_albedo[3][kMax], tex_normal[3][kMax];
+  for (int i = 0; i < n; ++i) {
+    const bool textured = hits[i].hit() && hits[i].kind == raycast::HitKind::mesh &&
+                          materials_->textured(static_cast<std::size_t>(hits[i].index));
+    material_of[i] = textured ? static_cast<std::size_t>(hits[i].index) : kNone;
+  }
+  for (int first = 0; first < n; ++first) {
+    const std::size_t mesh = material_of[first];
+    if (mesh == kNone || (first > 0 && std::find(material_of, material_of + first, mesh) != material_of + first))
+      continue;  // not textured, or this mesh is done
+    alignas(32) float x[3][kMax], nrm[3][kMax], albedo[3][kMax];
+    int which[kMax], count = 0;
+    for (int i = first; i < n; ++i) {
+      if (material_of[i] != mesh) continue;
+      const Eigen::Vector3f p = hits[i].point(rays[i]);
+      for (int a = 0; a < 3; ++a) {
+        x[a][count] = p[a];
+        nrm[a][count] = hits[i].normal[a];
+      }
+      which[count++] = i;
+    }
+    float* const out[3] = {albedo[0], albedo[1], albedo[2]};
+    materials_->shadeMany(mesh, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, simd);
+    for (int j = 0; j < count; ++j)
+      for (int a = 0; a < 3; ++a) {
+        tex_albedo[a][which[j]] = albedo[a][j];
+        tex_normal[a][which[j]] = nrm[a][j];
+      }
+  }
   PixelBatch batch;
   batch.n = n;
   for (int i = 0; i < n; ++i) {
     const raycast::Hit& hit = hits[i];
     if (hit.hit()) {
       const auto mesh = static_cast<std::size_t>(hit.index);
-      if (hit.kind == raycast::HitKind::mesh && materials_->textured(mesh)) {
-        float albedo[3];
-        Eigen::Vector3f normal;
-        materials_->shade(mesh, hit.point(rays[i]), hit.normal, albedo, normal);
+      if (material_of[i] != kNone) {
+        const float albedo[3] = {tex_albedo[0][i], tex_albedo[1][i], tex_albedo[2][i]};
+        const Eigen::Vector3f normal(tex_normal[0][i], tex_normal[1][i], tex_normal[2][i]);
         batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * normal, albedo, lit[i]);
       } else {
         const float* albedo = hit.kind == raycast::HitKind::mesh ? materials_->meanAlbedo(mesh).data() : hull;
@@ -320,7 +352,6 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
     }
   }
-  const bool simd = simd_ && ImageFormation::simdAvailable();
   formation_->radiance(batch, simd);
   for (int i = 0; i < n; ++i) {
     float* out = &frame_.radiance[3 * pixel[i]];

@@ -36,8 +36,21 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-class RockTexture
-{
+/// A texture's constants as the eight-lane kernel (rock_texture_avx2.cpp) reads them.
+struct RockLanes {
+  std::uint32_t seed[5];
+  float inv_scale[5], weight[4], height[4], albedo[3], tint[3], rot[9];
+  float contrast, relief, octave, crack_width;
+  float value_sd, grain_mean, grain_sd, crack_mean, crack_sd;
+  bool tinted;
+};
+/// Whether this build has the eight-lane kernel (x86-64 built with AVX2 and FMA).
+bool rockAvx2Built();
+/// RockTexture::shade of the first n points (n a multiple of 8), eight at a time: the CPU must have AVX2 and FMA.
+void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, const float* pz, float* nx, float* ny,
+                   float* nz, float* const albedo[3]);
+
+class RockTexture {
 public:
   /// Throws ParameterError naming the key of the first bad value of `m` (sim::checkMaterial); `prefix` is put
   /// before the key in the message.
@@ -56,6 +69,11 @@ public:
   Eigen::Vector3f normal(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
   /// Both at once (one evaluation of the field): albedo into `albedo[0..2]`, the tilted unit normal into `shading`.
   void shade(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo, Eigen::Vector3f& shading) const;
+  /// shade() of n points at once (mesh frame; coordinates px, py, pz [m]); the unit normals nx, ny, nz are tilted in
+  /// place, the albedo goes to albedo[c][0..n). `simd` (and a CPU with AVX2 and FMA): eight at a time, the same
+  /// values up to rounding (FMA, the sine's polynomial).
+  void shadeMany(int n, const float* px, const float* py, const float* pz, float* nx, float* ny, float* nz,
+                 float* const albedo[3], bool simd) const;
 
 private:
   /// f at p; grad f into `gf`, h into `h`, grad h into `gh` and the region noise r into `region`.
@@ -63,12 +81,13 @@ private:
   void albedoOf(float f, float region, float* out) const;
 
   sim::Material m_;
-  std::uint32_t seed_[6];            ///< per lattice: grain (2 octaves), cracks, stains, region, spare
-  float inv_scale_[5];               ///< 1 / scale of grain, cracks, strata, stains, region [1/m] (0: off)
-  std::array<float, 4> weight_;      ///< w_i / sqrt(sum w^2) of the components that are on
-  std::array<float, 4> height_;      ///< weight_ x scale [m]
+  RockLanes lanes_;              ///< the same constants for the eight-lane kernel
+  std::uint32_t seed_[6];        ///< per lattice: grain (2 octaves), cracks, stains, region, spare
+  float inv_scale_[5];           ///< 1 / scale of grain, cracks, strata, stains, region [1/m] (0: off)
+  std::array<float, 4> weight_;  ///< w_i / sqrt(sum w^2) of the components that are on
+  std::array<float, 4> height_;  ///< weight_ x scale [m]
   Eigen::Array3f albedo_;
-  Eigen::Array3f tint_;              ///< tint d_k
+  Eigen::Array3f tint_;  ///< tint d_k
   float contrast_, relief_;
 };
 

@@ -4,8 +4,7 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&config)
-{
+SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&config) {
   meshes_.resize(config.meshes.size());
   for (std::size_t i = 0; i < config.meshes.size(); ++i) {
     const sim::MeshEntry& e = config.meshes[i];
@@ -22,23 +21,21 @@ SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&co
   }
 }
 
-const SurfaceMaterials& SurfaceMaterials::of(const sim::WorldConfig& config, std::unique_ptr<SurfaceMaterials>& cache)
-{
+const SurfaceMaterials& SurfaceMaterials::of(const sim::WorldConfig& config, std::unique_ptr<SurfaceMaterials>& cache) {
   if (!cache || cache->config_ != &config || cache->size() != config.meshes.size())
     cache = std::make_unique<SurfaceMaterials>(config);
   return *cache;
 }
 
-Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f& p) const
-{
+Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f& p) const {
   const Mesh& m = meshes_.at(mesh);
-  if (!m.texture) return m.albedo.head<3>();
+  if (!m.texture)
+    return m.albedo.head<3>();
   return m.texture->albedo(m.to_mesh * (p - m.origin));
 }
 
 void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
-                             Eigen::Vector3f& shading) const
-{
+                             Eigen::Vector3f& shading) const {
   const Mesh& m = meshes_[mesh];
   if (!m.texture) {
     albedo[0] = m.albedo[0];
@@ -50,6 +47,22 @@ void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const E
   Eigen::Vector3f local;
   m.texture->shade(m.to_mesh * (p - m.origin), m.to_mesh * n, albedo, local);
   shading = m.to_mesh.transpose() * local;
+}
+
+void SurfaceMaterials::shadeMany(std::size_t mesh, int n, float* x, float* y, float* z, float* nx, float* ny, float* nz,
+                                 float* const albedo[3], bool simd) const {
+  const Mesh& m = meshes_.at(mesh);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f p = m.to_mesh * (Eigen::Vector3f(x[i], y[i], z[i]) - m.origin);
+    const Eigen::Vector3f d = m.to_mesh * Eigen::Vector3f(nx[i], ny[i], nz[i]);
+    x[i] = p.x(), y[i] = p.y(), z[i] = p.z();
+    nx[i] = d.x(), ny[i] = d.y(), nz[i] = d.z();
+  }
+  m.texture->shadeMany(n, x, y, z, nx, ny, nz, albedo, simd);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f d = m.to_mesh.transpose() * Eigen::Vector3f(nx[i], ny[i], nz[i]);
+    nx[i] = d.x(), ny[i] = d.y(), nz[i] = d.z();
+  }
 }
 
 }  // namespace vision

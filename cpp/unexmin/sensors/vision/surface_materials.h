@@ -16,8 +16,7 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-class SurfaceMaterials
-{
+class SurfaceMaterials {
 public:
   /// One entry per mesh of `config` (the index of a raycast::Hit of kind mesh).
   explicit SurfaceMaterials(const sim::WorldConfig& config);
@@ -37,9 +36,14 @@ public:
   void shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
              Eigen::Vector3f& shading) const;
 
+  /// shade() of n points of the textured mesh `mesh` at once: world points x, y, z [m] (overwritten) and unit
+  /// face normals nx, ny, nz (world frame, replaced by the shading normals); albedo into albedo[c][0..n). `simd`:
+  /// eight at a time where the CPU can (RockTexture::shadeMany).
+  void shadeMany(std::size_t mesh, int n, float* x, float* y, float* z, float* nx, float* ny, float* nz,
+                 float* const albedo[3], bool simd) const;
+
 private:
-  struct Mesh
-  {
+  struct Mesh {
     Eigen::Array4f albedo;
     std::unique_ptr<RockTexture> texture;
     Eigen::Matrix3f to_mesh;  ///< rotation world -> mesh frame
