@@ -109,3 +109,4 @@ def test_the_mine_world_has_its_seeds_rock():
     assert other != mine_material.material(7) and other["kind"] == "rock" and other["seed"] == 8
     with pytest.raises(ValueError, match="seed"):
         mine_material.material(-1)
+
