@@ -33,6 +33,8 @@ apt_packages=(
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
   trimesh==4.5.3 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3
   open3d-cpu==0.20.0 laspy==2.5.4 lazrs==0.6.2)
+# OpenCV judges the cameras' images (test/pytest/test_camera_orb.py, docs/vision.md "Tests")
+pip_packages+=(opencv-python-headless==4.10.0.84)
 # batch missions on Dask (docs/batch.md): scheduler/workers, results table (Parquet), dashboard
 pip_packages+=("dask[distributed]==2025.1.0" distributed==2025.1.0 pandas==2.2.3 pyarrow==18.1.0 bokeh==3.6.2)
 # the C++ formatter the test command checks against (.clang-format, test/pytest/test_cpp_format.py)

@@ -6,6 +6,7 @@
 // points it hides; in turbid water the range shrinks to where the formula says; the raw fan, the motor's
 // triangle wave, the triangulation noise and the parameter errors.
 #include <unexmin/sensors/vision/sls_sensor.h>
+#include <unexmin/sensors/vision/surface_materials.h>
 #include "mesh_fixture.h"
 #include "sonar_fixture.h"
 
@@ -87,9 +88,17 @@ Eigen::Isometry3d cameraInWorld(const Eigen::Vector3d& base)
 /// Expected laser points on the +x wall for the robot at `base`, motor at 0: ray j at elevation e_j meets the
 /// wall at base + laser + t (cos e, 0, sin e), t = (wall - x) / cos e; kept when the camera sees it and its
 /// line strength reaches the detection level; `blocked` says whether an occluder hides the sight line.
-template <class Blocked>
+inline double albedoAt(double albedo, const Eigen::Vector3d&) { return albedo; }
+template <class F>
+double albedoAt(const F& albedo, const Eigen::Vector3d& w)
+{
+  return albedo(w);
+}
+
+/// `albedo`: the wall's green albedo, a number or a function of the world point.
+template <class Blocked, class Albedo = double>
 std::vector<Eigen::Vector3d> expectedPoints(const Eigen::Vector3d& base, int rays, double fan, double c, double b,
-                                            double threshold, double glow, double albedo, Blocked blocked)
+                                            double threshold, double glow, Albedo albedo, Blocked blocked)
 {
   std::vector<Eigen::Vector3d> out;
   const Eigen::Isometry3d cam = cameraInWorld(base);
@@ -103,7 +112,7 @@ std::vector<Eigen::Vector3d> expectedPoints(const Eigen::Vector3d& base, int ray
     double u, v;
     if (!pixel(cam.inverse() * w, u, v) || blocked(cam.translation(), w)) continue;
     const double rc = (w - cam.translation()).norm();
-    const double strength = albedo * std::cos(e) * std::exp(-c * (t + rc)) / t;  // cos(incidence) = cos e
+    const double strength = albedoAt(albedo, w) * std::cos(e) * std::exp(-c * (t + rc)) / t;  // cos(incidence) = cos e
     if (strength >= threshold * (1 + b * glow)) out.push_back(cam.inverse() * w);
   }
   return out;
@@ -139,6 +148,29 @@ TEST(Sls, ThePointsAreTheFansHitsOnTheWallThatTheCameraSees)
     double u, v;
     EXPECT_TRUE(pixel(p.cast<double>(), u, v));
   }
+}
+
+TEST(Sls, TheLinesDetectionUsesTheTexturedAlbedoAtTheHit)
+{
+  // The wall of rock (contrast 0.5 around 0.3): a point is kept where the green albedo of the texture at its hit
+  // makes the line strong enough; the threshold is set so that the texture decides for some points.
+  sim::WorldConfig box = testBox();
+  box.meshes.at(0).material = sim::materialDefaults("rock");
+  box.meshes[0].material.contrast = 0.5;
+  box.meshes[0].material.seed = 3;
+  box.meshes[0].albedo = Eigen::Vector3d::Constant(0.3);
+  const sensors::vision::SurfaceMaterials materials(box);
+  const auto rock = [&](const Eigen::Vector3d& w) { return materials.albedo(0, w.cast<float>()).y(); };
+  SensorWorld w(box, slsUrdf({{"threshold", "0.1"}}));
+  auto& sls = w.sensor<SlsSensor>("sls");
+  w.place(sim::poseFromXyzRpy(Eigen::Vector3d(0.5, 0.0, 0.3), Eigen::Vector3d::Zero()));
+  w.samples(sls, 1);
+  const Eigen::Vector3d at = w.robot().state().pose.translation();
+  const auto want = expectedPoints(at, 101, 100 * kDeg, 0.151, 0.037, 0.1, 1.0, rock, noBlock);
+  const auto flat = expectedPoints(at, 101, 100 * kDeg, 0.151, 0.037, 0.1, 1.0, 0.3, noBlock);
+  ASSERT_GT(want.size(), 5u);
+  ASSERT_NE(want.size(), flat.size()) << "the texture must decide for some points";
+  expectSamePoints(sls.last().points, want, 1e-3);
 }
 
 TEST(Sls, TheRawFanMeasuresTheAnalyticDistanceToTheBox)

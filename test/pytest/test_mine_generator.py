@@ -44,6 +44,14 @@ def small(tmp_path_factory):
     return out, man
 
 
+def test_generator_reports_the_rock_of_its_seed(small):
+    """The report names the walls' material drawn from the mine's seed (unexmin.mine_generator.material)."""
+    from unexmin.mine_generator import material as mine_material
+
+    assert small[1]["material"] == mine_material.material(SEED, "small")
+    assert small[1]["material"]["seed"] == SEED and small[1]["material"]["kind"] == "rock"
+
+
 def sha(path):
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 

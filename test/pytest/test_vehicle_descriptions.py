@@ -3,6 +3,7 @@ mass, and actuator geometry against the published layouts.
 
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_vehicle_descriptions.py
 """
+
 import math
 import shutil
 import subprocess
@@ -66,7 +67,7 @@ def actuator_frames(robot, tag):
 @pytest.mark.parametrize("name", sorted(VEHICLES))
 def test_frames_prefixed_and_one_tree(name):
     robot = description(name)
-    links = [l.get("name") for l in robot.findall("link")]
+    links = [link.get("name") for link in robot.findall("link")]
     joints = robot.findall("joint")
     assert all(n.startswith(name + "/") for n in links + [j.get("name") for j in joints])
     children = [j.find("child").get("link") for j in joints]
@@ -89,9 +90,10 @@ def test_rov_masses_and_buoyancy_are_von_benzons():
     assert float(hydro.find("mass").get("value")) == 13.5
     assert float(hydro.find("volume").get("value")) == 0.0134
     assert numbers(hydro.find("added_mass").get("value")).reshape(6, 6).diagonal() == pytest.approx(
-        [6.3567, 7.1206, 18.6863, 0.1858, 0.1348, 0.2215])
+        [6.3567, 7.1206, 18.6863, 0.1858, 0.1348, 0.2215]
+    )
     radius = float(hydro.find("radius").get("value"))
-    assert 4.0 / 3.0 * math.pi * radius ** 3 == pytest.approx(0.0134, rel=1e-12)
+    assert 4.0 / 3.0 * math.pi * radius**3 == pytest.approx(0.0134, rel=1e-12)
 
 
 def test_rov_thrusters_actuate_all_six_degrees_of_freedom():
@@ -113,7 +115,7 @@ def test_rov_thrusters_actuate_all_six_degrees_of_freedom():
 def test_auv_fins_turn_about_their_span_with_the_chord_forward():
     frames = actuator_frames(description("AUV_1"), "fin")
     spans = [[0, 0, 1], [0, 0, 1], [0, 1, 0], [0, 1, 0], [0, 0, 1], [0, 1, 0]]
-    for (p, rot, axis), span in zip(frames, spans):
+    for (_p, rot, axis), span in zip(frames, spans):
         assert axis == pytest.approx(span, abs=1e-12)
         assert rot[:, 0] == pytest.approx([1, 0, 0], abs=1e-12), "the chord at angle 0 points forward"
     assert [p[0] for p, _, _ in frames] == pytest.approx([-0.638] * 4 + [-0.321] * 2)

@@ -17,9 +17,9 @@ from sensor_msgs.msg import Image
 from unexmin.srv import Step
 
 NS = "/UX_1/"
-BEAMS, BINS = 512, 500                      # imaging sonar defaults
+BEAMS, BINS = 512, 500  # imaging sonar defaults
 FAN_WIDTH = 2 * math.ceil(30.0 * math.sin(math.radians(65.0)) / (30.0 / 500) - 1e-9)  # 2 ceil(r sin(fov/2) / s)
-SIDE_BINS, WATERFALL_LINES = 1000, 400      # side-scan defaults
+SIDE_BINS, WATERFALL_LINES = 1000, 400  # side-scan defaults
 SIZES = {  # topic: (height, width, frame)
     "imaging_sonar/polar": (BINS, BEAMS, "UX_1/imaging_sonar_link"),
     "imaging_sonar/fan": (500, FAN_WIDTH, "UX_1/imaging_sonar_link"),
@@ -38,6 +38,7 @@ class SonarImages(unittest.TestCase):
             def callback(msg):
                 with lock:
                     got.setdefault(topic, msg)
+
             return callback
 
         subs = [rospy.Subscriber(NS + t, Image, keep(t), queue_size=5) for t in SIZES]

@@ -20,8 +20,9 @@ class Vehicle:
     def __init__(self, name, thrusters, fins):
         self.odom = None
         rospy.Subscriber("/%s/odom" % name, Odometry, self._on_odom, queue_size=1)
-        self.thrusters = [rospy.Publisher("/%s/thrusters/%d/input" % (name, i), Float64, queue_size=1)
-                          for i in range(thrusters)]
+        self.thrusters = [
+            rospy.Publisher("/%s/thrusters/%d/input" % (name, i), Float64, queue_size=1) for i in range(thrusters)
+        ]
         self.fins = [rospy.Publisher("/%s/fins/%d/input" % (name, i), Float64, queue_size=1) for i in range(fins)]
 
     def _on_odom(self, msg):
@@ -77,15 +78,22 @@ class VehiclesTank(unittest.TestCase):
         x0 = self.auv.position()[0]
         yaw0 = self.auv.yaw()
         rudder = math.radians(10.0)
-        turned = self.auv.drive_until([1500.0], [rudder, rudder, 0, 0, 0, 0],
-                                      lambda: self.auv.position()[0] - x0 > 0.3 and self.auv.yaw() - yaw0 < -0.05)
-        self.assertTrue(turned, "AUV_1 did not move forward and turn to starboard: x %.3f -> %.3f, yaw %.3f -> %.3f"
-                        % (x0, self.auv.position()[0], yaw0, self.auv.yaw()))
+        turned = self.auv.drive_until(
+            [1500.0],
+            [rudder, rudder, 0, 0, 0, 0],
+            lambda: self.auv.position()[0] - x0 > 0.3 and self.auv.yaw() - yaw0 < -0.05,
+        )
+        self.assertTrue(
+            turned,
+            "AUV_1 did not move forward and turn to starboard: x %.3f -> %.3f, yaw %.3f -> %.3f"
+            % (x0, self.auv.position()[0], yaw0, self.auv.yaw()),
+        )
         # NaN and an angle beyond the limit are rejected at the ROS edge (a throttled warning): the fins keep the
         # rudder angle until their 1 s watchdog, and the vehicle keeps turning the same way.
         yaw1 = self.auv.yaw()
-        still_turning = self.auv.drive_until([1500.0], [float("nan"), 1.0, 0, 0, 0, 0],
-                                             lambda: self.auv.yaw() - yaw1 < -0.05)
+        still_turning = self.auv.drive_until(
+            [1500.0], [float("nan"), 1.0, 0, 0, 0, 0], lambda: self.auv.yaw() - yaw1 < -0.05
+        )
         self.assertTrue(still_turning, "a rejected fin command changed the turn")
 
 

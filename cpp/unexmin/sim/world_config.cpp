@@ -116,6 +116,38 @@ public:
     return p;
   }
 
+  /// A mesh's `material:` map (docs/worlds.md): the kind's defaults, then every key given; unknown keys and bad
+  /// values stop with the key's name.
+  Material material(const YAML::Node& node, const std::string& where) const
+  {
+    if (!node.IsMap()) fail("'" + where.substr(0, where.size() - 1) + "' must be a map (kind, albedo, seed, ...)");
+    Material m;
+    try {
+      m = materialDefaults(text(node, "kind", where, "plain"), where);
+      m.albedo = vec3(node, "albedo", where, m.albedo);
+      const double seed = number(node, "seed", where, 0.0);
+      if (seed < 0.0 || seed > 9007199254740992.0 || seed != std::floor(seed))
+        fail("'" + where + "seed' = " + formatNumber(seed) + ": expected an integer >= 0");
+      m.seed = static_cast<std::uint64_t>(seed);
+      const std::pair<const char*, double*> numbers[] = {
+          {"contrast", &m.contrast}, {"relief", &m.relief}, {"grain", &m.grain},   {"cracks", &m.cracks},
+          {"strata", &m.strata},     {"stains", &m.stains}, {"region", &m.region}, {"tint", &m.tint}};
+      for (const auto& kv : numbers) *kv.second = number(node, kv.first, where, *kv.second);
+      for (const auto& kv : node) {
+        const std::string key = kv.first.as<std::string>();
+        bool known = key == "kind" || key == "albedo" || key == "seed";
+        for (const auto& n : numbers) known = known || key == n.first;
+        if (!known)
+          fail("'" + where + key + "' is not a material key: expected kind, albedo, seed, contrast, relief, grain, "
+               "cracks, strata, stains, region, tint");
+      }
+      checkMaterial(m, where);
+    } catch (const ParameterError& e) {
+      fail(e.what());
+    }
+    return m;
+  }
+
 private:
   std::string file_;
 };
@@ -212,6 +244,12 @@ WorldConfig loadWorldConfig(const std::string& path)
       e.albedo = r.vec3(m, "albedo", where, e.albedo);
       if ((e.albedo.array() < 0.0).any() || (e.albedo.array() > 1.0).any())
         r.fail("'" + where + "albedo' must be three numbers in [0, 1]");
+      e.material.albedo = e.albedo;
+      if (const YAML::Node mat = m["material"]) {
+        if (m["albedo"]) r.fail("'" + where + "albedo' and '" + where + "material' both given: put the albedo in the material");
+        e.material = r.material(mat, where + "material.");
+        e.albedo = e.material.albedo;
+      }
       w.meshes.push_back(e);
     }
   }

@@ -4,6 +4,7 @@
 #include <unexmin/core/error.h>
 
 #include <unexmin/hydro/current.h>
+#include <unexmin/sim/material.h>
 
 #include <Eigen/Geometry>
 
@@ -26,6 +27,8 @@ struct MeshEntry
   /// Diffuse (Lambertian) reflectance per RGB channel, in [0, 1], for cameras and the SLS lasers
   /// [assumed default 0.3: weathered rock; docs/worlds.md].
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};
+  /// Key `material:` (docs/worlds.md): kind, texture and relief; its albedo is `albedo` above. Default: plain.
+  Material material;
 };
 
 struct RobotSpawn

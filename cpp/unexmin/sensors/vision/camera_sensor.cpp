@@ -174,10 +174,7 @@ void CameraSensor::prepare(const SensorContext& ctx)
     response_.encode = encode_.data();
     response_.encode_last = static_cast<float>(kEncodeEntries);
   }
-  albedo_.clear();
-  for (const auto& m : config.meshes)
-    albedo_.emplace_back(static_cast<float>(m.albedo.x()), static_cast<float>(m.albedo.y()),
-                         static_cast<float>(m.albedo.z()), 0.0f);
+  SurfaceMaterials::of(config, materials_);
 }
 
 void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd)
@@ -301,21 +298,59 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   const Eigen::Matrix3f to_camera = rot.transpose();
   const float hull[3] = {static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
                          static_cast<float>(kHullAlbedo.z())};
+  const bool simd = simd_ && ImageFormation::simdAvailable();
+  // Textured surfaces: albedo and shading normal at each hit, the pixels of one mesh at a time (eight in lanes).
+  std::size_t material_of[kMax];  // the textured mesh hit, or kNone
+  constexpr std::size_t kNone = ~std::size_t(0);
+  float tex_albedo[3][kMax], tex_normal[3][kMax];
+  for (int i = 0; i < n; ++i) {
+    const bool textured = hits[i].hit() && hits[i].kind == raycast::HitKind::mesh &&
+                          materials_->textured(static_cast<std::size_t>(hits[i].index));
+    material_of[i] = textured ? static_cast<std::size_t>(hits[i].index) : kNone;
+  }
+  for (int first = 0; first < n; ++first) {
+    const std::size_t mesh = material_of[first];
+    if (mesh == kNone || (first > 0 && std::find(material_of, material_of + first, mesh) != material_of + first))
+      continue;  // not textured, or this mesh is done
+    alignas(32) float x[3][kMax], nrm[3][kMax], albedo[3][kMax];
+    int which[kMax], count = 0;
+    for (int i = first; i < n; ++i) {
+      if (material_of[i] != mesh) continue;
+      const Eigen::Vector3f p = hits[i].point(rays[i]);
+      for (int a = 0; a < 3; ++a) {
+        x[a][count] = p[a];
+        nrm[a][count] = hits[i].normal[a];
+      }
+      which[count++] = i;
+    }
+    float* const out[3] = {albedo[0], albedo[1], albedo[2]};
+    materials_->shadeMany(mesh, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, simd);
+    for (int j = 0; j < count; ++j)
+      for (int a = 0; a < 3; ++a) {
+        tex_albedo[a][which[j]] = albedo[a][j];
+        tex_normal[a][which[j]] = nrm[a][j];
+      }
+  }
   PixelBatch batch;
   batch.n = n;
   for (int i = 0; i < n; ++i) {
     const raycast::Hit& hit = hits[i];
     if (hit.hit()) {
-      const float* albedo = hit.kind == raycast::HitKind::mesh ? albedo_[static_cast<std::size_t>(hit.index)].data()
-                                                                : hull;
-      batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
+      const auto mesh = static_cast<std::size_t>(hit.index);
+      if (material_of[i] != kNone) {
+        const float albedo[3] = {tex_albedo[0][i], tex_albedo[1][i], tex_albedo[2][i]};
+        const Eigen::Vector3f normal(tex_normal[0][i], tex_normal[1][i], tex_normal[2][i]);
+        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * normal, albedo, lit[i]);
+      } else {
+        const float* albedo = hit.kind == raycast::HitKind::mesh ? materials_->meanAlbedo(mesh).data() : hull;
+        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
+      }
       frame_.range[pixel[i]] = hit.range;
     } else {
       batch.setWater(i, pu[i], pv[i], far);
       frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
     }
   }
-  const bool simd = simd_ && ImageFormation::simdAvailable();
   formation_->radiance(batch, simd);
   for (int i = 0; i < n; ++i) {
     float* out = &frame_.radiance[3 * pixel[i]];

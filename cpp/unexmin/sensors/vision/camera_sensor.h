@@ -9,8 +9,8 @@
 // camera_info alone). See docs/vision.md.
 //
 // Per pixel: the ray of the pixel centre (CameraModel::ray, distortion undone exactly), cast up to clip_far; the
-// radiance at the lens L = direct + backscatter (ImageFormation; albedo of the hit mesh from the world file, of a
-// robot hull kHullAlbedo); the laser line added; then the sensor: signal s = min(1, exposure L) in fractions of
+// radiance at the lens L = direct + backscatter (ImageFormation; albedo and shading normal of the hit mesh from its
+// material in the world file (SurfaceMaterials), of a robot hull kHullAlbedo); the laser line added; then the sensor: signal s = min(1, exposure L) in fractions of
 // full well, shot noise sqrt(s / full_well) and read noise read_noise / full_well (Gaussian, seeded), times gain,
 // clamped to [0, 1], gamma-encoded v^(1/gamma) and rounded to 8 bits per channel.
 //
@@ -34,6 +34,7 @@
 #include <unexmin/sensors/vision/camera_model.h>
 #include <unexmin/sensors/vision/image_formation.h>
 #include <unexmin/sensors/vision/laser_line.h>
+#include <unexmin/sensors/vision/surface_materials.h>
 
 #include <cstdint>
 #include <functional>
@@ -121,7 +122,7 @@ private:
   std::unique_ptr<ImageFormation> formation_;
   std::string water_key_;                 ///< visibility level and colour the formation was built for
   std::vector<Eigen::Vector3f> dirs_;     ///< per pixel: unit ray direction in the optical frame
-  std::vector<Eigen::Array4f> albedo_;    ///< per world mesh (R, G, B, 0)
+  std::unique_ptr<SurfaceMaterials> materials_;  ///< per world mesh: albedo, texture (docs/vision.md)
   std::vector<std::int32_t> encode_;      ///< gamma table: signal in [0, 1] -> 8 bits
   shading::SensorResponse response_;      ///< the sensor's constants as the kernel reads them
   std::vector<std::size_t> touched_;      ///< pixels the laser line lit this frame

@@ -63,6 +63,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     double density = 0.0;
   };
   std::vector<Spot> spots(fan_.size());
+  const SurfaceMaterials& materials = SurfaceMaterials::of(ctx.world.config(), materials_);
   for (std::size_t j = 0; j < fan_.size(); ++j) {
     const raycast::Hit& hit = hits_[j];
     if (!hit.hit()) continue;
@@ -83,7 +84,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     const double jacobian = std::abs(d1.x() * d2.y() - d1.y() * d2.x()) / (eps * eps);  // [px^2 / m^2]
     double albedo = hull_albedo_;
     if (hit.kind == raycast::HitKind::mesh)
-      albedo = ctx.world.config().meshes.at(static_cast<std::size_t>(hit.index)).albedo.y();
+      albedo = materials.albedo(static_cast<std::size_t>(hit.index), hit.point(rays_[j])).y();
     spots[j].uv = uv;
     spots[j].seen = true;
     spots[j].density = albedo / M_PI * power_ / (dtheta_ * (fan_.size() - 1)) * jacobian *

@@ -8,6 +8,7 @@
 // the water's green c): the power P dθ / fan of a fan slice lands on a strip of the wall; the image of that strip
 // holds, summed over its pixels, the radiance x pixel area
 //     S = (rho_g / pi) (P dθ / fan) J exp(-c_g (R_L + R_C))   [W m^-2 sr^-1 px^2]
+// with rho_g the green albedo of the material at the hit (SurfaceMaterials: the texture's, where it has one),
 // with J the image area per unit wall area at the hit [px^2 / m^2] (from the camera model, distortion and
 // obliquity included), R_L the laser range and R_C the camera range. S is spread evenly along the segment between
 // neighbouring hits with a Gaussian profile across it of standard deviation `width` [px] (the lens and the sheet
@@ -19,6 +20,7 @@
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/vision/camera_model.h>
 #include <unexmin/sensors/vision/sls_sensor.h>
+#include <unexmin/sensors/vision/surface_materials.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Geometry>
@@ -66,6 +68,7 @@ private:
   std::vector<Eigen::Vector3d> fan_;  ///< head frame
   std::vector<raycast::Ray> rays_;
   std::vector<raycast::Hit> hits_;
+  std::unique_ptr<SurfaceMaterials> materials_;  ///< the world's, for the green albedo at each hit
 };
 
 }  // namespace vision

@@ -151,7 +151,9 @@ void SlsSensor::sample(const SensorContext& ctx)
     const double rl = h.range;
     const double rc = sight_[k].max_range + kSightSlack;
     double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
-    if (h.kind == raycast::HitKind::mesh) albedo = ctx.world.config().meshes.at(static_cast<std::size_t>(h.index)).albedo.y();
+    if (h.kind == raycast::HitKind::mesh)
+      albedo = SurfaceMaterials::of(ctx.world.config(), materials_).albedo(static_cast<std::size_t>(h.index),
+                                                                          h.point(rays_[j])).y();
     const double strength =
         albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) * std::exp(-c * (rl + rc)) / rl;
     if (!(strength >= level) || strength <= 0.0) continue;

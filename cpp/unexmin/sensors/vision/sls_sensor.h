@@ -15,7 +15,8 @@
 //      with R_L the laser range, R_C the camera range, phi the incidence of the laser on the surface, c_g and
 //      b_g the water's green attenuation and scattering (WaterOptics of the world's visibility; a line laser
 //      spreads in one dimension: 1 / R_L), R_ref = 1 m, L_b = backscatter_length (the laser sheet's glow
-//      seen along the pixel raises the background) and albedo_g the surface's green albedo (world file);
+//      seen along the pixel raises the background) and albedo_g the surface's green albedo at the hit (its
+//      material in the world file, textured or not: SurfaceMaterials);
 //   3. triangulation noise along the camera ray: depth error sigma_Z = Z^2 sigma_u / (f B) with Z the depth in
 //      the camera, f its focal length [px] at full resolution, B the camera-laser baseline [m], sigma_u the
 //      sub-pixel accuracy of the line detector [px].
@@ -30,10 +31,12 @@
 
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/vision/camera_model.h>
+#include <unexmin/sensors/vision/surface_materials.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Geometry>
 
+#include <memory>
 #include <vector>
 
 namespace unexmin {
@@ -108,6 +111,7 @@ private:
   std::vector<raycast::Ray> rays_, sight_;
   std::vector<raycast::Hit> hits_, sight_hits_;
   std::vector<int> candidates_;
+  std::unique_ptr<SurfaceMaterials> materials_;  ///< the world's, for the green albedo at each hit
   SlsScan last_;
 };
 

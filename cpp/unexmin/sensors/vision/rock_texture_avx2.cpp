@@ -1,0 +1,218 @@
+// The eight-lane (AVX2 + FMA) build of RockTexture::shade (compiled with -mavx2 -mfma, see CMakeLists.txt; called
+// only on CPUs that have both, see RockTexture::shadeMany). The same formulas as rock_texture.cpp, eight points at a
+// time; results equal up to rounding (FMA, and the sine's polynomial: below 1e-6).
+#include <unexmin/sensors/vision/rock_texture.h>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
+namespace unexmin {
+namespace sensors {
+namespace vision {
+
+#if defined(__AVX2__) && defined(__FMA__)
+namespace {
+
+using F = __m256;
+using I = __m256i;
+
+struct V {
+  F x, y, z;
+};
+
+inline F set(float a) {
+  return _mm256_set1_ps(a);
+}
+inline F add(F a, F b) {
+  return _mm256_add_ps(a, b);
+}
+inline F sub(F a, F b) {
+  return _mm256_sub_ps(a, b);
+}
+inline F mul(F a, F b) {
+  return _mm256_mul_ps(a, b);
+}
+inline F fma(F a, F b, F c) {
+  return _mm256_fmadd_ps(a, b, c);
+}
+inline V scale(const V& v, F s) {
+  return {mul(v.x, s), mul(v.y, s), mul(v.z, s)};
+}
+inline V madd(const V& acc, F s, const V& v) {
+  return {fma(s, v.x, acc.x), fma(s, v.y, acc.y), fma(s, v.z, acc.z)};
+}
+
+inline I hashAxis(I i, std::uint32_t k) {
+  return _mm256_mullo_epi32(i, _mm256_set1_epi32(static_cast<int>(k)));
+}
+
+/// lattice() of rock_texture.cpp in lanes.
+inline F lattice(I hx, I hy, I hz, I seed) {
+  I h = _mm256_xor_si256(_mm256_xor_si256(seed, hx), _mm256_xor_si256(hy, hz));
+  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 15));
+  h = _mm256_mullo_epi32(h, _mm256_set1_epi32(0x2c1b3c6d));
+  h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 12));
+  // h as an unsigned number / 2^31 - 1: its top 31 bits as a signed integer / 2^30.
+  return fma(_mm256_cvtepi32_ps(_mm256_srli_epi32(h, 1)), set(1.0f / 1073741824.0f), set(-1.0f));
+}
+
+/// noise() of rock_texture.cpp in lanes.
+inline F noise(const V& q, std::uint32_t seed_value, V& g) {
+  const F fx = _mm256_floor_ps(q.x), fy = _mm256_floor_ps(q.y), fz = _mm256_floor_ps(q.z);
+  const F tx = sub(q.x, fx), ty = sub(q.y, fy), tz = sub(q.z, fz);
+  const I ix = _mm256_cvttps_epi32(fx), iy = _mm256_cvttps_epi32(fy), iz = _mm256_cvttps_epi32(fz);
+  const I x0 = hashAxis(ix, 0x8da6b343u), x1 = _mm256_add_epi32(x0, _mm256_set1_epi32(static_cast<int>(0x8da6b343u)));
+  const I y0 = hashAxis(iy, 0xd8163841u), y1 = _mm256_add_epi32(y0, _mm256_set1_epi32(static_cast<int>(0xd8163841u)));
+  const I z0 = hashAxis(iz, 0xcb1ab31fu), z1 = _mm256_add_epi32(z0, _mm256_set1_epi32(static_cast<int>(0xcb1ab31fu)));
+  const I seed = _mm256_set1_epi32(static_cast<int>(seed_value));
+  const F a = lattice(x0, y0, z0, seed), b = lattice(x1, y0, z0, seed);
+  const F c = lattice(x0, y1, z0, seed), d = lattice(x1, y1, z0, seed);
+  const F e = lattice(x0, y0, z1, seed), f = lattice(x1, y0, z1, seed);
+  const F gg = lattice(x0, y1, z1, seed), h = lattice(x1, y1, z1, seed);
+  const F three = set(3.0f), two = set(2.0f), six = set(6.0f), one_f = set(1.0f);
+  const F ux = mul(mul(tx, tx), sub(three, mul(two, tx))), uy = mul(mul(ty, ty), sub(three, mul(two, ty)));
+  const F uz = mul(mul(tz, tz), sub(three, mul(two, tz)));
+  const F dx = mul(mul(six, tx), sub(one_f, tx)), dy = mul(mul(six, ty), sub(one_f, ty));
+  const F dz = mul(mul(six, tz), sub(one_f, tz));
+  const F k1 = sub(b, a), k2 = sub(c, a), k3 = sub(e, a);
+  const F k4 = add(sub(sub(a, b), c), d), k5 = add(sub(sub(a, c), e), gg), k6 = add(sub(sub(a, b), e), f);
+  // k7 = -a + b + c - d + e - f - g + h
+  const F k7s = add(sub(sub(add(sub(add(sub(b, a), c), d), e), f), gg), h);
+  g.x = mul(dx, fma(k7s, mul(uy, uz), fma(k6, uz, fma(k4, uy, k1))));
+  g.y = mul(dy, fma(k7s, mul(uz, ux), fma(k4, ux, fma(k5, uz, k2))));
+  g.z = mul(dz, fma(k7s, mul(ux, uy), fma(k5, uy, fma(k6, ux, k3))));
+  F v = fma(k1, ux, a);
+  v = fma(k2, uy, v);
+  v = fma(k3, uz, v);
+  v = fma(k4, mul(ux, uy), v);
+  v = fma(k5, mul(uy, uz), v);
+  v = fma(k6, mul(uz, ux), v);
+  return fma(k7s, mul(mul(ux, uy), uz), v);
+}
+
+/// sin and cos of x [rad] (any x of a float's exact range): reduced to [-pi, pi], then odd and even polynomials
+/// (Taylor to x^11 and x^12 on [-pi/2, pi/2] after the reflection x -> pi - x; error below 1e-6).
+inline void sinCos(F x, F& s, F& c) {
+  const F inv_two_pi = set(0.15915494309f), two_pi = set(6.28318530718f), pi = set(3.14159265359f);
+  x = sub(x, mul(two_pi, _mm256_round_ps(mul(x, inv_two_pi), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)));
+  // Reflect into [-pi/2, pi/2]: sin(pi - x) = sin x, cos(pi - x) = -cos x.
+  const F half_pi = set(1.57079632679f), sign = set(-0.0f);
+  const F big = _mm256_cmp_ps(_mm256_andnot_ps(sign, x), half_pi, _CMP_GT_OQ);
+  const F reflected = sub(_mm256_or_ps(pi, _mm256_and_ps(sign, x)), x);
+  x = _mm256_blendv_ps(x, reflected, big);
+  const F x2 = mul(x, x);
+  F ps = set(-2.5052108e-8f);
+  ps = fma(ps, x2, set(2.7557319e-6f));
+  ps = fma(ps, x2, set(-1.9841270e-4f));
+  ps = fma(ps, x2, set(8.3333333e-3f));
+  ps = fma(ps, x2, set(-1.6666667e-1f));
+  s = fma(mul(ps, x2), x, x);
+  F pc = set(2.0876757e-9f);
+  pc = fma(pc, x2, set(-2.7557319e-7f));
+  pc = fma(pc, x2, set(2.4801587e-5f));
+  pc = fma(pc, x2, set(-1.3888889e-3f));
+  pc = fma(pc, x2, set(4.1666667e-2f));
+  pc = fma(pc, x2, set(-0.5f));
+  c = fma(pc, x2, set(1.0f));
+  c = _mm256_blendv_ps(c, _mm256_xor_ps(c, sign), big);
+}
+
+}  // namespace
+
+bool rockAvx2Built() {
+  return true;
+}
+
+void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, const float* pz, float* nx, float* ny,
+                   float* nz, float* const albedo[3]) {
+  const F zero = set(0.0f), one = set(1.0f);
+  for (int i = 0; i + 8 <= n; i += 8) {
+    const V p{_mm256_loadu_ps(px + i), _mm256_loadu_ps(py + i), _mm256_loadu_ps(pz + i)};
+    F f = zero;
+    V gh{zero, zero, zero};
+    V g;
+    if (k.weight[0] != 0.0f) {  // grain: two octaves, the second turned
+      const V q = scale(p, set(k.inv_scale[0]));
+      V g1, g2;
+      const F n1 = noise(q, k.seed[0], g1);
+      const F o = set(k.octave);
+      const V q2{mul(o, fma(set(k.rot[0]), q.x, fma(set(k.rot[1]), q.y, mul(set(k.rot[2]), q.z)))),
+                 mul(o, fma(set(k.rot[3]), q.x, fma(set(k.rot[4]), q.y, mul(set(k.rot[5]), q.z)))),
+                 mul(o, fma(set(k.rot[6]), q.x, fma(set(k.rot[7]), q.y, mul(set(k.rot[8]), q.z))))};
+      const F n2 = noise(q2, k.seed[1], g2);
+      const F half_o = set(0.5f * k.octave);
+      g = {fma(half_o, fma(set(k.rot[0]), g2.x, fma(set(k.rot[3]), g2.y, mul(set(k.rot[6]), g2.z))), g1.x),
+           fma(half_o, fma(set(k.rot[1]), g2.x, fma(set(k.rot[4]), g2.y, mul(set(k.rot[7]), g2.z))), g1.y),
+           fma(half_o, fma(set(k.rot[2]), g2.x, fma(set(k.rot[5]), g2.y, mul(set(k.rot[8]), g2.z))), g1.z)};
+      const F c = mul(sub(fma(set(0.5f), n2, n1), set(k.grain_mean)), set(1.0f / k.grain_sd));
+      f = fma(set(k.weight[0]), c, f);
+      gh = madd(gh, set(k.height[0] * k.inv_scale[0] / k.grain_sd), g);
+    }
+    if (k.weight[1] != 0.0f) {  // cracks
+      const F nk = noise(scale(p, set(k.inv_scale[1])), k.seed[2], g);
+      const F sign = _mm256_and_ps(nk, set(-0.0f));
+      const F a = _mm256_max_ps(zero, sub(one, mul(_mm256_andnot_ps(set(-0.0f), nk), set(1.0f / k.crack_width))));
+      // slope = sign(n) 2 a / w (0 where a = 0), c = -a^2
+      const F slope = _mm256_xor_ps(mul(a, set(2.0f / k.crack_width)), sign);
+      const F c = mul(sub(sub(zero, mul(a, a)), set(k.crack_mean)), set(1.0f / k.crack_sd));
+      f = fma(set(k.weight[1]), c, f);
+      gh = madd(gh, mul(slope, set(k.height[1] * k.inv_scale[1] / k.crack_sd)), g);
+    }
+    F stain = zero;
+    V sg{zero, zero, zero};
+    if (k.inv_scale[3] > 0.0f) {
+      stain = mul(noise(scale(p, set(k.inv_scale[3])), k.seed[3], sg), set(1.0f / k.value_sd));
+      sg = scale(sg, set(k.inv_scale[3] / k.value_sd));
+    }
+    if (k.weight[2] != 0.0f) {  // strata
+      constexpr float kTwoPi = 6.28318530718f, kRoot2 = 1.41421356237f;
+      const F phase = mul(set(kTwoPi), fma(p.z, set(k.inv_scale[2]), mul(set(0.5f * k.value_sd), stain)));
+      F s, c;
+      sinCos(phase, s, c);
+      V dphase = scale(sg, set(kTwoPi * 0.5f * k.value_sd));
+      dphase.z = add(dphase.z, set(kTwoPi * k.inv_scale[2]));
+      f = fma(set(k.weight[2]), mul(set(kRoot2), s), f);
+      gh = madd(gh, mul(set(k.height[2] * kRoot2), c), dphase);
+    }
+    if (k.weight[3] != 0.0f) {
+      f = fma(set(k.weight[3]), stain, f);
+      gh = madd(gh, set(k.height[3]), sg);
+    }
+    F region = zero;
+    if (k.tinted)
+      region = mul(noise(scale(p, set(k.inv_scale[4])), k.seed[4], g), set(1.0f / k.value_sd));
+    const F m = fma(set(k.contrast), f, one);
+    for (int c = 0; c < 3; ++c) {
+      const F a = mul(mul(set(k.albedo[c]), m), fma(set(k.tint[c]), region, one));
+      _mm256_storeu_ps(albedo[c] + i, _mm256_min_ps(one, _mm256_max_ps(zero, a)));
+    }
+    if (k.relief > 0.0f) {
+      const V nn{_mm256_loadu_ps(nx + i), _mm256_loadu_ps(ny + i), _mm256_loadu_ps(nz + i)};
+      const F dot = fma(gh.x, nn.x, fma(gh.y, nn.y, mul(gh.z, nn.z)));
+      const F r = set(k.relief);
+      // n - relief (gh - (gh . n) n)
+      const V t{fma(r, fma(dot, nn.x, sub(zero, gh.x)), nn.x), fma(r, fma(dot, nn.y, sub(zero, gh.y)), nn.y),
+                fma(r, fma(dot, nn.z, sub(zero, gh.z)), nn.z)};
+      const F len = _mm256_sqrt_ps(fma(t.x, t.x, fma(t.y, t.y, mul(t.z, t.z))));
+      const F inv = _mm256_div_ps(one, len);
+      _mm256_storeu_ps(nx + i, mul(t.x, inv));
+      _mm256_storeu_ps(ny + i, mul(t.y, inv));
+      _mm256_storeu_ps(nz + i, mul(t.z, inv));
+    }
+  }
+}
+
+#else
+
+bool rockAvx2Built() {
+  return false;
+}
+void rockShadeAvx2(const RockLanes&, int, const float*, const float*, const float*, float*, float*, float*,
+                   float* const[3]) {}
+
+#endif
+
+}  // namespace vision
+}  // namespace sensors
+}  // namespace unexmin

@@ -1,0 +1,321 @@
+// The procedural solid texture of a material (cpp/unexmin/sensors/vision/rock_texture.h) and the world file's
+// `material:` key (cpp/unexmin/sim/world_config.cpp): every expected value from the model's documented formulas
+// (docs/vision.md "Materials"), over seeded samples of points.
+#include <unexmin/sensors/vision/image_formation.h>
+#include <unexmin/sensors/vision/rock_texture.h>
+#include <unexmin/sensors/vision/surface_materials.h>
+#include <unexmin/sim/world_config.h>
+#include "expect_error.h"
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <vector>
+
+using unexmin::sensors::vision::RockTexture;
+using unexmin::sim::Material;
+using unexmin::test::contains;
+using unexmin::test::thrownMessage;
+
+namespace {
+
+Material rock(std::uint64_t seed, double contrast = 0.2) {
+  Material m = unexmin::sim::materialDefaults("rock");
+  m.seed = seed;
+  m.contrast = contrast;
+  return m;
+}
+
+/// n seeded points uniform in a cube of side `side` [m] centred on `centre`.
+std::vector<Eigen::Vector3f> points(int n, float side, const Eigen::Vector3f& centre = Eigen::Vector3f::Zero(),
+                                    unsigned seed = 11) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<float> u(-0.5f * side, 0.5f * side);
+  std::vector<Eigen::Vector3f> out;
+  for (int i = 0; i < n; ++i)
+    out.emplace_back(centre + Eigen::Vector3f(u(gen), u(gen), u(gen)));
+  return out;
+}
+
+struct Stats {
+  Eigen::Array3d mean = Eigen::Array3d::Zero(), sd = Eigen::Array3d::Zero();
+};
+
+Stats albedoStats(const RockTexture& t, const std::vector<Eigen::Vector3f>& pts) {
+  Stats s;
+  Eigen::Array3d s2 = Eigen::Array3d::Zero();
+  for (const auto& p : pts) {
+    const Eigen::Array3d a = t.albedo(p).cast<double>();
+    s.mean += a;
+    s2 += a * a;
+  }
+  s.mean /= pts.size();
+  s.sd = (s2 / pts.size() - s.mean * s.mean).sqrt();
+  return s;
+}
+
+}  // namespace
+
+TEST(RockTexture, SameSeedSameTextureOtherSeedAnother) {
+  const RockTexture a(rock(5)), b(rock(5)), c(rock(6));
+  double differ = 0.0;
+  const auto pts = points(2000, 4.0f);
+  for (const auto& p : pts) {
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(a.albedo(p)[k], b.albedo(p)[k]);  // bit for bit: a pure function
+    differ += std::abs(a.albedo(p)[1] - c.albedo(p)[1]) / pts.size();
+  }
+  // Two independent textures of relative sd 0.2 around 0.29: E|x - y| = 2 sd / sqrt(pi) = 0.065.
+  const double expected = 2.0 * 0.2 * rock(5).albedo.y() / std::sqrt(M_PI);
+  EXPECT_NEAR(differ, expected, 0.25 * expected);
+}
+
+TEST(RockTexture, MeanIsTheAlbedoAndContrastIsTheRelativeDeviation) {
+  // Over a 30 m cube (about 3000 of the 2 m stains), with the rock kind's four components.
+  const auto pts = points(60000, 30.0f);
+  for (double contrast : {0.1, 0.2, 0.3}) {
+    const Material m = rock(3, contrast);
+    const Stats s = albedoStats(RockTexture(m), pts);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(s.mean[k], m.albedo[k], 0.02 * m.albedo[k]) << "contrast " << contrast << " channel " << k;
+      EXPECT_NEAR(s.sd[k] / m.albedo[k], contrast, 0.1 * contrast) << "contrast " << contrast << " channel " << k;
+    }
+  }
+  // One component alone is normalised too.
+  Material grain = rock(4, 0.25);
+  grain.cracks = grain.strata = grain.stains = 0.0;
+  const Stats g = albedoStats(RockTexture(grain), points(40000, 2.0f));
+  EXPECT_NEAR(g.sd[0] / grain.albedo[0], 0.25, 0.025);
+  EXPECT_NEAR(g.mean[0], grain.albedo[0], 0.01 * grain.albedo[0]);
+}
+
+TEST(RockTexture, FieldHasZeroMeanUnitDeviationAndItsGradient) {
+  const RockTexture t(rock(8));
+  double s = 0.0, s2 = 0.0;
+  const auto pts = points(40000, 30.0f, Eigen::Vector3f(100, -50, -200));
+  for (const auto& p : pts) {
+    const double f = t.field(p);
+    s += f;
+    s2 += f * f;
+  }
+  EXPECT_NEAR(s / pts.size(), 0.0, 0.03);
+  EXPECT_NEAR(std::sqrt(s2 / pts.size()), 1.0, 0.08);
+  // The analytic gradients against central differences of the field and of the height.
+  const float step = 2e-4f;
+  for (const auto& p : points(200, 3.0f, Eigen::Vector3f(1, 2, 3))) {
+    Eigen::Vector3f gf, gh;
+    t.field(p, &gf);
+    t.height(p, &gh);
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3f d = Eigen::Vector3f::Zero();
+      d[a] = step;
+      const double df = (t.field(p + d) - t.field(p - d)) / (2.0 * step);
+      const double dh = (t.height(p + d) - t.height(p - d)) / (2.0 * step);
+      EXPECT_NEAR(gf[a], df, 0.03 * gf.norm() + 0.05) << "axis " << a;
+      EXPECT_NEAR(gh[a], dh, 0.03 * gh.norm() + 0.002) << "axis " << a;
+    }
+  }
+}
+
+TEST(RockTexture, ReliefTiltsTheNormalByTheHeightsSlope) {
+  std::mt19937 gen(3);
+  std::normal_distribution<float> g;
+  for (double relief : {0.0, 0.3, 1.0}) {
+    Material m = rock(9);
+    m.relief = relief;
+    const RockTexture t(m);
+    double rms = 0.0;
+    const auto pts = points(500, 5.0f);
+    for (const auto& p : pts) {
+      const Eigen::Vector3f n = Eigen::Vector3f(g(gen), g(gen), g(gen)).normalized();
+      const Eigen::Vector3f s = t.normal(p, n);
+      EXPECT_NEAR(s.norm(), 1.0, 1e-5);
+      Eigen::Vector3f gh;
+      t.height(p, &gh);
+      const double slope = (gh - gh.dot(n) * n).norm();  // |grad_t h|
+      const double tilt = std::atan2(s.cross(n).norm(), s.dot(n));
+      EXPECT_NEAR(std::tan(tilt), relief * slope, 1e-3 + 1e-3 * relief * slope);
+      rms += std::tan(tilt) * std::tan(tilt) / pts.size();
+    }
+    // The height field's RMS slope is about 1, its tangential part sqrt(2/3) of it on random planes.
+    if (relief == 0.0)
+      EXPECT_EQ(rms, 0.0);
+    else
+      EXPECT_NEAR(std::sqrt(rms), relief * std::sqrt(2.0 / 3.0), 0.25 * relief);
+  }
+  const RockTexture t(rock(9));
+  double slope2 = 0.0;
+  const auto pts = points(20000, 20.0f);
+  for (const auto& p : pts) {
+    Eigen::Vector3f gh;
+    t.height(p, &gh);
+    slope2 += gh.squaredNorm() / pts.size();
+  }
+  EXPECT_NEAR(std::sqrt(slope2), 1.0, 0.15);
+}
+
+TEST(RockTexture, RegionsOfAnotherHue) {
+  // tint: the means of small patches (0.5 m, of a fine grain alone: ~25^3 grains each) at 400 random places 4 km around
+  // vary with relative sd tint |d_k|.
+  Material m = rock(12, 0.2);
+  m.cracks = m.strata = m.stains = 0.0;
+  m.region = 20.0;
+  m.tint = 0.15;
+  const RockTexture t(m);
+  std::vector<Eigen::Array3d> means;
+  for (const auto& centre : points(400, 4000.0f, Eigen::Vector3f::Zero(), 5))  // at random places in the cells
+    means.push_back(albedoStats(t, points(200, 0.5f, centre)).mean);
+  Eigen::Array3d mean = Eigen::Array3d::Zero(), m2 = Eigen::Array3d::Zero();
+  for (const auto& x : means) {
+    mean += x / means.size();
+    m2 += x * x / means.size();
+  }
+  const Eigen::Array3d rel = (m2 - mean * mean).sqrt() / m.albedo.array();
+  // One channel has |d_k| = 1: its relative sd is tint (the patches' own grain averages out).
+  EXPECT_NEAR(rel.maxCoeff(), m.tint, 0.2 * m.tint);
+  // Without tint the patches differ only by their own texture.
+  m.tint = 0.0;
+  const RockTexture plain(m);
+  EXPECT_LT(std::abs(albedoStats(plain, points(200, 0.5f, {0, 0, 0})).mean[0] -
+                     albedoStats(plain, points(200, 0.5f, {500, 0, 0})).mean[0]),
+            0.02 * m.albedo[0]);
+}
+
+TEST(RockTexture, BadParametersNameTheKey) {
+  EXPECT_TRUE(contains(thrownMessage([] { unexmin::sim::materialDefaults("marble", "m."); }), "'m.kind' = 'marble'"));
+  Material m = rock(1);
+  m.grain = -0.1;
+  EXPECT_TRUE(
+      contains(thrownMessage([&] { RockTexture t(m, "meshes[0].material."); }), "'meshes[0].material.grain' = -0.1"));
+  m = rock(1);
+  m.contrast = 1.5;
+  EXPECT_TRUE(contains(thrownMessage([&] { RockTexture t(m); }), "'contrast' = 1.5: expected a number in [0, 1]"));
+  m = rock(1);
+  m.contrast = -0.1;
+  EXPECT_TRUE(contains(thrownMessage([&] { RockTexture t(m); }), "'contrast' = -0.1"));
+  m = rock(1);
+  m.stains = NAN;
+  EXPECT_TRUE(contains(thrownMessage([&] { RockTexture t(m); }), "'stains' = nan"));
+  m = rock(1);
+  m.kind = "granite";
+  EXPECT_TRUE(
+      contains(thrownMessage([&] { RockTexture t(m); }), "'kind' = 'granite': expected plain|rock|painted|rusty"));
+}
+
+namespace {
+
+std::string worldWith(const std::string& name, const std::string& mesh_keys) {
+  const std::string dir = unexmin::test::testTempDir();
+  std::ofstream(dir + "tri.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+  const std::string path = dir + name;
+  std::ofstream(path) << "name: w\nmeshes:\n  - {name: wall, file: tri.stl" << mesh_keys
+                      << "}\nrobots:\n  - {name: UX_1}\n";
+  return path;
+}
+
+std::string configError(const std::string& path) {
+  return thrownMessage<unexmin::ConfigError>([&] { unexmin::sim::loadWorldConfig(path); });
+}
+
+}  // namespace
+
+TEST(WorldFileMaterial, ReadsTheKindsDefaultsAndTheGivenKeys) {
+  const auto w = unexmin::sim::loadWorldConfig(
+      worldWith("m.world",
+                ", material: {kind: rock, albedo: [0.4, 0.3, 0.2], seed: 17, grain: 0.05, tint: 0.1, "
+                "region: 25}"));
+  const Material& m = w.meshes.at(0).material;
+  EXPECT_EQ(m.kind, "rock");
+  EXPECT_EQ(m.seed, 17u);
+  EXPECT_DOUBLE_EQ(m.grain, 0.05);
+  EXPECT_DOUBLE_EQ(m.cracks, unexmin::sim::materialDefaults("rock").cracks);
+  EXPECT_DOUBLE_EQ(m.region, 25.0);
+  EXPECT_DOUBLE_EQ(w.meshes[0].albedo.z(), 0.2);  // the mesh's albedo is the material's mean
+  // Today's per-mesh albedo is the plain material.
+  const auto p = unexmin::sim::loadWorldConfig(worldWith("p.world", ", albedo: [0.5, 0.6, 0.7]"));
+  EXPECT_EQ(p.meshes[0].material.kind, "plain");
+  EXPECT_DOUBLE_EQ(p.meshes[0].material.albedo.y(), 0.6);
+  const unexmin::sensors::vision::SurfaceMaterials sm(p);
+  EXPECT_FALSE(sm.textured(0));
+  EXPECT_FLOAT_EQ(sm.albedo(0, Eigen::Vector3f(0.3f, 0.2f, 0.0f))[1], 0.6f);
+}
+
+TEST(WorldFileMaterial, TextureIsInTheMeshFrame) {
+  // The same wall placed elsewhere and turned: the same albedo at the same point of its own frame.
+  const auto a = unexmin::sim::loadWorldConfig(worldWith("a.world", ", material: {kind: rock, seed: 2}"));
+  const auto b = unexmin::sim::loadWorldConfig(
+      worldWith("b.world", ", xyz: [10, -3, 2], rpy: [0.3, -0.2, 1.1], material: {kind: rock, seed: 2}"));
+  const unexmin::sensors::vision::SurfaceMaterials ma(a), mb(b);
+  const Eigen::Isometry3f pose = b.meshes[0].pose.cast<float>();
+  for (const auto& p : points(50, 2.0f))
+    EXPECT_NEAR(ma.albedo(0, p)[0], mb.albedo(0, pose * p)[0], 1e-5);
+}
+
+TEST(WorldFileMaterial, BadMaterialNamesTheFileAndTheKey) {
+  const std::string kind = worldWith("k.world", ", material: {kind: marble}");
+  EXPECT_TRUE(contains(configError(kind), kind + ": 'meshes[0].material.kind' = 'marble': expected plain|rock"));
+  const std::string scale = worldWith("s.world", ", material: {kind: rock, cracks: -1}");
+  EXPECT_TRUE(contains(configError(scale), scale + ": 'meshes[0].material.cracks' = -1"));
+  const std::string contrast = worldWith("c.world", ", material: {kind: rock, contrast: 2}");
+  EXPECT_TRUE(contains(configError(contrast), contrast + ": 'meshes[0].material.contrast' = 2"));
+  const std::string typo = worldWith("t.world", ", material: {kind: rock, grian: 0.1}");
+  EXPECT_TRUE(contains(configError(typo), typo + ": 'meshes[0].material.grian' is not a material key"));
+  const std::string both = worldWith("b2.world", ", albedo: [0.1, 0.1, 0.1], material: {kind: rock}");
+  EXPECT_TRUE(contains(configError(both), "'meshes[0].albedo' and 'meshes[0].material' both given"));
+  const std::string plain = worldWith("p2.world", ", material: {kind: plain, contrast: 0.3}");
+  EXPECT_TRUE(contains(configError(plain), "'meshes[0].material.kind' = 'plain'"));
+  const std::string seed = worldWith("s2.world", ", material: {kind: rock, seed: -3}");
+  EXPECT_TRUE(contains(configError(seed), "'meshes[0].material.seed' = -3"));
+}
+
+TEST(RockTexture, EightLanesEqualOne) {
+  // shadeMany in AVX2 lanes against one point at a time: every kind, with tint and relief, 203 points (a tail of 3)
+  // within 4 m of the mesh origin: albedo within 2e-5, normals within 2e-4 (seen: 7e-5; the relief's gradients
+  // amplify the rounding of FMA and of the lanes' sine).
+  if (unexmin::sensors::vision::ImageFormation::simdAvailable())
+    EXPECT_TRUE(unexmin::sensors::vision::rockAvx2Built()) << "a CPU with AVX2 and FMA must use the eight lanes";
+  std::mt19937 gen(21);
+  std::normal_distribution<float> g;
+  for (const char* kind : {"rock", "painted", "rusty"}) {
+    Material m = unexmin::sim::materialDefaults(kind);
+    m.seed = 77;
+    m.region = 15.0;
+    m.tint = 0.2;
+    m.relief = 0.8;
+    const RockTexture t(m);
+    const auto pts = points(203, 4.0f, Eigen::Vector3f(-3, 1, -2), 4);
+    const int n = static_cast<int>(pts.size());
+    std::vector<float> x(n), y(n), z(n), nx[2], ny[2], nz[2], a[2][3];
+    for (int s = 0; s < 2; ++s) {
+      nx[s].resize(n), ny[s].resize(n), nz[s].resize(n);
+      for (auto& c : a[s])
+        c.resize(n);
+    }
+    for (int i = 0; i < n; ++i) {
+      x[i] = pts[i].x(), y[i] = pts[i].y(), z[i] = pts[i].z();
+      const Eigen::Vector3f d = Eigen::Vector3f(g(gen), g(gen), g(gen)).normalized();
+      for (int s = 0; s < 2; ++s)
+        nx[s][i] = d.x(), ny[s][i] = d.y(), nz[s][i] = d.z();
+    }
+    for (int s = 0; s < 2; ++s) {
+      float* const out[3] = {a[s][0].data(), a[s][1].data(), a[s][2].data()};
+      t.shadeMany(n, x.data(), y.data(), z.data(), nx[s].data(), ny[s].data(), nz[s].data(), out, s == 1);
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a[1][c][i], a[0][c][i], 2e-5f) << kind << " point " << i;
+      EXPECT_NEAR(nx[1][i], nx[0][i], 2e-4f) << kind << " point " << i;
+      EXPECT_NEAR(ny[1][i], ny[0][i], 2e-4f) << kind << " point " << i;
+      EXPECT_NEAR(nz[1][i], nz[0][i], 2e-4f) << kind << " point " << i;
+      // and one point at a time is shade() itself
+      float one[3];
+      Eigen::Vector3f s;
+      t.shade(pts[i], Eigen::Vector3f(nx[0][i], ny[0][i], nz[0][i]), one, s);
+      EXPECT_EQ(one[0], a[0][0][i]);
+    }
+  }
+}
