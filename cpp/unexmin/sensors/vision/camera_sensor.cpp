@@ -300,9 +300,9 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
                          static_cast<float>(kHullAlbedo.z())};
   const bool simd = simd_ && ImageFormation::simdAvailable();
   // Textured surfaces: albedo and shading normal at each hit, the pixels of one mesh at a time (eight in lanes).
-  std::size_t material_of[kMax];  // the textured mesh hit, or kNone
+  std::size_t material_of[raycast::kBlock];  // the textured mesh hit, or kNone
   constexpr std::size_t kNone = ~std::size_t(0);
-  float tex_albedo[3][kMax], tex_normal[3][kMax];
+  float tex_albedo[3][raycast::kBlock], tex_normal[3][raycast::kBlock];
   for (int i = 0; i < n; ++i) {
     const bool textured = hits[i].hit() && hits[i].kind == raycast::HitKind::mesh &&
                           materials_->textured(static_cast<std::size_t>(hits[i].index));
@@ -312,8 +312,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     const std::size_t mesh = material_of[first];
     if (mesh == kNone || (first > 0 && std::find(material_of, material_of + first, mesh) != material_of + first))
       continue;  // not textured, or this mesh is done
-    alignas(32) float x[3][kMax], nrm[3][kMax], albedo[3][kMax];
-    int which[kMax], count = 0;
+    alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
+    int which[raycast::kBlock], count = 0;
     for (int i = first; i < n; ++i) {
       if (material_of[i] != mesh) continue;
       const Eigen::Vector3f p = hits[i].point(rays[i]);
