@@ -162,3 +162,44 @@ def test_a_world_file_that_is_not_one_raises(tmp_path):
     bad.write_text("name: [unclosed\n")
     with pytest.raises(ValueError, match="bad.world"):
         World(str(bad), sensors="none")
+
+
+def test_camera_images_are_views_without_a_copy(urdf):
+    w = World("tank", sensors="camera", mode="visual", descriptions={"UX_1": urdf})
+    ux = w.robot("UX_1")
+    assert ux.sample("camera_0")["time"] < 0 and "image" not in ux.sample("camera_0")
+    w.run_for(0.1)  # the cameras' first frame (10 fps)
+    first, again = ux.sample("camera_0"), ux.sample("camera_0")
+    image = first["image"]
+    assert first["rendered"] and image.dtype == np.uint8 and image.ndim == 3 and image.shape[2] == 3
+    assert not image.flags.owndata and np.shares_memory(image, again["image"]), "a view of the camera's frame"
+    assert image.max() > image.min(), "the tank is in sight: the image is not uniform"
+    operational = World("tank", sensors="camera", descriptions={"UX_1": urdf})
+    operational.run_for(0.1)
+    assert operational.robot("UX_1").sample("camera_0")["rendered"] is False
+
+
+def test_step_releases_the_gil(urdf):
+    import threading
+    import time
+
+    w = World("tank", sensors="all", descriptions={"UX_1": urdf})
+    span = []
+
+    def stepping():
+        span.append(time.perf_counter())
+        w.step(10000)  # 20 s of sim time with every sensor: 0.1 s or more of wall time
+        span.append(time.perf_counter())
+
+    thread = threading.Thread(target=stepping)
+    turns = []
+    thread.start()
+    while thread.is_alive():  # this thread's Python runs while the other is inside step(), or it waits
+        turns.append(time.perf_counter())
+    thread.join()
+    assert w.step_count == 10000
+    inside = [t for t in turns if span[0] <= t <= span[1]]
+    gaps = np.diff([span[0], *inside, span[1]])
+    assert gaps.max() < 0.5 * (
+        span[1] - span[0]
+    ), f"this thread stood still for {gaps.max():.3f} s of the {span[1] - span[0]:.3f} s step(): it held the GIL"
