@@ -203,3 +203,26 @@ def test_step_releases_the_gil(urdf):
     assert gaps.max() < 0.5 * (
         span[1] - span[0]
     ), f"this thread stood still for {gaps.max():.3f} s of the {span[1] - span[0]:.3f} s step(): it held the GIL"
+
+
+def test_the_world_files_current_and_visibility_are_honoured(tmp_path, urdf):
+    import yaml
+
+    from unexmin.worlds.files import PACKAGE_DIR, link_meshes
+
+    source = PACKAGE_DIR / "worlds" / "tank.world"
+    world = yaml.safe_load(source.read_text())
+    link_meshes(world["meshes"], str(source.parent), str(tmp_path))
+    # a steady 0.2 m/s current towards +y (horizontal angle pi/2, no noise), murky water
+    world["current"]["speed"].update(mean=0.2, noise=0.0)
+    world["current"]["horizontal_angle"].update(mean=math.pi / 2, noise=0.0)
+    world["visibility"]["level"] = "medium"
+    path = tmp_path / "drift.world"
+    path.write_text(yaml.safe_dump(world))
+    w = World(str(path), sensors="none", descriptions={"UX_1": urdf})
+    assert w.visibility == "medium"
+    np.testing.assert_allclose(w.current, [0.2 * math.cos(math.pi / 2), 0.2, 0.0], atol=1e-12)
+    start = w.robot("UX_1").state()["position"]
+    w.run_for(10.0)
+    moved = w.robot("UX_1").state()["position"] - start
+    assert moved[1] > 0.3 and abs(moved[0]) < 0.2 * moved[1], f"the robot drifts with the current: {moved}"
