@@ -15,6 +15,7 @@
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
 
+#include <btBulletDynamicsCommon.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -217,6 +218,41 @@ py::dict state(CoreWorld& w, const std::string& robot) {
   return d;
 }
 
+/// Where the robot's hull touches something now (the world's meshes, another robot): Bullet's contact points of the
+/// last step with a distance <= 0, read through its public contact manifolds.
+py::dict contacts(CoreWorld& w, const std::string& robot) {
+  const btCollisionObject* body = w.robot(robot).body();
+  btDispatcher* dispatcher = w.world().physics().getDispatcher();
+  std::vector<double> position, normal, depth, impulse;
+  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+    const bool first = m->getBody0() == body;
+    if (!first && m->getBody1() != body)
+      continue;
+    for (int j = 0; j < m->getNumContacts(); ++j) {
+      const btManifoldPoint& p = m->getContactPoint(j);
+      if (p.getDistance() > 0.0)
+        continue;
+      // Bullet's normal points from body 1 to body 0: turn it to point from the obstacle into the robot.
+      const btVector3 at = first ? p.getPositionWorldOnB() : p.getPositionWorldOnA();
+      const btVector3 n = first ? p.m_normalWorldOnB : -p.m_normalWorldOnB;
+      for (int k = 0; k < 3; ++k) {
+        position.push_back(at[k]);
+        normal.push_back(n[k]);
+      }
+      depth.push_back(-p.getDistance());
+      impulse.push_back(p.getAppliedImpulse());
+    }
+  }
+  const py::ssize_t n = static_cast<py::ssize_t>(depth.size());
+  py::dict d;
+  d["position"] = copyOf(position).reshape({n, py::ssize_t(3)});
+  d["normal"] = copyOf(normal).reshape({n, py::ssize_t(3)});
+  d["depth"] = copyOf(depth);
+  d["impulse"] = copyOf(impulse);
+  return d;
+}
+
 /// The newest sample of one sensor as numpy arrays (copies, except camera images: see below).
 py::dict sample(CoreWorld& w, const std::string& robot, const std::string& name, py::object owner) {
   sensors::Sensor& s = w.sensor(robot, name);
@@ -349,6 +385,7 @@ PYBIND11_MODULE(_core, m) {
                            "[" + formatNumber(p.min_mass) + ", " + formatNumber(p.max_mass) + "] kg");
            })
       .def("state", &state, py::arg("robot"))
+      .def("contacts", &contacts, py::arg("robot"))
       .def("sensor_names",
            [](CoreWorld& w, const std::string& r) {
              std::vector<std::pair<std::string, std::string>> out;

@@ -226,3 +226,16 @@ def test_the_world_files_current_and_visibility_are_honoured(tmp_path, urdf):
     w.run_for(10.0)
     moved = w.robot("UX_1").state()["position"] - start
     assert moved[1] > 0.3 and abs(moved[0]) < 0.2 * moved[1], f"the robot drifts with the current: {moved}"
+
+
+def test_contacts_of_a_robot_pressed_on_a_wall(urdf):
+    w = World("tank", sensors="none", descriptions={"UX_1": urdf})
+    ux = w.robot("UX_1")
+    assert ux.contacts()["depth"].shape == (0,), "at its spawn pose the robot touches nothing"
+    ux.thrusts([-20.0, 0, 20.0, 0, -20.0, 0, 20.0, 0])  # backwards, into the wall x = -3 (tank.world)
+    w.run_for(4.0)
+    c = ux.contacts()
+    assert len(c["depth"]) > 0 and c["position"].shape == c["normal"].shape == (len(c["depth"]), 3)
+    np.testing.assert_allclose(c["position"][:, 0], -3.0, atol=0.02)  # on the wall
+    np.testing.assert_allclose(c["normal"], np.tile([1.0, 0.0, 0.0], (len(c["depth"]), 1)), atol=0.05)
+    assert np.all(c["depth"] >= 0.0) and c["impulse"].sum() > 0.0

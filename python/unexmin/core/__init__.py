@@ -64,6 +64,13 @@ class Robot:
         frame (REP-105); ``time`` [s]."""
         return self.world._core.state(self.name)
 
+    def contacts(self):
+        """Where the hull touches the world's meshes or another robot after the last step: dict of numpy arrays,
+        one row per contact point: ``position`` (N x 3) on the obstacle's surface [m] and ``normal`` (N x 3, unit)
+        from the obstacle into the robot, world frame; ``depth`` (N) of penetration [m]; ``impulse`` (N) the
+        physics engine's normal impulse over the last step [N s]. Empty (N = 0) when nothing touches."""
+        return self.world._core.contacts(self.name)
+
     @property
     def sensors(self):
         """{sensor name: family} of the sensors that run (the families World's ``sensors`` keeps)."""
