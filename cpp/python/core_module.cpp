@@ -20,6 +20,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -112,6 +113,7 @@ public:
   /// `n` physics steps, each as the simulator's lockstep step: commands held (the watchdog does not expire them)
   /// when `hold`, then the world, the caster, every robot's sensors.
   void step(std::uint64_t n, bool hold) {
+    const Busy busy(*this);
     for (std::uint64_t i = 0; i < n; ++i) {
       if (hold)
         for (std::size_t r = 0; r < world_->robotCount(); ++r)
@@ -126,15 +128,22 @@ public:
   }
 
   void reset(std::uint64_t seed) {
+    const Busy busy(*this);
     world_->reset(seed);
     for (auto& s : suites_)
       s->reset(seed);
   }
 
-  sim::World& world() { return *world_; }
+  /// True while step() or reset() runs (in another thread: they release the GIL).
+  bool busy() const { return busy_; }
+  sim::World& world() {
+    idle();
+    return *world_;
+  }
   std::string selection() const { return selection_.text(); }
 
   std::size_t index(const std::string& robot) const {
+    idle();
     std::vector<std::string> names;
     for (std::size_t i = 0; i < world_->robotCount(); ++i) {
       if (world_->robot(i).name() == robot)
@@ -164,6 +173,23 @@ public:
   }
 
 private:
+  /// Marks the world busy for the life of a step() or reset(); a second one at the same time raises.
+  struct Busy {
+    explicit Busy(CoreWorld& w) : w_(w) {
+      if (w_.busy_.exchange(true))
+        throw std::runtime_error(kBusy);
+    }
+    ~Busy() { w_.busy_ = false; }
+    CoreWorld& w_;
+  };
+  static constexpr const char* kBusy =
+      "this World is stepping (or resetting) in another thread: wait for that call to return (one thread per World)";
+  void idle() const {
+    if (busy_)
+      throw std::runtime_error(kBusy);
+  }
+
+  std::atomic<bool> busy_{false};
   ros_layer::SensorRegistry registry_;
   sensors::SensorSelection selection_;
   std::unique_ptr<sim::World> world_;
@@ -340,6 +366,7 @@ PYBIND11_MODULE(_core, m) {
            py::arg("visibility"), py::arg("physics_rate"), py::arg("mode"), py::arg("ray_caster_threads"))
       .def("step", &CoreWorld::step, py::arg("n"), py::arg("hold"), py::call_guard<py::gil_scoped_release>())
       .def("reset", &CoreWorld::reset, py::arg("seed"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("busy", &CoreWorld::busy)
       .def_property_readonly("time", [](CoreWorld& w) { return w.world().time(); })
       .def_property_readonly("step_count", [](CoreWorld& w) { return w.world().stepCount(); })
       .def_property_readonly("dt", [](CoreWorld& w) { return w.world().dt(); })

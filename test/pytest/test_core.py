@@ -239,3 +239,28 @@ def test_contacts_of_a_robot_pressed_on_a_wall(urdf):
     np.testing.assert_allclose(c["position"][:, 0], -3.0, atol=0.02)  # on the wall
     np.testing.assert_allclose(c["normal"], np.tile([1.0, 0.0, 0.0], (len(c["depth"]), 1)), atol=0.05)
     assert np.all(c["depth"] >= 0.0) and c["impulse"].sum() > 0.0
+
+
+def test_a_world_stepping_in_another_thread_refuses_other_calls(urdf):
+    import threading
+    import time
+
+    w = World("tank", sensors="all", descriptions={"UX_1": urdf})
+    thread = threading.Thread(target=w.step, args=(20000,))
+    thread.start()
+    deadline = time.monotonic() + 30.0
+    while not w._core.busy and thread.is_alive() and time.monotonic() < deadline:
+        pass
+    assert w._core.busy, "the step() call in the other thread never started"
+    for call in (
+        lambda: w.step(1),
+        lambda: w.reset(),
+        lambda: w.time,
+        lambda: w.robot("UX_1").state(),
+        lambda: w.robot("UX_1").sample("m3"),
+        lambda: w.robot("UX_1").thrusts([0.0] * 8),
+    ):
+        with pytest.raises(RuntimeError, match="stepping .* in another thread"):
+            call()
+    thread.join()
+    assert w.step_count == 20000 and not w._core.busy
