@@ -29,6 +29,8 @@ apt_packages=(
   iproute2
   # teleop:=keyboard opens the keyboard teleop in a terminal window of its own (launch/teleop.launch)
   xterm
+  # unexmin.core, the engine in-process from Python (docs/python_api.md)
+  pybind11-dev
 )
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
   trimesh==4.5.3 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Real-time factor of the engine in-process (unexmin.core), no ROS: the tank, one robot.
+
+    source scripts/env.sh && python bench/core_rtf.py [--world tank] [--seconds 60] [--repeat 3] [--threads 1]
+
+Two configurations: dynamics only (sensors="none") and every operational-mode sensor on (sensors="all",
+mode=operational: the cameras take no images). The robot holds a thrust command the whole time; the script calls
+step(500) (1 s of sim time at 500 Hz) --seconds times and prints sim time / wall time (and / this process's CPU
+time, which other processes on a loaded machine do not inflate), best of --repeat, plus the
+cost of one step and the process's peak resident memory. --threads: ray-casting threads (default 1: one core;
+0 = every hardware thread, as the simulator's default).
+"""
+
+import argparse
+import resource
+import time
+
+from unexmin.core import World
+
+
+def rtf(world, sensors, seconds, repeat, threads):
+    w = World(world, robots=1, seed=0, sensors=sensors, ray_caster_threads=threads)
+    ux = w.robot("UX_1")
+    best = best_cpu = 0.0
+    for _ in range(repeat):
+        w.reset()
+        ux.thrusts([5.0, 0, -5.0, 0, 5.0, 0, -5.0, 0])
+        start, start_cpu = time.perf_counter(), time.process_time()
+        for _ in range(seconds):
+            w.step(500)
+        best = max(best, w.time / (time.perf_counter() - start))
+        best_cpu = max(best_cpu, w.time / (time.process_time() - start_cpu))
+    return best, best_cpu, w.dt
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--world", default="tank")
+    parser.add_argument("--seconds", type=int, default=60, help="sim time per run [s] (default 60)")
+    parser.add_argument("--repeat", type=int, default=3, help="runs per configuration, the best counts")
+    parser.add_argument("--threads", type=int, default=1, help="ray-casting threads (0: every hardware thread)")
+    args = parser.parse_args()
+    for label, sensors in (("dynamics only", "none"), ("every operational sensor", "all")):
+        value, cpu, dt = rtf(args.world, sensors, args.seconds, args.repeat, args.threads)
+        print(
+            f"{args.world}, 1 robot, {label}: RTF {value:.1f} ({dt / value * 1e6:.2f} us of wall time per "
+            f"{dt * 1e3:g} ms step), {cpu:.1f} in this process's CPU time"
+        )
+    print(f"peak RSS {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
+
+
+if __name__ == "__main__":
+    main()

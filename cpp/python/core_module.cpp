@@ -1,0 +1,427 @@
+// unexmin._core: the simulator's engine in-process from Python (docs/python_api.md, "unexmin.core"). The same
+// World, ray caster and sensor models the simulator node builds (cpp/unexmin/ros_layer/simulator_ros.cpp), stepped in
+// the same order: world step, caster update, every robot's sensors. No ROS runs: the sensor models come from the
+// simulator's one registration point (SensorRegistry::builtin()), whose publishers are never made here.
+#include <unexmin/raycast/ray_caster.h>
+#include <unexmin/ros_layer/sensor_registry.h>
+#include <unexmin/sensors/dvl_sensor.h>
+#include <unexmin/sensors/imu_sensor.h>
+#include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/sensors/sensor_suite.h>
+#include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/sensors/sonar/msis_sensor.h>
+#include <unexmin/sensors/vision/camera_sensor.h>
+#include <unexmin/sensors/vision/sls_sensor.h>
+#include <unexmin/sim/robot_description.h>
+#include <unexmin/sim/world.h>
+
+#include <btBulletDynamicsCommon.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace unexmin {
+namespace python {
+namespace {
+
+[[noreturn]] void badArgument(const std::string& name, const std::string& value, const std::string& expected) {
+  throw py::value_error(name + " = " + value + ": expected " + expected);
+}
+
+py::array_t<double> vector3(const Eigen::Vector3d& v) {
+  py::array_t<double> a(3);
+  auto r = a.mutable_unchecked<1>();
+  for (int i = 0; i < 3; ++i)
+    r(i) = v[i];
+  return a;
+}
+
+template <class T>
+py::array_t<T> copyOf(const std::vector<T>& v) {
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+/// The robot names a world file spawns, in its order.
+std::vector<std::string> robotNames(const std::string& world_file) {
+  std::vector<std::string> names;
+  for (const auto& spawn : sim::loadWorldConfig(world_file).robots)
+    names.push_back(spawn.name);
+  return names;
+}
+
+class CoreWorld {
+public:
+  /// As the simulator node with ~world_file, ~robots, ~seed, ~sensors, ~visibility, ~physics_rate,
+  /// ~ray_caster_threads and /sim/mode; `descriptions`: robot name -> URDF text (xacro expanded).
+  CoreWorld(const std::string& world_file, const std::map<std::string, std::string>& descriptions, int robots,
+            std::uint64_t seed, const std::string& sensors, const std::string& visibility, double physics_rate,
+            const std::string& mode, int ray_caster_threads)
+      : registry_(ros_layer::SensorRegistry::builtin()) {
+    if (robots < 1 || robots > 3)
+      badArgument("robots", std::to_string(robots), "1, 2 or 3");
+    if (!(physics_rate >= 100.0 && physics_rate <= 20000.0))
+      badArgument("physics_rate", formatNumber(physics_rate), "[100, 20000] Hz");
+    if (mode != "operational" && mode != "visual")
+      badArgument("mode", "'" + mode + "'", "operational|visual");
+    if (visibility != "" && visibility != "none" && visibility != "low" && visibility != "medium" &&
+        visibility != "high")
+      badArgument("visibility", "'" + visibility + "'", "none|low|medium|high (or empty: the world file's level)");
+    if (ray_caster_threads < 0)
+      badArgument("ray_caster_threads", std::to_string(ray_caster_threads), ">= 0 (0 = every hardware thread)");
+
+    sim::WorldConfig config = sim::loadWorldConfig(world_file);
+    if (!visibility.empty())
+      config.visibility = visibility;
+    if (robots > static_cast<int>(config.robots.size()))
+      badArgument("robots", std::to_string(robots),
+                  "at most " + std::to_string(config.robots.size()) + " (spawn poses in " + world_file + ")");
+    std::map<std::string, sim::RobotDescription> parsed;
+    for (int i = 0; i < robots; ++i) {
+      const std::string& name = config.robots[i].name;
+      const auto found = descriptions.find(name);
+      if (found == descriptions.end())
+        badArgument("descriptions", "(no '" + name + "')", "a description of " + name);
+      parsed.emplace(name, sim::parseRobotDescription(found->second, name + " description"));
+    }
+    world_ = std::make_unique<sim::World>(config, parsed, robots, 1.0 / physics_rate, seed);
+    selection_ = sensors::SensorSelection::parse(sensors, registry_.types(), "sensors");
+    if (!selection_.none()) {
+      raycast::RayCasterOptions options;
+      options.threads = ray_caster_threads;
+      try {
+        caster_ = raycast::makeRayCaster(config.ray_caster, *world_, options);
+      } catch (const RayCasterError& e) {
+        throw ConfigError(world_file + ": 'ray_caster': " + e.what());
+      }
+      caster_->update();
+    }
+    const bool visual = mode == "visual";
+    for (std::size_t i = 0; i < world_->robotCount(); ++i)
+      suites_.push_back(std::make_unique<sensors::SensorSuite>(*world_, world_->robot(i), caster_.get(),
+                                                               registry_.models(), selection_, visual));
+  }
+
+  /// `n` physics steps, each as the simulator's lockstep step: commands held (the watchdog does not expire them)
+  /// when `hold`, then the world, the caster, every robot's sensors.
+  void step(std::uint64_t n, bool hold) {
+    const Busy busy(*this);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      if (hold)
+        for (std::size_t r = 0; r < world_->robotCount(); ++r)
+          for (std::size_t k = 0; k < world_->robot(r).thrusterCount(); ++k)
+            world_->robot(r).thruster(k).holdCommand(world_->time());
+      world_->step();
+      if (caster_)
+        caster_->update();
+      for (auto& s : suites_)
+        s->update();
+    }
+  }
+
+  void reset(std::uint64_t seed) {
+    const Busy busy(*this);
+    world_->reset(seed);
+    for (auto& s : suites_)
+      s->reset(seed);
+  }
+
+  /// True while step() or reset() runs (in another thread: they release the GIL).
+  bool busy() const { return busy_; }
+  sim::World& world() {
+    idle();
+    return *world_;
+  }
+  std::string selection() const { return selection_.text(); }
+
+  std::size_t index(const std::string& robot) const {
+    idle();
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < world_->robotCount(); ++i) {
+      if (world_->robot(i).name() == robot)
+        return i;
+      names.push_back(world_->robot(i).name());
+    }
+    std::string known;
+    for (const auto& n : names)
+      known += (known.empty() ? "" : ", ") + n;
+    throw py::key_error("robot = '" + robot + "': expected one of the spawned robots (" + known + ")");
+  }
+  sim::Robot& robot(const std::string& name) { return world_->robot(index(name)); }
+  sensors::SensorSuite& suite(const std::string& robot) { return *suites_[index(robot)]; }
+
+  sensors::Sensor& sensor(const std::string& robot, const std::string& name) {
+    sensors::SensorSuite& s = suite(robot);
+    if (sensors::Sensor* found = s.find(name))
+      return *found;
+    std::string known;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      known += (known.empty() ? "" : ", ") + s.sensor(i).name();
+    std::string off;
+    for (const auto& k : s.skipped())
+      off += (off.empty() ? "" : ", ") + k;
+    throw py::key_error("sensor = '" + name + "': expected one of " + robot + "'s running sensors (" + known + ")" +
+                        (off.empty() ? "" : "; off by sensors='" + selection_.text() + "': " + off));
+  }
+
+private:
+  /// Marks the world busy for the life of a step() or reset(); a second one at the same time raises.
+  struct Busy {
+    explicit Busy(CoreWorld& w) : w_(w) {
+      if (w_.busy_.exchange(true))
+        throw std::runtime_error(kBusy);
+    }
+    ~Busy() { w_.busy_ = false; }
+    CoreWorld& w_;
+  };
+  static constexpr const char* kBusy =
+      "this World is stepping (or resetting) in another thread: wait for that call to return (one thread per World)";
+  void idle() const {
+    if (busy_)
+      throw std::runtime_error(kBusy);
+  }
+
+  std::atomic<bool> busy_{false};
+  ros_layer::SensorRegistry registry_;
+  sensors::SensorSelection selection_;
+  std::unique_ptr<sim::World> world_;
+  std::unique_ptr<raycast::RayCaster> caster_;
+  std::vector<std::unique_ptr<sensors::SensorSuite>> suites_;
+};
+
+/// A finite command or a ValueError naming it.
+double finiteCommand(const std::string& name, double value) {
+  if (!std::isfinite(value))
+    badArgument(name, formatNumber(value), "a finite number");
+  return value;
+}
+
+void setThrusts(CoreWorld& w, const std::string& robot, const py::array_t<double, py::array::forcecast>& values) {
+  sim::Robot& r = w.robot(robot);
+  if (values.ndim() != 1 || static_cast<std::size_t>(values.shape(0)) != r.thrusterCount())
+    badArgument("thrusts",
+                std::to_string(values.size()) + " values in " + std::to_string(values.ndim()) + " dimension(s)",
+                std::to_string(r.thrusterCount()) + " values in one dimension (one per thruster of " + robot + ")");
+  auto v = values.unchecked<1>();
+  for (std::size_t i = 0; i < r.thrusterCount(); ++i) {
+    finiteCommand("thrusts[" + std::to_string(i) + "]", v(i));
+    const auto& p = r.thruster(i).params();
+    if (v(i) < p.min_command || v(i) > p.max_command)
+      badArgument("thrusts[" + std::to_string(i) + "]", formatNumber(v(i)),
+                  "[" + formatNumber(p.min_command) + ", " + formatNumber(p.max_command) + "]");
+  }
+  for (std::size_t i = 0; i < r.thrusterCount(); ++i)
+    r.thruster(i).setCommand(v(i), w.world().time());
+}
+
+/// Ground truth of the base link as the simulator's odometry: pose in world, twist in the body frame (REP-105),
+/// plus the body-frame linear acceleration over the last step.
+py::dict state(CoreWorld& w, const std::string& robot) {
+  const sim::RobotState s = w.robot(robot).state();
+  const Eigen::Quaterniond q(s.pose.linear());
+  const Eigen::Matrix3d Rt = s.pose.linear().transpose();
+  py::dict d;
+  d["time"] = w.world().time();
+  d["position"] = vector3(s.pose.translation());
+  py::array_t<double> quat(4);
+  auto qr = quat.mutable_unchecked<1>();
+  qr(0) = q.x();
+  qr(1) = q.y();
+  qr(2) = q.z();
+  qr(3) = q.w();
+  d["orientation"] = quat;
+  d["linear_velocity"] = vector3(Rt * s.linear_velocity);
+  d["angular_velocity"] = vector3(Rt * s.angular_velocity);
+  d["linear_acceleration"] = vector3(Rt * s.linear_acceleration);
+  return d;
+}
+
+/// Where the robot's hull touches something now (the world's meshes, another robot): Bullet's contact points of the
+/// last step with a distance <= 0, read through its public contact manifolds.
+py::dict contacts(CoreWorld& w, const std::string& robot) {
+  const btCollisionObject* body = w.robot(robot).body();
+  btDispatcher* dispatcher = w.world().physics().getDispatcher();
+  std::vector<double> position, normal, depth, impulse;
+  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+    const bool first = m->getBody0() == body;
+    if (!first && m->getBody1() != body)
+      continue;
+    for (int j = 0; j < m->getNumContacts(); ++j) {
+      const btManifoldPoint& p = m->getContactPoint(j);
+      if (p.getDistance() > 0.0)
+        continue;
+      // Bullet's normal points from body 1 to body 0: turn it to point from the obstacle into the robot.
+      const btVector3 at = first ? p.getPositionWorldOnB() : p.getPositionWorldOnA();
+      const btVector3 n = first ? p.m_normalWorldOnB : -p.m_normalWorldOnB;
+      for (int k = 0; k < 3; ++k) {
+        position.push_back(at[k]);
+        normal.push_back(n[k]);
+      }
+      depth.push_back(-p.getDistance());
+      impulse.push_back(p.getAppliedImpulse());
+    }
+  }
+  const py::ssize_t n = static_cast<py::ssize_t>(depth.size());
+  py::dict d;
+  d["position"] = copyOf(position).reshape({n, py::ssize_t(3)});
+  d["normal"] = copyOf(normal).reshape({n, py::ssize_t(3)});
+  d["depth"] = copyOf(depth);
+  d["impulse"] = copyOf(impulse);
+  return d;
+}
+
+/// The newest sample of one sensor as numpy arrays (copies, except camera images: see below).
+py::dict sample(CoreWorld& w, const std::string& robot, const std::string& name, py::object owner) {
+  sensors::Sensor& s = w.sensor(robot, name);
+  py::dict d;
+  d["name"] = s.name();
+  d["type"] = s.type();
+  d["time"] = s.sampleTime();
+  d["count"] = s.sampleCount();
+  if (auto* imu = dynamic_cast<sensors::ImuSensor*>(&s)) {
+    const auto& x = imu->last();
+    d["specific_force"] = vector3(x.specific_force);
+    d["angular_velocity"] = vector3(x.angular_velocity);
+    d["magnetic_field"] = vector3(x.magnetic_field);
+    d["temperature"] = x.temperature;
+    d["pressure"] = x.pressure;
+  } else if (auto* dvl = dynamic_cast<sensors::DvlSensor*>(&s)) {
+    const auto& x = dvl->last();
+    d["bottom_lock"] = x.bottom_lock;
+    d["velocity"] = vector3(x.velocity);
+    d["altitude"] = x.altitude;
+    d["pressure"] = x.pressure;
+    d["temperature"] = x.temperature;
+    d["sound_speed"] = x.sound_speed;
+    py::array_t<double> range(4), velocity(4);
+    py::array_t<bool> valid(4);
+    for (int i = 0; i < 4; ++i) {
+      range.mutable_at(i) = x.beams[i].range;
+      velocity.mutable_at(i) = x.beams[i].velocity;
+      valid.mutable_at(i) = x.beams[i].valid;
+    }
+    d["beam_range"] = range;
+    d["beam_velocity"] = velocity;
+    d["beam_valid"] = valid;
+  } else if (auto* p = dynamic_cast<sensors::PressureSensor*>(&s)) {
+    d["pressure"] = p->last().pressure;
+  } else if (auto* m3 = dynamic_cast<sensors::sonar::M3Sensor*>(&s)) {
+    d["ranges"] = copyOf(m3->last().ranges);
+    d["intensities"] = copyOf(m3->last().intensities);
+    py::array_t<double> angles(static_cast<py::ssize_t>(m3->beams()));
+    for (std::size_t k = 0; k < m3->beams(); ++k)
+      angles.mutable_at(k) = m3->beamAngle(k);
+    d["beam_angles"] = angles;
+  } else if (auto* msis = dynamic_cast<sensors::sonar::MsisSensor*>(&s)) {
+    d["angle"] = msis->last().angle;
+    d["intensity"] = copyOf(msis->last().intensity);
+  } else if (auto* sls = dynamic_cast<sensors::vision::SlsSensor*>(&s)) {
+    const auto& x = sls->last();
+    d["motor_angle"] = x.motor_angle;
+    d["ranges"] = copyOf(x.ranges);
+    py::array_t<float> points({static_cast<py::ssize_t>(x.points.size()), py::ssize_t(3)});
+    auto pr = points.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < x.points.size(); ++i)
+      for (int j = 0; j < 3; ++j)
+        pr(i, j) = x.points[i][j];
+    d["points"] = points;
+    d["intensity"] = copyOf(x.intensity);
+  } else if (auto* cam = dynamic_cast<sensors::vision::CameraSensor*>(&s)) {
+    const auto& f = cam->last();
+    d["rendered"] = f.rendered;
+    if (f.rendered) {
+      // A view of the frame the camera keeps (no copy): valid until the next step() or reset().
+      d["image"] =
+          py::array_t<std::uint8_t>({py::ssize_t(f.height), py::ssize_t(f.width), py::ssize_t(3)}, f.rgb.data(), owner);
+    }
+  }
+  return d;
+}
+
+}  // namespace
+}  // namespace python
+}  // namespace unexmin
+
+using unexmin::python::CoreWorld;
+using namespace unexmin;
+using namespace unexmin::python;
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "The unexmin simulator's engine in-process (use unexmin.core; docs/python_api.md)";
+  py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
+  m.def("robot_names", &robotNames, py::arg("world_file"), "Robot names the world file spawns, in its order.");
+  py::class_<CoreWorld>(m, "World")
+      .def(py::init<const std::string&, const std::map<std::string, std::string>&, int, std::uint64_t,
+                    const std::string&, const std::string&, double, const std::string&, int>(),
+           py::arg("world_file"), py::arg("descriptions"), py::arg("robots"), py::arg("seed"), py::arg("sensors"),
+           py::arg("visibility"), py::arg("physics_rate"), py::arg("mode"), py::arg("ray_caster_threads"))
+      .def("step", &CoreWorld::step, py::arg("n"), py::arg("hold"), py::call_guard<py::gil_scoped_release>())
+      .def("reset", &CoreWorld::reset, py::arg("seed"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("busy", &CoreWorld::busy)
+      .def_property_readonly("time", [](CoreWorld& w) { return w.world().time(); })
+      .def_property_readonly("step_count", [](CoreWorld& w) { return w.world().stepCount(); })
+      .def_property_readonly("dt", [](CoreWorld& w) { return w.world().dt(); })
+      .def_property_readonly("seed", [](CoreWorld& w) { return w.world().seed(); })
+      .def_property_readonly("visibility", [](CoreWorld& w) { return w.world().config().visibility; })
+      .def_property_readonly("sensors", &CoreWorld::selection)
+      .def_property_readonly("current", [](CoreWorld& w) { return vector3(w.world().current().velocity()); })
+      .def_property_readonly("robots",
+                             [](CoreWorld& w) {
+                               std::vector<std::string> names;
+                               for (std::size_t i = 0; i < w.world().robotCount(); ++i)
+                                 names.push_back(w.world().robot(i).name());
+                               return names;
+                             })
+      .def("thruster_count", [](CoreWorld& w, const std::string& r) { return w.robot(r).thrusterCount(); })
+      .def("set_thrusts", &setThrusts, py::arg("robot"), py::arg("values"))
+      .def("thrusts",
+           [](CoreWorld& w, const std::string& r) {
+             sim::Robot& robot = w.robot(r);
+             std::vector<double> t;
+             for (std::size_t i = 0; i < robot.thrusterCount(); ++i)
+               t.push_back(robot.thruster(i).thrust());
+             return copyOf(t);
+           })
+      .def("set_pendulum",
+           [](CoreWorld& w, const std::string& r, double angle) {
+             sim::Robot& robot = w.robot(r);
+             finiteCommand("angle", angle);
+             if (!robot.hasPendulum())
+               badArgument("robot", "'" + r + "'", "a robot with a pendulum");
+             const auto& p = robot.pendulum().params();
+             if (!robot.pendulum().setTarget(angle))
+               badArgument("angle", formatNumber(angle),
+                           "[" + formatNumber(p.min_angle) + ", " + formatNumber(p.max_angle) + "] rad");
+           })
+      .def("set_vbs",
+           [](CoreWorld& w, const std::string& r, double mass) {
+             sim::Robot& robot = w.robot(r);
+             finiteCommand("mass", mass);
+             const auto& p = robot.vbs().params();
+             if (!robot.vbs().setMass(mass))
+               badArgument("mass", formatNumber(mass),
+                           "[" + formatNumber(p.min_mass) + ", " + formatNumber(p.max_mass) + "] kg");
+           })
+      .def("state", &state, py::arg("robot"))
+      .def("contacts", &contacts, py::arg("robot"))
+      .def("sensor_names",
+           [](CoreWorld& w, const std::string& r) {
+             std::vector<std::pair<std::string, std::string>> out;
+             auto& s = w.suite(r);
+             for (std::size_t i = 0; i < s.size(); ++i)
+               out.emplace_back(s.sensor(i).name(), s.sensor(i).type());
+             return out;
+           })
+      .def("sample", [](py::object self, const std::string& r, const std::string& name) {
+        return sample(self.cast<CoreWorld&>(), r, name, self);
+      });
+}

@@ -1,0 +1,179 @@
+"""The simulator's engine in-process, no ROS in the loop (docs/python_api.md, "unexmin.core").
+
+``World`` is the C++ World, ray caster and sensor models the simulator node runs (the compiled module
+``unexmin._core``, built by catkin from the same libraries), stepped the way the node steps in lockstep: the same
+world file, seed and commands give the same trajectory and sensor samples as the ROS simulator, bit for bit.
+
+    from unexmin.core import World
+    w = World("tank", seed=3, sensors="imu,dvl,m3")
+    ux = w.robot("UX_1")
+    ux.thrusts([5, 0, -5, 0, 5, 0, -5, 0])      # [N] per thruster
+    w.step(500)                                # 1 s at 500 Hz, the GIL released
+    ux.state()["position"], ux.sample("m3")["ranges"]
+"""
+
+import math
+import os
+
+from unexmin.identify.description import ROBOT_FILE, expand
+from unexmin.worlds.files import world_path
+
+try:
+    from unexmin import _core
+except ImportError as e:  # the module is built by catkin_make into the workspace's devel space
+    raise ImportError(
+        f"unexmin._core is not built ({e}): build the workspace (catkin_make) and source scripts/env.sh"
+    ) from None
+
+__all__ = ["World", "Robot", "ConfigError", "robot_names"]
+
+#: A world file or robot description the engine refuses (a ValueError naming the file and the problem).
+ConfigError = _core.ConfigError
+robot_names = _core.robot_names
+
+
+class Robot:
+    """One spawned robot of a World (World.robot(name)): commands, ground truth, sensor samples."""
+
+    def __init__(self, world, name):
+        self.world = world
+        self.name = name
+        self.thruster_count = world._core.thruster_count(name)
+
+    def thrusts(self, values):
+        """Command every thruster at once (each thruster's command unit, [N] by default): one finite value per
+        thruster inside its command range; ValueError naming the value otherwise (nothing is applied then)."""
+        self.world._core.set_thrusts(self.name, values)
+
+    def achieved_thrusts(self):
+        """Achieved thrust per thruster [N] (numpy array), as on /<robot>/thrusters/<i>/thrust."""
+        return self.world._core.thrusts(self.name)
+
+    def pendulum(self, angle):
+        """Pendulum target angle [rad] (ValueError when not finite or out of range, or without a pendulum)."""
+        self.world._core.set_pendulum(self.name, angle)
+
+    def vbs(self, mass):
+        """Ballast mass of the VBS [kg] (ValueError when not finite or out of range)."""
+        self.world._core.set_vbs(self.name, mass)
+
+    def state(self):
+        """Ground truth of the base link, as the simulator's /<robot>/odom: dict of numpy arrays ``position``
+        [m] and ``orientation`` (quaternion x, y, z, w) in the world frame; ``linear_velocity`` [m/s],
+        ``angular_velocity`` [rad/s] and ``linear_acceleration`` (over the last step) [m/s^2] in the body
+        frame (REP-105); ``time`` [s]."""
+        return self.world._core.state(self.name)
+
+    def contacts(self):
+        """Where the hull touches the world's meshes or another robot after the last step: dict of numpy arrays,
+        one row per contact point: ``position`` (N x 3) on the obstacle's surface [m] and ``normal`` (N x 3, unit)
+        from the obstacle into the robot, world frame; ``depth`` (N) of penetration [m]; ``impulse`` (N) the
+        physics engine's normal impulse over the last step [N s]. Empty (N = 0) when nothing touches."""
+        return self.world._core.contacts(self.name)
+
+    @property
+    def sensors(self):
+        """{sensor name: family} of the sensors that run (the families World's ``sensors`` keeps)."""
+        return dict(self.world._core.sensor_names(self.name))
+
+    def sample(self, sensor):
+        """The newest sample of sensor `sensor` (a name of ``sensors``; KeyError listing them otherwise) as a dict
+        (docs/python_api.md lists the keys of each family); ``time`` < 0 before its first sample."""
+        return self.world._core.sample(self.name, sensor)
+
+
+class World:
+    """A world file with its robots, in this process (see the module's documentation).
+
+    world: a shipped world's name (tank, mine, test_box) or a world file's path; robots: how many of the world's
+    robots to spawn (1..3); seed: the simulator's seed (>= 0); sensors: "all", "none" or families
+    "imu,dvl,..." (as ``sensors:=``); visibility: none|low|medium|high overrides the world file's ("": keep
+    it); mode: operational|visual (cameras render, lights and lasers on); physics_rate [Hz]; overrides:
+    {robot name: xacro overrides file} (as ``UX_k_overrides:=``); descriptions: {robot name: URDF text}
+    instead of expanding urdf/ux1.urdf.xacro; ray_caster_threads: 0 = every hardware thread.
+    """
+
+    def __init__(
+        self,
+        world="tank",
+        robots=1,
+        seed=0,
+        sensors="all",
+        visibility="",
+        mode="operational",
+        physics_rate=500.0,
+        overrides=None,
+        descriptions=None,
+        ray_caster_threads=0,
+    ):
+        path = world_path(world)
+        if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+            raise ValueError(f"seed = {seed!r}: expected a non-negative whole number")
+        if isinstance(robots, bool) or int(robots) != robots or not 1 <= robots <= 3:
+            raise ValueError(f"robots = {robots!r}: expected 1, 2 or 3")
+        if not isinstance(physics_rate, (int, float)) or not math.isfinite(physics_rate):
+            raise ValueError(f"physics_rate = {physics_rate!r}: expected a finite number of Hz in [100, 20000]")
+        names = _core.robot_names(path)[: int(robots)]
+        overrides = dict(overrides or {})
+        for name, file in overrides.items():
+            if name not in names:
+                raise KeyError(f"overrides: robot '{name}' is not spawned (robots: {', '.join(names)})")
+            if file and not os.path.isfile(file):
+                raise FileNotFoundError(f"overrides['{name}'] = {file}: no such xacro file")
+        if descriptions is None:
+            descriptions = {n: expand(ROBOT_FILE, n, overrides.get(n) or None) for n in names}
+        self._core = _core.World(
+            path,
+            dict(descriptions),
+            int(robots),
+            int(seed),
+            str(sensors),
+            str(visibility),
+            float(physics_rate),
+            str(mode),
+            int(ray_caster_threads),
+        )
+        self.world_file = path
+        self._robots = {n: Robot(self, n) for n in self._core.robots}
+
+    @property
+    def robots(self):
+        """Names of the spawned robots, in the world file's order."""
+        return list(self._robots)
+
+    def robot(self, name):
+        """Handle on robot `name`; KeyError naming the spawned robots otherwise."""
+        if name not in self._robots:
+            raise KeyError(f"robot = '{name}': expected one of the spawned robots ({', '.join(self._robots)})")
+        return self._robots[name]
+
+    def step(self, n=1, hold=True):
+        """Advance exactly `n` physics steps with the GIL released; returns the sim time [s]. hold: keep every
+        command alive (the thruster watchdog, docs/simulator_node.md, does not zero them), as a script's
+        /sim/step does."""
+        if isinstance(n, bool) or int(n) != n or n < 0:
+            raise ValueError(f"n = {n!r}: expected a non-negative whole number of steps")
+        self._core.step(int(n), bool(hold))
+        return self._core.time
+
+    def run_for(self, seconds):
+        """Advance by `seconds` [s] of sim time rounded to whole physics steps; returns the sim time [s]."""
+        if not math.isfinite(seconds) or seconds < 0:
+            raise ValueError(f"seconds = {seconds!r}: expected a finite number >= 0")
+        return self.step(round(seconds / self._core.dt))
+
+    def reset(self, seed=None):
+        """Back to t = 0 (robots at their spawn poses at rest, actuators zero, sensors at turn-on), with `seed`
+        (default: the same)."""
+        seed = self._core.seed if seed is None else seed
+        if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+            raise ValueError(f"seed = {seed!r}: expected a non-negative whole number")
+        self._core.reset(int(seed))
+
+    time = property(lambda self: self._core.time, doc="Simulation time [s].")
+    step_count = property(lambda self: self._core.step_count, doc="Physics steps since t = 0.")
+    dt = property(lambda self: self._core.dt, doc="Physics step [s].")
+    seed = property(lambda self: self._core.seed, doc="The seed of the last reset (or the first).")
+    visibility = property(lambda self: self._core.visibility, doc="Water visibility level in force.")
+    sensors = property(lambda self: self._core.sensors, doc="The sensor families that run: all, none or a list.")
+    current = property(lambda self: self._core.current, doc="Water current now, world frame [m/s] (numpy).")
