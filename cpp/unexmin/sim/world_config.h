@@ -56,8 +56,9 @@ struct WorldConfig
   std::vector<RobotSpawn> robots;
 };
 
-/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect.
-WorldConfig loadWorldConfig(const std::string& path);
+/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect, first on a key that the
+/// world-file schema `schema_file` (default: worldSchemaFile(), world_schema.h) does not know.
+WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file = "");
 
 /// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
 Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
