@@ -2,6 +2,7 @@
 // with one line naming the file, the key's path, the accepted keys and the nearest one; every shipped world passes.
 #include <unexmin/sim/world_config.h>
 #include <unexmin/sim/world_schema.h>
+#include "expect_error.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -16,23 +17,13 @@ namespace {
 
 const std::string kSchema = std::string(UNEXMIN_SOURCE_DIR) + "/config/world_schema.yaml";
 
-std::string writeTemp(const std::string& name, const std::string& text)
+/// The message of the ConfigError that loading the world `text` (written to <temp>/`name`) throws; its path in `path`.
+std::string refusal(const std::string& name, const std::string& text, std::string& path,
+                    const std::string& schema = kSchema)
 {
-  const std::string path = unexmin::test::testTempDir() + name;
+  path = unexmin::test::testTempDir() + name;
   std::ofstream(path) << text;
-  return path;
-}
-
-/// The message of the ConfigError thrown by f ("" if none).
-template <typename F>
-std::string errorOf(F f)
-{
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
+  return unexmin::test::thrownMessage<ConfigError>([&] { sim::loadWorldConfig(path, schema); });
 }
 
 /// A world with every level present; each argument is appended to its level (top level, water, current.speed, the
@@ -75,22 +66,22 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey)
       {world("", "", "", "", "", ", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy",
        "description"},
   };
+  std::string path;
   for (const auto& c : cases) {
-    const std::string path = writeTemp("typo.world", c.text);
-    const std::string expected = path + ": unknown key '" + c.path + "' (accepted: " + c.accepted +
-                                 "); did you mean '" + c.nearest + "'?";
-    EXPECT_EQ(errorOf([&] { sim::loadWorldConfig(path, kSchema); }), expected);
+    const std::string message = refusal("typo.world", c.text, path);
+    EXPECT_EQ(message, path + ": unknown key '" + c.path + "' (accepted: " + c.accepted + "); did you mean '" +
+                           c.nearest + "'?");
   }
   // the same world without a typo is refused only for its missing mesh file, after every key passed
-  const std::string good = writeTemp("good.world", world("", "", "", "", "", ""));
-  EXPECT_NE(errorOf([&] { sim::loadWorldConfig(good, kSchema); }).find("nowhere.stl does not exist"),
+  EXPECT_NE(refusal("good.world", world("", "", "", "", "", ""), path).find("nowhere.stl does not exist"),
             std::string::npos);
 }
 
 TEST(WorldSchema, NoSuggestionWhenNoKeyIsClose)
 {
-  const std::string path = writeTemp("far.world", world("zzz: 1\n", "", "", "", "", ""));
-  EXPECT_EQ(errorOf([&] { sim::loadWorldConfig(path, kSchema); }),
+  std::string path;
+  const std::string message = refusal("far.world", world("zzz: 1\n", "", "", "", "", ""), path);
+  EXPECT_EQ(message,
             path + ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, ray_caster, "
                    "magnetic_field, current, meshes, robots)");
 }
@@ -127,13 +118,13 @@ TEST(WorldSchema, FoundInThePackageAndAMissingOneIsNamed)
   unsetenv("UNEXMIN_WORLD_SCHEMA");
   EXPECT_TRUE(std::filesystem::equivalent(sim::worldSchemaFile(), kSchema));
   setenv("UNEXMIN_WORLD_SCHEMA", "/nonexistent/world_schema.yaml", 1);
-  const std::string msg = errorOf([] { sim::worldSchemaFile(); });
+  const std::string msg = unexmin::test::thrownMessage<ConfigError>([] { sim::worldSchemaFile(); });
   unsetenv("UNEXMIN_WORLD_SCHEMA");
   EXPECT_EQ(msg,
             "world-file schema not found at /nonexistent/world_schema.yaml: expected the unexmin package's "
             "config/world_schema.yaml (or a file named by $UNEXMIN_WORLD_SCHEMA)");
-  const std::string good = writeTemp("good.world", world("", "", "", "", "", ""));
-  EXPECT_EQ(errorOf([&] { sim::loadWorldConfig(good, "/nonexistent/schema.yaml"); })
+  std::string path;
+  EXPECT_EQ(refusal("good.world", world("", "", "", "", "", ""), path, "/nonexistent/schema.yaml")
                 .rfind("/nonexistent/schema.yaml: cannot read the world-file schema", 0),
             0u);
 }

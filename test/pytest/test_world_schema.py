@@ -25,7 +25,8 @@ def world(top="", water="", speed="", mesh="", material="", robot=""):
         "visibility: {level: low, colour: [0.25, 0.3, 0.2]}\n"
         f"current:\n  speed: {{mean: 0.1, min: 0.0, max: 0.5, noise: 0.0, mu: 0.0{speed}}}\n"
         "meshes:\n  - {name: a, file: nowhere.stl}\n"
-        f"  - {{name: b, file: nowhere.stl, albedo: [0.1, 0.1, 0.1]{mesh}, material: {{kind: rock, seed: 7{material}}}}}\n"
+        f"  - {{name: b, file: nowhere.stl, albedo: [0.1, 0.1, 0.1]{mesh}, "
+        f"material: {{kind: rock, seed: 7{material}}}}}\n"
         f"robots:\n  - {{name: UX_1, xyz: [0, 0, -1]{robot}}}\n"
     )
 
@@ -67,28 +68,20 @@ def test_the_typo_free_world_passes_and_a_far_key_gets_no_suggestion(tmp_path):
     assert str(e.value) == f"w.world: unknown key 'zzz' (accepted: {TOP})"
 
 
-@pytest.mark.parametrize(
-    "change,message",
-    [
-        ("gravity: 9.81", "'gravity' = -1: expected a finite number, > 0 [m/s^2]"),
-        ("level: low", "'visibility.level' = 'murky': expected a string among none|low|medium|high"),
-        ("mu: 0.0", "'current.speed.mu' = -1: expected a finite number, >= 0 [1/s]"),
-        ("albedo: [0.1, 0.1, 0.1]", "'meshes[1].albedo' = [0.1, 2]: expected a list of 3 finite numbers, each >= 0"),
-        ("seed: 7", "'meshes[1].material.seed' = 'x': expected an integer, >= 0"),
-        ("name: UX_1, ", "missing 'robots[0].name' (a string)"),
-    ],
-)
-def test_a_value_of_the_wrong_type_or_range_names_its_key(change, message):
-    bad = {
-        "gravity: 9.81": "gravity: -1",
-        "level: low": "level: murky",
-        "mu: 0.0": "mu: -1",
-        "albedo: [0.1, 0.1, 0.1]": "albedo: [0.1, 2]",
-        "seed: 7": "seed: x",
-        "name: UX_1, ": "",
-    }[change]
+BAD_VALUES = [  # (text of the good world, its replacement, the message)
+    ("gravity: 9.81", "gravity: -1", "'gravity' = -1: expected a finite number, > 0 [m/s^2]"),
+    ("level: low", "level: murky", "'visibility.level' = 'murky': expected a string among none|low|medium|high"),
+    ("mu: 0.0", "mu: -1", "'current.speed.mu' = -1: expected a finite number, >= 0 [1/s]"),
+    ("albedo: [0.1, 0.1, 0.1]", "albedo: [0.1, 2]", "'meshes[1].albedo' = [0.1, 2]: expected a list of 3 finite"),
+    ("seed: 7", "seed: x", "'meshes[1].material.seed' = 'x': expected an integer, >= 0"),
+    ("name: UX_1, ", "", "missing 'robots[0].name' (a string)"),
+]
+
+
+@pytest.mark.parametrize("good,bad,message", BAD_VALUES, ids=[b[0] for b in BAD_VALUES])
+def test_a_value_of_the_wrong_type_or_range_names_its_key(good, bad, message):
     with pytest.raises(WorldFileError) as e:
-        check_world(yaml.safe_load(world().replace(change, bad, 1)), "w.world")
+        check_world(yaml.safe_load(world().replace(good, bad, 1)), "w.world")
     assert str(e.value).startswith(f"w.world: {message}"), str(e.value)
 
 
@@ -154,7 +147,8 @@ def test_the_world_written_by_world_from_scan_passes(tmp_path):
     from unexmin.world_from_scan.build import world_yaml
 
     for visibility, speed in (("none", 0.0), ("high", 0.25)):
-        text = world_yaml("cave", -1.5, visibility, speed, "c.ply", "v.ply", [((0, 1, -2), 0.8), ((1, 1, -2), 0.9)], "s")
+        spawns = [((0, 1, -2), 0.8), ((1, 1, -2), 0.9)]
+        text = world_yaml("cave", -1.5, visibility, speed, "c.ply", "v.ply", spawns, "scan.xyz")
         data = check_world(yaml.safe_load(text), "cave.world")
         assert [r["name"] for r in data["robots"]] == ["UX_1", "UX_2"]
 

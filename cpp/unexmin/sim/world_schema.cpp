@@ -5,7 +5,6 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
 
 namespace unexmin {
 namespace sim {
@@ -67,8 +66,9 @@ std::string worldSchemaFile()
   if (const char* env = std::getenv("UNEXMIN_WORLD_SCHEMA"); env && *env) {
     places.push_back(env);
   } else {
-    std::stringstream dirs(UNEXMIN_SCHEMA_DIRS);  // "<source>/config;<install share>/config" (CMakeLists.txt)
-    for (std::string dir; std::getline(dirs, dir, ';');) places.push_back(dir + "/world_schema.yaml");
+    // the package's source folder, then its installed share folder (CMakeLists.txt)
+    for (const char* dir : {UNEXMIN_SCHEMA_SOURCE_DIR, UNEXMIN_SCHEMA_SHARE_DIR})
+      places.push_back(std::string(dir) + "/world_schema.yaml");
   }
   for (const auto& p : places)
     if (std::ifstream(p)) return p;

@@ -57,17 +57,15 @@ def key_paths(node=None, prefix=""):
     return out
 
 
+def _bounds(spec, at_least=">=", at_most="<="):
+    """The bounds of a value of `spec`, e.g. ["> 0", "<= 1"]."""
+    signs = (("exclusive_min", ">"), ("min", at_least), ("max", at_most))
+    return [f"{sign} {spec[key]}" for key, sign in signs if key in spec]
+
+
 def _range(spec):
-    parts = []
-    if spec.get("choices"):
-        parts.append(" \\| ".join(f"`{c}`" for c in spec["choices"]))
-    if "exclusive_min" in spec:
-        parts.append(f"> {spec['exclusive_min']}")
-    if "min" in spec:
-        parts.append(f"≥ {spec['min']}")
-    if "max" in spec:
-        parts.append(f"≤ {spec['max']}")
-    return ", ".join(parts)
+    choices = [" \\| ".join(f"`{c}`" for c in spec["choices"])] if spec.get("choices") else []
+    return ", ".join(choices + _bounds(spec, "≥", "≤"))
 
 
 def markdown_table():
@@ -110,13 +108,7 @@ def _expected(spec):
         "map": "a map",
         "list": "a list",
     }[spec["type"]]
-    bounds = []
-    if "exclusive_min" in spec:
-        bounds.append(f"> {spec['exclusive_min']}")
-    if "min" in spec:
-        bounds.append(f">= {spec['min']}")
-    if "max" in spec:
-        bounds.append(f"<= {spec['max']}")
+    bounds = _bounds(spec)
     if spec.get("choices"):
         what += " among " + "|".join(spec["choices"])
     if bounds:
@@ -168,7 +160,9 @@ def _check(spec, value, path, fail, keys_only=False):
         if not isinstance(value, bool):
             bad()
     elif kind == "string":
-        if value is None or isinstance(value, (dict, list)) or ("choices" in spec and str(value) not in spec["choices"]):
+        if value is None or isinstance(value, (dict, list)):
+            bad()
+        if "choices" in spec and str(value) not in spec["choices"]:
             bad()
     else:
         raise ValueError(f"{schema_path()}: '{path}' has an unknown type {kind!r}")
