@@ -144,8 +144,20 @@ def test_the_replays_spawn_world_passes(tmp_path, world_name):
 
 
 def test_the_world_written_by_world_from_scan_passes(tmp_path):
+    """python -m unexmin.world_from_scan on a scan of the tank's inside, then its text for other options."""
+    import numpy as np
+    import trimesh
+
+    from unexmin import world_from_scan as wfs
     from unexmin.world_from_scan.build import world_yaml
 
+    mesh = trimesh.load(str(REPO / "worlds" / "meshes" / "tank.stl"), force="mesh")
+    c = mesh.triangles_center  # the floor and the inner walls below the rim (docs/worlds.md: 6 x 4 m, 3 m deep)
+    inner = (np.abs(c[:, 0]) <= 3.0 + 1e-6) & (np.abs(c[:, 1]) <= 2.0 + 1e-6) & (c[:, 2] >= -3.0 - 1e-6)
+    scan = tmp_path / "tank_scan.xyz"
+    wfs.write_xyz(scan, wfs.sample_scan(mesh.triangles[inner & (c[:, 2] < 0.3 - 1e-6)], 0.05, 0.02, seed=1))
+    rep = wfs.build_world(scan, tmp_path / "world", name="tank_scan", water_level=0.0, quiet=True)
+    assert read_world(tmp_path / "world" / rep["world"])["robots"]
     for visibility, speed in (("none", 0.0), ("high", 0.25)):
         spawns = [((0, 1, -2), 0.8), ((1, 1, -2), 0.9)]
         text = world_yaml("cave", -1.5, visibility, speed, "c.ply", "v.ply", spawns, "scan.xyz")
