@@ -19,8 +19,7 @@ const std::string kSchema = std::string(UNEXMIN_SOURCE_DIR) + "/config/world_sch
 
 /// The message of the ConfigError that loading the world `text` (written to <temp>/`name`) throws; its path in `path`.
 std::string refusal(const std::string& name, const std::string& text, std::string& path,
-                    const std::string& schema = kSchema)
-{
+                    const std::string& schema = kSchema) {
   path = unexmin::test::testTempDir() + name;
   std::ofstream(path) << text;
   return unexmin::test::thrownMessage<ConfigError>([&] { sim::loadWorldConfig(path, schema); });
@@ -29,25 +28,24 @@ std::string refusal(const std::string& name, const std::string& text, std::strin
 /// A world with every level present; each argument is appended to its level (top level, water, current.speed, the
 /// second mesh, its material, the robot).
 std::string world(const std::string& top, const std::string& water, const std::string& speed, const std::string& mesh,
-                  const std::string& material, const std::string& robot)
-{
+                  const std::string& material, const std::string& robot) {
   return "name: w\ngravity: 9.81\n" + top + "water: {density: 1000.0, surface_z: 0.0" + water +
          "}\nvisibility: {level: low, colour: [0.25, 0.3, 0.2]}\n"
-         "current:\n  speed: {mean: 0.1, min: 0.0, max: 0.5, noise: 0.0, mu: 0.0" + speed +
+         "current:\n  speed: {mean: 0.1, min: 0.0, max: 0.5, noise: 0.0, mu: 0.0" +
+         speed +
          "}\nmeshes:\n"
          "  - {name: a, file: nowhere.stl}\n"
-         "  - {name: b, file: nowhere.stl, albedo: [0.1, 0.1, 0.1]" + mesh +
-         ", material: {kind: rock, seed: 7" + material +
+         "  - {name: b, file: nowhere.stl, albedo: [0.1, 0.1, 0.1]" +
+         mesh + ", material: {kind: rock, seed: 7" + material +
          "}}\n"
-         "robots:\n  - {name: UX_1, xyz: [0, 0, -1]" + robot + "}\n";
+         "robots:\n  - {name: UX_1, xyz: [0, 0, -1]" +
+         robot + "}\n";
 }
 
 }  // namespace
 
-TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey)
-{
-  struct Case
-  {
+TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
+  struct Case {
     std::string text, path, accepted, nearest;
   };
   const std::vector<Case> cases = {
@@ -77,17 +75,16 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey)
             std::string::npos);
 }
 
-TEST(WorldSchema, NoSuggestionWhenNoKeyIsClose)
-{
+TEST(WorldSchema, NoSuggestionWhenNoKeyIsClose) {
   std::string path;
   const std::string message = refusal("far.world", world("zzz: 1\n", "", "", "", "", ""), path);
   EXPECT_EQ(message,
-            path + ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, ray_caster, "
-                   "magnetic_field, current, meshes, robots)");
+            path +
+                ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, ray_caster, "
+                "magnetic_field, current, meshes, robots)");
 }
 
-TEST(WorldSchema, NearestKeyAgreesWithPythonsDifflib)
-{
+TEST(WorldSchema, NearestKeyAgreesWithPythonsDifflib) {
   // expected: difflib.get_close_matches(key, accepted, n=1) of Python 3.11
   const std::vector<std::string> process = {"mean", "min", "max", "noise", "mu"};
   EXPECT_EQ(sim::nearestKey("mu", process), "mu");
@@ -101,11 +98,11 @@ TEST(WorldSchema, NearestKeyAgreesWithPythonsDifflib)
   EXPECT_DOUBLE_EQ(sim::keySimilarity("", ""), 1.0);
 }
 
-TEST(WorldSchema, EveryShippedWorldPasses)
-{
+TEST(WorldSchema, EveryShippedWorldPasses) {
   int worlds = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(UNEXMIN_SOURCE_DIR) + "/worlds")) {
-    if (entry.path().extension() != ".world") continue;
+    if (entry.path().extension() != ".world")
+      continue;
     ++worlds;
     EXPECT_NO_THROW(sim::checkWorldKeys(YAML::LoadFile(entry.path().string()), entry.path().string(), kSchema))
         << entry.path();
@@ -113,8 +110,7 @@ TEST(WorldSchema, EveryShippedWorldPasses)
   EXPECT_GE(worlds, 3);  // mine, tank, test_box
 }
 
-TEST(WorldSchema, FoundInThePackageAndAMissingOneIsNamed)
-{
+TEST(WorldSchema, FoundInThePackageAndAMissingOneIsNamed) {
   unsetenv("UNEXMIN_WORLD_SCHEMA");
   EXPECT_TRUE(std::filesystem::equivalent(sim::worldSchemaFile(), kSchema));
   setenv("UNEXMIN_WORLD_SCHEMA", "/nonexistent/world_schema.yaml", 1);
