@@ -1,5 +1,7 @@
 #include <unexmin/sim/world_config.h>
 
+#include <unexmin/sim/world_schema.h>
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -165,7 +167,7 @@ Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector
   return pose;
 }
 
-WorldConfig loadWorldConfig(const std::string& path)
+WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file)
 {
   Reader r(path);
   std::ifstream in(path);
@@ -177,6 +179,7 @@ WorldConfig loadWorldConfig(const std::string& path)
     r.fail(std::string("not valid YAML: ") + e.what());
   }
   if (!root.IsMap()) r.fail("the world file must be a YAML map (name, gravity, water, meshes, robots, ...)");
+  checkWorldKeys(root, path, schema_file.empty() ? worldSchemaFile() : schema_file);
 
   WorldConfig w;
   w.file = path;

@@ -59,8 +59,9 @@ struct WorldConfig
   std::vector<RobotSpawn> robots;
 };
 
-/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect.
-WorldConfig loadWorldConfig(const std::string& path);
+/// Loads and checks a world file; throws ConfigError("<file>: <problem>") on any defect, first on a key that the
+/// world-file schema `schema_file` (default: worldSchemaFile(), world_schema.h) does not know.
+WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file = "");
 
 /// Puts the world's robots named in `names` first, in that order (the simulator then runs the first names.size()
 /// robots). Throws ConfigError naming a name the world does not spawn, or one given twice.

@@ -17,6 +17,7 @@ import numpy as np
 import yaml
 
 from unexmin.worlds.files import PACKAGE_DIR, link_meshes, world_path
+from unexmin.worlds.schema import WorldFileError, read_world
 
 #: Parameters that change the simulated world or robot rather than (only) the mission function.
 WORLD_PARAMS = {
@@ -164,6 +165,10 @@ def check_spec(raw, path="<spec>"):
             f"{path}: world: {world!r} is neither a world of the package's worlds/ "
             "(tank, mine, test_box) nor an existing world file"
         ) from None
+    try:
+        read_world(spec["world_file"])  # a typo in the world stops the batch before its first mission
+    except WorldFileError as e:
+        raise SpecError(f"{path}: world: {e}") from None
     spec["world"] = world
     spec["robots"] = _number(f"{path}: robots", raw.get("robots", 1), 1, 3, integer=True)
     spec["duration"] = _number(f"{path}: duration [s of sim time]", raw.get("duration", 30.0), 1e-3)
@@ -261,8 +266,7 @@ def load_mission_function(name):
 # -- one mission's files -----------------------------------------------------------------------------------
 def write_world(spec, params, folder):
     """A copy of the spec's world file with the mission's current, its meshes linked beside it; its path."""
-    with open(spec["world_file"]) as f:
-        world = yaml.safe_load(f)
+    world = read_world(spec["world_file"])
     link_meshes(world.get("meshes") or [], os.path.dirname(os.path.abspath(spec["world_file"])), folder)
     current = world.setdefault("current", {})
     for name, var in (
@@ -283,6 +287,7 @@ def write_world(spec, params, folder):
     with open(path, "w") as f:
         f.write("# Written by unexmin.batch for one mission (docs/batch.md)\n")
         yaml.safe_dump(world, f, sort_keys=False)
+    read_world(path)  # what the simulator will read follows the schema
     return path
 
 

@@ -47,6 +47,7 @@ from unexmin.world_from_scan.surface import (
     trim_unsupported,
 )
 from unexmin.worlds.meshes import write_ply
+from unexmin.worlds.schema import read_world
 
 
 # ------------------------------------------------------------------------------------------ outputs
@@ -207,6 +208,7 @@ def build_world(
     world_path.write_text(
         world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, scan.name)
     )
+    read_world(world_path)  # what the simulator will read follows the schema
     rep = {
         "scan": str(scan),
         "points_read": int(len(raw)),

@@ -6,10 +6,10 @@ import os
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from unexmin.geometry import rpy_matrix
 from unexmin.worlds.meshes import read_mesh
+from unexmin.worlds.schema import read_world
 
 #: The package's root folder (worlds/, urdf/, launch/ live there).
 PACKAGE_DIR = Path(__file__).resolve().parents[3]
@@ -67,11 +67,9 @@ def link_meshes(meshes, source_base, target_dir):
 
 
 def load_world(path):
-    """The world file's name, surface height [m] and mesh entries (absolute file, scale, xyz, rpy, flags)."""
-    with open(path) as f:
-        world = yaml.safe_load(f)
-    if not isinstance(world, dict):
-        raise ValueError(f"{path}: a world file must be a YAML map (docs/worlds.md)")
+    """The world file's name, surface height [m] and mesh entries (absolute file, scale, xyz, rpy, flags); the file
+    checked against the world-file schema first (unexmin.worlds.schema: WorldFileError, a ValueError)."""
+    world = read_world(path)
     base = os.path.dirname(os.path.abspath(path))
     meshes = []
     for i, m in enumerate(world.get("meshes") or []):

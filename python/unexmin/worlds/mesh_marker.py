@@ -172,7 +172,10 @@ def main():
             f"mesh_marker: parameter ~world_file = '{world_file}': expected an existing world "
             "file, e.g. $(find unexmin)/worlds/mine.world"
         )
-    world = load_world(world_file)
+    try:
+        world = load_world(world_file)
+    except ValueError as e:  # a key the world-file schema does not know, a bad value, a path out of its folder
+        raise SystemExit(f"mesh_marker: {e}") from None
     color = _rgba("color", rospy.get_param("~color", list(ROCK)))
     water_color = _rgba("water_color", rospy.get_param("~water_color", list(WATER)))
     mesh_colors = {k: _rgba(f"mesh_colors/{k}", v) for k, v in rospy.get_param("~mesh_colors", {}).items()}

@@ -11,6 +11,7 @@ import yaml
 
 from unexmin.worlds.files import PACKAGE_DIR as REPO
 from unexmin.worlds.files import link_meshes
+from unexmin.worlds.schema import read_world
 
 
 def world_launch_file(
@@ -27,7 +28,7 @@ def world_launch_file(
     source = REPO / "worlds" / f"{world}.world"
     if not source.is_file():
         raise FileNotFoundError(f"world {world!r}: no {source}")
-    data = yaml.safe_load(source.read_text())
+    data = read_world(source)
     link_meshes(data.get("meshes") or [], str(source.parent), str(tmp))
     entry = next((r for r in data["robots"] if r["name"] == robot), None)
     if entry is None:
@@ -41,6 +42,7 @@ def world_launch_file(
         f"# generated from worlds/{world}.world (unexmin.worlds.spawn)\n"
         + yaml.safe_dump(data, default_flow_style=None, sort_keys=False)
     )
+    read_world(world_file)  # what the simulator will read follows the schema
     override_arg = f'\n    <arg name="{robot}_overrides" value="{Path(overrides).resolve()}"/>' if overrides else ""
     description_param = (
         f"\n  <!-- replaces the description set by robot.launch (the later definition wins) -->"
