@@ -135,14 +135,6 @@ public:
           {"contrast", &m.contrast}, {"relief", &m.relief}, {"grain", &m.grain},   {"cracks", &m.cracks},
           {"strata", &m.strata},     {"stains", &m.stains}, {"region", &m.region}, {"tint", &m.tint}};
       for (const auto& kv : numbers) *kv.second = number(node, kv.first, where, *kv.second);
-      for (const auto& kv : node) {
-        const std::string key = kv.first.as<std::string>();
-        bool known = key == "kind" || key == "albedo" || key == "seed";
-        for (const auto& n : numbers) known = known || key == n.first;
-        if (!known)
-          fail("'" + where + key + "' is not a material key: expected kind, albedo, seed, contrast, relief, grain, "
-               "cracks, strata, stains, region, tint");
-      }
       checkMaterial(m, where);
     } catch (const ParameterError& e) {
       fail(e.what());
