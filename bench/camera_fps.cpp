@@ -3,7 +3,8 @@
 // --visibility), its SLS laser line if the description has one, noise on; the ROS-free core only (no message
 // is built). Also times the same camera's primary rays alone (the ray-casting share of a frame) and, with
 // --shadows, the frame with shadow rays. "cpu" is the process's CPU time per frame over all threads: on a busy
-// machine it stays near what an idle one needs, while wall time (mean, best, fps) grows with the load. Built by catkin (target camera_fps, not a test); docs/benchmarks.md:
+// machine it stays near what an idle one needs, while wall time (mean, best, fps) grows with the load. Built by catkin
+// (target camera_fps, not a test); docs/benchmarks.md:
 //   xacro urdf/ux1.urdf.xacro name:=UX_1 > /tmp/ux1.urdf
 //   camera_fps /tmp/ux1.urdf worlds/mine.world [--camera camera_4] [--frames 20] [--size 640x480]
 //              [--visibility none|low|medium|high] [--shadows] [--ppm out.ppm] [--pose x y z yaw] [--threads N]
@@ -31,18 +32,18 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
 
 /// CPU time of the whole process so far (every thread, user + system) [s].
-double cpuSeconds()
-{
+double cpuSeconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-struct Result
-{
+struct Result {
   double first = 0.0, mean = 0.0, best = 0.0, rays = 0.0, mean_value = 0.0, median_range = 0.0;
   double cpu = 0.0;       ///< CPU time per frame, all threads [s]
   double rays_cpu = 0.0;  ///< CPU time of the primary rays alone [s]
@@ -51,8 +52,7 @@ struct Result
 
 /// Renders `frames` frames of `spec` (at `width` x `height`, one per physics step) and times them.
 Result run(sim::World& world, raycast::RayCaster& caster, sim::SensorSpec spec, int width, int height, int frames,
-           bool shadows, const std::string& ppm)
-{
+           bool shadows, const std::string& ppm) {
   spec.params["width"] = {static_cast<double>(width)};
   spec.params["height"] = {static_cast<double>(height)};
   spec.params["render_scale"] = {1.0};
@@ -75,17 +75,20 @@ Result run(sim::World& world, raycast::RayCaster& caster, sim::SensorSpec spec, 
     const auto a = Clock::now();
     camera.update(ctx);
     const auto b = Clock::now();
-    if (k == 0) r.first = seconds(a, b);  // builds the ray directions and the backscatter table
+    if (k == 0)
+      r.first = seconds(a, b);  // builds the ray directions and the backscatter table
     else {
       times.push_back(seconds(a, b));
       r.cpu += (cpuSeconds() - c0) / frames;
     }
   }
   r.frames = frames;
-  for (double t : times) r.mean += t / frames;
+  for (double t : times)
+    r.mean += t / frames;
   r.best = *std::min_element(times.begin(), times.end());
   double sum = 0.0;
-  for (std::uint8_t v : camera.last().rgb) sum += v;
+  for (std::uint8_t v : camera.last().rgb)
+    sum += v;
   r.mean_value = sum / camera.last().rgb.size();
   std::vector<float> ranges = camera.last().range;
   std::nth_element(ranges.begin(), ranges.begin() + ranges.size() / 2, ranges.end());
@@ -116,18 +119,19 @@ Result run(sim::World& world, raycast::RayCaster& caster, sim::SensorSpec spec, 
   if (!ppm.empty()) {
     std::ofstream out(ppm, std::ios::binary);
     out << "P6\n" << m.width() << " " << m.height() << "\n255\n";
-    out.write(reinterpret_cast<const char*>(camera.last().rgb.data()), static_cast<std::streamsize>(camera.last().rgb.size()));
+    out.write(reinterpret_cast<const char*>(camera.last().rgb.data()),
+              static_cast<std::streamsize>(camera.last().rgb.size()));
   }
   return r;
 }
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: camera_fps <urdf> <world> [--camera NAME] [--frames N] [--size WxH]... "
-                         "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW] [--threads N]\n");
+    std::fprintf(stderr,
+                 "usage: camera_fps <urdf> <world> [--camera NAME] [--frames N] [--size WxH]... "
+                 "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW] [--threads N]\n");
     return 2;
   }
   std::string camera_name = "camera_0", visibility, ppm;
@@ -138,14 +142,21 @@ int main(int argc, char** argv)
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     const bool more = i + 1 < argc;
-    if (a == "--camera" && more) camera_name = argv[++i];
-    else if (a == "--frames" && more) frames = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--visibility" && more) visibility = argv[++i];
-    else if (a == "--ppm" && more) ppm = argv[++i];
-    else if (a == "--shadows") shadows = true;
-    else if (a == "--threads" && more) threads = std::max(0, std::atoi(argv[++i]));
+    if (a == "--camera" && more)
+      camera_name = argv[++i];
+    else if (a == "--frames" && more)
+      frames = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--visibility" && more)
+      visibility = argv[++i];
+    else if (a == "--ppm" && more)
+      ppm = argv[++i];
+    else if (a == "--shadows")
+      shadows = true;
+    else if (a == "--threads" && more)
+      threads = std::max(0, std::atoi(argv[++i]));
     else if (a == "--pose" && i + 4 < argc)
-      for (int k = 0; k < 4; ++k) pose.push_back(std::atof(argv[++i]));
+      for (int k = 0; k < 4; ++k)
+        pose.push_back(std::atof(argv[++i]));
     else if (a == "--size" && more) {
       int w = 0, h = 0;
       if (std::sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
@@ -158,15 +169,18 @@ int main(int argc, char** argv)
       return 2;
     }
   }
-  if (sizes.empty()) sizes = {{640, 480}, {2054, 1544}};
+  if (sizes.empty())
+    sizes = {{640, 480}, {2054, 1544}};
 
   std::ifstream in(argv[1]);
   std::stringstream urdf;
   urdf << in.rdbuf();
   sim::WorldConfig config = sim::loadWorldConfig(argv[2]);
-  if (!visibility.empty()) config.visibility = visibility;
+  if (!visibility.empty())
+    config.visibility = visibility;
   if (!pose.empty())
-    config.robots.at(0).pose = sim::poseFromXyzRpy(Eigen::Vector3d(pose[0], pose[1], pose[2]), Eigen::Vector3d(0, 0, pose[3]));
+    config.robots.at(0).pose =
+        sim::poseFromXyzRpy(Eigen::Vector3d(pose[0], pose[1], pose[2]), Eigen::Vector3d(0, 0, pose[3]));
   const sim::RobotDescription description = sim::parseRobotDescription(urdf.str(), argv[1]);
   const std::map<std::string, sim::RobotDescription> d{{config.robots.at(0).name, description}};
   sim::World world(config, d, 1, 0.002, 1);
@@ -176,7 +190,8 @@ int main(int argc, char** argv)
   caster->update();
   const sim::SensorSpec* spec = nullptr;
   for (const auto& s : world.robot(0).description().sensors)
-    if (s.name == camera_name) spec = &s;
+    if (s.name == camera_name)
+      spec = &s;
   if (!spec || spec->type != "camera") {
     std::fprintf(stderr, "camera_fps: no camera '%s' in %s\n", camera_name.c_str(), argv[1]);
     return 2;
@@ -191,9 +206,11 @@ int main(int argc, char** argv)
     const Result r = run(world, *caster, *spec, s.first, s.second, frames, shadows, ppm);
     char size[32];
     std::snprintf(size, sizeof size, "%dx%d", s.first, s.second);
-    std::printf("%-11s %7d %10.1f %10.1f %7.2f %10.1f %10.1f %14.1f %11.1f   (mean pixel value %.1f, median range "
-                "%.2f m)\n", size, r.frames, 1e3 * r.mean, 1e3 * r.best, 1.0 / r.mean, 1e3 * r.cpu, 1e3 * r.rays,
-                1e3 * r.rays_cpu, 1e3 * r.first, r.mean_value, r.median_range);
+    std::printf(
+        "%-11s %7d %10.1f %10.1f %7.2f %10.1f %10.1f %14.1f %11.1f   (mean pixel value %.1f, median range "
+        "%.2f m)\n",
+        size, r.frames, 1e3 * r.mean, 1e3 * r.best, 1.0 / r.mean, 1e3 * r.cpu, 1e3 * r.rays, 1e3 * r.rays_cpu,
+        1e3 * r.first, r.mean_value, r.median_range);
   }
   {
     // Operational mode (last: the robot drifts with the current meanwhile): the same camera at full resolution,

@@ -22,42 +22,45 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 /// CPU time of this (single-threaded) process [s]: what the machine's other load disturbs least.
-double cpuSeconds()
-{
+double cpuSeconds() {
   timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
 /// Minimum and median of a list of times.
-struct Times
-{
+struct Times {
   std::vector<double> t;
-  double min() { std::sort(t.begin(), t.end()); return t.front(); }
-  double median() { std::sort(t.begin(), t.end()); return t[t.size() / 2]; }
+  double min() {
+    std::sort(t.begin(), t.end());
+    return t.front();
+  }
+  double median() {
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+  }
 };
 constexpr double kPi = 3.14159265358979323846;
 
-struct Ping
-{
+struct Ping {
   octomap::point3d origin;
   std::vector<octomap::point3d> points;
 };
 
 /// Range [m] from p inside the box [lo, hi] along the unit direction d.
 double boxRange(const octomap::point3d& p, const octomap::point3d& d, const octomap::point3d& lo,
-                const octomap::point3d& hi)
-{
+                const octomap::point3d& hi) {
   double t = 1e9;
   for (unsigned i = 0; i < 3; ++i) {
-    if (d(i) > 1e-9) t = std::min(t, double(hi(i) - p(i)) / d(i));
-    if (d(i) < -1e-9) t = std::min(t, double(lo(i) - p(i)) / d(i));
+    if (d(i) > 1e-9)
+      t = std::min(t, double(hi(i) - p(i)) / d(i));
+    if (d(i) < -1e-9)
+      t = std::min(t, double(lo(i) - p(i)) / d(i));
   }
   return t;
 }
 
-std::vector<Ping> makePings(int count)
-{
+std::vector<Ping> makePings(int count) {
   const octomap::point3d lo(0, -2.5, -2), hi(40, 2.5, 2);
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.02);
@@ -73,7 +76,8 @@ std::vector<Ping> makePings(int count)
       const double a = -65.0 * kPi / 180 + 130.0 * kPi / 180 * b / 255;
       octomap::point3d d(static_cast<float>(std::sin(pitch)), static_cast<float>(std::sin(a)),
                          static_cast<float>(std::cos(a)));
-      if (b % 2) d.z() = -d.z();
+      if (b % 2)
+        d.z() = -d.z();
       d.normalize();
       const octomap::point3d dw(static_cast<float>(std::cos(yaw) * d.x() - std::sin(yaw) * d.y()),
                                 static_cast<float>(std::sin(yaw) * d.x() + std::cos(yaw) * d.y()), d.z());
@@ -87,22 +91,23 @@ std::vector<Ping> makePings(int count)
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   const double resolution = argc > 1 ? std::atof(argv[1]) : 0.1;
   const double max_range = argc > 2 ? std::atof(argv[2]) : 10.0;
   const int count = argc > 3 ? std::atoi(argv[3]) : 2000;
   const int repeats = std::max(1, argc > 4 ? std::atoi(argv[4]) : 5);
   const std::vector<Ping> pings = makePings(count);
   std::size_t points = 0;
-  for (const Ping& p : pings) points += p.points.size();
+  for (const Ping& p : pings)
+    points += p.points.size();
 
   unexmin::mapping::MapperParams params;
   params.resolution = resolution;
   params.max_range = max_range;
   std::vector<octomap::Pointcloud> clouds(pings.size());
   for (std::size_t k = 0; k < pings.size(); ++k)
-    for (const auto& p : pings[k].points) clouds[k].push_back(p);
+    for (const auto& p : pings[k].points)
+      clouds[k].push_back(p);
 
   // The two alternate, `repeats` times each, on a fresh map: the minimum and the median time of each are
   // reported, wall-clock and CPU time (the machine is shared; the minimum is the least disturbed run, and the
@@ -118,7 +123,8 @@ int main(int argc, char** argv)
     double c0 = cpuSeconds();
     for (std::size_t k = 0; k < pings.size(); ++k) {
       ours.insertCloud(pings[k].points, pings[k].origin);
-      if (k % 40 == 39) ours.update();
+      if (k % 40 == 39)
+        ours.update();
     }
     ours.update();
     wall_ours.t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
@@ -145,11 +151,13 @@ int main(int argc, char** argv)
     theirs.updateInnerOccupancy();
     theirs.prune();
     occupied_theirs = 0;
-    for (auto it = theirs.begin_leafs(); it != theirs.end_leafs(); ++it) occupied_theirs += theirs.isNodeOccupied(*it);
+    for (auto it = theirs.begin_leafs(); it != theirs.end_leafs(); ++it)
+      occupied_theirs += theirs.isNodeOccupied(*it);
     // The two trees leaf for leaf: same key, depth and log-odds.
     const octomap::OcTree& mine = ours.tree();
-    leaves_differ = mine.getNumLeafNodes() > theirs.getNumLeafNodes() ? mine.getNumLeafNodes() - theirs.getNumLeafNodes()
-                                                                     : theirs.getNumLeafNodes() - mine.getNumLeafNodes();
+    leaves_differ = mine.getNumLeafNodes() > theirs.getNumLeafNodes()
+                        ? mine.getNumLeafNodes() - theirs.getNumLeafNodes()
+                        : theirs.getNumLeafNodes() - mine.getNumLeafNodes();
     auto a = mine.begin_leafs(), b = theirs.begin_leafs();
     for (; a != mine.end_leafs() && b != theirs.end_leafs(); ++a, ++b) {
       leaves_differ += a.getKey() != b.getKey() || a.getDepth() != b.getDepth() || a->getLogOdds() != b->getLogOdds();
@@ -158,19 +166,21 @@ int main(int argc, char** argv)
 
   std::printf("mapper_bench: %d clouds, %zu points, resolution %g m, max range %g m, %d runs each\n", count, points,
               resolution, max_range, repeats);
-  std::printf("  ours (dedup, Morton-ordered batch):      wall min %7.3f s (%9.0f points/s), median %7.3f s; "
-              "CPU min %7.3f s, median %7.3f s\n",
-              wall_ours.min(), points / wall_ours.min(), wall_ours.median(), cpu_ours.min(), cpu_ours.median());
-  std::printf("  OctoMap insertPointCloud + prune/cloud:  wall min %7.3f s (%9.0f points/s), median %7.3f s; "
-              "CPU min %7.3f s, median %7.3f s; worst cloud %.1f ms (wall)\n",
-              wall_theirs.min(), points / wall_theirs.min(), wall_theirs.median(), cpu_theirs.min(),
-              cpu_theirs.median(), 1e3 * worst);
+  std::printf(
+      "  ours (dedup, Morton-ordered batch):      wall min %7.3f s (%9.0f points/s), median %7.3f s; "
+      "CPU min %7.3f s, median %7.3f s\n",
+      wall_ours.min(), points / wall_ours.min(), wall_ours.median(), cpu_ours.min(), cpu_ours.median());
+  std::printf(
+      "  OctoMap insertPointCloud + prune/cloud:  wall min %7.3f s (%9.0f points/s), median %7.3f s; "
+      "CPU min %7.3f s, median %7.3f s; worst cloud %.1f ms (wall)\n",
+      wall_theirs.min(), points / wall_theirs.min(), wall_theirs.median(), cpu_theirs.min(), cpu_theirs.median(),
+      1e3 * worst);
   std::printf("  speed-up wall %.1fx (minima), %.1fx (medians); CPU %.1fx (minima), %.1fx (medians)\n",
               wall_theirs.min() / wall_ours.min(), wall_theirs.median() / wall_ours.median(),
               cpu_theirs.min() / cpu_ours.min(), cpu_theirs.median() / cpu_ours.median());
-  std::printf("  occupied leaves: ours %zu, OctoMap %zu; leaves differing (key, depth or log-odds) %zu; "
-              "tree memory ours %zu bytes\n",
-              occupied_ours, occupied_theirs, leaves_differ, memory_ours);
+  std::printf(
+      "  occupied leaves: ours %zu, OctoMap %zu; leaves differing (key, depth or log-odds) %zu; "
+      "tree memory ours %zu bytes\n",
+      occupied_ours, occupied_theirs, leaves_differ, memory_ours);
   return leaves_differ == 0 ? 0 : 1;
 }
-

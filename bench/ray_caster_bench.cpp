@@ -34,30 +34,31 @@ constexpr int kPoses = 200;          // sensor poses; 1024 rays each
 constexpr std::uint64_t kSeed = 20240601;
 
 /// Uniform [0, 1) from the raw engine output: the same numbers with every standard library.
-double u01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * (1.0 / 9007199254740992.0); }
+double u01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * (1.0 / 9007199254740992.0);
+}
 
 /// Tunnel axis at x [m]: meandering +-4 m sideways and +-2 m up and down.
-Eigen::Vector3d centreLine(double x)
-{
+Eigen::Vector3d centreLine(double x) {
   return {x, 4.0 * std::sin(2 * kPi * x / 60.0), 2.0 * std::sin(2 * kPi * x / 45.0)};
 }
 
 /// A meandering tube with a rough wall (three wave harmonics + 5 cm random jitter), closed at both ends.
-TriangleMesh makeTunnel(std::mt19937_64& rng)
-{
+TriangleMesh makeTunnel(std::mt19937_64& rng) {
   TriangleMesh mesh;
   mesh.name = "tunnel";
   double phase[3];
-  for (double& p : phase) p = 2 * kPi * u01(rng);
+  for (double& p : phase)
+    p = 2 * kPi * u01(rng);
   for (int i = 0; i < kRings; ++i) {
     const double x = kLength * i / (kRings - 1);
     const Eigen::Vector3d c = centreLine(x);
     for (int j = 0; j < kSegments; ++j) {
       const double th = 2 * kPi * j / kSegments;
-      const double r = kRadius * (1 + 0.06 * std::sin(0.7 * x + 3 * th + phase[0]) +
-                                  0.04 * std::sin(1.9 * x + 7 * th + phase[1]) +
-                                  0.02 * std::sin(5.3 * x + 13 * th + phase[2])) +
-                       0.05 * (u01(rng) - 0.5);
+      const double r =
+          kRadius * (1 + 0.06 * std::sin(0.7 * x + 3 * th + phase[0]) + 0.04 * std::sin(1.9 * x + 7 * th + phase[1]) +
+                     0.02 * std::sin(5.3 * x + 13 * th + phase[2])) +
+          0.05 * (u01(rng) - 0.5);
       mesh.vertices.emplace_back(c.x(), c.y() + r * std::cos(th), c.z() + r * std::sin(th));
     }
   }
@@ -71,21 +72,18 @@ TriangleMesh makeTunnel(std::mt19937_64& rng)
     const int centre = static_cast<int>(mesh.vertices.size());
     mesh.vertices.push_back(centreLine(ring * kLength / (kRings - 1)).cast<float>());
     for (int j = 0; j < kSegments; ++j)
-      mesh.indices.insert(mesh.indices.end(),
-                          {centre, ring * kSegments + j, ring * kSegments + (j + 1) % kSegments});
+      mesh.indices.insert(mesh.indices.end(), {centre, ring * kSegments + j, ring * kSegments + (j + 1) % kSegments});
   }
   return mesh;
 }
 
-Eigen::Vector3f pointInTunnel(std::mt19937_64& rng)
-{
+Eigen::Vector3f pointInTunnel(std::mt19937_64& rng) {
   const double x = 10.0 + (kLength - 20.0) * u01(rng);
   return (centreLine(x) + Eigen::Vector3d(0, 2.0 * (u01(rng) - 0.5), 2.0 * (u01(rng) - 0.5))).cast<float>();
 }
 
 /// M3-like fans: 256 beams over 120 deg, 4 rays across the 3 deg beam, one origin per fan.
-std::vector<Ray> coherentRays(std::mt19937_64& rng)
-{
+std::vector<Ray> coherentRays(std::mt19937_64& rng) {
   std::vector<Ray> rays;
   for (int k = 0; k < kPoses; ++k) {
     const Eigen::Vector3f o = pointInTunnel(rng);
@@ -93,15 +91,17 @@ std::vector<Ray> coherentRays(std::mt19937_64& rng)
     for (int b = 0; b < 256; ++b)
       for (int q = 0; q < 4; ++q) {
         const double az = yaw + (-60.0 + 120.0 * b / 255.0) * kPi / 180.0, el = pitch + (-1.5 + q) * kPi / 180.0;
-        rays.push_back({o, Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))
-                               .normalized().cast<float>(), kMaxRange});
+        rays.push_back({o,
+                        Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))
+                            .normalized()
+                            .cast<float>(),
+                        kMaxRange});
       }
   }
   return rays;
 }
 
-std::vector<Ray> incoherentRays(std::mt19937_64& rng, std::size_t n)
-{
+std::vector<Ray> incoherentRays(std::mt19937_64& rng, std::size_t n) {
   std::vector<Ray> rays;
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Vector3f o = pointInTunnel(rng);
@@ -112,15 +112,13 @@ std::vector<Ray> incoherentRays(std::mt19937_64& rng, std::size_t n)
 }
 
 /// What a raw Embree user keeps of a hit.
-struct RawHit
-{
+struct RawHit {
   float t;
   unsigned geom;
   float ng[3];
 };
 
-void rawSingle(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n)
-{
+void rawSingle(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   for (std::size_t i = 0; i < n; ++i) {
@@ -142,8 +140,7 @@ void rawSingle(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n)
   }
 }
 
-void rawPacket16(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n)
-{
+void rawPacket16(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   for (std::size_t p = 0; p < n; p += 16) {
@@ -172,18 +169,18 @@ void rawPacket16(RTCScene scene, const Ray* rays, RawHit* out, std::size_t n)
 }
 
 /// Splits [0, n) in `threads` contiguous parts run on their own threads (the caller runs the last).
-void split(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& f)
-{
+void split(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& f) {
   std::vector<std::thread> pool;
   const std::size_t part = (n + threads - 1) / threads;
-  for (int t = 0; t + 1 < threads; ++t) pool.emplace_back(f, t * part, std::min(n, (t + 1) * part));
+  for (int t = 0; t + 1 < threads; ++t)
+    pool.emplace_back(f, t * part, std::min(n, (t + 1) * part));
   f(std::min(n, (threads - 1) * part), n);
-  for (auto& th : pool) th.join();
+  for (auto& th : pool)
+    th.join();
 }
 
 /// Best of `reps` wall-clock runs [s].
-double best(int reps, const std::function<void()>& f)
-{
+double best(int reps, const std::function<void()>& f) {
   double t_best = 1e300;
   for (int r = 0; r < reps; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -195,8 +192,7 @@ double best(int reps, const std::function<void()>& f)
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   std::mt19937_64 rng(kSeed);
   auto t0 = std::chrono::steady_clock::now();
@@ -213,7 +209,8 @@ int main(int argc, char** argv)
   EmbreeRayCaster embree2({&tunnel}, nullptr, RayCasterOptions{2});
   const RobotSphereSource three_robots = [](std::vector<RobotSphere>& s) {
     s.clear();
-    for (double x : {50.0, 100.0, 150.0}) s.push_back({centreLine(x), 0.3});
+    for (double x : {50.0, 100.0, 150.0})
+      s.push_back({centreLine(x), 0.3});
   };
   EmbreeRayCaster embree_robots({&tunnel}, three_robots, RayCasterOptions{1});
   // The same triangles in Embree's default (non-robust) mode: faster, not watertight.
@@ -231,8 +228,7 @@ int main(int argc, char** argv)
   BulletRayCaster bullet2({BulletTarget{&object, HitKind::mesh, 0}}, RayCasterOptions{2});
   std::printf("bullet BVH built in %.2f s\n", seconds(t0));
 
-  struct Set
-  {
+  struct Set {
     const char* name;
     std::vector<Ray> rays;
   };
@@ -240,8 +236,7 @@ int main(int argc, char** argv)
   sets.push_back({"coherent (M3 fans)", coherentRays(rng)});
   sets.push_back({"incoherent", incoherentRays(rng, sets[0].rays.size())});
 
-  std::printf("\n  %-36s %7s %9s %8s %12s %6s\n", "method", "threads", "Mrays/s", "vs raw", "max|dr| [m]",
-              "hit!=");
+  std::printf("\n  %-36s %7s %9s %8s %12s %6s\n", "method", "threads", "Mrays/s", "vs raw", "max|dr| [m]", "hit!=");
   for (const Set& set : sets) {
     const std::vector<Ray>& rays = set.rays;
     const std::size_t n = rays.size();
@@ -249,7 +244,8 @@ int main(int argc, char** argv)
     rawSingle(embree1.scene(), rays.data(), reference.data(), n);
     // As sensors call it: one call per fan of 1024 rays (one M3 ping), where waking the worker costs most.
     const auto per_fan = [&](const RayCaster& rc, std::vector<Hit>& h) {
-      for (std::size_t a = 0; a < n; a += 1024) rc.cast(&rays[a], &h[a], std::min<std::size_t>(1024, n - a));
+      for (std::size_t a = 0; a < n; a += 1024)
+        rc.cast(&rays[a], &h[a], std::min<std::size_t>(1024, n - a));
     };
     const auto raw1 = [&](RTCScene scene, int threads, std::vector<RawHit>& out) {
       split(n, threads, [&](std::size_t a, std::size_t b) { rawSingle(scene, &rays[a], &out[a], b - a); });
@@ -260,17 +256,15 @@ int main(int argc, char** argv)
         rawPacket16(scene, &rays[a16], &out[a16], (b == n ? n : b / 16 * 16) - a16);
       });
     };
-    struct Out
-    {
+    struct Out {
       std::vector<Hit> hits;
       std::vector<RawHit> raw;
     };
-    struct Case
-    {
+    struct Case {
       const char* method;
       int threads;
-      int scene;  // 0 = watertight (robust) Embree scene, 1 = Embree's default scene
-      bool raw;   // raw Embree: the reference of its scene and thread count
+      int scene;     // 0 = watertight (robust) Embree scene, 1 = Embree's default scene
+      bool raw;      // raw Embree: the reference of its scene and thread count
       bool slow;     // Bullet: fewer runs
       bool compare;  // same surfaces as the reference (not so with robots in the way)
       std::function<void(Out&)> run;
@@ -285,10 +279,10 @@ int main(int argc, char** argv)
     }
     cases.push_back({"ours, embree", 1, 0, false, false, true, [&](Out& o) { embree1.cast(rays, o.hits); }});
     cases.push_back({"ours, embree", 2, 0, false, false, true, [&](Out& o) { embree2.cast(rays, o.hits); }});
-    cases.push_back({"ours, embree, 1024-ray calls", 1, 0, false, false, true,
-                     [&](Out& o) { per_fan(embree1, o.hits); }});
-    cases.push_back({"ours, embree, 1024-ray calls", 2, 0, false, false, true,
-                     [&](Out& o) { per_fan(embree2, o.hits); }});
+    cases.push_back(
+        {"ours, embree, 1024-ray calls", 1, 0, false, false, true, [&](Out& o) { per_fan(embree1, o.hits); }});
+    cases.push_back(
+        {"ours, embree, 1024-ray calls", 2, 0, false, false, true, [&](Out& o) { per_fan(embree2, o.hits); }});
     cases.push_back({"ours, embree + 3 robot spheres", 1, 0, false, false, false,
                      [&](Out& o) { embree_robots.cast(rays, o.hits); }});
     cases.push_back({"ours, bullet", 1, 0, false, true, true, [&](Out& o) { bullet1.cast(rays, o.hits); }});
@@ -299,10 +293,10 @@ int main(int argc, char** argv)
       cases.push_back({"raw Embree rtcIntersect16", threads, 1, true, false, true,
                        [&, threads](Out& o) { raw16(fast, threads, o.raw); }});
     }
-    cases.push_back({"ours, embree, watertight=false", 1, 1, false, false, true,
-                     [&](Out& o) { plain1.cast(rays, o.hits); }});
-    cases.push_back({"ours, embree, watertight=false", 2, 1, false, false, true,
-                     [&](Out& o) { plain2.cast(rays, o.hits); }});
+    cases.push_back(
+        {"ours, embree, watertight=false", 1, 1, false, false, true, [&](Out& o) { plain1.cast(rays, o.hits); }});
+    cases.push_back(
+        {"ours, embree, watertight=false", 2, 1, false, false, true, [&](Out& o) { plain2.cast(rays, o.hits); }});
 
     // Round robin, best of the runs: a load spike from another process hits every method alike.
     std::vector<double> seconds(cases.size(), 1e300);
@@ -315,7 +309,8 @@ int main(int argc, char** argv)
     }
     for (int r = 0; r < reps; ++r)
       for (std::size_t k = 0; k < cases.size(); ++k) {
-        if (cases[k].slow && r >= std::max(1, reps / 2)) continue;
+        if (cases[k].slow && r >= std::max(1, reps / 2))
+          continue;
         seconds[k] = std::min(seconds[k], best(1, [&] { cases[k].run(out[k]); }));
       }
     double raw_best[2][3] = {};  // [scene][threads]
@@ -325,12 +320,13 @@ int main(int argc, char** argv)
         b = std::max(b, n / seconds[k] / 1e6);
       }
     for (int scene : {0, 1}) {
-      std::printf("%s, %s\n", set.name,
-                  scene == 0 ? "watertight (robust) Embree scene: our default"
-                             : "Embree's default scene (not watertight)");
+      std::printf(
+          "%s, %s\n", set.name,
+          scene == 0 ? "watertight (robust) Embree scene: our default" : "Embree's default scene (not watertight)");
       for (std::size_t k = 0; k < cases.size(); ++k) {
         const Case& c = cases[k];
-        if (c.scene != scene) continue;
+        if (c.scene != scene)
+          continue;
         // Ranges against the raw rtcIntersect1 loop on the watertight scene.
         double max_diff = 0.0;
         std::size_t disagree = 0;
@@ -353,10 +349,12 @@ int main(int argc, char** argv)
     }
     std::printf("\n");
   }
-  std::printf("%zu rays per set, %.0f m max range. vs raw: rays/s over the faster of the raw rtcIntersect1 loop\n"
-              "and rtcIntersect16 on the same scene at the same thread count. Best of %d round-robin runs\n"
-              "(bullet: %d).\n"
-              "max|dr|, hit!=: largest range difference and hit/miss disagreements against the raw rtcIntersect1 loop\n"
-              "on the watertight scene.\n", sets[0].rays.size(), double(kMaxRange), reps, std::max(1, reps / 2));
+  std::printf(
+      "%zu rays per set, %.0f m max range. vs raw: rays/s over the faster of the raw rtcIntersect1 loop\n"
+      "and rtcIntersect16 on the same scene at the same thread count. Best of %d round-robin runs\n"
+      "(bullet: %d).\n"
+      "max|dr|, hit!=: largest range difference and hit/miss disagreements against the raw rtcIntersect1 loop\n"
+      "on the watertight scene.\n",
+      sets[0].rays.size(), double(kMaxRange), reps, std::max(1, reps / 2));
   return 0;
 }

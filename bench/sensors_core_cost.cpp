@@ -1,7 +1,7 @@
 // Cost of the navigation sensor models in the ROS-free core: World::step() of the UX-1 in the tank
 // with and without SensorSuite::update() after it (every sensor of the UX-1's description: IMU every step,
-// DVL 4 rays at 8 Hz, pressure, MSIS, M3, the 4 SLS units; rays through the world's caster as the simulator builds it). Built
-// by catkin (target sensors_core_cost, not a test) and run by bench/sensors_rtf.py --core:
+// DVL 4 rays at 8 Hz, pressure, MSIS, M3, the 4 SLS units; rays through the world's caster as the simulator builds it).
+// Built by catkin (target sensors_core_cost, not a test) and run by bench/sensors_rtf.py --core:
 //   sensors_core_cost <expanded UX-1 URDF> <tank.world> [steps] [robots] [threads]
 // robots (1-3, default 1): the world's first spawns, each with that description and its own sensor suite.
 // threads: the caster's threads, the caller included (default 0: every hardware thread; 1: every ray cast on the
@@ -24,15 +24,13 @@
 #include <vector>
 
 /// CPU time of this process, every thread [s].
-static double cpuSeconds()
-{
+static double cpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   using namespace unexmin;
   if (argc < 3) {
     std::fprintf(stderr, "usage: sensors_core_cost <urdf> <world> [steps] [robots] [threads]\n");
@@ -51,7 +49,8 @@ int main(int argc, char** argv)
     return 2;
   }
   std::map<std::string, sim::RobotDescription> d;
-  for (int r = 0; r < robots; ++r) d.emplace(config.robots[r].name, sim::parseRobotDescription(urdf.str(), argv[1]));
+  for (int r = 0; r < robots; ++r)
+    d.emplace(config.robots[r].name, sim::parseRobotDescription(urdf.str(), argv[1]));
   // The simulator's own families (only their models are used: nothing here touches ROS).
   const ros_layer::SensorRegistry registry = ros_layer::SensorRegistry::builtin();
   const sensors::SensorFactory& models = registry.models();
@@ -67,7 +66,8 @@ int main(int argc, char** argv)
       world.step();
       if (with) {
         caster->update();
-        for (auto& suite : suites) suite->update();
+        for (auto& suite : suites)
+          suite->update();
       }
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -20,11 +20,12 @@
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
-void onSigint(int) { g_stop = 1; }
+void onSigint(int) {
+  g_stop = 1;
+}
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   ros::init(argc, argv, "topic_counter", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
   std::signal(SIGINT, onSigint);
   if (argc < 4) {
@@ -60,11 +61,13 @@ int main(int argc, char** argv)
   // Not ros::spin(): its SIGINT handler shuts ROS down and drops the callbacks still queued, so a message the
   // kernel had already handed over (which lockstep_wait_subscribers counts as taken) could go uncounted. Here
   // SIGINT only ends the loop; then the queue is drained until nothing more has come for 0.3 s.
-  while (!g_stop) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+  while (!g_stop)
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
   const auto total = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     std::size_t n = 0;
-    for (const auto& kv : stamps) n += kv.second.size();
+    for (const auto& kv : stamps)
+      n += kv.second.size();
     return n;
   };
   std::size_t seen = total();
@@ -81,7 +84,8 @@ int main(int argc, char** argv)
   std::ifstream(window_file) >> t0 >> t1;
   for (const auto& kv : stamps) {
     long n = 0;
-    for (double s : kv.second) n += (s > t0 + 1e-9 && s <= t1 + 1e-9) ? 1 : 0;
+    for (double s : kv.second)
+      n += (s > t0 + 1e-9 && s <= t1 + 1e-9) ? 1 : 0;
     std::printf("%s %ld\n", kv.first.c_str(), n);
   }
   return 0;

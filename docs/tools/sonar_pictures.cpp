@@ -6,7 +6,8 @@
 //   sonar_pictures <expanded UX-1 URDF> <tank.world> <output directory>
 // Writes msis_long.png, msis_medium.png, msis_close.png (the sonar image: 2 range_max square, 1 px = 1 cm, head
 // at the centre, x up, colour = intensity), m3_anchor.png (the fan of first returns over 40 pings) and
-// m3_surface_shallow.png, m3_surface_deep.png (the robot pitched 5 deg up, the fan 0.4 and 2 m deep: surface multipath).
+// m3_surface_shallow.png, m3_surface_deep.png (the robot pitched 5 deg up, the fan 0.4 and 2 m deep: surface
+// multipath).
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
@@ -28,10 +29,10 @@ namespace {
 
 using Image = std::vector<std::array<std::uint8_t, 3>>;
 
-void chunk(std::ofstream& out, const char* type, const std::vector<std::uint8_t>& data)
-{
+void chunk(std::ofstream& out, const char* type, const std::vector<std::uint8_t>& data) {
   const auto be32 = [&](std::uint32_t v) {
-    const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+    const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                       static_cast<char>(v)};
     out.write(b, 4);
   };
   be32(static_cast<std::uint32_t>(data.size()));
@@ -42,12 +43,12 @@ void chunk(std::ofstream& out, const char* type, const std::vector<std::uint8_t>
 }
 
 /// An 8-bit RGB PNG (zlib).
-void writePng(const std::string& path, int w, int h, const Image& px)
-{
+void writePng(const std::string& path, int w, int h, const Image& px) {
   std::vector<std::uint8_t> raw;
   for (int y = 0; y < h; ++y) {
     raw.push_back(0);  // filter: none
-    for (int x = 0; x < w; ++x) raw.insert(raw.end(), px[y * w + x].begin(), px[y * w + x].end());
+    for (int x = 0; x < w; ++x)
+      raw.insert(raw.end(), px[y * w + x].begin(), px[y * w + x].end());
   }
   uLongf n = compressBound(raw.size());
   std::vector<std::uint8_t> z(n);
@@ -55,32 +56,39 @@ void writePng(const std::string& path, int w, int h, const Image& px)
   z.resize(n);
   std::ofstream out(path, std::ios::binary);
   out.write("\x89PNG\r\n\x1a\n", 8);
-  const std::vector<std::uint8_t> ihdr = {static_cast<std::uint8_t>(w >> 24), static_cast<std::uint8_t>(w >> 16),
-                                          static_cast<std::uint8_t>(w >> 8),  static_cast<std::uint8_t>(w),
-                                          static_cast<std::uint8_t>(h >> 24), static_cast<std::uint8_t>(h >> 16),
-                                          static_cast<std::uint8_t>(h >> 8),  static_cast<std::uint8_t>(h),
-                                          8, 2, 0, 0, 0};
+  const std::vector<std::uint8_t> ihdr = {static_cast<std::uint8_t>(w >> 24),
+                                          static_cast<std::uint8_t>(w >> 16),
+                                          static_cast<std::uint8_t>(w >> 8),
+                                          static_cast<std::uint8_t>(w),
+                                          static_cast<std::uint8_t>(h >> 24),
+                                          static_cast<std::uint8_t>(h >> 16),
+                                          static_cast<std::uint8_t>(h >> 8),
+                                          static_cast<std::uint8_t>(h),
+                                          8,
+                                          2,
+                                          0,
+                                          0,
+                                          0};
   chunk(out, "IHDR", ihdr);
   chunk(out, "IDAT", z);
   chunk(out, "IEND", {});
 }
 
 /// Intensity 0..1 -> the sonar-display colours (black, blue, yellow, red), as the Seanet-style palette.
-std::array<std::uint8_t, 3> palette(float v)
-{
+std::array<std::uint8_t, 3> palette(float v) {
   const float stops[4][3] = {{0, 0, 0}, {0, 60, 255}, {255, 255, 0}, {255, 0, 0}};
   const float t = std::min(1.0f, std::max(0.0f, v)) * 3.0f;
   const int i = std::min(2, static_cast<int>(t));
   const float f = t - i;
   std::array<std::uint8_t, 3> c;
-  for (int k = 0; k < 3; ++k) c[k] = static_cast<std::uint8_t>(stops[i][k] + f * (stops[i + 1][k] - stops[i][k]));
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<std::uint8_t>(stops[i][k] + f * (stops[i + 1][k] - stops[i][k]));
   return c;
 }
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   using namespace unexmin;
   if (argc < 4) {
     std::fprintf(stderr, "usage: sonar_pictures <urdf> <world> <output directory>\n");
@@ -92,12 +100,16 @@ int main(int argc, char** argv)
   sim::WorldConfig config = sim::loadWorldConfig(argv[2]);
   config.robots.resize(1);
   const std::string out_dir = argv[3];
-  const std::map<std::string, sim::RobotDescription> d{{config.robots[0].name, sim::parseRobotDescription(urdf.str(), argv[1])}};
+  const std::map<std::string, sim::RobotDescription> d{
+      {config.robots[0].name, sim::parseRobotDescription(urdf.str(), argv[1])}};
   const ros_layer::SensorRegistry registry = ros_layer::SensorRegistry::builtin();
 
-  // The anchor hangs at (0, 0) from 1.8 to 2.39 m depth; the robot 2.4 m deep (the head 2.07 m) facing it from -x at these distances
-  // (centre to anchor axis) [m]: the thesis's long, medium and close scans (6.1.1).
-  struct Place { const char* name; double distance; };
+  // The anchor hangs at (0, 0) from 1.8 to 2.39 m depth; the robot 2.4 m deep (the head 2.07 m) facing it from -x at
+  // these distances (centre to anchor axis) [m]: the thesis's long, medium and close scans (6.1.1).
+  struct Place {
+    const char* name;
+    double distance;
+  };
   for (const Place& place : {Place{"long", 2.6}, Place{"medium", 1.6}, Place{"close", 0.9}}) {
     sim::World world(config, d, 1, 0.002, 7);
     const auto caster = raycast::makeRayCaster(config.ray_caster, world);
@@ -107,7 +119,8 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "the robot has no MSIS named 'msis'\n");
       return 1;
     }
-    const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-place.distance, 0.0, -2.4), Eigen::Vector3d::Zero());
+    const Eigen::Isometry3d pose =
+        sim::poseFromXyzRpy(Eigen::Vector3d(-place.distance, 0.0, -2.4), Eigen::Vector3d::Zero());
     const int pings = static_cast<int>(std::lround(2.0 * M_PI / msis->step()));
     const double range = msis->echo().params().range_max;
     const int size = static_cast<int>(2.0 * range * 100.0);  // 1 cm per pixel
@@ -119,7 +132,8 @@ int main(int argc, char** argv)
       world.step();
       caster->update();
       suite.update();
-      if (msis->sampleTime() != world.time()) continue;
+      if (msis->sampleTime() != world.time())
+        continue;
       lines[k] = msis->last().intensity;
       angles[k] = msis->last().angle;
       ++k;
@@ -131,16 +145,19 @@ int main(int argc, char** argv)
       for (int x = 0; x < size; ++x) {
         const double fx = (size / 2.0 - y) / 100.0, fy = (size / 2.0 - x) / 100.0;  // x up, y left
         const double r = std::hypot(fx, fy);
-        if (r >= range) continue;
+        if (r >= range)
+          continue;
         const double bearing = std::atan2(fy, fx) - head_yaw;
         int best = 0;
         double best_d = 1e9;
         for (int p = 0; p < pings; ++p) {
           const double dd = std::abs(std::remainder(angles[p] - bearing, 2.0 * M_PI));
-          if (dd < best_d) best_d = dd, best = p;
+          if (dd < best_d)
+            best_d = dd, best = p;
         }
         const int b = msis->echo().bin(r);
-        if (b >= 0) px[static_cast<std::size_t>(y) * size + x] = palette(lines[best][b]);
+        if (b >= 0)
+          px[static_cast<std::size_t>(y) * size + x] = palette(lines[best][b]);
       }
     }
     const std::string path = out_dir + "/msis_" + place.name + ".png";
@@ -163,8 +180,10 @@ int main(int argc, char** argv)
     for (int ring = 1; ring <= 5; ++ring) {  // range rings every metre
       for (int a = 0; a < 2000; ++a) {
         const double t = -M_PI / 3 + a * (2 * M_PI / 3) / 2000.0;
-        const int x = static_cast<int>(size / 2 - ring * 100 * std::sin(t)), y = static_cast<int>(size - 1 - ring * 100 * std::cos(t));
-        if (x >= 0 && x < size && y >= 0 && y < size) px[static_cast<std::size_t>(y) * size + x] = {60, 60, 60};
+        const int x = static_cast<int>(size / 2 - ring * 100 * std::sin(t)),
+                  y = static_cast<int>(size - 1 - ring * 100 * std::cos(t));
+        if (x >= 0 && x < size && y >= 0 && y < size)
+          px[static_cast<std::size_t>(y) * size + x] = {60, 60, 60};
       }
     }
     int k = 0;
@@ -173,13 +192,16 @@ int main(int argc, char** argv)
       world.step();
       caster->update();
       suite.update();
-      if (m3->sampleTime() != world.time()) continue;
+      if (m3->sampleTime() != world.time())
+        continue;
       ++k;
       for (std::size_t b = 0; b < m3->beams(); ++b) {
         const float r = m3->last().ranges[b];
-        if (!std::isfinite(r)) continue;
+        if (!std::isfinite(r))
+          continue;
         const double a = m3->beamAngle(b);
-        const int x = static_cast<int>(size / 2 - r * 100 * std::sin(a)), y = static_cast<int>(size - 1 - r * 100 * std::cos(a));
+        const int x = static_cast<int>(size / 2 - r * 100 * std::sin(a)),
+                  y = static_cast<int>(size - 1 - r * 100 * std::cos(a));
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
             if (x + dx >= 0 && x + dx < size && y + dy >= 0 && y + dy < size)
@@ -192,11 +214,13 @@ int main(int argc, char** argv)
     return true;
   };
   // The robot 2.2 m deep (the fan 2.33 m), 2 m from the anchor, the fan as mounted.
-  if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -2.2), Eigen::Vector3d::Zero()), "m3_anchor.png")) return 1;
+  if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -2.2), Eigen::Vector3d::Zero()), "m3_anchor.png"))
+    return 1;
   // Surface multipath: the robot pitched 5 deg up, 2 m from the anchor, with the fan about 0.4 m deep and 2 m deep.
   for (const auto& [depth, file] : {std::pair<double, const char*>{0.30, "m3_surface_shallow.png"},
                                     std::pair<double, const char*>{1.90, "m3_surface_deep.png"}}) {
-    if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -depth), Eigen::Vector3d(0.0, -5.0 * M_PI / 180.0, 0.0)), file))
+    if (!m3Scan(sim::poseFromXyzRpy(Eigen::Vector3d(-2.0, 0.0, -depth), Eigen::Vector3d(0.0, -5.0 * M_PI / 180.0, 0.0)),
+                file))
       return 1;
   }
   return 0;

@@ -15,8 +15,7 @@ namespace test {
 /// The what() of the error of type E (ParameterError unless given) that f throws; a test failure if it throws
 /// none.
 template <typename E = ParameterError, typename F>
-std::string thrownMessage(F f)
-{
+std::string thrownMessage(F f) {
   try {
     f();
   } catch (const E& e) {
@@ -26,8 +25,7 @@ std::string thrownMessage(F f)
   return "";
 }
 
-inline bool contains(const std::string& text, const std::string& part)
-{
+inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 

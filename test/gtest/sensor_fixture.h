@@ -8,12 +8,12 @@
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
-#include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
+#include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
 #include <unexmin/sensors/sonar/side_scan_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>
-#include <unexmin/sensors/sensor_suite.h>
 #include "sphere_fixture.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -28,8 +28,7 @@ namespace test {
 
 /// <link> + fixed <joint> of `link` under T/base_link (or `parent`) at xyz [m] / rpy [rad].
 inline std::string mountLink(const std::string& link, const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy,
-                             const std::string& parent = "T/base_link")
-{
+                             const std::string& parent = "T/base_link") {
   std::ostringstream o;
   o.precision(17);
   o << "<link name='" << link << "'/><joint name='" << link << "_joint' type='fixed'><parent link='" << parent
@@ -40,8 +39,7 @@ inline std::string mountLink(const std::string& link, const Eigen::Vector3d& xyz
 
 /// The UX-1's DVL mount (hull bottom, Nortek axes: rpy pi 0 0) and its four beam frames, as
 /// urdf/sensors.xacro writes them: beam i at rpy (0, -(pi/2 - a), c0 + i pi/2).
-inline std::string dvlLinks(double beam_angle, double azimuth_0, double hull_radius = 0.3)
-{
+inline std::string dvlLinks(double beam_angle, double azimuth_0, double hull_radius = 0.3) {
   std::string out = mountLink("T/dvl_link", Eigen::Vector3d(0, 0, -hull_radius), Eigen::Vector3d(M_PI, 0, 0));
   for (int i = 0; i < 4; ++i)
     out += mountLink("T/dvl_beam_" + std::to_string(i) + "_link", Eigen::Vector3d::Zero(),
@@ -51,27 +49,25 @@ inline std::string dvlLinks(double beam_angle, double azimuth_0, double hull_rad
 
 /// <sensor> element; `params` maps name -> value text.
 inline std::string sensorXml(const std::string& name, const std::string& type, const std::string& link, double rate,
-                             const std::map<std::string, std::string>& params)
-{
+                             const std::map<std::string, std::string>& params) {
   std::ostringstream o;
   o.precision(17);
   o << "<sensor name='" << name << "' type='" << type << "' link='" << link << "' rate='" << rate << "'>";
-  for (const auto& kv : params) o << "<param name='" << kv.first << "' value='" << kv.second << "'/>";
+  for (const auto& kv : params)
+    o << "<param name='" << kv.first << "' value='" << kv.second << "'/>";
   o << "</sensor>\n";
   return o.str();
 }
 
 /// The sphere robot's URDF with extra links (before <unexmin>) and sensors (inside it).
-inline std::string sensorUrdf(const SphereSpec& s, const std::string& links, const std::string& sensors)
-{
+inline std::string sensorUrdf(const SphereSpec& s, const std::string& links, const std::string& sensors) {
   std::string urdf = sphereUrdf(s);
   urdf.insert(urdf.find("<unexmin>"), links);
   urdf.insert(urdf.find("</unexmin>"), sensors);
   return urdf;
 }
 
-inline std::string num(double v)
-{
+inline std::string num(double v) {
   std::ostringstream o;
   o.precision(17);
   o << v;
@@ -80,8 +76,7 @@ inline std::string num(double v)
 
 /// The core's models of the simulator's sensor families (the simulator registers the same ones, with their
 /// publishers, in cpp/unexmin/ros_layer/sensor_families.cpp).
-inline const sensors::SensorFactory& coreModels()
-{
+inline const sensors::SensorFactory& coreModels() {
   static const sensors::SensorFactory factory = [] {
     sensors::SensorFactory f;
     f.add<sensors::ImuSensor>("imu");
@@ -99,11 +94,9 @@ inline const sensors::SensorFactory& coreModels()
 
 /// A world with one robot (named after the world's first spawn) described by `urdf`, the world's ray caster
 /// of back end `backend` and the robot's sensor suite, reset with the world's seed.
-struct SensorWorld
-{
+struct SensorWorld {
   SensorWorld(const sim::WorldConfig& config, const std::string& urdf, std::uint64_t seed = 1, double dt = 0.002,
-              const std::string& backend = "embree")
-  {
+              const std::string& backend = "embree") {
     std::map<std::string, sim::RobotDescription> d;
     d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf, "(test robot)"));
     world = std::make_unique<sim::World>(config, d, 1, dt, seed);
@@ -114,27 +107,24 @@ struct SensorWorld
 
   sim::Robot& robot() { return world->robot(0); }
   /// One physics step and the sensors after it (the caster updated in between, as the simulator does).
-  void step()
-  {
+  void step() {
     world->step();
     caster->update();
     suite->update();
   }
   /// Steps until sensor `s` has taken `n` more samples.
-  void samples(const sensors::Sensor& s, std::uint64_t n)
-  {
+  void samples(const sensors::Sensor& s, std::uint64_t n) {
     const std::uint64_t target = s.sampleCount() + n;
-    while (s.sampleCount() < target) step();
+    while (s.sampleCount() < target)
+      step();
   }
   template <class T>
-  T& sensor(const std::string& name)
-  {
+  T& sensor(const std::string& name) {
     return dynamic_cast<T&>(*suite->find(name));
   }
   /// Teleports the robot and sets its world velocities [m/s, rad/s].
   void place(const Eigen::Isometry3d& pose, const Eigen::Vector3d& v = Eigen::Vector3d::Zero(),
-             const Eigen::Vector3d& w = Eigen::Vector3d::Zero())
-  {
+             const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
     robot().setPose(pose);
     robot().body()->setLinearVelocity(btVector3(v.x(), v.y(), v.z()));
     robot().body()->setAngularVelocity(btVector3(w.x(), w.y(), w.z()));
@@ -146,11 +136,12 @@ struct SensorWorld
 };
 
 /// A sphere with no damping at all: set velocities stay constant (closed-form motion).
-inline SphereSpec undampedSphere()
-{
+inline SphereSpec undampedSphere() {
   SphereSpec s;
-  for (double& v : s.lin) v = 0.0;
-  for (double& v : s.quad) v = 0.0;
+  for (double& v : s.lin)
+    v = 0.0;
+  for (double& v : s.quad)
+    v = 0.0;
   return s;
 }
 

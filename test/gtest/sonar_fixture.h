@@ -22,8 +22,7 @@ namespace test {
 
 /// Open water with the robot "T" at `robot` and the given meshes.
 inline sim::WorldConfig meshWorld(const std::vector<std::pair<std::string, Geometry>>& meshes,
-                                  const Eigen::Vector3d& robot)
-{
+                                  const Eigen::Vector3d& robot) {
   sim::WorldConfig config = openWater(SphereSpec(), robot);
   for (const auto& [name, geometry] : meshes) {
     sim::MeshEntry entry;
@@ -37,8 +36,7 @@ inline sim::WorldConfig meshWorld(const std::vector<std::pair<std::string, Geome
 /// MSIS base on the hull at `base_xyz`/`base_rpy` (base link frame), head `head_height` above it on the
 /// continuous joint T/msis_head_joint (axis z). Head link: T/msis_head_link.
 inline std::string msisLinks(const Eigen::Vector3d& base_xyz = Eigen::Vector3d(0, 0, 0.3),
-                             const Eigen::Vector3d& base_rpy = Eigen::Vector3d::Zero(), double head_height = 0.06)
-{
+                             const Eigen::Vector3d& base_rpy = Eigen::Vector3d::Zero(), double head_height = 0.06) {
   return mountLink("T/msis_base_link", base_xyz, base_rpy) +
          "<link name='T/msis_head_link'/><joint name='T/msis_head_joint' type='continuous'>"
          "<parent link='T/msis_base_link'/><child link='T/msis_head_link'/><origin xyz='0 0 " +
@@ -49,8 +47,7 @@ inline std::string msisLinks(const Eigen::Vector3d& base_xyz = Eigen::Vector3d(0
 /// +x), centred on the sensor's y, `width` x `height` [m], its centre `below_surface` [m] below the free surface
 /// (z = 0).
 inline Geometry plateTarget(const Eigen::Vector3d& sensor, double ahead, double below_surface, double width = 0.6,
-                            double height = 0.2)
-{
+                            double height = 0.2) {
   const Eigen::Vector3d c(sensor.x() + ahead, sensor.y(), -below_surface);
   return box(c + Eigen::Vector3d(0, -width / 2, -height / 2), c + Eigen::Vector3d(0.01, width / 2, height / 2));
 }

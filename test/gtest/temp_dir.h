@@ -16,14 +16,11 @@ namespace test {
 
 /// <gtest TempDir>/unexmin_test_<pid>/, created on first use and removed with its files when the process
 /// exits; ends with '/'.
-inline const std::string& testTempDir()
-{
-  struct Folder
-  {
+inline const std::string& testTempDir() {
+  struct Folder {
     std::string path = ::testing::TempDir() + "unexmin_test_" + std::to_string(::getpid()) + "/";
     Folder() { std::filesystem::create_directories(path); }
-    ~Folder()
-    {
+    ~Folder() {
       std::error_code ignored;
       std::filesystem::remove_all(path, ignored);
     }

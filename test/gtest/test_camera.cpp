@@ -24,47 +24,54 @@ using sensors::vision::CameraSensor;
 using sensors::vision::WaterOptics;
 
 constexpr double kDeg = M_PI / 180.0;
-const Eigen::Vector3d kCamera(0.3, 0.0, 0.0);         // [m] lens on the hull front, base frame
+const Eigen::Vector3d kCamera(0.3, 0.0, 0.0);             // [m] lens on the hull front, base frame
 const Eigen::Vector3d kOptical(-M_PI / 2, 0, -M_PI / 2);  // optical frame: z forward (+x), x right (-y), y down (-z)
 // [m] the LED on a boom above the hull, 0.3 m behind the lens (so the light's path to the wall differs from the
 // lens's by 0.35 m: a model that attenuated both legs by the camera's range would be caught), beam along +x
 const Eigen::Vector3d kLight(0.0, 0.0, 0.45);
-constexpr double kWall = 2.0;                         // [m] the test box's +x wall
-constexpr double kI0 = 2.0;                           // [W/sr] LED on-axis intensity, every channel
-constexpr double kExponent = 2.0;                     // cos^m beam
-constexpr double kCone = 120.0 * kDeg;                // [rad] full cone
+constexpr double kWall = 2.0;           // [m] the test box's +x wall
+constexpr double kI0 = 2.0;             // [W/sr] LED on-axis intensity, every channel
+constexpr double kExponent = 2.0;       // cos^m beam
+constexpr double kCone = 120.0 * kDeg;  // [rad] full cone
 
 /// Rotation of the optical frame in the base (= world: the robot sits at the origin, level) frame.
-Eigen::Matrix3d opticalRotation() { return sim::poseFromXyzRpy(Eigen::Vector3d::Zero(), kOptical).linear(); }
+Eigen::Matrix3d opticalRotation() {
+  return sim::poseFromXyzRpy(Eigen::Vector3d::Zero(), kOptical).linear();
+}
 
-std::map<std::string, std::string> cameraParams(std::map<std::string, std::string> extra)
-{
-  std::map<std::string, std::string> p{{"width", "101"},       {"height", "81"},        {"hfov", num(60 * kDeg)},
-                                       {"noise", "none"},      {"exposure", "10"},      {"clip_far", "10"},
-                                       {"lights", "T/light"},  {"light_intensity", num(kI0) + " " + num(kI0) + " " + num(kI0)},
-                                       {"light_exponent", num(kExponent)}, {"light_cone", num(kCone)}};
-  for (auto& kv : extra) p[kv.first] = kv.second;
+std::map<std::string, std::string> cameraParams(std::map<std::string, std::string> extra) {
+  std::map<std::string, std::string> p{{"width", "101"},
+                                       {"height", "81"},
+                                       {"hfov", num(60 * kDeg)},
+                                       {"noise", "none"},
+                                       {"exposure", "10"},
+                                       {"clip_far", "10"},
+                                       {"lights", "T/light"},
+                                       {"light_intensity", num(kI0) + " " + num(kI0) + " " + num(kI0)},
+                                       {"light_exponent", num(kExponent)},
+                                       {"light_cone", num(kCone)}};
+  for (auto& kv : extra)
+    p[kv.first] = kv.second;
   return p;
 }
 
 /// The test sphere with the camera and the LED; `extra` links and sensors.
 std::string cameraUrdf(const std::map<std::string, std::string>& params, const std::string& extra_links = "",
-                       const std::string& extra_sensors = "")
-{
-  const std::string links = mountLink("T/cam", kCamera, kOptical) + mountLink("T/light", kLight, Eigen::Vector3d::Zero());
-  return sensorUrdf(SphereSpec(), links + extra_links, sensorXml("cam", "camera", "T/cam", 10.0, params) + extra_sensors);
+                       const std::string& extra_sensors = "") {
+  const std::string links =
+      mountLink("T/cam", kCamera, kOptical) + mountLink("T/light", kLight, Eigen::Vector3d::Zero());
+  return sensorUrdf(SphereSpec(), links + extra_links,
+                    sensorXml("cam", "camera", "T/cam", 10.0, params) + extra_sensors);
 }
 
 /// The test box (walls at +-2 m) with `albedo` on its walls, visibility `level`, and extra boxes (name, lo, hi,
 /// albedo).
-struct Plate
-{
+struct Plate {
   std::string name;
   Eigen::Vector3d lo, hi;
   double albedo;
 };
-sim::WorldConfig box(const std::string& level, double albedo, const std::vector<Plate>& plates = {})
-{
+sim::WorldConfig box(const std::string& level, double albedo, const std::vector<Plate>& plates = {}) {
   sim::WorldConfig config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
   config.visibility = level;
   config.meshes.at(0).albedo = Eigen::Vector3d::Constant(albedo);
@@ -80,10 +87,8 @@ sim::WorldConfig box(const std::string& level, double albedo, const std::vector<
 
 /// A world with the camera robot (visual mode unless told), its suite built with the core's models plus the
 /// camera and SLS families, stepped as the simulator does.
-struct CameraWorld
-{
-  CameraWorld(const sim::WorldConfig& config, const std::string& urdf, bool visual = true, std::uint64_t seed = 1)
-  {
+struct CameraWorld {
+  CameraWorld(const sim::WorldConfig& config, const std::string& urdf, bool visual = true, std::uint64_t seed = 1) {
     std::map<std::string, sim::RobotDescription> d;
     d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf, "(test robot)"));
     world = std::make_unique<sim::World>(config, d, 1, 0.002, seed);
@@ -100,8 +105,7 @@ struct CameraWorld
   }
   CameraSensor& camera(const std::string& name = "cam") { return dynamic_cast<CameraSensor&>(*suite->find(name)); }
   /// Steps until `camera` has taken one more sample, the robot held at the origin, level.
-  const sensors::vision::CameraFrame& frame(const std::string& name = "cam")
-  {
+  const sensors::vision::CameraFrame& frame(const std::string& name = "cam") {
     const CameraSensor& c = camera(name);
     const std::uint64_t target = c.sampleCount() + 1;
     while (c.sampleCount() < target) {
@@ -120,29 +124,26 @@ struct CameraWorld
 };
 
 // ---------------------------------------------------------------- the closed form, written out here
-double henyeyGreenstein(double g, double cos_psi)
-{
+double henyeyGreenstein(double g, double cos_psi) {
   return (1 - g * g) / (4 * M_PI * std::pow(1 + g * g - 2 * g * cos_psi, 1.5));
 }
 
 /// LED intensity towards unit direction `dir` (from the light) [W/sr]: I0 cos^m(theta), faded to 0 by a smoothstep
 /// over the outer 20 % of the cone's half angle.
-double led(const Eigen::Vector3d& dir)
-{
+double led(const Eigen::Vector3d& dir) {
   const double theta = std::acos(std::min(1.0, dir.x())), half = kCone / 2;  // beam along +x
-  if (theta >= half) return 0.0;
+  if (theta >= half)
+    return 0.0;
   const double x = std::min(1.0, (half - theta) / (0.2 * half));
   return kI0 * std::pow(std::cos(theta), kExponent) * x * x * (3 - 2 * x);
 }
 
 /// Unit ray of pixel (u, v) of an undistorted camera with focal f and centre (cx, cy), world frame.
-Eigen::Vector3d pixelRay(double u, double v, double f, double cx, double cy)
-{
+Eigen::Vector3d pixelRay(double u, double v, double f, double cx, double cy) {
   return (opticalRotation() * Eigen::Vector3d((u - cx) / f, (v - cy) / f, 1.0)).normalized();
 }
 
-struct Expected
-{
+struct Expected {
   Eigen::Vector3d direct, backscatter;
   double range;
 };
@@ -150,8 +151,7 @@ struct Expected
 /// Radiance at the lens [W m^-2 sr^-1] per channel along unit ray `d` (world frame, from the lens) that meets the
 /// +x wall (albedo rho): Lambertian reflection of the LED, both legs attenuated, and the LED's light scattered
 /// back by the water along the ray (midpoint rule, 20 000 steps).
-Expected closedForm(const Eigen::Vector3d& d, double rho, const WaterOptics& water)
-{
+Expected closedForm(const Eigen::Vector3d& d, double rho, const WaterOptics& water) {
   Expected e;
   e.range = (kWall - kCamera.x()) / d.x();
   const Eigen::Vector3d p = kCamera + e.range * d;
@@ -176,8 +176,7 @@ Expected closedForm(const Eigen::Vector3d& d, double rho, const WaterOptics& wat
 }
 
 // ---------------------------------------------------------------- tests
-TEST(Camera, AWallLitByOneLedHasTheDirectPlusBackscatterRadianceOfTheModel)
-{
+TEST(Camera, AWallLitByOneLedHasTheDirectPlusBackscatterRadianceOfTheModel) {
   const double rho = 0.5;
   for (const std::string level : {"none", "low", "medium", "high"}) {
     SCOPED_TRACE(level);
@@ -223,16 +222,19 @@ TEST(Camera, AWallLitByOneLedHasTheDirectPlusBackscatterRadianceOfTheModel)
   }
 }
 
-TEST(Camera, ASmallTargetIsWhereCameraInfoProjectsIt)
-{
+TEST(Camera, ASmallTargetIsWhereCameraInfoProjectsIt) {
   // A 3 cm plate 1.2 m away, seen off-axis through a strongly distorting lens; dark walls.
   const std::array<double, 5> d{{-0.25, 0.06, 0.002, -0.0015, 0.0}};
   const Eigen::Vector3d xy_depth(0.42, -0.28, 1.2);  // normalised (x, y) and depth in the optical frame
-  const Eigen::Vector3d centre = kCamera + opticalRotation() * Eigen::Vector3d(xy_depth.x() * xy_depth.z(),
-                                                                                xy_depth.y() * xy_depth.z(), xy_depth.z());
-  const Plate target{"target", centre - Eigen::Vector3d(0, 0.015, 0.015), centre + Eigen::Vector3d(0.004, 0.015, 0.015), 0.9};
+  const Eigen::Vector3d centre =
+      kCamera +
+      opticalRotation() * Eigen::Vector3d(xy_depth.x() * xy_depth.z(), xy_depth.y() * xy_depth.z(), xy_depth.z());
+  const Plate target{"target", centre - Eigen::Vector3d(0, 0.015, 0.015), centre + Eigen::Vector3d(0.004, 0.015, 0.015),
+                     0.9};
   CameraWorld w(box("none", 0.02, {target}),
-                cameraUrdf(cameraParams({{"width", "320"}, {"height", "240"}, {"hfov", num(70 * kDeg)},
+                cameraUrdf(cameraParams({{"width", "320"},
+                                         {"height", "240"},
+                                         {"hfov", num(70 * kDeg)},
                                          {"distortion", num(d[0]) + " " + num(d[1]) + " " + num(d[2]) + " " +
                                                             num(d[3]) + " " + num(d[4])}})));
   const auto& frame = w.frame();
@@ -251,7 +253,8 @@ TEST(Camera, ASmallTargetIsWhereCameraInfoProjectsIt)
 
   // Find it: the centroid of the pixels brighter than half the brightest.
   int best = 0;
-  for (std::size_t i = 1; i < frame.rgb.size(); i += 3) best = std::max<int>(best, frame.rgb[i]);
+  for (std::size_t i = 1; i < frame.rgb.size(); i += 3)
+    best = std::max<int>(best, frame.rgb[i]);
   ASSERT_GT(best, 100);
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   int count = 0;
@@ -268,13 +271,14 @@ TEST(Camera, ASmallTargetIsWhereCameraInfoProjectsIt)
   EXPECT_NEAR(found.y(), expected.y(), 1.0);
 }
 
-TEST(Camera, ContrastOfABrightAndADarkPatchFallsWithTurbidity)
-{
+TEST(Camera, ContrastOfABrightAndADarkPatchFallsWithTurbidity) {
   // Two plates 1.2 m in front of the lens, left (albedo 0.8) and right (0.1), lit alike by the LED above the lens.
-  const std::vector<Plate> plates{{"bright", Eigen::Vector3d(1.5, 0.05, -0.15), Eigen::Vector3d(1.51, 0.35, 0.15), 0.8},
-                                  {"dark", Eigen::Vector3d(1.5, -0.35, -0.15), Eigen::Vector3d(1.51, -0.05, 0.15), 0.1}};
+  const std::vector<Plate> plates{
+      {"bright", Eigen::Vector3d(1.5, 0.05, -0.15), Eigen::Vector3d(1.51, 0.35, 0.15), 0.8},
+      {"dark", Eigen::Vector3d(1.5, -0.35, -0.15), Eigen::Vector3d(1.51, -0.05, 0.15), 0.1}};
   const double f = 50.5 / std::tan(30 * kDeg);
-  const int u_bright = static_cast<int>(std::lround(50 - f * 0.2 / 1.2)), u_dark = static_cast<int>(std::lround(50 + f * 0.2 / 1.2));
+  const int u_bright = static_cast<int>(std::lround(50 - f * 0.2 / 1.2)),
+            u_dark = static_cast<int>(std::lround(50 + f * 0.2 / 1.2));
   double last = 2.0, last_rgb = 2.0, first = 0.0;
   for (const std::string level : {"none", "low", "medium", "high"}) {
     CameraWorld w(box(level, 0.3, plates), cameraUrdf(cameraParams({{"noise", "gaussian"}, {"exposure", "2"}})));
@@ -282,7 +286,8 @@ TEST(Camera, ContrastOfABrightAndADarkPatchFallsWithTurbidity)
     double bright = 0, dark = 0, bright_rgb = 0, dark_rgb = 0;
     for (int v = 38; v <= 42; ++v)
       for (int du = -2; du <= 2; ++du) {
-        const std::size_t b = static_cast<std::size_t>(v) * 101 + u_bright + du, d = static_cast<std::size_t>(v) * 101 + u_dark + du;
+        const std::size_t b = static_cast<std::size_t>(v) * 101 + u_bright + du,
+                          d = static_cast<std::size_t>(v) * 101 + u_dark + du;
         ASSERT_NEAR(frame.range[b], std::hypot(1.2, 0.2), 0.03);  // on the plates
         ASSERT_NEAR(frame.range[d], std::hypot(1.2, 0.2), 0.03);
         bright += frame.radiance[3 * b + 1];
@@ -306,15 +311,17 @@ TEST(Camera, ContrastOfABrightAndADarkPatchFallsWithTurbidity)
   EXPECT_LT(last, 0.2 * first);  // high turbidity: the patches drown in backscatter
 }
 
-TEST(Camera, ShadowRaysDarkenTheWallBehindAnOccluder)
-{
+TEST(Camera, ShadowRaysDarkenTheWallBehindAnOccluder) {
   // A plate between the LED and the wall; the lens sees the plate's shadow on the wall, below the plate.
   const Eigen::Vector3d plate_centre(1.0, 0.0, 0.35);
-  const Plate plate{"occluder", plate_centre - Eigen::Vector3d(0.005, 0.05, 0.05), plate_centre + Eigen::Vector3d(0.005, 0.05, 0.05), 0.5};
-  const Eigen::Vector3d shadow = kLight + (plate_centre - kLight) * ((kWall - kLight.x()) / (plate_centre.x() - kLight.x()));
+  const Plate plate{"occluder", plate_centre - Eigen::Vector3d(0.005, 0.05, 0.05),
+                    plate_centre + Eigen::Vector3d(0.005, 0.05, 0.05), 0.5};
+  const Eigen::Vector3d shadow =
+      kLight + (plate_centre - kLight) * ((kWall - kLight.x()) / (plate_centre.x() - kLight.x()));
   const Eigen::Vector3d p = opticalRotation().transpose() * (shadow - kCamera);
   const double f = 50.5 / std::tan(30 * kDeg);
-  const int u = static_cast<int>(std::lround(50 + f * p.x() / p.z())), v = static_cast<int>(std::lround(40 + f * p.y() / p.z()));
+  const int u = static_cast<int>(std::lround(50 + f * p.x() / p.z())),
+            v = static_cast<int>(std::lround(40 + f * p.y() / p.z()));
   const std::size_t i = static_cast<std::size_t>(v) * 101 + u;
   const WaterOptics water = WaterOptics::fromVisibility("low", sim::WorldConfig().visibility_colour);
   const Expected e = closedForm(pixelRay(u, v, f, 50, 40), 0.5, water);
@@ -335,23 +342,29 @@ TEST(Camera, ShadowRaysDarkenTheWallBehindAnOccluder)
 }
 
 /// The SLS unit 10 cm left of the lens, its vertical fan (head x-z plane) at motor angle 0, seen by the camera.
-std::string slsLinks()
-{
+std::string slsLinks() {
   return "<link name='T/sls'/><joint name='T/sls_motor' type='revolute'><parent link='T/base_link'/>"
          "<child link='T/sls'/><origin xyz='0.3 0.1 0' rpy='0 0 0'/><axis xyz='0 0 1'/>"
          "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>\n";
 }
-std::string slsSensor(double fan)
-{
+std::string slsSensor(double fan) {
   return sensorXml("sls", "sls", "T/sls", 10.0,
-                   {{"camera_frame", "T/cam"}, {"camera_width", "101"}, {"camera_height", "81"},
-                    {"camera_hfov", num(60 * kDeg)}, {"fan", num(fan)}, {"rays", "50"}, {"motor_min", "-0.5"},
-                    {"motor_max", "0.5"}, {"motor_speed", "0"}, {"motor_start", "0"}, {"noise", "none"}});
+                   {{"camera_frame", "T/cam"},
+                    {"camera_width", "101"},
+                    {"camera_height", "81"},
+                    {"camera_hfov", num(60 * kDeg)},
+                    {"fan", num(fan)},
+                    {"rays", "50"},
+                    {"motor_min", "-0.5"},
+                    {"motor_max", "0.5"},
+                    {"motor_speed", "0"},
+                    {"motor_start", "0"},
+                    {"noise", "none"}});
 }
 
-TEST(Camera, EightLanesAndOneLaneRenderTheSameImage)
-{
-  if (!sensors::vision::ImageFormation::simdAvailable()) GTEST_SKIP() << "this CPU (or build) has no AVX2 and FMA";
+TEST(Camera, EightLanesAndOneLaneRenderTheSameImage) {
+  if (!sensors::vision::ImageFormation::simdAvailable())
+    GTEST_SKIP() << "this CPU (or build) has no AVX2 and FMA";
   // 101 x 81 px: the tiles of the right column and bottom row hold 5 x 8, 8 x 1 and 5 x 1 pixels (the lanes' padding);
   // noise, shadows and two plates of other albedos in medium water.
   const std::vector<Plate> plates{{"dark", Eigen::Vector3d(1.5, -0.6, -0.3), Eigen::Vector3d(1.55, -0.1, 0.2), 0.1},
@@ -379,20 +392,20 @@ TEST(Camera, EightLanesAndOneLaneRenderTheSameImage)
   }
   EXPECT_LE(differ, a.rgb.size() / 1000);
   double sum = 0.0;
-  for (std::uint8_t x : a.rgb) sum += x;
+  for (std::uint8_t x : a.rgb)
+    sum += x;
   EXPECT_GT(sum / a.rgb.size(), 5.0);  // an image, not a black frame
 }
 
-TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
-{
+TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength) {
   const double fan = 60 * kDeg, power = 0.05, rho = 0.5;
   const std::string distortion = "-0.1 0.01 0 0 0";
   auto params = [&](double p) {
     return cameraParams({{"laser_power", num(p)}, {"laser_width", "1"}, {"distortion", distortion}});
   };
   // Two cameras on the same lens, one with the laser switched off: their difference is the line alone.
-  const std::string urdf = cameraUrdf(params(power), slsLinks(),
-                                      sensorXml("dark", "camera", "T/cam", 10.0, params(0.0)) + slsSensor(fan));
+  const std::string urdf =
+      cameraUrdf(params(power), slsLinks(), sensorXml("dark", "camera", "T/cam", 10.0, params(0.0)) + slsSensor(fan));
   CameraWorld w(box("low", rho), urdf);
   ASSERT_NE(w.camera().laser(), nullptr);
   ASSERT_NE(w.camera("dark").laser(), nullptr);
@@ -400,7 +413,8 @@ TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
   const auto& without = w.camera("dark").last();
   ASSERT_EQ(with.time, without.time);
   std::vector<double> line(101 * 81);
-  for (std::size_t i = 0; i < line.size(); ++i) line[i] = with.radiance[3 * i + 1] - without.radiance[3 * i + 1];
+  for (std::size_t i = 0; i < line.size(); ++i)
+    line[i] = with.radiance[3 * i + 1] - without.radiance[3 * i + 1];
 
   // Expected: the fan's plane y = 0.1 meets the wall x = 2 in a vertical line; its image through the lens.
   const sensors::vision::CameraModel& m = w.camera().model();
@@ -409,7 +423,8 @@ TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
   for (double e = -fan / 2; e <= fan / 2; e += 0.001) {
     const Eigen::Vector3d hit = head + (kWall - head.x()) * Eigen::Vector3d(1, 0, std::tan(e));
     Eigen::Vector2d uv;
-    if (m.project(opticalRotation().transpose() * (hit - kCamera), uv)) expected.push_back(uv);
+    if (m.project(opticalRotation().transpose() * (hit - kCamera), uv))
+      expected.push_back(uv);
   }
   ASSERT_GT(expected.size(), 100u);
   int rows = 0;
@@ -417,8 +432,10 @@ TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
     // The expected column at this row, from the nearest expected samples.
     double u_expected = NAN, best = 1e9;
     for (const auto& uv : expected)
-      if (std::abs(uv.y() - v) < best) best = std::abs(uv.y() - v), u_expected = uv.x();
-    if (best > 0.05) continue;
+      if (std::abs(uv.y() - v) < best)
+        best = std::abs(uv.y() - v), u_expected = uv.x();
+    if (best > 0.05)
+      continue;
     double sum = 0, moment = 0;
     for (int u = 0; u < 101; ++u) {
       sum += line[v * 101 + u];
@@ -439,7 +456,8 @@ TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
   const double per_pixel = rho / M_PI * power / fan * std::exp(-c * (dl + rc)) * m.fx() / (z * dl);
   const int v0 = static_cast<int>(std::lround(m.cy()));
   double sum = 0;
-  for (int u = 0; u < 101; ++u) sum += line[v0 * 101 + u];
+  for (int u = 0; u < 101; ++u)
+    sum += line[v0 * 101 + u];
   EXPECT_NEAR(sum, per_pixel, 0.05 * per_pixel);
   // Green light: the red and blue channels see 0.05 and 0.15 of it (laser_colour default).
   double red = 0;
@@ -448,11 +466,12 @@ TEST(Camera, TheSlsLaserLineLandsWhereTheFanMeetsTheWallWithTheModelsStrength)
   EXPECT_NEAR(red, 0.05 * sum, 0.01 * sum);
 }
 
-TEST(Camera, NoiseHasTheShotAndReadNoiseOfItsParameters)
-{
+TEST(Camera, NoiseHasTheShotAndReadNoiseOfItsParameters) {
   const double full_well = 1000, read = 5, gain = 2, exposure = 4;
-  CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({{"noise", "gaussian"}, {"full_well", num(full_well)},
-                                                           {"read_noise", num(read)}, {"gain", num(gain)},
+  CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({{"noise", "gaussian"},
+                                                           {"full_well", num(full_well)},
+                                                           {"read_noise", num(read)},
+                                                           {"gain", num(gain)},
                                                            {"exposure", num(exposure)}})));
   const int frames = 120;
   const std::vector<std::size_t> pixels{40 * 101 + 50, 40 * 101 + 51, 41 * 101 + 50, 20 * 101 + 30, 60 * 101 + 70};
@@ -478,8 +497,7 @@ TEST(Camera, NoiseHasTheShotAndReadNoiseOfItsParameters)
   }
 }
 
-TEST(Camera, SeededNoiseRepeatsAndDoesNotDependOnWhoWatches)
-{
+TEST(Camera, SeededNoiseRepeatsAndDoesNotDependOnWhoWatches) {
   const std::string urdf = cameraUrdf(cameraParams({{"noise", "gaussian"}, {"full_well", "500"}}));
   CameraWorld a(box("low", 0.5), urdf, true, 7), b(box("low", 0.5), urdf, true, 7), c(box("low", 0.5), urdf, true, 8);
   // b renders only its third frame: the noise of that frame is the same as a's, which rendered all three.
@@ -496,8 +514,7 @@ TEST(Camera, SeededNoiseRepeatsAndDoesNotDependOnWhoWatches)
   EXPECT_NE(third_c, third_a);
 }
 
-TEST(Camera, OperationalModeRendersNothing)
-{
+TEST(Camera, OperationalModeRendersNothing) {
   CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({})), /*visual=*/false);
   const auto& frame = w.frame();
   EXPECT_FALSE(w.camera().visual());
@@ -509,8 +526,7 @@ TEST(Camera, OperationalModeRendersNothing)
   EXPECT_EQ(w.camera().model().width(), 101);
 }
 
-TEST(Camera, ItsLightsAndItsLaserComeFromTheDescription)
-{
+TEST(Camera, ItsLightsAndItsLaserComeFromTheDescription) {
   CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({}), slsLinks(), slsSensor(1.0)));
   const auto& lights = w.camera().lights();
   ASSERT_EQ(lights.size(), 1u);
@@ -525,8 +541,7 @@ TEST(Camera, ItsLightsAndItsLaserComeFromTheDescription)
   EXPECT_EQ(plain.camera().laser(), nullptr);
 }
 
-std::string startUpError(const std::string& urdf)
-{
+std::string startUpError(const std::string& urdf) {
   try {
     CameraWorld w(box("none", 0.5), urdf);
   } catch (const ConfigError& e) {
@@ -536,21 +551,23 @@ std::string startUpError(const std::string& urdf)
   return "";
 }
 
-TEST(Camera, BadParametersStopStartUpNamingThem)
-{
-  EXPECT_EQ(startUpError(cameraUrdf(cameraParams({{"lights", "T/light T/lamp"}}))),
-            "UX_1: sensor 'cam' (type camera): parameter 'lights' = 'T/lamp': expected links of the robot (the LED lights)");
-  EXPECT_EQ(startUpError(cameraUrdf(cameraParams({{"shadows", "maybe"}}))),
-            "UX_1: sensor 'cam' (type camera): parameter 'shadows' = 'maybe': expected one of true|false|True|False|1|0");
+TEST(Camera, BadParametersStopStartUpNamingThem) {
+  EXPECT_EQ(
+      startUpError(cameraUrdf(cameraParams({{"lights", "T/light T/lamp"}}))),
+      "UX_1: sensor 'cam' (type camera): parameter 'lights' = 'T/lamp': expected links of the robot (the LED lights)");
+  EXPECT_EQ(
+      startUpError(cameraUrdf(cameraParams({{"shadows", "maybe"}}))),
+      "UX_1: sensor 'cam' (type camera): parameter 'shadows' = 'maybe': expected one of true|false|True|False|1|0");
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"light_intensity", "1 2"}}))),
                        "parameter 'light_intensity' = 1 2: expected three numbers"));
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"light_intensity", "1 -2 1"}}))),
                        "parameter 'light_intensity' = -2: expected three finite numbers >= 0 W/sr"));
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"exposure", "-1"}}))), "parameter 'exposure' = -1"));
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"gama", "2"}}))), "unknown parameter 'gama'"));
-  const std::string second = "<link name='T/sls2'/><joint name='T/sls2_motor' type='revolute'><parent link='T/base_link'/>"
-                             "<child link='T/sls2'/><origin xyz='0.3 -0.1 0' rpy='0 0 0'/><axis xyz='0 0 1'/>"
-                             "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>\n";
+  const std::string second =
+      "<link name='T/sls2'/><joint name='T/sls2_motor' type='revolute'><parent link='T/base_link'/>"
+      "<child link='T/sls2'/><origin xyz='0.3 -0.1 0' rpy='0 0 0'/><axis xyz='0 0 1'/>"
+      "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>\n";
   std::string two = slsSensor(1.0) + slsSensor(1.0);
   two.replace(two.rfind("name='sls'"), 10, "name='sls2'");
   two.replace(two.rfind("link='T/sls'"), 12, "link='T/sls2'");

@@ -15,8 +15,7 @@ using unexmin::ConfigError;
 
 namespace {
 
-std::string writeTemp(const std::string& name, const std::string& text)
-{
+std::string writeTemp(const std::string& name, const std::string& text) {
   const std::string path = unexmin::test::testTempDir() + name;
   std::ofstream(path) << text;
   return path;
@@ -24,8 +23,7 @@ std::string writeTemp(const std::string& name, const std::string& text)
 
 /// The message of the ConfigError thrown by f ("" if none).
 template <typename F>
-std::string errorOf(F f)
-{
+std::string errorOf(F f) {
   try {
     f();
   } catch (const ConfigError& e) {
@@ -44,27 +42,24 @@ robots:
 
 }  // namespace
 
-TEST(WorldFile, ShippedWorldsLoad)
-{
+TEST(WorldFile, ShippedWorldsLoad) {
   for (const char* name : {"tank.world", "test_box.world"}) {
     const auto w = unexmin::sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/" + name);
     EXPECT_FALSE(w.robots.empty()) << name;
     EXPECT_FALSE(w.meshes.empty()) << name;
-    for (const auto& m : w.meshes) EXPECT_GT(unexmin::sim::loadMesh(m).triangleCount(), 0u) << m.file;
+    for (const auto& m : w.meshes)
+      EXPECT_GT(unexmin::sim::loadMesh(m).triangleCount(), 0u) << m.file;
   }
 }
 
-TEST(WorldFile, GoodMinimalWorldLoads)
-{
+TEST(WorldFile, GoodMinimalWorldLoads) {
   const auto w = unexmin::sim::loadWorldConfig(writeTemp("good.world", kGoodWorld));
   EXPECT_EQ(w.robots.size(), 1u);
   EXPECT_DOUBLE_EQ(w.water_density, 1000.0);
 }
 
-TEST(WorldFile, DefectsAreNamed)
-{
-  struct Case
-  {
+TEST(WorldFile, DefectsAreNamed) {
+  struct Case {
     std::string text;
     std::string expected;  // regex the message must contain
   };
@@ -77,7 +72,8 @@ TEST(WorldFile, DefectsAreNamed)
       {"name: w\nwater: {density: 0}\nrobots: [{name: A}]\n", "'water.density' must be > 0"},
       {"name: w\nrobots: [{name: A, xyz: [1, 2]}]\n", "'robots\\[0\\]\\.xyz' must be a list of 3 numbers"},
       {"name: w\nrobots: [{name: A}, {name: A}]\n", "robot name 'A' appears twice"},
-      {"name: w\nmeshes: [{name: m, file: nowhere.stl}]\nrobots: [{name: A}]\n", "meshes\\[0\\]\\.file.*does not exist"},
+      {"name: w\nmeshes: [{name: m, file: nowhere.stl}]\nrobots: [{name: A}]\n",
+       "meshes\\[0\\]\\.file.*does not exist"},
       {"name: w\ncurrent: {speed: {mean: 1, min: 0, max: 0.5}}\nrobots: [{name: A}]\n", "current\\.speed"},
       {"name: w\nvisibility: {level: foggy}\nrobots: [{name: A}]\n", "expected none\\|low\\|medium\\|high"},
   };
@@ -91,8 +87,7 @@ TEST(WorldFile, DefectsAreNamed)
   EXPECT_NE(missing.find("/nonexistent/x.world: cannot open"), std::string::npos) << missing;
 }
 
-TEST(WorldFile, MeshFilesMustStayInsideTheWorldFilesFolder)
-{
+TEST(WorldFile, MeshFilesMustStayInsideTheWorldFilesFolder) {
   // A world file names its meshes relative to its own folder (docs/worlds.md, "Paths"): an absolute path or a
   // path climbing out with '..' is refused, naming the file, the key and the path, before anything is read.
   namespace fs = std::filesystem;
@@ -114,8 +109,7 @@ TEST(WorldFile, MeshFilesMustStayInsideTheWorldFilesFolder)
     EXPECT_GT(unexmin::sim::loadMesh(w.meshes[0]).triangleCount(), 0u) << file;
   }
   // Outside: each file exists (or is a real system file), so only the rule can refuse it.
-  struct Case
-  {
+  struct Case {
     std::string file, expected;
   };
   const std::vector<Case> cases = {
@@ -134,8 +128,7 @@ TEST(WorldFile, MeshFilesMustStayInsideTheWorldFilesFolder)
   }
 }
 
-TEST(WorldFile, TooManyRobotsIsAnError)
-{
+TEST(WorldFile, TooManyRobotsIsAnError) {
   unexmin::test::SphereSpec s;
   const auto config = unexmin::test::openWater(s);
   std::map<std::string, unexmin::sim::RobotDescription> d;
@@ -144,19 +137,18 @@ TEST(WorldFile, TooManyRobotsIsAnError)
   EXPECT_NE(msg.find("2 robots asked for"), std::string::npos) << msg;
 }
 
-TEST(RobotFile, DefectsAreNamed)
-{
+TEST(RobotFile, DefectsAreNamed) {
   unexmin::test::SphereSpec s;
   const std::string good = unexmin::test::sphereUrdf(s);
   ASSERT_NO_THROW(unexmin::sim::parseRobotDescription(good, "good"));
   auto replaced = [&](const std::string& from, const std::string& to) {
     std::string x = good;
     const auto pos = x.find(from);
-    if (pos == std::string::npos) throw std::logic_error("test fixture lacks: " + from);
+    if (pos == std::string::npos)
+      throw std::logic_error("test fixture lacks: " + from);
     return x.replace(pos, from.size(), to);
   };
-  struct Case
-  {
+  struct Case {
     std::string xml;
     std::string expected;
   };
@@ -174,7 +166,8 @@ TEST(RobotFile, DefectsAreNamed)
       {replaced("thruster id='1'", "thruster id='3'"), "thruster ids must be 0..1"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::string msg = errorOf([&] { unexmin::sim::parseRobotDescription(cases[i].xml, "/UX_1/robot_description"); });
+    const std::string msg =
+        errorOf([&] { unexmin::sim::parseRobotDescription(cases[i].xml, "/UX_1/robot_description"); });
     EXPECT_TRUE(std::regex_search(msg, std::regex(cases[i].expected))) << "case " << i << ": '" << msg << "'";
     EXPECT_EQ(msg.rfind("/UX_1/robot_description: ", 0), 0u) << msg;
   }

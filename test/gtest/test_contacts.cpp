@@ -9,8 +9,7 @@ using unexmin::test::SphereSpec;
 namespace {
 
 /// The shipped 4 m closed box, with the test sphere "T" at `xyz` in place of the shipped robots.
-std::unique_ptr<unexmin::sim::World> boxWorld(const SphereSpec& s, const Eigen::Vector3d& xyz)
-{
+std::unique_ptr<unexmin::sim::World> boxWorld(const SphereSpec& s, const Eigen::Vector3d& xyz) {
   auto config = unexmin::sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
   config.robots.clear();
   unexmin::sim::RobotSpawn spawn;
@@ -22,8 +21,7 @@ std::unique_ptr<unexmin::sim::World> boxWorld(const SphereSpec& s, const Eigen::
 
 }  // namespace
 
-TEST(Contacts, RobotDrivenIntoAWallAtTwoMetresPerSecondStopsAtTheWall)
-{
+TEST(Contacts, RobotDrivenIntoAWallAtTwoMetresPerSecondStopsAtTheWall) {
   SphereSpec s;
   const double half = 2.0;  // the box is 4 m on a side, centred on the origin
   for (double speed : {2.0, 5.0}) {
@@ -44,8 +42,7 @@ TEST(Contacts, RobotDrivenIntoAWallAtTwoMetresPerSecondStopsAtTheWall)
   }
 }
 
-TEST(Contacts, TwoRobotsCollideInsteadOfPassingThrough)
-{
+TEST(Contacts, TwoRobotsCollideInsteadOfPassingThrough) {
   SphereSpec s;
   auto config = unexmin::sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
   config.robots.clear();
@@ -56,7 +53,8 @@ TEST(Contacts, TwoRobotsCollideInsteadOfPassingThrough)
     config.robots.push_back(spawn);
   }
   std::map<std::string, unexmin::sim::RobotDescription> d;
-  for (const char* n : {"A", "B"}) d.emplace(n, unexmin::sim::parseRobotDescription(unexmin::test::sphereUrdf(s), n));
+  for (const char* n : {"A", "B"})
+    d.emplace(n, unexmin::sim::parseRobotDescription(unexmin::test::sphereUrdf(s), n));
   unexmin::sim::World world(config, d, 2, 0.002, 1);
   world.robot(0).body()->setLinearVelocity(btVector3(2, 0, 0));
   world.robot(1).body()->setLinearVelocity(btVector3(-2, 0, 0));

@@ -19,8 +19,7 @@ namespace {
 using unexmin::test::contains;
 using unexmin::test::thrownMessage;
 
-GaussMarkovParams channel(double mean, double min, double max, double noise, double mu)
-{
+GaussMarkovParams channel(double mean, double min, double max, double noise, double mu) {
   GaussMarkovParams p;
   p.mean = mean;
   p.min = min;
@@ -31,8 +30,7 @@ GaussMarkovParams channel(double mean, double min, double max, double noise, dou
 }
 
 /// A mine current: 0.1 m/s mean, direction wandering around +x, nearly horizontal.
-CurrentParams mineCurrent()
-{
+CurrentParams mineCurrent() {
   CurrentParams p;
   p.speed = channel(0.1, 0.0, 0.3, 0.02, 0.1);
   p.horizontal_angle = channel(0.0, -0.5, 0.5, 0.05, 0.2);
@@ -40,28 +38,23 @@ CurrentParams mineCurrent()
   return p;
 }
 
-struct Moments
-{
+struct Moments {
   double mean = 0.0;
   double variance = 0.0;
   double lag1 = 0.0;  ///< lag-one autocorrelation
 };
 
-Moments moments(const std::vector<double>& x)
-{
+Moments moments(const std::vector<double>& x) {
   Moments m;
   const double n = static_cast<double>(x.size());
-  for (double v : x)
-  {
+  for (double v : x) {
     m.mean += v;
   }
   m.mean /= n;
   double cov = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-  {
+  for (std::size_t i = 0; i < x.size(); ++i) {
     m.variance += (x[i] - m.mean) * (x[i] - m.mean);
-    if (i > 0)
-    {
+    if (i > 0) {
       cov += (x[i] - m.mean) * (x[i - 1] - m.mean);
     }
   }
@@ -72,12 +65,10 @@ Moments moments(const std::vector<double>& x)
 
 // ---------------------------------------------------------------------------------- determinism
 
-TEST(CurrentModel, SameSeedGivesTheIdenticalSequence)
-{
+TEST(CurrentModel, SameSeedGivesTheIdenticalSequence) {
   CurrentModel a(mineCurrent(), 42);
   CurrentModel b(mineCurrent(), 42);
-  for (int i = 0; i < 2000; ++i)
-  {
+  for (int i = 0; i < 2000; ++i) {
     a.update(0.05);
     b.update(0.05);
     // Bitwise equality is the point here: the same seed must replay the same run.
@@ -88,13 +79,11 @@ TEST(CurrentModel, SameSeedGivesTheIdenticalSequence)
   }
 }
 
-TEST(CurrentModel, DifferentSeedsDiffer)
-{
+TEST(CurrentModel, DifferentSeedsDiffer) {
   CurrentModel a(mineCurrent(), 1);
   CurrentModel b(mineCurrent(), 2);
   int differing = 0;
-  for (int i = 0; i < 100; ++i)
-  {
+  for (int i = 0; i < 100; ++i) {
     a.update(0.05);
     b.update(0.05);
     differing += (a.speed() != b.speed()) ? 1 : 0;
@@ -103,8 +92,7 @@ TEST(CurrentModel, DifferentSeedsDiffer)
   EXPECT_GT(std::abs(a.speed() - b.speed()) + std::abs(a.horizontalAngle() - b.horizontalAngle()), 1e-6);
 }
 
-TEST(CurrentModel, ResetWithTheSeedReplaysFromTheMeans)
-{
+TEST(CurrentModel, ResetWithTheSeedReplaysFromTheMeans) {
   CurrentModel model(mineCurrent(), 5);
   std::vector<double> first;
   for (int i = 0; i < 101; ++i)  // odd count: leaves a cached Box-Muller value behind
@@ -115,23 +103,20 @@ TEST(CurrentModel, ResetWithTheSeedReplaysFromTheMeans)
   model.reset(5);
   EXPECT_EQ(model.speed(), 0.1);
   EXPECT_EQ(model.acceleration(), Eigen::Vector3d::Zero());
-  for (int i = 0; i < 101; ++i)
-  {
+  for (int i = 0; i < 101; ++i) {
     model.update(0.1);
     ASSERT_EQ(model.horizontalAngle(), first[i]) << "step " << i;
   }
 }
 
-TEST(CurrentModel, ZeroNoiseChannelsDoNotShiftTheOthers)
-{
+TEST(CurrentModel, ZeroNoiseChannelsDoNotShiftTheOthers) {
   // Every update draws three normals in a fixed order, so silencing one channel leaves the
   // random sequence of the others unchanged.
   CurrentParams quiet = mineCurrent();
   quiet.speed.noise = 0.0;
   CurrentModel a(mineCurrent(), 9);
   CurrentModel b(quiet, 9);
-  for (int i = 0; i < 500; ++i)
-  {
+  for (int i = 0; i < 500; ++i) {
     a.update(0.1);
     b.update(0.1);
     ASSERT_EQ(a.horizontalAngle(), b.horizontalAngle()) << "step " << i;
@@ -142,16 +127,14 @@ TEST(CurrentModel, ZeroNoiseChannelsDoNotShiftTheOthers)
 
 // ------------------------------------------------------------------------------------ behaviour
 
-TEST(CurrentModel, ValuesStayWithinTheBoundsAndReachThem)
-{
+TEST(CurrentModel, ValuesStayWithinTheBoundsAndReachThem) {
   CurrentParams p = mineCurrent();
   p.speed = channel(0.2, 0.1, 0.3, 0.5, 0.05);  // noise far larger than the band
   p.horizontal_angle = channel(1.0, 0.8, 1.2, 1.0, 0.0);
   p.vertical_angle = channel(-0.05, -0.1, 0.0, 0.3, 2.0);
   CurrentModel model(p, 123);
   bool at_min = false, at_max = false;
-  for (int i = 0; i < 20000; ++i)
-  {
+  for (int i = 0; i < 20000; ++i) {
     model.update(0.1);
     ASSERT_GE(model.speed(), 0.1);
     ASSERT_LE(model.speed(), 0.3);
@@ -167,15 +150,13 @@ TEST(CurrentModel, ValuesStayWithinTheBoundsAndReachThem)
   EXPECT_TRUE(at_max);
 }
 
-TEST(CurrentModel, NoNoiseMeansAConstantCurrentAtTheMean)
-{
+TEST(CurrentModel, NoNoiseMeansAConstantCurrentAtTheMean) {
   CurrentParams p;
   p.speed = channel(0.2, 0.0, 1.0, 0.0, 0.3);
   p.horizontal_angle = channel(M_PI / 2.0, 0.0, M_PI, 0.0, 0.0);
   p.vertical_angle = channel(0.0, -0.2, 0.2, 0.0, 1.0);
   CurrentModel model(p, 77);
-  for (int i = 0; i < 1000; ++i)
-  {
+  for (int i = 0; i < 1000; ++i) {
     model.update(0.01);
     ASSERT_EQ(model.speed(), 0.2);
     ASSERT_EQ(model.acceleration(), Eigen::Vector3d::Zero());
@@ -194,11 +175,9 @@ TEST(CurrentModel, NoNoiseMeansAConstantCurrentAtTheMean)
   EXPECT_NEAR(up.velocity().z(), 0.1, 1e-12);
 }
 
-TEST(CurrentModel, AccelerationIsTheVelocityChangeOverTheStep)
-{
+TEST(CurrentModel, AccelerationIsTheVelocityChangeOverTheStep) {
   CurrentModel model(mineCurrent(), 31);
-  for (int i = 0; i < 50; ++i)
-  {
+  for (int i = 0; i < 50; ++i) {
     const Eigen::Vector3d before = model.velocity();
     model.update(0.2);
     const Eigen::Vector3d expected = (model.velocity() - before) / 0.2;
@@ -214,28 +193,24 @@ TEST(CurrentModel, AccelerationIsTheVelocityChangeOverTheStep)
 
 // ---------------------------------------------------------------------------------- statistics
 
-TEST(CurrentModel, StationaryVarianceIsNoiseSquaredOverTwoMu)
-{
+TEST(CurrentModel, StationaryVarianceIsNoiseSquaredOverTwoMu) {
   // OU stationary law: variance noise^2 / (2 mu), lag-k correlation exp(-mu k dt). The bounds are
   // far away (over 30 sigma). dt = 1 s with mu = 0.5 is where an Euler-Maruyama step would be off
   // by a third (variance noise^2 dt / (1 - (1 - mu dt)^2) = 0.0133, lag-one correlation 0.5).
   const double noise = 0.1, mu = 0.5, mean = 0.3;
   const double stationary = noise * noise / (2.0 * mu);  // 0.01
-  for (double dt : {0.1, 1.0})
-  {
+  for (double dt : {0.1, 1.0}) {
     CurrentParams p;
     p.speed = channel(mean, -10.0, 10.0, noise, mu);
     CurrentModel model(p, 2024);
     const int burn_in = static_cast<int>(20.0 / dt);
-    for (int i = 0; i < burn_in; ++i)
-    {
+    for (int i = 0; i < burn_in; ++i) {
       model.update(dt);
     }
     std::vector<double> samples;
     const int n = static_cast<int>(50000.0 / dt) > 200000 ? 200000 : static_cast<int>(50000.0 / dt);
     samples.reserve(n);
-    for (int i = 0; i < n; ++i)
-    {
+    for (int i = 0; i < n; ++i) {
       model.update(dt);
       samples.push_back(model.speed());
     }
@@ -246,18 +221,15 @@ TEST(CurrentModel, StationaryVarianceIsNoiseSquaredOverTwoMu)
   }
 }
 
-TEST(CurrentModel, WithoutReversionTheVarianceGrowsLinearly)
-{
+TEST(CurrentModel, WithoutReversionTheVarianceGrowsLinearly) {
   // mu = 0: a Wiener process, Var[x(T)] = noise^2 T. Ensemble over independently seeded models.
   const double noise = 0.05, T = 10.0, dt = 0.1;
   CurrentParams p;
   p.speed = channel(1.0, -100.0, 100.0, noise, 0.0);
   std::vector<double> finals;
-  for (std::uint64_t seed = 1; seed <= 4000; ++seed)
-  {
+  for (std::uint64_t seed = 1; seed <= 4000; ++seed) {
     CurrentModel model(p, seed);
-    for (int i = 0; i < static_cast<int>(T / dt + 0.5); ++i)
-    {
+    for (int i = 0; i < static_cast<int>(T / dt + 0.5); ++i) {
       model.update(dt);
     }
     finals.push_back(model.speed());
@@ -269,8 +241,7 @@ TEST(CurrentModel, WithoutReversionTheVarianceGrowsLinearly)
 
 // ----------------------------------------------------------------------------------- validation
 
-TEST(CurrentModel, ValidationNamesTheChannelAndField)
-{
+TEST(CurrentModel, ValidationNamesTheChannelAndField) {
   EXPECT_NO_THROW(validate(mineCurrent()));
 
   CurrentParams p = mineCurrent();

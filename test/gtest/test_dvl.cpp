@@ -2,9 +2,9 @@
 // beam ranges against the analytic distance to the floor, velocity against the set robot velocity,
 // velocity_z1/z2 each from its own beam pair (heave while moving and turning; one beam out of the window),
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.
+#include <unexmin/sensors/dvl_sensor.h>
 #include "mesh_fixture.h"
 #include "sensor_fixture.h"
-#include <unexmin/sensors/dvl_sensor.h>
 
 #include <gtest/gtest.h>
 
@@ -16,14 +16,15 @@ namespace unexmin {
 namespace test {
 namespace {
 
-constexpr double kFloorZ = -3.0;                 // [m] tank floor (docs/worlds.md)
-constexpr double kBeamAngle = 25.0 * M_PI / 180; // [rad]
-constexpr double kAzimuth0 = 0.0;                // [rad]
+constexpr double kFloorZ = -3.0;                  // [m] tank floor (docs/worlds.md)
+constexpr double kBeamAngle = 25.0 * M_PI / 180;  // [rad]
+constexpr double kAzimuth0 = 0.0;                 // [rad]
 
-sim::WorldConfig tank() { return sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world"); }
+sim::WorldConfig tank() {
+  return sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
+}
 
-std::string dvlUrdf(const SphereSpec& s, double rate, std::map<std::string, std::string> params)
-{
+std::string dvlUrdf(const SphereSpec& s, double rate, std::map<std::string, std::string> params) {
   params.emplace("beam_angle", num(kBeamAngle));
   params.emplace("beam_azimuth_0", num(kAzimuth0));
   params.emplace("beam_frames", "T/dvl_beam_0_link T/dvl_beam_1_link T/dvl_beam_2_link T/dvl_beam_3_link");
@@ -31,28 +32,24 @@ std::string dvlUrdf(const SphereSpec& s, double rate, std::map<std::string, std:
 }
 
 /// Beam i in the DVL frame (formula of the model's documentation).
-Eigen::Vector3d beam(int i)
-{
+Eigen::Vector3d beam(int i) {
   const double c = kAzimuth0 + i * M_PI / 2;
   return Eigen::Vector3d(std::sin(kBeamAngle) * std::cos(c), std::sin(kBeamAngle) * std::sin(c), std::cos(kBeamAngle));
 }
 
 /// DVL frame in the world for the robot at `pose`: hull bottom, rpy (pi, 0, 0).
-Eigen::Isometry3d dvlPose(const Eigen::Isometry3d& pose)
-{
+Eigen::Isometry3d dvlPose(const Eigen::Isometry3d& pose) {
   return pose * sim::poseFromXyzRpy(Eigen::Vector3d(0, 0, -0.3), Eigen::Vector3d(M_PI, 0, 0));
 }
 
 /// Slant distance from the DVL along beam i to the plane z = kFloorZ.
-double floorRange(const Eigen::Isometry3d& dvl, int i)
-{
+double floorRange(const Eigen::Isometry3d& dvl, int i) {
   const Eigen::Vector3d d = dvl.linear() * beam(i);
   EXPECT_LT(d.z(), 0.0) << "beam " << i << " does not point down";
   return (dvl.translation().z() - kFloorZ) / -d.z();
 }
 
-TEST(Dvl, BeamRangesEqualTheAnalyticDistanceToTheTankFloor)
-{
+TEST(Dvl, BeamRangesEqualTheAnalyticDistanceToTheTankFloor) {
   const SphereSpec s = undampedSphere();
   SensorWorld w(tank(), dvlUrdf(s, 500.0, {{"noise", "none"}}));
   const Eigen::Isometry3d pose =
@@ -77,13 +74,13 @@ TEST(Dvl, BeamRangesEqualTheAnalyticDistanceToTheTankFloor)
   EXPECT_NEAR(dvl.last().altitude, along_z, 0.002);
 }
 
-TEST(Dvl, VelocityEqualsTheSetRobotVelocityWithinThreeSigma)
-{
+TEST(Dvl, VelocityEqualsTheSetRobotVelocityWithinThreeSigma) {
   const SphereSpec s = undampedSphere();
-  const double sigma_beam = 0.003;  // [m/s]
-  const double scale_sigma = 0.001; // [-]
-  SensorWorld w(tank(), dvlUrdf(s, 100.0, {{"beam_velocity_noise", num(sigma_beam)},
-                                            {"velocity_scale_error", num(scale_sigma)}}), 21);
+  const double sigma_beam = 0.003;   // [m/s]
+  const double scale_sigma = 0.001;  // [-]
+  SensorWorld w(
+      tank(), dvlUrdf(s, 100.0, {{"beam_velocity_noise", num(sigma_beam)}, {"velocity_scale_error", num(scale_sigma)}}),
+      21);
   const double yaw = 0.4;
   const Eigen::Vector3d v_world(0.15, -0.1, 0.02);  // [m/s], stays constant: no damping, neutral
   w.place(sim::poseFromXyzRpy(Eigen::Vector3d(-1.6, 0.8, -1.2), Eigen::Vector3d(0, 0, yaw)), v_world);
@@ -95,7 +92,8 @@ TEST(Dvl, VelocityEqualsTheSetRobotVelocityWithinThreeSigma)
   int pings = 0;
   for (int i = 0; i < 250; ++i) {  // 0.5 s: 50 pings, 0.1 m of travel
     w.step();
-    if (dvl.sampleTime() != w.world->time()) continue;
+    if (dvl.sampleTime() != w.world->time())
+      continue;
     ASSERT_TRUE(dvl.last().bottom_lock);
     sum += dvl.last().velocity;
     ++pings;
@@ -114,8 +112,7 @@ TEST(Dvl, VelocityEqualsTheSetRobotVelocityWithinThreeSigma)
   }
 }
 
-TEST(Dvl, RotationAddsTheLeverArmVelocityOfTheDvlOrigin)
-{
+TEST(Dvl, RotationAddsTheLeverArmVelocityOfTheDvlOrigin) {
   const SphereSpec s = undampedSphere();
   SensorWorld w(tank(), dvlUrdf(s, 500.0, {{"noise", "none"}}));
   const Eigen::Vector3d v(0.05, 0.0, 0.0), omega(0.0, 0.3, 0.1);  // pitching and yawing
@@ -131,15 +128,13 @@ TEST(Dvl, RotationAddsTheLeverArmVelocityOfTheDvlOrigin)
 
 /// Velocity of the DVL origin over the (static) floor in the DVL frame, from the robot state at the ping:
 /// R_dvl^T (v + w x r), r the lever arm from the body origin to the DVL [m/s].
-Eigen::Vector3d dvlVelocity(const sim::RobotState& st)
-{
+Eigen::Vector3d dvlVelocity(const sim::RobotState& st) {
   const Eigen::Isometry3d at = dvlPose(st.pose);
   const Eigen::Vector3d r = at.translation() - st.pose.translation();
   return at.linear().transpose() * (st.linear_velocity + st.angular_velocity.cross(r));
 }
 
-TEST(Dvl, HeaveWhileMovingAndTurningGivesVelocityZ1AndZ2FromTheirOwnBeamPairs)
-{
+TEST(Dvl, HeaveWhileMovingAndTurningGivesVelocityZ1AndZ2FromTheirOwnBeamPairs) {
   // Heave plus a horizontal velocity and a yaw rate, the robot slightly rolled and pitched so the lever arm
   // counts. Beam i measures b_i . v; z1 = (u0 + u2) / (2 cos a) and z2 = (u1 + u3) / (2 cos a) are both the
   // DVL-frame z velocity. A wrong pair mixes in the horizontal velocity: (u0 + u1) / (2 cos a) =
@@ -166,15 +161,17 @@ TEST(Dvl, HeaveWhileMovingAndTurningGivesVelocityZ1AndZ2FromTheirOwnBeamPairs)
   EXPECT_LT((p.velocity - expected).norm(), 1e-9);
 }
 
-TEST(Dvl, VelocityZ1AndZ2AreNaNExactlyWhenABeamOfTheirOwnPairIsInvalid)
-{
+TEST(Dvl, VelocityZ1AndZ2AreNaNExactlyWhenABeamOfTheirOwnPairIsInvalid) {
   // Tilted so that one beam sees the floor farthest along the DVL z, and altitude_max set between it and the
   // others: that beam alone is invalid. Pitched (nose down), beam 2 (aft) is the far one: z1 (beams 0, 2) is
   // NaN and z2 (beams 1, 3) the z velocity; rolled, beam 3: z2 is NaN and z1 the z velocity. A z taken from
   // the other pair's beams comes out NaN where it must be a number, or a number where it must be NaN.
   const SphereSpec s = undampedSphere();
   const Eigen::Vector3d v(0.12, 0.05, -0.15), omega(0.0, 0.0, -0.3);  // [m/s] sinking 15 cm/s, [rad/s]
-  struct Case { Eigen::Vector3d rpy; int far; };
+  struct Case {
+    Eigen::Vector3d rpy;
+    int far;
+  };
   for (const Case& c : {Case{Eigen::Vector3d(0, 0.22, 0.3), 2}, Case{Eigen::Vector3d(0.22, 0, 0.3), 3}}) {
     const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-1.6, 0.3, -1.2), c.rpy);
     std::array<double, 4> along{};
@@ -189,7 +186,8 @@ TEST(Dvl, VelocityZ1AndZ2AreNaNExactlyWhenABeamOfTheirOwnPairIsInvalid)
     ASSERT_EQ(far, c.far);
     double second = 0.0;
     for (int i = 0; i < 4; ++i)
-      if (i != far) second = std::max(second, along[i]);
+      if (i != far)
+        second = std::max(second, along[i]);
     ASSERT_GT(along[far] - second, 0.05);
     const double altitude_max = 0.5 * (second + along[far]);
 
@@ -200,18 +198,22 @@ TEST(Dvl, VelocityZ1AndZ2AreNaNExactlyWhenABeamOfTheirOwnPairIsInvalid)
     const Eigen::Vector3d expected = dvlVelocity(w.robot().state());
     ASSERT_GT(std::abs(expected.z()), 0.05);
     ASSERT_TRUE(p.bottom_lock);
-    for (int i = 0; i < 4; ++i) EXPECT_EQ(p.beams[i].valid, i != far) << "beam " << i;
+    for (int i = 0; i < 4; ++i)
+      EXPECT_EQ(p.beams[i].valid, i != far) << "beam " << i;
     const bool z1_valid = far != 0 && far != 2, z2_valid = far != 1 && far != 3;
-    if (z1_valid) EXPECT_NEAR(p.velocity_z1, expected.z(), 1e-9) << "far beam " << far;
-    else EXPECT_TRUE(std::isnan(p.velocity_z1)) << "far beam " << far << ": z1 = " << p.velocity_z1;
-    if (z2_valid) EXPECT_NEAR(p.velocity_z2, expected.z(), 1e-9) << "far beam " << far;
-    else EXPECT_TRUE(std::isnan(p.velocity_z2)) << "far beam " << far << ": z2 = " << p.velocity_z2;
+    if (z1_valid)
+      EXPECT_NEAR(p.velocity_z1, expected.z(), 1e-9) << "far beam " << far;
+    else
+      EXPECT_TRUE(std::isnan(p.velocity_z1)) << "far beam " << far << ": z1 = " << p.velocity_z1;
+    if (z2_valid)
+      EXPECT_NEAR(p.velocity_z2, expected.z(), 1e-9) << "far beam " << far;
+    else
+      EXPECT_TRUE(std::isnan(p.velocity_z2)) << "far beam " << far << ": z2 = " << p.velocity_z2;
     EXPECT_LT((p.velocity - expected).norm(), 1e-9);  // three beams still give the whole velocity
   }
 }
 
-TEST(Dvl, BeyondTheMaximumAltitudeEveryBeamIsInvalid)
-{
+TEST(Dvl, BeyondTheMaximumAltitudeEveryBeamIsInvalid) {
   const SphereSpec s = undampedSphere();
   SensorWorld w(tank(), dvlUrdf(s, 500.0, {{"noise", "none"}, {"altitude_max", "1.0"}}));
   w.place(sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 1.0, -1.2), Eigen::Vector3d::Zero()));  // altitude 1.5 m
@@ -227,13 +229,13 @@ TEST(Dvl, BeyondTheMaximumAltitudeEveryBeamIsInvalid)
   EXPECT_TRUE(std::isnan(p.altitude));
 }
 
-TEST(Dvl, BottomLockNeedsThreeBeamsAndThreeGiveTheVelocity)
-{
+TEST(Dvl, BottomLockNeedsThreeBeamsAndThreeGiveTheVelocity) {
   const SphereSpec s = undampedSphere();
   // Rolled: the four beams see the floor at four different distances along the DVL z.
   const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 0.5, -1.2), Eigen::Vector3d(0.25, 0.1, 0));
   std::array<double, 4> along{};
-  for (int i = 0; i < 4; ++i) along[i] = floorRange(dvlPose(pose), i) * std::cos(kBeamAngle);
+  for (int i = 0; i < 4; ++i)
+    along[i] = floorRange(dvlPose(pose), i) * std::cos(kBeamAngle);
   std::array<double, 4> sorted = along;
   std::sort(sorted.begin(), sorted.end());
   ASSERT_GT(sorted[2] - sorted[1], 0.02);
@@ -262,15 +264,15 @@ TEST(Dvl, BottomLockNeedsThreeBeamsAndThreeGiveTheVelocity)
   }
 }
 
-TEST(Dvl, PingsAtEightHertzOfSimulationTime)
-{
+TEST(Dvl, PingsAtEightHertzOfSimulationTime) {
   const SphereSpec s;
   SensorWorld w(tank(), dvlUrdf(s, 8.0, {}));
   auto& dvl = w.sensor<sensors::DvlSensor>("dvl");
   std::vector<double> times;
   for (int i = 0; i < 5000; ++i) {  // 10 s at 500 Hz
     w.step();
-    if (w.suite->fresh(0)) times.push_back(w.world->time());
+    if (w.suite->fresh(0))
+      times.push_back(w.world->time());
   }
   ASSERT_EQ(times.size(), 80u);
   EXPECT_EQ(dvl.sampleCount(), 80u);
@@ -281,15 +283,13 @@ TEST(Dvl, PingsAtEightHertzOfSimulationTime)
   }
 }
 
-TEST(Dvl, SoundSpeedFollowsMedwin)
-{
+TEST(Dvl, SoundSpeedFollowsMedwin) {
   // Medwin (1975) at 10 degC, fresh water, surface: 1449.2 + 46 - 5.5 + 0.29 + 1.24 (0 - 35).
   EXPECT_NEAR(sensors::soundSpeedMedwin(10.0, 0.0, 0.0), 1449.2 + 46.0 - 5.5 + 0.29 - 1.24 * 35.0, 1e-9);
   EXPECT_NEAR(sensors::soundSpeedMedwin(10.0, 35.0, 100.0) - sensors::soundSpeedMedwin(10.0, 35.0, 0.0), 1.6, 1e-9);
 }
 
-std::string startupError(const std::string& urdf)
-{
+std::string startupError(const std::string& urdf) {
   try {
     SensorWorld w(tank(), urdf);
   } catch (const ConfigError& e) {
@@ -298,11 +298,10 @@ std::string startupError(const std::string& urdf)
   return "";
 }
 
-TEST(Dvl, MalformedParametersStopStartUpNamingSensorAndParameter)
-{
+TEST(Dvl, MalformedParametersStopStartUpNamingSensorAndParameter) {
   const SphereSpec s;
-  std::string e = startupError(sensorUrdf(s, dvlLinks(kBeamAngle, 0), sensorXml("dvl", "dvl", "T/dvl_link", 8.0,
-                                                                                   {{"beam_angle", num(M_PI / 2)}})));
+  std::string e = startupError(sensorUrdf(s, dvlLinks(kBeamAngle, 0),
+                                          sensorXml("dvl", "dvl", "T/dvl_link", 8.0, {{"beam_angle", num(M_PI / 2)}})));
   EXPECT_NE(e.find("sensor 'dvl'"), std::string::npos) << e;
   EXPECT_NE(e.find("'beam_angle'"), std::string::npos) << e;
 
@@ -313,16 +312,16 @@ TEST(Dvl, MalformedParametersStopStartUpNamingSensorAndParameter)
   EXPECT_NE(e.find("'altitude_max'"), std::string::npos) << e;
 
   // Beam frames that disagree with beam_angle (the URDF drawn at 30 deg, the model at 25 deg).
-  e = startupError(sensorUrdf(s, dvlLinks(30.0 * M_PI / 180, 0),
-                              sensorXml("dvl", "dvl", "T/dvl_link", 8.0,
-                                        {{"beam_angle", num(kBeamAngle)},
-                                         {"beam_frames", "T/dvl_beam_0_link T/dvl_beam_1_link T/dvl_beam_2_link T/dvl_beam_3_link"}})));
+  e = startupError(sensorUrdf(
+      s, dvlLinks(30.0 * M_PI / 180, 0),
+      sensorXml("dvl", "dvl", "T/dvl_link", 8.0,
+                {{"beam_angle", num(kBeamAngle)},
+                 {"beam_frames", "T/dvl_beam_0_link T/dvl_beam_1_link T/dvl_beam_2_link T/dvl_beam_3_link"}})));
   EXPECT_NE(e.find("'beam_frames'"), std::string::npos) << e;
   EXPECT_NE(e.find("5 deg"), std::string::npos) << e;
 }
 
-TEST(Dvl, ABeamThatMeetsTheFreeSurfaceFirstReportsNoBottomAndSaysSo)
-{
+TEST(Dvl, ABeamThatMeetsTheFreeSurfaceFirstReportsNoBottomAndSaysSo) {
   // The tank with a ceiling 0.4..0.5 m above its free surface (z = 0); the robot upside down, its DVL 0.3 m deep
   // looking up. Sound does not cross the surface: every beam meets it first, so no beam is valid, each is
   // flagged `surface` with its figure of merit (velocity_std) +inf, and there is no bottom lock or altitude --

@@ -25,8 +25,7 @@ using sensors::sonar::EchoModel;
 using sensors::sonar::EchoParams;
 
 /// No absorption and no gain.
-EchoParams flat(double range_min, double range_max, int nbins)
-{
+EchoParams flat(double range_min, double range_max, int nbins) {
   EchoParams p;
   p.range_min = range_min;
   p.range_max = range_max;
@@ -36,10 +35,11 @@ EchoParams flat(double range_min, double range_max, int nbins)
   return p;
 }
 
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double sum(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
 
-TEST(EchoModel, BinsSplitTheWindowIntoEqualHalfOpenIntervals)
-{
+TEST(EchoModel, BinsSplitTheWindowIntoEqualHalfOpenIntervals) {
   const EchoModel m(flat(0.5, 4.5, 8));  // w = 0.5 m: bin i = [0.5 + 0.5 i, 1 + 0.5 i)
   EXPECT_DOUBLE_EQ(m.binWidth(), 0.5);
   for (int i = 0; i < 8; ++i) {
@@ -48,23 +48,24 @@ TEST(EchoModel, BinsSplitTheWindowIntoEqualHalfOpenIntervals)
     EXPECT_EQ(m.bin(0.5 + 0.5 * i + 0.01), i);  // just after the lower edge
     EXPECT_EQ(m.bin(1.0 + 0.5 * i - 0.01), i);  // just before the upper edge
   }
-  EXPECT_EQ(m.bin(0.5), 0);      // range_min is in the first bin
-  EXPECT_EQ(m.bin(1.0), 1);      // an inner edge belongs to the upper bin
+  EXPECT_EQ(m.bin(0.5), 0);  // range_min is in the first bin
+  EXPECT_EQ(m.bin(1.0), 1);  // an inner edge belongs to the upper bin
   EXPECT_EQ(m.bin(4.4999), 7);
-  EXPECT_EQ(m.bin(4.5), -1);     // range_max is outside
+  EXPECT_EQ(m.bin(4.5), -1);  // range_max is outside
   EXPECT_EQ(m.bin(0.4999), -1);
   EXPECT_EQ(m.bin(-1.0), -1);
   EXPECT_EQ(m.bin(std::numeric_limits<double>::quiet_NaN()), -1);
   EXPECT_EQ(m.bin(std::numeric_limits<double>::infinity()), -1);
 }
 
-TEST(EchoModel, TransmissionLossIsSphericalSpreadingPlusAbsorptionAndTheTvgUndoesItsConfiguredShare)
-{
-  struct Case { double alpha, k, r, tl, tvg; };
+TEST(EchoModel, TransmissionLossIsSphericalSpreadingPlusAbsorptionAndTheTvgUndoesItsConfiguredShare) {
+  struct Case {
+    double alpha, k, r, tl, tvg;
+  };
   // TL = 20 log10 r + alpha r, TVG = k log10 r + 2 alpha r, by hand.
-  for (const Case& c : {Case{0.0, 20.0, 10.0, 20.0, 20.0}, Case{0.0, 40.0, 100.0, 40.0, 80.0},
-                        Case{0.5, 30.0, 1.0, 0.5, 1.0}, Case{0.1, 20.0, 0.1, -20.0 + 0.01, -20.0 + 0.02},
-                        Case{1.0, 0.0, 1000.0, 60.0 + 1000.0, 2000.0}}) {
+  for (const Case& c :
+       {Case{0.0, 20.0, 10.0, 20.0, 20.0}, Case{0.0, 40.0, 100.0, 40.0, 80.0}, Case{0.5, 30.0, 1.0, 0.5, 1.0},
+        Case{0.1, 20.0, 0.1, -20.0 + 0.01, -20.0 + 0.02}, Case{1.0, 0.0, 1000.0, 60.0 + 1000.0, 2000.0}}) {
     EchoParams p;
     p.absorption = c.alpha;
     p.tvg_spreading = c.k;
@@ -74,9 +75,10 @@ TEST(EchoModel, TransmissionLossIsSphericalSpreadingPlusAbsorptionAndTheTvgUndoe
   }
 }
 
-TEST(EchoModel, GainIsItsShareOfTheSpanInDecibels)
-{
-  struct Case { double gain, span, expected; };
+TEST(EchoModel, GainIsItsShareOfTheSpanInDecibels) {
+  struct Case {
+    double gain, span, expected;
+  };
   for (const Case& c : {Case{0.0, 40.0, 0.0}, Case{0.5, 40.0, 20.0}, Case{0.2, 40.0, 8.0}, Case{1.0, 30.0, 30.0},
                         Case{1.0, 0.0, 0.0}}) {
     EchoParams p;
@@ -86,8 +88,7 @@ TEST(EchoModel, GainIsItsShareOfTheSpanInDecibels)
   }
 }
 
-TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint)
-{
+TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint) {
   // By hand: SL 200 dB, r = 2 m, no absorption, BS0 -20 dB, n = 2, cos 0.5, Omega 0.04 sr over 4 rays, extra 0:
   // 2 TL = 40 log10 2 = 12.041 dB; BS = -20 + 20 log10 0.5 = -26.021 dB; A = 4 x 0.01 / 0.5 = 0.08 m^2 -> -10.969 dB.
   EchoParams p = flat(0.0, 10.0, 10);
@@ -104,7 +105,8 @@ TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint)
       for (double c : {1.0, 0.8, 0.3}) {
         const double expected = 1e20 * std::pow(r, -4) * std::pow(10.0, -2 * 0.2 * r / 10) * 0.01 * std::pow(c, n) *
                                 (r * r * 0.04 / 4 / c) * std::pow(10.0, -0.3);  // extra -3 dB
-        EXPECT_NEAR(mq.strength(Echo{r, c, -3.0}, 4), expected, 1e-9 * expected) << "n " << n << " r " << r << " c " << c;
+        EXPECT_NEAR(mq.strength(Echo{r, c, -3.0}, 4), expected, 1e-9 * expected)
+            << "n " << n << " r " << r << " c " << c;
       }
     }
   }
@@ -116,8 +118,7 @@ TEST(EchoModel, EchoLevelIsTheSonarEquationWithTheRaysFootprint)
   EXPECT_NEAR(m.strength(Echo{2.5, 1.0}, 0), m.strength(Echo{2.5, 1.0}, 1), 1e-9 * m.strength(Echo{2.5, 1.0}, 1));
 }
 
-TEST(EchoModel, ReachesIsTheStrengthAgainstAPowerOnEitherSideOfIt)
-{
+TEST(EchoModel, ReachesIsTheStrengthAgainstAPowerOnEitherSideOfIt) {
   // reaches(e, rays, P) == (strength >= P) for powers just below and above the expected strength computed here
   // (the linear factors as above, absorption 0.2 dB/m, window 0..20 m): the quick answers without the absorption
   // must agree with the exact one at every range, including echoes beyond the window.
@@ -134,21 +135,20 @@ TEST(EchoModel, ReachesIsTheStrengthAgainstAPowerOnEitherSideOfIt)
         const Echo e{r, c, extra};
         EXPECT_EQ(m.reaches(e, 1, expected * (1 - 1e-6)), c > 0.0) << "r " << r << " c " << c;
         EXPECT_FALSE(m.reaches(e, 1, expected * (1 + 1e-6) + 1e-300)) << "r " << r << " c " << c;
-        EXPECT_EQ(m.reaches(e, 1, expected * 1e-3), c > 0.0) << "r " << r << " c " << c;  // far below: quick yes
-        EXPECT_FALSE(m.reaches(e, 1, expected * 1e3 + 1e-300)) << "r " << r << " c " << c;   // far above: quick no
+        EXPECT_EQ(m.reaches(e, 1, expected * 1e-3), c > 0.0) << "r " << r << " c " << c;    // far below: quick yes
+        EXPECT_FALSE(m.reaches(e, 1, expected * 1e3 + 1e-300)) << "r " << r << " c " << c;  // far above: quick no
       }
     }
   }
 }
 
-TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes)
-{
+TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes) {
   EchoParams p = flat(0.0, 10.0, 10);
-  p.gain = 0.25;            // G = 10 dB
+  p.gain = 0.25;  // G = 10 dB
   p.absorption = 0.5;
-  p.tvg_spreading = 30.0;   // TVG(10 m) = 30 + 10 = 40 dB
+  p.tvg_spreading = 30.0;  // TVG(10 m) = 30 + 10 = 40 dB
   p.display_min = 100.0;
-  p.display_span = 51.0;    // 0.2 dB per code
+  p.display_span = 51.0;  // 0.2 dB per code
   p.levels = 255;
   const EchoModel m(p);
   EXPECT_DOUBLE_EQ(m.step(), 0.2);
@@ -176,24 +176,26 @@ TEST(EchoModel, OutputLevelAddsGainAndTvgAndQuantisesToTheCodes)
         const Echo e{r, c, -2.0};
         const double level = mq.outputLevel(mq.strength(e, 3), r);
         const double x = (level - q.display_min) / mq.step();
-        if (std::abs(x - std::floor(x) - 0.5) < 1e-6) continue;  // on an edge: either code
-        EXPECT_EQ(mq.echoCode(e, 3), static_cast<int>(std::lround(mq.quantise(level) * 255.0))) << "k " << k << " r " << r << " c " << c;
+        if (std::abs(x - std::floor(x) - 0.5) < 1e-6)
+          continue;  // on an edge: either code
+        EXPECT_EQ(mq.echoCode(e, 3), static_cast<int>(std::lround(mq.quantise(level) * 255.0)))
+            << "k " << k << " r " << r << " c " << c;
       }
     }
   }
 }
 
-TEST(EchoModel, LineSumsThePowerOfABinThenGainTvgAndQuantisation)
-{
+TEST(EchoModel, LineSumsThePowerOfABinThenGainTvgAndQuantisation) {
   EchoParams p = flat(0.0, 4.0, 4);  // bins of 1 m, centres 0.5, 1.5, 2.5, 3.5
   p.gain = 0.5;
-  p.gain_span = 20.0;                // G = 10 dB
+  p.gain_span = 20.0;  // G = 10 dB
   const EchoModel m(p);
   const std::size_t rays = 100;
-  std::vector<Echo> echoes = {{1.2, 1.0}, {1.7, 1.0},  // bin 1
-                              {2.5, 0.5},              // bin 2
+  std::vector<Echo> echoes = {{1.2, 1.0}, {1.7, 1.0},                // bin 1
+                              {2.5, 0.5},                            // bin 2
                               {4.0, 1.0}, {-0.1, 1.0}, {7.0, 1.0}};  // outside the window: lost
-  for (int k = 0; k < 60; ++k) echoes.push_back({3.5, 1.0});  // bin 3
+  for (int k = 0; k < 60; ++k)
+    echoes.push_back({3.5, 1.0});    // bin 3
   std::vector<float> line = {9.0f};  // resized and overwritten
   m.line(echoes, rays, line);
   ASSERT_EQ(line.size(), 4u);
@@ -211,15 +213,15 @@ TEST(EchoModel, LineSumsThePowerOfABinThenGainTvgAndQuantisation)
 
   // The same by deposit + finish.
   std::vector<double> energy(4, 0.0);
-  for (const Echo& e : echoes) m.deposit(e, rays, energy);
+  for (const Echo& e : echoes)
+    m.deposit(e, rays, energy);
   EXPECT_NEAR(energy[1], b1, 1e-12 * b1);
   std::vector<float> again;
   m.finish(energy, again);
   EXPECT_EQ(again, line);  // the same arithmetic: the same floats
 }
 
-TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
-{
+TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength) {
   const EchoModel m(flat(0.0, 10.0, 10));  // bins of 1 m
   // Two neighbours 3 m apart, head-on, one ray each (powers a, b): each keeps half in its own bin and spreads
   // half evenly over the half-way to the other (1.5 m): [2.5, 4] and [4, 5.5].
@@ -227,14 +229,17 @@ TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
   m.spread({{2.5, 1.0}, {5.5, 1.0}}, 1, 5.0, energy);
   const double a = m.strength({2.5, 1.0}, 1), b = m.strength({5.5, 1.0}, 1);
   const std::vector<double> paired = {0, 0, 0.5 * a + 0.5 * a / 3, a / 3, b / 3, 0.5 * b / 3 + 0.5 * b, 0, 0, 0, 0};
-  for (int i = 0; i < 10; ++i) EXPECT_NEAR(energy[i], paired[i], 1e-12 * a) << "bin " << i;
+  for (int i = 0; i < 10; ++i)
+    EXPECT_NEAR(energy[i], paired[i], 1e-12 * a) << "bin " << i;
   EXPECT_NEAR(sum(energy), a + b, 1e-12 * a);
 
   // Farther apart than max_gap, or a ray without echo between them: no spreading, each in its own bin.
-  for (const auto& column : {std::vector<Echo>{{2.5, 1.0}, {5.5, 1.0}}, std::vector<Echo>{{2.5, 1.0}, {-1.0, 1.0}, {5.5, 1.0}}}) {
+  for (const auto& column :
+       {std::vector<Echo>{{2.5, 1.0}, {5.5, 1.0}}, std::vector<Echo>{{2.5, 1.0}, {-1.0, 1.0}, {5.5, 1.0}}}) {
     std::vector<double> e(10, 0.0);
     m.spread(column, 1, column.size() == 2 ? 2.9 : 5.0, e);
-    for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], i == 2 ? a : i == 5 ? b : 0.0, 1e-12 * a) << "bin " << i;
+    for (int i = 0; i < 10; ++i)
+      EXPECT_NEAR(e[i], i == 2 ? a : i == 5 ? b : 0.0, 1e-12 * a) << "bin " << i;
   }
 
   // Three rays of a fan of 8, at incidences (powers s_k from the model), all paired (gaps 1 and 1.6 m <= 2 m):
@@ -248,16 +253,19 @@ TEST(EchoModel, SpreadFillsHalfTheWayToEachNeighbourAndKeepsTheStrength)
                                      0.5 * s1 + 0.5 * s1 * 0.5 / 0.8,
                                      0.5 * s1 * 0.3 / 0.8 + 0.5 * s2 * 0.7 / 0.8,
                                      0.5 * s2 * 0.1 / 0.8 + 0.5 * s2,
-                                     0, 0, 0, 0, 0};
-  for (int i = 0; i < 10; ++i) EXPECT_NEAR(e[i], three[i], 1e-12 * s0) << "bin " << i;
+                                     0,
+                                     0,
+                                     0,
+                                     0,
+                                     0};
+  for (int i = 0; i < 10; ++i)
+    EXPECT_NEAR(e[i], three[i], 1e-12 * s0) << "bin " << i;
   EXPECT_NEAR(sum(e), s0 + s1 + s2, 1e-12 * s0);
 }
 
-TEST(EchoModel, BadParametersThrowAParameterErrorNamingTheParameterAndItsValue)
-{
+TEST(EchoModel, BadParametersThrowAParameterErrorNamingTheParameterAndItsValue) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  struct Case
-  {
+  struct Case {
     std::string name, value;
     std::function<void(EchoParams&)> set;
   };

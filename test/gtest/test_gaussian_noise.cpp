@@ -12,8 +12,7 @@ namespace unexmin {
 namespace sensors {
 namespace {
 
-TEST(GaussianNoise, WhiteNoiseHasTheConfiguredStandardDeviation)
-{
+TEST(GaussianNoise, WhiteNoiseHasTheConfiguredStandardDeviation) {
   NoiseParams p;
   p.white = 0.7;
   p.interval = 0.002;
@@ -33,12 +32,11 @@ TEST(GaussianNoise, WhiteNoiseHasTheConfiguredStandardDeviation)
   EXPECT_DOUBLE_EQ(noise.whiteStd(), 0.7);
 }
 
-TEST(GaussianNoise, BiasVarianceGrowsAsTurnOnPlusKSquaredT)
-{
+TEST(GaussianNoise, BiasVarianceGrowsAsTurnOnPlusKSquaredT) {
   NoiseParams p;
-  p.bias_random_walk = 0.2;  // [u/sqrt(s)]
-  p.turn_on_bias = 0.05;     // [u]
-  p.interval = 0.01;         // [s]
+  p.bias_random_walk = 0.2;            // [u/sqrt(s)]
+  p.turn_on_bias = 0.05;               // [u]
+  p.interval = 0.01;                   // [s]
   const int runs = 4000, steps = 500;  // 5 s
   double sum2 = 0.0, sum2_on = 0.0;
   for (int k = 0; k < runs; ++k) {
@@ -47,7 +45,8 @@ TEST(GaussianNoise, BiasVarianceGrowsAsTurnOnPlusKSquaredT)
     r.seed(Random::streamSeed(k, "R", "s"));
     noise.reset(r);
     sum2_on += noise.bias() * noise.bias();
-    for (int i = 0; i < steps; ++i) noise.apply(0.0, r);
+    for (int i = 0; i < steps; ++i)
+      noise.apply(0.0, r);
     sum2 += noise.bias() * noise.bias();
   }
   const double expected = 0.05 * 0.05 + 0.2 * 0.2 * steps * 0.01;
@@ -55,8 +54,7 @@ TEST(GaussianNoise, BiasVarianceGrowsAsTurnOnPlusKSquaredT)
   EXPECT_NEAR(sum2_on / runs, 0.05 * 0.05, 0.08 * 0.05 * 0.05);
 }
 
-TEST(NoiseModel, NoneReturnsTheTruthAndUnknownFamiliesAreRefused)
-{
+TEST(NoiseModel, NoneReturnsTheTruthAndUnknownFamiliesAreRefused) {
   NoiseParams p;
   p.white = 1.0;
   p.interval = 0.1;
@@ -76,8 +74,7 @@ TEST(NoiseModel, NoneReturnsTheTruthAndUnknownFamiliesAreRefused)
   EXPECT_THROW(createNoise("gaussian", p), ParameterError);
 }
 
-TEST(Random, StreamsDependOnSeedRobotAndSensor)
-{
+TEST(Random, StreamsDependOnSeedRobotAndSensor) {
   const auto a = Random::streamSeed(1, "UX_1", "imu");
   EXPECT_EQ(a, Random::streamSeed(1, "UX_1", "imu"));
   EXPECT_NE(a, Random::streamSeed(2, "UX_1", "imu"));

@@ -1,9 +1,9 @@
 // IMU model (cpp/unexmin/sensors/imu_sensor.h) against closed-form answers: gravity at rest, a known yaw
 // rate, lever-arm accelerations under a known torque, the world's magnetic field, the Allan deviation
 // of the configured white noise, seeded repeatability and start-up errors.
+#include <unexmin/sensors/imu_sensor.h>
 #include "sensor_fixture.h"
 #include "temp_dir.h"
-#include <unexmin/sensors/imu_sensor.h>
 
 #include <gtest/gtest.h>
 
@@ -19,40 +19,40 @@ namespace {
 constexpr double kRate = 500.0;  // [Hz] = the physics rate of the tests (dt = 2 ms)
 
 // KVH 1775 class figures, written here (not read from the xacro) so the test owns its inputs.
-constexpr double kGyroDensity = 3.49e-6;    // [rad/s/sqrt(Hz)] 0.012 deg/sqrt(h)
-constexpr double kGyroWalk = 7.7e-9;        // [rad/s/sqrt(s)]
-constexpr double kGyroTurnOn = 9.7e-6;      // [rad/s] 2 deg/h
-constexpr double kAccelDensity = 1.18e-3;   // [m/s^2/sqrt(Hz)] 0.12 mg/sqrt(Hz)
-constexpr double kAccelWalk = 1.55e-5;      // [m/s^2/sqrt(s)]
-constexpr double kAccelTurnOn = 9.8e-3;     // [m/s^2] 1 mg
-constexpr double kMagDensity = 0.12;        // [mG/sqrt(Hz)]
+constexpr double kGyroDensity = 3.49e-6;   // [rad/s/sqrt(Hz)] 0.012 deg/sqrt(h)
+constexpr double kGyroWalk = 7.7e-9;       // [rad/s/sqrt(s)]
+constexpr double kGyroTurnOn = 9.7e-6;     // [rad/s] 2 deg/h
+constexpr double kAccelDensity = 1.18e-3;  // [m/s^2/sqrt(Hz)] 0.12 mg/sqrt(Hz)
+constexpr double kAccelWalk = 1.55e-5;     // [m/s^2/sqrt(s)]
+constexpr double kAccelTurnOn = 9.8e-3;    // [m/s^2] 1 mg
+constexpr double kMagDensity = 0.12;       // [mG/sqrt(Hz)]
 
-std::map<std::string, std::string> noisyParams()
-{
+std::map<std::string, std::string> noisyParams() {
   return {{"noise", "gaussian"},
-          {"gyro_noise_density", num(kGyroDensity)},   {"gyro_bias_random_walk", num(kGyroWalk)},
-          {"gyro_turn_on_bias", num(kGyroTurnOn)},     {"accel_noise_density", num(kAccelDensity)},
-          {"accel_bias_random_walk", num(kAccelWalk)}, {"accel_turn_on_bias", num(kAccelTurnOn)},
-          {"mag_noise_density", num(kMagDensity)},     {"temperature", "30"},
+          {"gyro_noise_density", num(kGyroDensity)},
+          {"gyro_bias_random_walk", num(kGyroWalk)},
+          {"gyro_turn_on_bias", num(kGyroTurnOn)},
+          {"accel_noise_density", num(kAccelDensity)},
+          {"accel_bias_random_walk", num(kAccelWalk)},
+          {"accel_turn_on_bias", num(kAccelTurnOn)},
+          {"mag_noise_density", num(kMagDensity)},
+          {"temperature", "30"},
           {"temperature_noise", "0.1"}};
 }
 
 std::string imuUrdf(const SphereSpec& s, const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy,
-                    const std::map<std::string, std::string>& params, double rate = kRate)
-{
+                    const std::map<std::string, std::string>& params, double rate = kRate) {
   return sensorUrdf(s, mountLink("T/imu_link", xyz, rpy), sensorXml("imu", "imu", "T/imu_link", rate, params));
 }
 
 /// 1 sigma of the mean of n samples of one axis: white part over sqrt(n), turn-on bias, and the
 /// bias random walk accumulated over the record (T = n / rate) [unit of the axis].
-double meanSigma(double density, double walk, double turn_on, int n)
-{
+double meanSigma(double density, double walk, double turn_on, int n) {
   const double white = density * std::sqrt(kRate);
   return std::sqrt(white * white / n + turn_on * turn_on + walk * walk * n / kRate);
 }
 
-TEST(Imu, AtRestMeasuresGravityUpInItsOwnFrameWithinThreeSigma)
-{
+TEST(Imu, AtRestMeasuresGravityUpInItsOwnFrameWithinThreeSigma) {
   const SphereSpec s;
   const Eigen::Vector3d rpy(0.3, -0.2, 1.0);  // a tilted mount: gravity must come out in the IMU frame
   SensorWorld w(openWater(s), imuUrdf(s, Eigen::Vector3d(0.1, 0.05, -0.1), rpy, noisyParams()), 7);
@@ -81,15 +81,15 @@ TEST(Imu, AtRestMeasuresGravityUpInItsOwnFrameWithinThreeSigma)
   EXPECT_NEAR(imu.last().temperature, 30.0, 0.5);
 }
 
-TEST(Imu, YawingRobotReadsItsRateAndTheCentripetalLeverArm)
-{
+TEST(Imu, YawingRobotReadsItsRateAndTheCentripetalLeverArm) {
   const SphereSpec s = undampedSphere();
   const Eigen::Vector3d r(0.25, 0.0, 0.0);  // [m] IMU ahead of the centre
   SensorWorld w(openWater(s), imuUrdf(s, r, Eigen::Vector3d::Zero(), {{"noise", "none"}}));
   const double rate = 0.4;  // [rad/s]
   w.place(w.robot().state().pose, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, rate));
   auto& imu = w.sensor<sensors::ImuSensor>("imu");
-  for (int i = 0; i < 250; ++i) w.step();
+  for (int i = 0; i < 250; ++i)
+    w.step();
   // Rotating frame: the IMU point circles the centre, specific force -w^2 r (towards the centre) + g up.
   // Bullet integrates in single precision: relative 1e-5 is its resolution here.
   EXPECT_NEAR(imu.last().angular_velocity.z(), rate, 1e-5 * rate);
@@ -99,8 +99,7 @@ TEST(Imu, YawingRobotReadsItsRateAndTheCentripetalLeverArm)
   EXPECT_NEAR(imu.last().specific_force.z(), 9.81, 1e-6);
 }
 
-TEST(Imu, YawRateWithNoiseWithinThreeSigma)
-{
+TEST(Imu, YawRateWithNoiseWithinThreeSigma) {
   const SphereSpec s = undampedSphere();
   SensorWorld w(openWater(s), imuUrdf(s, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), noisyParams()), 3);
   const double rate = -0.25;  // [rad/s]
@@ -118,28 +117,26 @@ TEST(Imu, YawRateWithNoiseWithinThreeSigma)
   EXPECT_NEAR(imu.last().angular_velocity.z(), rate, 3.0 * std::hypot(one, kGyroWalk * std::sqrt(n / kRate)));
 }
 
-TEST(Imu, TorqueGivesTangentialAndCentripetalSpecificForce)
-{
+TEST(Imu, TorqueGivesTangentialAndCentripetalSpecificForce) {
   const SphereSpec s = undampedSphere();
   const Eigen::Vector3d r(0.2, 0.0, 0.0);
   SensorWorld w(openWater(s), imuUrdf(s, r, Eigen::Vector3d::Zero(), {{"noise", "none"}}));
   auto& imu = w.sensor<sensors::ImuSensor>("imu");
-  const double torque = 2.0;                   // [N m] about z
-  const double alpha = torque / s.inertia();   // [rad/s^2]: no rotational added mass on a sphere
+  const double torque = 2.0;                  // [N m] about z
+  const double alpha = torque / s.inertia();  // [rad/s^2]: no rotational added mass on a sphere
   const int n = 300;
   for (int i = 0; i < n; ++i) {
     w.robot().body()->applyTorque(btVector3(0, 0, torque));
     w.step();
   }
   const double omega = alpha * n * w.world->dt();
-  EXPECT_NEAR(imu.last().angular_velocity.z(), omega, 1e-5 * omega);  // single-precision engine
-  EXPECT_NEAR(imu.last().specific_force.y(), alpha * r.x(), 1e-4 * alpha * r.x());          // alpha x r
+  EXPECT_NEAR(imu.last().angular_velocity.z(), omega, 1e-5 * omega);                // single-precision engine
+  EXPECT_NEAR(imu.last().specific_force.y(), alpha * r.x(), 1e-4 * alpha * r.x());  // alpha x r
   EXPECT_NEAR(imu.last().specific_force.x(), -omega * omega * r.x(), 1e-3 * omega * omega * r.x());  // w x (w x r)
   EXPECT_NEAR(imu.last().specific_force.z(), 9.81, 1e-9);
 }
 
-TEST(Imu, MagnetometerReadsTheWorldFieldInTheImuFrame)
-{
+TEST(Imu, MagnetometerReadsTheWorldFieldInTheImuFrame) {
   const SphereSpec s;
   sim::WorldConfig config = openWater(s);
   config.magnetic_field = Eigen::Vector3d(150.0, -40.0, -480.0);  // [mG]
@@ -152,8 +149,7 @@ TEST(Imu, MagnetometerReadsTheWorldFieldInTheImuFrame)
   EXPECT_LT((w.sensor<sensors::ImuSensor>("imu").last().magnetic_field - expected).norm(), 1e-3);
 }
 
-TEST(Imu, MagneticFieldComesFromTheWorldFile)
-{
+TEST(Imu, MagneticFieldComesFromTheWorldFile) {
   // A copy of the test box world with a field of its own, written by the test beside a copy of its mesh (a world
   // file names its meshes inside its own folder).
   const std::string path = testTempDir() + "magnetic.world";
@@ -161,8 +157,8 @@ TEST(Imu, MagneticFieldComesFromTheWorldFile)
                              testTempDir() + "magnetic_box.stl", std::filesystem::copy_options::overwrite_existing);
   auto write = [&](const std::string& field) {
     std::ofstream out(path);
-    out << "name: magnetic\n" << field
-        << "meshes:\n  - {name: box, file: magnetic_box.stl}\nrobots:\n  - {name: UX_1, xyz: [0, 0, 0]}\n";
+    out << "name: magnetic\n"
+        << field << "meshes:\n  - {name: box, file: magnetic_box.stl}\nrobots:\n  - {name: UX_1, xyz: [0, 0, 0]}\n";
   };
   write("magnetic_field: [100.0, 200.0, -400.0]\n");
   const sim::WorldConfig config = sim::loadWorldConfig(path);
@@ -177,14 +173,14 @@ TEST(Imu, MagneticFieldComesFromTheWorldFile)
     sim::loadWorldConfig(path);
     FAIL() << "a 2-vector field was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("'magnetic_field' must be a list of 3 numbers"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'magnetic_field' must be a list of 3 numbers"), std::string::npos)
+        << e.what();
   }
   write("");
   EXPECT_EQ(sim::loadWorldConfig(path).magnetic_field, sim::WorldConfig().magnetic_field);  // optional
 }
 
-TEST(Imu, PressureAtTheImuOriginIsHydrostatic)
-{
+TEST(Imu, PressureAtTheImuOriginIsHydrostatic) {
   const SphereSpec s;
   const Eigen::Vector3d r(0.0, 0.0, -0.15);
   SensorWorld w(openWater(s, Eigen::Vector3d(0, 0, -20)), imuUrdf(s, r, Eigen::Vector3d::Zero(), {{"noise", "none"}}));
@@ -194,10 +190,10 @@ TEST(Imu, PressureAtTheImuOriginIsHydrostatic)
 }
 
 /// Overlapping Allan deviation at cluster time m / rate of a record of rate samples [unit].
-double allanDeviation(const std::vector<double>& y, std::size_t m, double rate)
-{
+double allanDeviation(const std::vector<double>& y, std::size_t m, double rate) {
   std::vector<double> theta(y.size() + 1, 0.0);  // integral of y [unit s]
-  for (std::size_t i = 0; i < y.size(); ++i) theta[i + 1] = theta[i] + y[i] / rate;
+  for (std::size_t i = 0; i < y.size(); ++i)
+    theta[i + 1] = theta[i] + y[i] / rate;
   const double tau = static_cast<double>(m) / rate;
   double sum = 0.0;
   const std::size_t n = theta.size();
@@ -208,8 +204,7 @@ double allanDeviation(const std::vector<double>& y, std::size_t m, double rate)
   return std::sqrt(sum / (2.0 * tau * tau * static_cast<double>(n - 2 * m)));
 }
 
-TEST(Imu, AllanDeviationAtOneSecondMatchesTheConfiguredWhiteNoise)
-{
+TEST(Imu, AllanDeviationAtOneSecondMatchesTheConfiguredWhiteNoise) {
   const SphereSpec s;
   SensorWorld w(openWater(s), imuUrdf(s, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), noisyParams()), 11);
   auto& imu = w.sensor<sensors::ImuSensor>("imu");
@@ -228,8 +223,7 @@ TEST(Imu, AllanDeviationAtOneSecondMatchesTheConfiguredWhiteNoise)
   EXPECT_NEAR(allanDeviation(accel_z, m, kRate), accel_expected, 0.10 * accel_expected);
 }
 
-TEST(Imu, SameSeedRepeatsAndOtherSeedsOrNamesDiffer)
-{
+TEST(Imu, SameSeedRepeatsAndOtherSeedsOrNamesDiffer) {
   const SphereSpec s;
   const std::string urdf = imuUrdf(s, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), noisyParams());
   auto record = [&](std::uint64_t seed, const std::string& u) {
@@ -256,8 +250,7 @@ TEST(Imu, SameSeedRepeatsAndOtherSeedsOrNamesDiffer)
 }
 
 /// The ConfigError message of building `urdf`'s sensors (empty when none is thrown).
-std::string startupError(const std::string& urdf)
-{
+std::string startupError(const std::string& urdf) {
   try {
     SensorWorld w(openWater(SphereSpec()), urdf);
   } catch (const ConfigError& e) {
@@ -266,8 +259,7 @@ std::string startupError(const std::string& urdf)
   return "";
 }
 
-TEST(Imu, MalformedParametersStopStartUpNamingSensorAndParameter)
-{
+TEST(Imu, MalformedParametersStopStartUpNamingSensorAndParameter) {
   const SphereSpec s;
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   std::string e = startupError(imuUrdf(s, zero, zero, {{"noise", "pink"}}));

@@ -24,13 +24,15 @@ constexpr double kDeg = M_PI / 180.0;
 const Eigen::Vector3d kMount(0.3, 0.0, -0.05);           // [m] M3 link in the base frame
 const Eigen::Vector3d kMountRpy(0.0, 0.0, 20.0 * kDeg);  // [rad] fan turned 20 deg to the left
 
-std::string m3Urdf(std::map<std::string, std::string> params, double rate = 40.0)
-{
+std::string m3Urdf(std::map<std::string, std::string> params, double rate = 40.0) {
   params.emplace("noise", "none");
-  return sensorUrdf(SphereSpec(), mountLink("T/m3_link", kMount, kMountRpy), sensorXml("m3", "m3", "T/m3_link", rate, params));
+  return sensorUrdf(SphereSpec(), mountLink("T/m3_link", kMount, kMountRpy),
+                    sensorXml("m3", "m3", "T/m3_link", rate, params));
 }
 
-sim::WorldConfig testBox() { return sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world"); }
+sim::WorldConfig testBox() {
+  return sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+}
 
 // The model's documented defaults (m3_sensor.h), which m3Urdf() leaves alone.
 constexpr int kBeams = 256, kRaysPerBeam = 4;
@@ -39,8 +41,7 @@ constexpr double kFovH = 120.0 * kDeg, kFovV = 3.0 * kDeg;
 /// Ray j of beam k in the sensor frame, from the documented closed form (not from the model):
 /// azimuth a_k = -fov_h/2 + k fov_h / (beams - 1) about z, elevation e_j = -fov_v/2 + (j + 1/2) fov_v / n.
 Eigen::Vector3d ray(int k, int j, int beams = kBeams, double fov_h = kFovH, int rays = kRaysPerBeam,
-                    double fov_v = kFovV)
-{
+                    double fov_v = kFovV) {
   const double a = -fov_h / 2.0 + k * fov_h / (beams - 1);
   const double e = -fov_v / 2.0 + (j + 0.5) * fov_v / rays;
   return Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
@@ -53,45 +54,44 @@ Eigen::Vector3d ray(int k, int j, int beams = kBeams, double fov_h = kFovH, int 
 const double kOmega = kFovH / kBeams * 2.0 * std::sin(kFovV / 2.0);  // [sr]
 constexpr double kDetection = 72.0 + 10.0;                           // [dB re 1 uPa]
 /// Echo level of a beam's echo from range r at cos(incidence) c, X = extra [dB re 1 uPa].
-double m3Level(double r, double c, double extra = 0.0, double omega = kOmega)
-{
+double m3Level(double r, double c, double extra = 0.0, double omega = kOmega) {
   return 210.0 - 40 * std::log10(r) - 0.2 * r - 20.0 + 20 * std::log10(c) + 10 * std::log10(r * r * omega / c) + extra;
 }
 /// The intensity (code / 255) of an echo of level L from range r.
-double m3Intensity(double level, double r)
-{
+double m3Intensity(double level, double r) {
   const double out = level + 20.0 + 20 * std::log10(r) + 0.2 * r;
   return std::clamp(std::round((out - 125.0) / 80.0 * 255.0), 0.0, 255.0) / 255.0;
 }
 
 /// Distance from p along the unit d to the first wall of the box (+-2 m); `cos_incidence`: |d . normal| there.
-double toBoxWall(const Eigen::Vector3d& p, const Eigen::Vector3d& d, double* cos_incidence = nullptr)
-{
+double toBoxWall(const Eigen::Vector3d& p, const Eigen::Vector3d& d, double* cos_incidence = nullptr) {
   double nearest = INFINITY;
   for (int a = 0; a < 3; ++a) {
-    if (std::abs(d[a]) <= 1e-12) continue;
+    if (std::abs(d[a]) <= 1e-12)
+      continue;
     const double t = ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a];
     if (t < nearest) {
       nearest = t;
-      if (cos_incidence) *cos_incidence = std::abs(d[a]);
+      if (cos_incidence)
+        *cos_incidence = std::abs(d[a]);
     }
   }
   return nearest;
 }
 
 /// First-return distance of beam k (default fan): the nearest wall over the beam's rays.
-double analytic(const Eigen::Isometry3d& sonar, int k)
-{
+double analytic(const Eigen::Isometry3d& sonar, int k) {
   double nearest = INFINITY;
   for (int j = 0; j < kRaysPerBeam; ++j)
     nearest = std::min(nearest, toBoxWall(sonar.translation(), sonar.linear() * ray(k, j)));
   return nearest;
 }
 
-Eigen::Isometry3d sonarPose(SonarWorld& w) { return w.robot().state().pose * sim::poseFromXyzRpy(kMount, kMountRpy); }
+Eigen::Isometry3d sonarPose(SonarWorld& w) {
+  return w.robot().state().pose * sim::poseFromXyzRpy(kMount, kMountRpy);
+}
 
-TEST(M3, EveryBeamMeasuresTheAnalyticDistanceToTheBoxWalls)
-{
+TEST(M3, EveryBeamMeasuresTheAnalyticDistanceToTheBoxWalls) {
   SonarWorld w(testBox(), m3Urdf({}));
   auto& m3 = w.sensor<M3Sensor>("m3");
   const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-0.4, 0.3, 0.2), Eigen::Vector3d(0.1, -0.15, 0.3));
@@ -112,8 +112,7 @@ TEST(M3, EveryBeamMeasuresTheAnalyticDistanceToTheBoxWalls)
   }
 }
 
-TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre)
-{
+TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre) {
   // Five beams over 120 deg (-60, -30, 0, 30, 60 deg), one ray each, the fan level and straight ahead; the robot
   // 0.8 m left of the box centre (+y, REP-103: x forward, y left, z up), so the right wall (y = -2) is 2.8 m
   // away and the left one 1.2 m: beam 0 (-60 deg, to the right) measures 2.8 / sin 60 = 3.23 m, beam 4
@@ -121,10 +120,10 @@ TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre)
   const int beams = 5;
   const double fov = 120.0 * kDeg;
   const Eigen::Vector3d mount(0.3, 0.0, -0.05);
-  const std::string urdf = sensorUrdf(
-      SphereSpec(), mountLink("T/m3_link", mount, Eigen::Vector3d::Zero()),
-      sensorXml("m3", "m3", "T/m3_link", 40.0,
-                {{"noise", "none"}, {"beams", num(beams)}, {"fov_h", num(fov)}, {"rays_per_beam", "1"}}));
+  const std::string urdf =
+      sensorUrdf(SphereSpec(), mountLink("T/m3_link", mount, Eigen::Vector3d::Zero()),
+                 sensorXml("m3", "m3", "T/m3_link", 40.0,
+                           {{"noise", "none"}, {"beams", num(beams)}, {"fov_h", num(fov)}, {"rays_per_beam", "1"}}));
   SonarWorld w(testBox(), urdf);
   auto& m3 = w.sensor<M3Sensor>("m3");
   w.place(sim::poseFromXyzRpy(Eigen::Vector3d(0.0, 0.8, 0.0), Eigen::Vector3d::Zero()));
@@ -164,8 +163,7 @@ TEST(M3, BeamZeroLooksRightAndTheLastLeftWithTheRobotOffCentre)
   }
 }
 
-TEST(M3, BeamsBeyondRangeMaxReportNoReturnAndInsideRangeMinTooClose)
-{
+TEST(M3, BeamsBeyondRangeMaxReportNoReturnAndInsideRangeMinTooClose) {
   const double range_min = 1.9, range_max = 2.4;
   SonarWorld w(testBox(), m3Urdf({{"range_min", num(range_min)}, {"range_max", num(range_max)}}));
   auto& m3 = w.sensor<M3Sensor>("m3");
@@ -192,8 +190,7 @@ TEST(M3, BeamsBeyondRangeMaxReportNoReturnAndInsideRangeMinTooClose)
   EXPECT_GT(ranged, 10);
 }
 
-TEST(M3, GaussianRangeNoiseHasItsStandardDeviationAndRepeatsWithTheSeed)
-{
+TEST(M3, GaussianRangeNoiseHasItsStandardDeviationAndRepeatsWithTheSeed) {
   const double sigma = 0.05;
   const auto residuals = [&](std::uint64_t seed, const std::string& noise) {
     SonarWorld w(testBox(), m3Urdf({{"noise", noise}, {"range_noise", num(sigma)}}), seed);
@@ -202,24 +199,26 @@ TEST(M3, GaussianRangeNoiseHasItsStandardDeviationAndRepeatsWithTheSeed)
     for (int ping = 0; ping < 20; ++ping) {
       w.samples(m3, 1);
       const Eigen::Isometry3d sonar = sonarPose(w);
-      for (int k = 0; k < 256; ++k) out.push_back(m3.last().ranges[k] - analytic(sonar, k));
+      for (int k = 0; k < 256; ++k)
+        out.push_back(m3.last().ranges[k] - analytic(sonar, k));
     }
     return out;
   };
   const auto a = residuals(3, "gaussian");
   double s1 = 0, s2 = 0;
-  for (double r : a) s1 += r, s2 += r * r;
+  for (double r : a)
+    s1 += r, s2 += r * r;
   const double n = static_cast<double>(a.size()), mean = s1 / n, sd = std::sqrt(s2 / n - mean * mean);
   EXPECT_NEAR(mean, 0.0, 4.0 * sigma / std::sqrt(n));
   // sqrt(sigma^2 + res^2 / 12) with the 1 cm rounding; 5120 samples: +-1 % (1 sigma).
   EXPECT_NEAR(sd, std::sqrt(sigma * sigma + 0.01 * 0.01 / 12), 0.05 * sigma);
   EXPECT_EQ(a, residuals(3, "gaussian"));
   EXPECT_NE(a, residuals(4, "gaussian"));
-  for (double r : residuals(3, "none")) ASSERT_LE(std::abs(r), 0.01);  // noise = none: clean
+  for (double r : residuals(3, "none"))
+    ASSERT_LE(std::abs(r), 0.01);  // noise = none: clean
 }
 
-TEST(M3, PingsAtFortyHertzOfSimulationTime)
-{
+TEST(M3, PingsAtFortyHertzOfSimulationTime) {
   SonarWorld w(testBox(), m3Urdf({}));
   auto& m3 = w.sensor<M3Sensor>("m3");
   for (int k = 1; k <= 80; ++k) {
@@ -230,8 +229,7 @@ TEST(M3, PingsAtFortyHertzOfSimulationTime)
   EXPECT_NEAR(w.world->time(), 2.0, 1e-9);
 }
 
-TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
-{
+TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface) {
   // worlds/tank.world (walls x = +-3, y = +-2, rim 0.3 m above the free surface z = 0). (a) The M3 0.2 m deep in the
   // corner (0.7 m from x = 3, 0.4 m from y = 2), the fan pitched 20 deg up: beams that meet a wall below the
   // surface (the left ones, on y = 2) measure it (+-1 cm, the ray-plane distance computed here for each ray);
@@ -240,8 +238,7 @@ TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
   // such echo is a detection: its level by the documented equation, X = -30 - (-20) dB, is computed here and
   // asserted above 82 dB). (b) The UX-1's level fan 1 m deep in the middle of the tank: every beam on a wall, the
   // surface (1 / sin 1.125 deg = 51 m away for the top ray) out of reach, multipath or not.
-  struct Case
-  {
+  struct Case {
     Eigen::Vector3d robot, mount_rpy;
   };
   for (const Case& c : {Case{Eigen::Vector3d(2.0, 1.6, -0.2), Eigen::Vector3d(0.0, -20.0 * kDeg, 0.0)},
@@ -261,7 +258,7 @@ TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
       ASSERT_LT(p.z(), 0.0);
       int on_walls = 0, surface = 0;
       for (int k = 0; k < kBeams; ++k) {
-        double first = INFINITY;       // the nearest wall hit below the surface over the beam's rays
+        double first = INFINITY;          // the nearest wall hit below the surface over the beam's rays
         double first_surface = INFINITY;  // the nearest surface range over the rays that meet it first
         double surface_level = 0.0;
         bool all_surface = true, all_wall = true;
@@ -270,21 +267,24 @@ TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
           const double lim[2][2] = {{-3, 3}, {-2, 2}};
           double wall = INFINITY;
           for (int a = 0; a < 2; ++a)
-            if (std::abs(d[a]) > 1e-12) wall = std::min(wall, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
+            if (std::abs(d[a]) > 1e-12)
+              wall = std::min(wall, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
           const double to_surface = d.z() > 0 ? -p.z() / d.z() : INFINITY;
           if (wall < to_surface) {
             first = std::min(first, wall), all_surface = false;
             continue;
           }
           all_wall = false;
-          if (to_surface < first_surface) first_surface = to_surface, surface_level = m3Level(to_surface, d.z(), -10.0);
+          if (to_surface < first_surface)
+            first_surface = to_surface, surface_level = m3Level(to_surface, d.z(), -10.0);
         }
         const float r = m3.last().ranges[k];
         if (multipath && std::isfinite(first_surface)) {
           ASSERT_GE(surface_level, kDetection) << "beam " << k;  // the surface echo is a detection
           EXPECT_NEAR(r, std::min(first, first_surface), 0.01) << "beam " << k;
           if (first_surface < first) {
-            EXPECT_NEAR(m3.last().intensities[k], m3Intensity(surface_level, first_surface), 1.01 / 255) << "beam " << k;
+            EXPECT_NEAR(m3.last().intensities[k], m3Intensity(surface_level, first_surface), 1.01 / 255)
+                << "beam " << k;
             ++surface;
           }
         } else if (all_surface) {
@@ -308,13 +308,11 @@ TEST(M3, FirstReturnsStayOnTheTankSurfacesBelowTheWaterNearTheSurface)
 }
 
 /// The face x = x0 of the plate target (plateTarget: y0..y1, z0..z1), world frame.
-struct Face
-{
+struct Face {
   double x0, y0, y1, z0, z1;
   bool inside(const Eigen::Vector3d& q) const { return q.y() >= y0 && q.y() <= y1 && q.z() >= z0 && q.z() <= z1; }
   /// Within 2 cm of an edge: the ray may meet the plate's top or side (1 cm thick) or miss it.
-  bool nearEdge(const Eigen::Vector3d& q) const
-  {
+  bool nearEdge(const Eigen::Vector3d& q) const {
     return std::min({std::abs(q.y() - y0), std::abs(q.y() - y1), std::abs(q.z() - z0), std::abs(q.z() - z1)}) < 0.02;
   }
 };
@@ -327,21 +325,21 @@ enum class Kind { none, direct, surface, ghost };
 /// unfolded range s + leg; levels by m3Level (surface: X = surface_backscatter - BS0, ghost: 40 log10 0.9);
 /// the nearest echo whose level reaches `detection` [dB re 1 uPa]. `ambiguous`: a ray that meets the face within
 /// 2 cm of an edge would change the answer.
-struct Expected
-{
+struct Expected {
   double range = INFINITY, level = 0.0;
   Kind kind = Kind::none;
   bool ambiguous = false;
 };
 Expected firstDetection(const Eigen::Isometry3d& link, int k, const Face& f, double surface_backscatter,
-                        double detection, double range_max)
-{
+                        double detection, double range_max) {
   Expected sure, any;  // without and with the echoes near an edge
   const Eigen::Vector3d o = link.translation();
   const auto consider = [&](double range, double level, Kind kind, bool edge) {
-    if (!(level >= detection && range <= range_max)) return;
+    if (!(level >= detection && range <= range_max))
+      return;
     for (Expected* e : {&any, edge ? nullptr : &sure})
-      if (e && range < e->range) e->range = range, e->level = level, e->kind = kind;
+      if (e && range < e->range)
+        e->range = range, e->level = level, e->kind = kind;
   };
   for (int j = 0; j < kRaysPerBeam; ++j) {
     const Eigen::Vector3d d = link.linear() * ray(k, j);
@@ -349,15 +347,18 @@ Expected firstDetection(const Eigen::Isometry3d& link, int k, const Face& f, dou
     const double s = d.z() > 0 ? -o.z() / d.z() : INFINITY;
     const Eigen::Vector3d q = o + t * d;
     if (t < s) {
-      if (f.nearEdge(q)) consider(t, m3Level(t, d.x()), Kind::direct, true);  // it may pass over the plate too
+      if (f.nearEdge(q))
+        consider(t, m3Level(t, d.x()), Kind::direct, true);  // it may pass over the plate too
       if (f.inside(q)) {
         consider(t, m3Level(t, d.x()), Kind::direct, false);
         continue;
       }
     }
-    if (!(s < range_max)) continue;
+    if (!(s < range_max))
+      continue;
     consider(s, m3Level(s, d.z(), surface_backscatter + 20.0), Kind::surface, false);
-    if (t <= s) continue;  // passed beside the face before the surface: the reflected ray goes away from it
+    if (t <= s)
+      continue;  // passed beside the face before the surface: the reflected ray goes away from it
     const Eigen::Vector3d q_s = o + s * d, d_r(d.x(), d.y(), -d.z());
     const double leg = (f.x0 - q_s.x()) / d_r.x();
     const Eigen::Vector3d g = q_s + leg * d_r;
@@ -368,8 +369,7 @@ Expected firstDetection(const Eigen::Isometry3d& link, int k, const Face& f, dou
   return sure;
 }
 
-TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
-{
+TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper) {
   // Open water; the M3 pitched 5 deg up (its rays 3.9..6.1 deg up in the middle of the fan, 1.4..3.6 deg at its
   // edges) looking along +x at a plate whose face is 6 m ahead, 24 m wide, from 0.05 to 1.2 m below the surface;
   // range_max 15 m (a tank setting, the thesis used 5 m). Every beam's first return and intensity against the
@@ -388,8 +388,7 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
   // With the defaults the ghosts are 134..138 dB and the direct echoes 129..134 dB against the 82 dB threshold.
   const double pitch = 5.0 * kDeg, ahead = 6.0, range_max = 15.0;
   const Eigen::Vector3d mount(0.3, 0.0, 0.0), mount_rpy(0.0, -pitch, 0.0);
-  struct Case
-  {
+  struct Case {
     double depth, surface_backscatter, threshold;
   };
   const std::vector<Case> cases = {{0.4, -100.0, 10.0}, {0.4, -30.0, 10.0}, {2.0, -100.0, 10.0}, {0.4, -100.0, 64.0}};
@@ -402,7 +401,8 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
     SonarWorld w(meshWorld({{"plate", plateTarget(sonar, ahead, below, 24.0, 1.15)}}, robot),
                  sensorUrdf(SphereSpec(), mountLink("T/m3_link", mount, mount_rpy),
                             sensorXml("m3", "m3", "T/m3_link", 40.0,
-                                      {{"noise", "none"}, {"range_max", num(range_max)},
+                                      {{"noise", "none"},
+                                       {"range_max", num(range_max)},
                                        {"surface_backscatter", num(c.surface_backscatter)},
                                        {"detection_threshold", num(c.threshold)}})));
     auto& m3 = w.sensor<M3Sensor>("m3");
@@ -417,7 +417,8 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
     for (int k = 0; k < kBeams; ++k) {
       const Expected e = firstDetection(link, k, face, c.surface_backscatter, 72.0 + c.threshold, range_max);
       expected.back().push_back(e);
-      if (e.ambiguous) continue;
+      if (e.ambiguous)
+        continue;
       ++kinds[e.kind];
       const float r = m3.last().ranges[k];
       if (e.kind == Kind::none) {
@@ -452,7 +453,8 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
   int ghosts_gone = 0, weak_ghosts = 0;  // of the ghost beams at 0.4 m: gone at 2 m; below the raised threshold
   for (int k = 0; k < kBeams; ++k) {
     const Expected& near = expected[0][k];
-    if (near.ambiguous || expected[2][k].ambiguous) continue;
+    if (near.ambiguous || expected[2][k].ambiguous)
+      continue;
     if (near.kind == Kind::direct) {
       EXPECT_EQ(scans[2].ranges[k], scans[0].ranges[k]) << "beam " << k;
       EXPECT_EQ(scans[2].intensities[k], scans[0].intensities[k]) << "beam " << k;
@@ -466,8 +468,7 @@ TEST(M3, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
   EXPECT_GT(weak_ghosts, 20);  // the raised threshold removes the weak (long-path) ghosts
 }
 
-TEST(M3, AboveTheWaterTheRaysThatGoUpHearNothing)
-{
+TEST(M3, AboveTheWaterTheRaysThatGoUpHearNothing) {
   // The M3 0.2 m above the free surface of open water, its fan pitched 10 deg up (every ray up): a ray that starts
   // above the surface and goes up never enters the water, so it has no echo (a zero-length ray before, which the
   // caster refuses). Every beam: +inf; no surface echo or ghost (the sonar is not submerged).
@@ -479,15 +480,23 @@ TEST(M3, AboveTheWaterTheRaysThatGoUpHearNothing)
   auto& m3 = w.sensor<M3Sensor>("m3");
   ASSERT_NO_THROW(w.samples(m3, 1));
   ASSERT_GT((w.robot().state().pose * mount).z(), 0.0);
-  for (int k = 0; k < kBeams; ++k) EXPECT_EQ(m3.last().ranges[k], std::numeric_limits<float>::infinity()) << "beam " << k;
+  for (int k = 0; k < kBeams; ++k)
+    EXPECT_EQ(m3.last().ranges[k], std::numeric_limits<float>::infinity()) << "beam " << k;
 }
 
-TEST(M3, BadParametersNameTheSensorAndTheParameter)
-{
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"beams", "0"}, {"beams", "2.5"}, {"range_max", "0.1"}, {"fov_h", "7"}, {"range_resolution", "0"},
-           {"rays_per_beam", "0"}, {"noise", "white"}, {"ranges_max", "3"}, {"multipath", "maybe"},
-           {"surface_reflection", "1.5"}, {"detection_threshold", "-1"}, {"noise_level", "-5"}}) {
+TEST(M3, BadParametersNameTheSensorAndTheParameter) {
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"beams", "0"},
+                                                                                   {"beams", "2.5"},
+                                                                                   {"range_max", "0.1"},
+                                                                                   {"fov_h", "7"},
+                                                                                   {"range_resolution", "0"},
+                                                                                   {"rays_per_beam", "0"},
+                                                                                   {"noise", "white"},
+                                                                                   {"ranges_max", "3"},
+                                                                                   {"multipath", "maybe"},
+                                                                                   {"surface_reflection", "1.5"},
+                                                                                   {"detection_threshold", "-1"},
+                                                                                   {"noise_level", "-5"}}) {
     try {
       SonarWorld w(testBox(), m3Urdf({{key, value}}));
       ADD_FAILURE() << "no error for " << key << " = " << value;

@@ -19,32 +19,32 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// An axis-aligned box room: centre and half extents [m].
-struct Room
-{
+struct Room {
   octomap::point3d c{0.03f, -0.02f, 0.01f};
   octomap::point3d h{3.0f, 2.0f, 1.5f};
 
   /// Range [m] from p (inside) along the unit direction d to the walls.
-  double range(const octomap::point3d& p, const octomap::point3d& d) const
-  {
+  double range(const octomap::point3d& p, const octomap::point3d& d) const {
     double t = 1e9;
     for (unsigned i = 0; i < 3; ++i) {
-      if (d(i) > 1e-12) t = std::min(t, double(c(i) + h(i) - p(i)) / d(i));
-      if (d(i) < -1e-12) t = std::min(t, double(c(i) - h(i) - p(i)) / d(i));
+      if (d(i) > 1e-12)
+        t = std::min(t, double(c(i) + h(i) - p(i)) / d(i));
+      if (d(i) < -1e-12)
+        t = std::min(t, double(c(i) - h(i) - p(i)) / d(i));
     }
     return t;
   }
   /// Distance [m] from p to the room's surface (inside or outside).
-  double surfaceDistance(double x, double y, double z) const
-  {
+  double surfaceDistance(double x, double y, double z) const {
     const double q[3] = {std::fabs(x - c(0)) - h(0), std::fabs(y - c(1)) - h(1), std::fabs(z - c(2)) - h(2)};
     double outside = 0.0;
-    for (double v : q) outside += std::max(v, 0.0) * std::max(v, 0.0);
-    if (outside > 0.0) return std::sqrt(outside);
+    for (double v : q)
+      outside += std::max(v, 0.0) * std::max(v, 0.0);
+    if (outside > 0.0)
+      return std::sqrt(outside);
     return -std::max({q[0], q[1], q[2]});
   }
-  bool inside(double x, double y, double z, double margin) const
-  {
+  bool inside(double x, double y, double z, double margin) const {
     return std::fabs(x - c(0)) < h(0) - margin && std::fabs(y - c(1)) < h(1) - margin &&
            std::fabs(z - c(2)) < h(2) - margin;
   }
@@ -53,8 +53,7 @@ struct Room
 /// One ping of a vertical fan (beams from -90 to +90 degrees of elevation) at heading yaw [rad] from origin,
 /// ranges to the room's walls with Gaussian noise sigma [m].
 std::vector<octomap::point3d> fanCloud(const Room& room, const octomap::point3d& origin, double yaw, int beams,
-                                       double sigma, std::mt19937& rng)
-{
+                                       double sigma, std::mt19937& rng) {
   std::normal_distribution<double> noise(0.0, sigma);
   std::vector<octomap::point3d> cloud;
   for (int b = 0; b < beams; ++b) {
@@ -67,17 +66,16 @@ std::vector<octomap::point3d> fanCloud(const Room& room, const octomap::point3d&
 }
 
 /// The clouds of one full turn (one ping per degree), seeded.
-std::vector<std::vector<octomap::point3d>> turn(const Room& room, const octomap::point3d& origin, int pings = 360)
-{
+std::vector<std::vector<octomap::point3d>> turn(const Room& room, const octomap::point3d& origin, int pings = 360) {
   std::mt19937 rng(12);
   std::vector<std::vector<octomap::point3d>> clouds;
-  for (int i = 0; i < pings; ++i) clouds.push_back(fanCloud(room, origin, 2 * kPi * i / pings, 181, 0.01, rng));
+  for (int i = 0; i < pings; ++i)
+    clouds.push_back(fanCloud(room, origin, 2 * kPi * i / pings, 181, 0.01, rng));
   return clouds;
 }
 
 /// Both trees hold the same leaves (key, depth, log-odds).
-void expectSameTree(const octomap::OcTree& a, const octomap::OcTree& b)
-{
+void expectSameTree(const octomap::OcTree& a, const octomap::OcTree& b) {
   ASSERT_EQ(a.getNumLeafNodes(), b.getNumLeafNodes());
   auto ia = a.begin_leafs(), ib = b.begin_leafs();
   std::size_t differ = 0;
@@ -92,19 +90,20 @@ void expectSameTree(const octomap::OcTree& a, const octomap::OcTree& b)
 
 const octomap::point3d kCentre(0.03f, -0.02f, 0.01f);
 
-TEST(OccupancyMap, RoomMappedFromItsCentreMatchesTheWalls)
-{
+TEST(OccupancyMap, RoomMappedFromItsCentreMatchesTheWalls) {
   const Room room;
   MapperParams params;
   OccupancyMap map(params);
-  for (const auto& cloud : turn(room, kCentre)) map.insertCloud(cloud, kCentre);
+  for (const auto& cloud : turn(room, kCentre))
+    map.insertCloud(cloud, kCentre);
   const double tau = params.resolution;
 
   // Precision: occupied voxel centres within one voxel of the analytic walls.
   const std::vector<Voxel> voxels = map.occupiedVoxels();
   ASSERT_GT(voxels.size(), 1000u);
   std::size_t near = 0;
-  for (const Voxel& v : voxels) near += std::fabs(room.surfaceDistance(v.x, v.y, v.z)) <= tau;
+  for (const Voxel& v : voxels)
+    near += std::fabs(room.surfaceDistance(v.x, v.y, v.z)) <= tau;
   const double precision = double(near) / voxels.size();
   EXPECT_GE(precision, 0.95);
 
@@ -128,9 +127,11 @@ TEST(OccupancyMap, RoomMappedFromItsCentreMatchesTheWalls)
               for (int dz = -1; dz <= 1 && !hit; ++dz) {
                 const octomap::point3d q(p[0] + dx * tau, p[1] + dy * tau, p[2] + dz * tau);
                 octomap::OcTreeKey key;
-                if (!tree.coordToKeyChecked(q, key)) continue;
+                if (!tree.coordToKeyChecked(q, key))
+                  continue;
                 const octomap::OcTreeNode* node = tree.search(key);
-                if (node == nullptr || !tree.isNodeOccupied(node)) continue;
+                if (node == nullptr || !tree.isNodeOccupied(node))
+                  continue;
                 const octomap::point3d centre = tree.keyToCoord(key);
                 hit = std::sqrt(std::pow(centre.x() - p[0], 2) + std::pow(centre.y() - p[1], 2) +
                                 std::pow(centre.z() - p[2], 2)) <= tau;
@@ -144,25 +145,27 @@ TEST(OccupancyMap, RoomMappedFromItsCentreMatchesTheWalls)
   EXPECT_GE(coverage, 0.9);
   RecordProperty("precision", std::to_string(precision));
   RecordProperty("coverage", std::to_string(coverage));
-  std::printf("room: %zu occupied voxels, precision %.4f, coverage %.4f (%zu wall samples)\n", voxels.size(),
-              precision, coverage, samples);
+  std::printf("room: %zu occupied voxels, precision %.4f, coverage %.4f (%zu wall samples)\n", voxels.size(), precision,
+              coverage, samples);
 }
 
-TEST(OccupancyMap, FreeSpaceInsideTheRoomIsFreeAndNothingOutsideIsKnown)
-{
+TEST(OccupancyMap, FreeSpaceInsideTheRoomIsFreeAndNothingOutsideIsKnown) {
   const Room room;
   OccupancyMap map(MapperParams{});
-  for (const auto& cloud : turn(room, kCentre)) map.insertCloud(cloud, kCentre);
+  for (const auto& cloud : turn(room, kCentre))
+    map.insertCloud(cloud, kCentre);
   const octomap::OcTree& tree = map.tree();
   const double res = tree.getResolution();
   std::size_t inside = 0, known = 0, occupied = 0;
   for (double x = room.c(0) - room.h(0); x < room.c(0) + room.h(0); x += res)
     for (double y = room.c(1) - room.h(1); y < room.c(1) + room.h(1); y += res)
       for (double z = room.c(2) - room.h(2); z < room.c(2) + room.h(2); z += res) {
-        if (!room.inside(x, y, z, 2 * res)) continue;
+        if (!room.inside(x, y, z, 2 * res))
+          continue;
         ++inside;
         const octomap::OcTreeNode* node = tree.search(x, y, z);
-        if (node == nullptr) continue;
+        if (node == nullptr)
+          continue;
         ++known;
         occupied += tree.isNodeOccupied(node);
       }
@@ -178,14 +181,13 @@ TEST(OccupancyMap, FreeSpaceInsideTheRoomIsFreeAndNothingOutsideIsKnown)
   EXPECT_EQ(outside, 0u);
 }
 
-TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt)
-{
+TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt) {
   MapperParams params;
   params.max_range = 10.0;
   OccupancyMap map(params);
   const octomap::point3d origin(0.05f, 0.05f, 0.05f);
-  const CloudStats stats = map.insertCloud({octomap::point3d(15.05f, 0.05f, 0.05f), octomap::point3d(0.05f, 4.05f, 0.05f)},
-                                           origin);
+  const CloudStats stats =
+      map.insertCloud({octomap::point3d(15.05f, 0.05f, 0.05f), octomap::point3d(0.05f, 4.05f, 0.05f)}, origin);
   EXPECT_EQ(stats.beyond_range, 1u);
   EXPECT_EQ(stats.occupied_voxels, 1u);
   const octomap::OcTree& tree = map.tree();
@@ -202,15 +204,15 @@ TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt)
   EXPECT_EQ(map.occupiedLeafCount(), 1u);
 }
 
-TEST(OccupancyMap, RepeatedPointsInOneCloudUpdateEachVoxelOnce)
-{
+TEST(OccupancyMap, RepeatedPointsInOneCloudUpdateEachVoxelOnce) {
   const Room room;
   const auto clouds = turn(room, kCentre, 60);
   OccupancyMap once(MapperParams{}), thrice(MapperParams{});
   for (const auto& cloud : clouds) {
     once.insertCloud(cloud, kCentre);
     std::vector<octomap::point3d> repeated;
-    for (int k = 0; k < 3; ++k) repeated.insert(repeated.end(), cloud.begin(), cloud.end());
+    for (int k = 0; k < 3; ++k)
+      repeated.insert(repeated.end(), cloud.begin(), cloud.end());
     thrice.insertCloud(repeated, kCentre);
   }
   expectSameTree(once.tree(), thrice.tree());
@@ -223,8 +225,7 @@ TEST(OccupancyMap, RepeatedPointsInOneCloudUpdateEachVoxelOnce)
   EXPECT_NEAR(node->getOccupancy(), 0.7, 1e-6);
 }
 
-TEST(OccupancyMap, TheCloudsOriginDecidesWhichSpaceIsCarved)
-{
+TEST(OccupancyMap, TheCloudsOriginDecidesWhichSpaceIsCarved) {
   const Room room;
   const auto clouds = turn(room, kCentre, 90);
   OccupancyMap right(MapperParams{}), wrong(MapperParams{});
@@ -253,8 +254,7 @@ TEST(OccupancyMap, TheCloudsOriginDecidesWhichSpaceIsCarved)
 /// Inserts the clouds, each from its origin, into our map and into OctoMap's own tree by insertPointCloud, and
 /// expects the same leaves, for a free-space range of 10 m and of 2.5 m (rays cut short).
 void expectSameAsOctoMap(const std::vector<std::vector<octomap::point3d>>& clouds,
-                         const std::vector<octomap::point3d>& origins)
-{
+                         const std::vector<octomap::point3d>& origins) {
   for (double max_range : {10.0, 2.5}) {
     MapperParams params;
     params.max_range = max_range;
@@ -267,7 +267,8 @@ void expectSameAsOctoMap(const std::vector<std::vector<octomap::point3d>>& cloud
     for (std::size_t k = 0; k < clouds.size(); ++k) {
       ours.insertCloud(clouds[k], origins[k]);
       octomap::Pointcloud pc;
-      for (const auto& p : clouds[k]) pc.push_back(p);
+      for (const auto& p : clouds[k])
+        pc.push_back(p);
       theirs.insertPointCloud(pc, origins[k], max_range, false, false);
     }
     theirs.updateInnerOccupancy();
@@ -278,15 +279,13 @@ void expectSameAsOctoMap(const std::vector<std::vector<octomap::point3d>>& cloud
   }
 }
 
-TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel)
-{
+TEST(OccupancyMap, EqualsOctoMapsInsertPointCloudVoxelForVoxel) {
   const Room room;
   const auto clouds = turn(room, kCentre, 120);
   expectSameAsOctoMap(clouds, std::vector<octomap::point3d>(clouds.size(), kCentre));
 }
 
-TEST(OccupancyMap, EqualsOctoMapFromMovingOriginsInEveryDirection)
-{
+TEST(OccupancyMap, EqualsOctoMapFromMovingOriginsInEveryDirection) {
   // Origins anywhere in the room (either side of the key space's centre at 0), rays in random directions, one
   // in eight along an axis or in an axis plane (direction components exactly 0: axes the walk never steps).
   const Room room;
@@ -302,8 +301,10 @@ TEST(OccupancyMap, EqualsOctoMapFromMovingOriginsInEveryDirection)
     std::vector<octomap::point3d> cloud;
     for (int b = 0; b < 200; ++b) {
       octomap::point3d d(static_cast<float>(unit(rng)), static_cast<float>(unit(rng)), static_cast<float>(unit(rng)));
-      if (b % 8 == 0) d(b / 8 % 3) = 0.0f;
-      if (b % 16 == 0) d((b / 8 + 1) % 3) = 0.0f;
+      if (b % 8 == 0)
+        d(b / 8 % 3) = 0.0f;
+      if (b % 16 == 0)
+        d((b / 8 + 1) % 3) = 0.0f;
       d.normalize();
       cloud.push_back(origin + d * static_cast<float>(room.range(origin, d) + noise(rng)));
     }
@@ -313,17 +314,18 @@ TEST(OccupancyMap, EqualsOctoMapFromMovingOriginsInEveryDirection)
   expectSameAsOctoMap(clouds, origins);
 }
 
-TEST(OccupancyMap, SavedMapReadsBackWithTheSameOccupiedLeaves)
-{
+TEST(OccupancyMap, SavedMapReadsBackWithTheSameOccupiedLeaves) {
   const Room room;
   OccupancyMap map(MapperParams{});
-  for (const auto& cloud : turn(room, kCentre, 90)) map.insertCloud(cloud, kCentre);
+  for (const auto& cloud : turn(room, kCentre, 90))
+    map.insertCloud(cloud, kCentre);
   const std::string path = testing::TempDir() + "/unexmin_room.bt";
   map.save(path);
   octomap::OcTree read(0.1);
   ASSERT_TRUE(read.readBinary(path));
   std::size_t occupied = 0;
-  for (auto it = read.begin_leafs(); it != read.end_leafs(); ++it) occupied += read.isNodeOccupied(*it);
+  for (auto it = read.begin_leafs(); it != read.end_leafs(); ++it)
+    occupied += read.isNodeOccupied(*it);
   EXPECT_EQ(occupied, map.occupiedLeafCount());
   EXPECT_GT(occupied, 500u);
   map.reset();
@@ -331,8 +333,7 @@ TEST(OccupancyMap, SavedMapReadsBackWithTheSameOccupiedLeaves)
   EXPECT_THROW(map.save("/nonexistent-folder/x.bt"), Error);
 }
 
-TEST(MapperParams, OutOfRangeValuesNameTheParameter)
-{
+TEST(MapperParams, OutOfRangeValuesNameTheParameter) {
   MapperParams p;
   p.resolution = 0.0;
   EXPECT_TRUE(test::contains(test::thrownMessage([&] { OccupancyMap m(p); }), "'resolution' = 0"));

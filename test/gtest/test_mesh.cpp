@@ -24,15 +24,13 @@ namespace test {
 namespace {
 
 /// A file of the given content in the test process's temporary folder; returns its path.
-std::string writeFile(const std::string& name, const std::string& content)
-{
+std::string writeFile(const std::string& name, const std::string& content) {
   const std::string path = testTempDir() + name;
   std::ofstream(path, std::ios::binary) << content;
   return path;
 }
 
-sim::MeshEntry entry(const std::string& name, const std::string& file)
-{
+sim::MeshEntry entry(const std::string& name, const std::string& file) {
   sim::MeshEntry e;
   e.name = name;
   e.file = file;
@@ -40,8 +38,7 @@ sim::MeshEntry entry(const std::string& name, const std::string& file)
 }
 
 /// R = Rz(yaw) Ry(pitch) Rx(roll) from the elementary rotation matrices.
-Eigen::Matrix3d rpyMatrix(double roll, double pitch, double yaw)
-{
+Eigen::Matrix3d rpyMatrix(double roll, double pitch, double yaw) {
   Eigen::Matrix3d rx, ry, rz;
   rx << 1, 0, 0, 0, std::cos(roll), -std::sin(roll), 0, std::sin(roll), std::cos(roll);
   ry << std::cos(pitch), 0, std::sin(pitch), 0, 1, 0, -std::sin(pitch), 0, std::cos(pitch);
@@ -50,8 +47,7 @@ Eigen::Matrix3d rpyMatrix(double roll, double pitch, double yaw)
 }
 
 /// Loaded triangle t has the vertices of `expected` triangle t (any cyclic order) within `tol` [m].
-void expectSameTriangles(const sim::TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& expected, double tol)
-{
+void expectSameTriangles(const sim::TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& expected, double tol) {
   ASSERT_EQ(mesh.triangleCount() * 3, expected.size());
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
     double best = INFINITY;
@@ -69,15 +65,14 @@ void expectSameTriangles(const sim::TriangleMesh& mesh, const std::vector<Eigen:
 
 /// The corners of every triangle of g, mapped by f.
 template <typename F>
-std::vector<Eigen::Vector3d> corners(const Geometry& g, F f)
-{
+std::vector<Eigen::Vector3d> corners(const Geometry& g, F f) {
   std::vector<Eigen::Vector3d> out;
-  for (int i : g.indices) out.push_back(f(g.vertices[i]));
+  for (int i : g.indices)
+    out.push_back(f(g.vertices[i]));
   return out;
 }
 
-TEST(Mesh, AnStlLoadsWithItsTrianglesAndVertices)
-{
+TEST(Mesh, AnStlLoadsWithItsTrianglesAndVertices) {
   const Geometry b = box(Eigen::Vector3d(-1, -2, -3), Eigen::Vector3d(4, 5, 6));
   const sim::TriangleMesh m = sim::loadMesh(entry("a_box", writeStl("mesh_test_box", b)));
   EXPECT_EQ(m.name, "a_box");
@@ -90,13 +85,14 @@ TEST(Mesh, AnStlLoadsWithItsTrianglesAndVertices)
   expectSameTriangles(m, corners(b, [](const Eigen::Vector3d& v) { return v; }), 1e-6);
 
   // An icosphere subdivided twice: 20 x 4^2 triangles.
-  const sim::TriangleMesh s = sim::loadMesh(entry("ball", writeStl("mesh_test_ball", icosphere(Eigen::Vector3d(1, 2, 3), 0.5, 2))));
+  const sim::TriangleMesh s =
+      sim::loadMesh(entry("ball", writeStl("mesh_test_ball", icosphere(Eigen::Vector3d(1, 2, 3), 0.5, 2))));
   EXPECT_EQ(s.triangleCount(), 320u);
-  for (const auto& v : s.vertices) EXPECT_NEAR((v.cast<double>() - Eigen::Vector3d(1, 2, 3)).norm(), 0.5, 1e-6);
+  for (const auto& v : s.vertices)
+    EXPECT_NEAR((v.cast<double>() - Eigen::Vector3d(1, 2, 3)).norm(), 0.5, 1e-6);
 }
 
-TEST(Mesh, ScaleThenRotationThenTranslationAsTheWorldFileDocumentsThem)
-{
+TEST(Mesh, ScaleThenRotationThenTranslationAsTheWorldFileDocumentsThem) {
   const Geometry b = box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
   const Eigen::Vector3d scale(2.0, 0.5, 3.0), xyz(1.0, -2.0, 3.0), rpy(0.3, -0.2, 1.1);
   sim::MeshEntry e = entry("posed", writeStl("mesh_test_unit_box", b));
@@ -111,15 +107,16 @@ TEST(Mesh, ScaleThenRotationThenTranslationAsTheWorldFileDocumentsThem)
   const Eigen::Vector3d far = world(Eigen::Vector3d(1, 1, 1));
   ASSERT_GT((far - (xyz + scale.cwiseProduct(R * Eigen::Vector3d(1, 1, 1)))).norm(), 0.5);
   double nearest = INFINITY;
-  for (const auto& v : m.vertices) nearest = std::min(nearest, (v.cast<double>() - far).norm());
+  for (const auto& v : m.vertices)
+    nearest = std::min(nearest, (v.cast<double>() - far).norm());
   EXPECT_LT(nearest, 1e-5);
 }
 
-TEST(Mesh, AnObjQuadIsTriangulatedAndLinesCarryNoSurface)
-{
+TEST(Mesh, AnObjQuadIsTriangulatedAndLinesCarryNoSurface) {
   // A unit square (one quad), a triangle above it and a line: 2 + 1 triangles.
-  const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n"
-                          "f 1 2 3 4\nf 5 6 7\nl 1 5\n";
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n"
+      "f 1 2 3 4\nf 5 6 7\nl 1 5\n";
   sim::MeshEntry e = entry("quad", writeFile("mesh_test_quad.obj", obj));
   e.scale = Eigen::Vector3d(3, 3, 3);
   const sim::TriangleMesh m = sim::loadMesh(e);
@@ -133,16 +130,16 @@ TEST(Mesh, AnObjQuadIsTriangulatedAndLinesCarryNoSurface)
   EXPECT_NEAR(area, 9.0 + 4.5, 1e-5);
 }
 
-TEST(Mesh, AWorldFileLoadsTheMeshWhereTheRayCasterSeesItAtTheClosedFormDistance)
-{
+TEST(Mesh, AWorldFileLoadsTheMeshWhereTheRayCasterSeesItAtTheClosedFormDistance) {
   // The unit box scaled (2, 0.5, 3) and posed by a world file; rays from its centre along its own axes meet the
   // faces at half the scaled sizes: 1, 0.25 and 1.5 m.
   const Eigen::Vector3d scale(2.0, 0.5, 3.0), xyz(1.0, -2.0, 3.0), rpy(0.3, -0.2, 1.1);
   writeStl("mesh_test_world_box", box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));  // beside the world file
-  const std::string world_file = writeFile(
-      "mesh_test.world", "name: mesh_test\nwater: {density: 1000.0, surface_z: 100.0}\nmeshes:\n"
-                         "  - {name: posed_box, file: mesh_test_world_box.stl, scale: [2, 0.5, 3], xyz: [1, -2, 3], rpy: [0.3, -0.2, 1.1]}\n"
-                         "robots:\n  - {name: T, xyz: [50, 50, -50]}\n");
+  const std::string world_file = writeFile("mesh_test.world",
+                                           "name: mesh_test\nwater: {density: 1000.0, surface_z: 100.0}\nmeshes:\n"
+                                           "  - {name: posed_box, file: mesh_test_world_box.stl, scale: [2, 0.5, 3], "
+                                           "xyz: [1, -2, 3], rpy: [0.3, -0.2, 1.1]}\n"
+                                           "robots:\n  - {name: T, xyz: [50, 50, -50]}\n");
   const sim::WorldConfig config = sim::loadWorldConfig(world_file);
   ASSERT_EQ(config.meshes.size(), 1u);
   const auto w = makeWorld(config, SphereSpec());
@@ -177,8 +174,7 @@ TEST(Mesh, AWorldFileLoadsTheMeshWhereTheRayCasterSeesItAtTheClosedFormDistance)
 }
 
 /// The what() of the ConfigError that loading `e` throws; a test failure if none.
-std::string loadError(const sim::MeshEntry& e)
-{
+std::string loadError(const sim::MeshEntry& e) {
   try {
     sim::loadMesh(e);
   } catch (const ConfigError& error) {
@@ -188,8 +184,7 @@ std::string loadError(const sim::MeshEntry& e)
   return "";
 }
 
-TEST(Mesh, UnreadableEmptyOrTriangleLessFilesStopWithAConfigErrorNamingTheFile)
-{
+TEST(Mesh, UnreadableEmptyOrTriangleLessFilesStopWithAConfigErrorNamingTheFile) {
   static_assert(std::is_base_of<Error, ConfigError>::value, "ConfigError is an unexmin::Error");
   // An STL header that announces no triangle.
   std::string no_triangles(80, '\0');

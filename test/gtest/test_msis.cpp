@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <cstdio>
+#include <map>
 #include <numeric>
 
 namespace unexmin {
@@ -25,53 +25,57 @@ constexpr double kDeg = M_PI / 180.0;
 // SL 200 dB, BS0 -20 dB, alpha 0.1 dB/m, TVG 20 log10 r + 2 alpha r, code 0 at 125 dB, 80 dB over 255 codes.
 const double kOmega = 3 * kDeg * 2 * std::sin(35 * kDeg / 2);  // [sr] the default beam
 /// Echo level of one ray of a fan of `rays` over `omega` [sr] at range r, cos(incidence) c, exponent n [dB].
-double documentedLevel(double r, double c, double n, std::size_t rays, double omega)
-{
+double documentedLevel(double r, double c, double n, std::size_t rays, double omega) {
   return 200.0 - 40 * std::log10(r) - 2 * 0.1 * r - 20.0 + 10 * n * std::log10(c) +
          10 * std::log10(r * r * omega / static_cast<double>(rays) / c);
 }
-double documentedTvg(double r) { return 20 * std::log10(r) + 2 * 0.1 * r; }
+double documentedTvg(double r) {
+  return 20 * std::log10(r) + 2 * 0.1 * r;
+}
 /// Intensity (code / 255) of an output level [dB re 1 uPa].
-double documentedCode(double level) { return std::clamp(std::round((level - 125.0) / 80.0 * 255.0), 0.0, 255.0) / 255.0; }
-const Eigen::Vector3d kRobot(0, 0, -50);        // [m] robot in the mesh worlds
-const Eigen::Vector3d kHead(0, 0, 0.36);        // [m] head in the base frame (msisLinks defaults)
+double documentedCode(double level) {
+  return std::clamp(std::round((level - 125.0) / 80.0 * 255.0), 0.0, 255.0) / 255.0;
+}
+const Eigen::Vector3d kRobot(0, 0, -50);  // [m] robot in the mesh worlds
+const Eigen::Vector3d kHead(0, 0, 0.36);  // [m] head in the base frame (msisLinks defaults)
 
-std::map<std::string, std::string> clean(std::map<std::string, std::string> extra = {})
-{
-  std::map<std::string, std::string> p = {{"preset", "thesis_tank"}, {"noise", "none"}, {"step", num(0.9 * kDeg)},
-                                          {"joint", "T/msis_head_joint"}};
-  for (const auto& kv : extra) p[kv.first] = kv.second;
+std::map<std::string, std::string> clean(std::map<std::string, std::string> extra = {}) {
+  std::map<std::string, std::string> p = {
+      {"preset", "thesis_tank"}, {"noise", "none"}, {"step", num(0.9 * kDeg)}, {"joint", "T/msis_head_joint"}};
+  for (const auto& kv : extra)
+    p[kv.first] = kv.second;
   return p;
 }
 
 std::string msisUrdf(const std::map<std::string, std::string>& params, double rate = 25.0,
-                     const std::string& links = msisLinks())
-{
+                     const std::string& links = msisLinks()) {
   return sensorUrdf(SphereSpec(), links, sensorXml("msis", "msis", "T/msis_head_link", rate, params));
 }
 
 /// Sphere of radius R centred on the head.
-sim::WorldConfig sphereWorld(double R, const std::vector<std::pair<std::string, Geometry>>& extra = {})
-{
+sim::WorldConfig sphereWorld(double R, const std::vector<std::pair<std::string, Geometry>>& extra = {}) {
   std::vector<std::pair<std::string, Geometry>> meshes = {{"msis_sphere", icosphere(kRobot + kHead, R, 5)}};
   meshes.insert(meshes.end(), extra.begin(), extra.end());
   return meshWorld(meshes, kRobot);
 }
 
-std::size_t argmax(const std::vector<float>& v) { return std::max_element(v.begin(), v.end()) - v.begin(); }
+std::size_t argmax(const std::vector<float>& v) {
+  return std::max_element(v.begin(), v.end()) - v.begin();
+}
 
 /// First bin with an echo (intensity > 0), or -1.
-int firstEcho(const std::vector<float>& v)
-{
+int firstEcho(const std::vector<float>& v) {
   for (std::size_t i = 0; i < v.size(); ++i)
-    if (v[i] > 0.0f) return static_cast<int>(i);
+    if (v[i] > 0.0f)
+      return static_cast<int>(i);
   return -1;
 }
 
-double wrap(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+double wrap(double a) {
+  return std::atan2(std::sin(a), std::cos(a));
+}
 
-TEST(Msis, EveryLineOfATurnPeaksAtTheSphereRadiusAndTheHeadStepsByTheMechanicalStep)
-{
+TEST(Msis, EveryLineOfATurnPeaksAtTheSphereRadiusAndTheHeadStepsByTheMechanicalStep) {
   const double R = 2.0;
   SonarWorld w(sphereWorld(R), msisUrdf(clean()));
   auto& msis = w.sensor<MsisSensor>("msis");
@@ -97,10 +101,10 @@ TEST(Msis, EveryLineOfATurnPeaksAtTheSphereRadiusAndTheHeadStepsByTheMechanicalS
   EXPECT_NEAR(v[argmax(v)], documentedCode(level), 1.01 / 255) << "level " << level << " dB";
 }
 
-TEST(Msis, IntensityFollowsSpreadingAbsorptionAndGainWithinOneCode)
-{
+TEST(Msis, IntensityFollowsSpreadingAbsorptionAndGainWithinOneCode) {
   // gain 0 and 0.8 ("high"): the peak bin's code is the sonar equation of the whole fan at R, within one code.
-  for (const auto& [gain, db] : std::vector<std::pair<std::string, double>>{{"0", 0.0}, {"high", 32.0}, {"0.5", 20.0}}) {
+  for (const auto& [gain, db] :
+       std::vector<std::pair<std::string, double>>{{"0", 0.0}, {"high", 32.0}, {"0.5", 20.0}}) {
     for (double R : {0.75, 1.1, 1.8, 2.6}) {  // the hull (0.3 m, 0.36 m below the head) clear of the sphere
       SonarWorld w(sphereWorld(R), msisUrdf(clean({{"gain", gain}})));
       auto& msis = w.sensor<MsisSensor>("msis");
@@ -115,8 +119,7 @@ TEST(Msis, IntensityFollowsSpreadingAbsorptionAndGainWithinOneCode)
 }
 
 /// A flat square plate (two triangles) of half-size `half` [m] centred on `centre` with unit normal `n`.
-Geometry plate(const Eigen::Vector3d& centre, const Eigen::Vector3d& n, double half)
-{
+Geometry plate(const Eigen::Vector3d& centre, const Eigen::Vector3d& n, double half) {
   const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
   Geometry g;
   for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
@@ -126,10 +129,11 @@ Geometry plate(const Eigen::Vector3d& centre, const Eigen::Vector3d& n, double h
 }
 
 /// Normal of a plate turned `tilt` [rad] about z from facing the head's +x (the head looking along world +x).
-Eigen::Vector3d tiltedNormal(double tilt) { return Eigen::Vector3d(-std::cos(tilt), std::sin(tilt), 0.0); }
+Eigen::Vector3d tiltedNormal(double tilt) {
+  return Eigen::Vector3d(-std::cos(tilt), std::sin(tilt), 0.0);
+}
 
-TEST(Msis, OneRayOnAPlateTiltedByAKnownAngleFollowsTheCosineLaw)
-{
+TEST(Msis, OneRayOnAPlateTiltedByAKnownAngleFollowsTheCosineLaw) {
   // A single ray along the head's +x (hpr = vpr = 1, head angle 0) meets a plate 1.5 m ahead turned by `tilt`
   // about z: incidence = tilt, so the line is one bin at the documented level of one ray (gain 0) within one code
   // (0.31 dB). With n + 1 instead of n the 60 deg echo is 3 dB (10 codes) weaker.
@@ -139,9 +143,10 @@ TEST(Msis, OneRayOnAPlateTiltedByAKnownAngleFollowsTheCosineLaw)
       const double tilt = tilt_deg * kDeg;
       const Eigen::Vector3d normal = tiltedNormal(tilt);
       const Eigen::Vector3d centre = kRobot + kHead + Eigen::Vector3d(R, 0, 0);
-      SonarWorld w(meshWorld({{"tilted_plate", plate(centre, normal, 1.5)}}, kRobot),
-                   msisUrdf(clean({{"gain", "0"}, {"hpr", "1"}, {"vpr", "1"}, {"sector_left", "0"},
-                                   {"backscatter_exponent", num(n)}})));
+      SonarWorld w(
+          meshWorld({{"tilted_plate", plate(centre, normal, 1.5)}}, kRobot),
+          msisUrdf(clean(
+              {{"gain", "0"}, {"hpr", "1"}, {"vpr", "1"}, {"sector_left", "0"}, {"backscatter_exponent", num(n)}})));
       auto& msis = w.sensor<MsisSensor>("msis");
       w.samples(msis, 1);
       ASSERT_EQ(msis.last().angle, 0.0);
@@ -165,9 +170,9 @@ TEST(Msis, OneRayOnAPlateTiltedByAKnownAngleFollowsTheCosineLaw)
 /// The line the documented model gives for the default fan (msis_sensor.h) from the head at `o` with
 /// orientation `R` on the plane through `centre` with unit normal `normal` facing the head: every ray's range
 /// and incidence from the plane, its power summed in its bin, then gain G [dB], TVG and the codes.
-std::vector<double> documentedPlaneLine(const Eigen::Vector3d& o, const Eigen::Matrix3d& R, const Eigen::Vector3d& centre,
-                                        const Eigen::Vector3d& normal, double range_max, int nbins, double gain_db)
-{
+std::vector<double> documentedPlaneLine(const Eigen::Vector3d& o, const Eigen::Matrix3d& R,
+                                        const Eigen::Vector3d& centre, const Eigen::Vector3d& normal, double range_max,
+                                        int nbins, double gain_db) {
   const int hpr = 5, vpr = 70;
   const double bw_h = 3 * kDeg, bw_v = 35 * kDeg, w = (range_max - 0.3) / nbins;
   std::vector<double> power(nbins, 0.0);
@@ -177,18 +182,19 @@ std::vector<double> documentedPlaneLine(const Eigen::Vector3d& o, const Eigen::M
       const Eigen::Vector3d d = R * Eigen::Vector3d(std::cos(v) * std::cos(h), std::cos(v) * std::sin(h), std::sin(v));
       const double r = (centre - o).dot(normal) / d.dot(normal);
       const int b = static_cast<int>(std::floor((r - 0.3) / w));
-      if (b < 0 || b >= nbins) continue;
+      if (b < 0 || b >= nbins)
+        continue;
       power[b] += std::pow(10.0, documentedLevel(r, std::abs(d.dot(normal)), 2.0, hpr * vpr, kOmega) / 10);
     }
   }
   std::vector<double> line(nbins, 0.0);
   for (int b = 0; b < nbins; ++b)
-    if (power[b] > 0) line[b] = documentedCode(10 * std::log10(power[b]) + gain_db + documentedTvg(0.3 + (b + 0.5) * w));
+    if (power[b] > 0)
+      line[b] = documentedCode(10 * std::log10(power[b]) + gain_db + documentedTvg(0.3 + (b + 0.5) * w));
   return line;
 }
 
-TEST(Msis, TheWholeFanOnATiltedPlateSumsTheDocumentedEchoOfEveryRay)
-{
+TEST(Msis, TheWholeFanOnATiltedPlateSumsTheDocumentedEchoOfEveryRay) {
   // The default fan (5 x 70 rays over 3 x 35 deg) on a plate 1.2 m ahead turned 50 deg about z: every ray has
   // its own range and incidence. Every bin's code = the documented power sum of its rays (within one code).
   const double R = 1.2, tilt = 50 * kDeg;
@@ -209,8 +215,7 @@ TEST(Msis, TheWholeFanOnATiltedPlateSumsTheDocumentedEchoOfEveryRay)
   EXPECT_GT(echoes, 10);  // the tilted plate spreads the fan over many bins
 }
 
-TEST(Msis, AFlatWallFrom1To20MetresFollowsTheSonarEquationWithinOneCodeAfterTvg)
-{
+TEST(Msis, AFlatWallFrom1To20MetresFollowsTheSonarEquationWithinOneCodeAfterTvg) {
   // A wall facing the head at 1, 2, 5, 10 and 20 m (range window 0.3..21 m, 400 bins, gain "low" = 8 dB): every
   // bin's code = the documented sonar equation of the fan's rays on the plane (within one code, 0.31 dB). The TVG
   // (20 log r + 2 alpha r) keeps the wall near one level; without it the 20 m wall would be 32 dB (100 codes) down.
@@ -221,20 +226,23 @@ TEST(Msis, AFlatWallFrom1To20MetresFollowsTheSonarEquationWithinOneCodeAfterTvg)
     auto& msis = w.sensor<MsisSensor>("msis");
     w.samples(msis, 1);
     const Eigen::Isometry3d& pose = w.robot().state().pose;
-    const std::vector<double> expected = documentedPlaneLine(pose * kHead, pose.linear(), centre, normal, 21.0, 400, 8.0);
+    const std::vector<double> expected =
+        documentedPlaneLine(pose * kHead, pose.linear(), centre, normal, 21.0, 400, 8.0);
     const auto& line = msis.last().intensity;
-    for (int b = 0; b < 400; ++b) EXPECT_NEAR(line[b], expected[b], 1.01 / 255) << "D " << D << " bin " << b;
+    for (int b = 0; b < 400; ++b)
+      EXPECT_NEAR(line[b], expected[b], 1.01 / 255) << "D " << D << " bin " << b;
     const double peak = *std::max_element(line.begin(), line.end());
     EXPECT_GT(peak, 0.3) << "D " << D;  // well inside the 8-bit window: neither lost nor saturated
     EXPECT_LT(peak, 0.9) << "D " << D;
   }
 }
 
-TEST(Msis, SectorScanTurnsBackAtTheLimits)
-{
+TEST(Msis, SectorScanTurnsBackAtTheLimits) {
   const double left = -10 * kDeg, right = 7 * kDeg, step = 3.6 * kDeg;
-  SonarWorld w(sphereWorld(2.0), msisUrdf(clean({{"continuous", "false"}, {"sector_left", num(left)},
-                                                  {"sector_right", num(right)}, {"step", num(step)}})));
+  SonarWorld w(
+      sphereWorld(2.0),
+      msisUrdf(clean(
+          {{"continuous", "false"}, {"sector_left", num(left)}, {"sector_right", num(right)}, {"step", num(step)}})));
   auto& msis = w.sensor<MsisSensor>("msis");
   // Steps of 3.6 deg; the last step before a limit stops at it, then the head turns back.
   const std::vector<double> deg = {-10, -6.4, -2.8, 0.8, 4.4, 7, 3.4, -0.2, -3.8, -7.4, -10, -6.4};
@@ -244,11 +252,11 @@ TEST(Msis, SectorScanTurnsBackAtTheLimits)
   }
 }
 
-TEST(Msis, BoxWallsAtEveryHeadAngle)
-{
+TEST(Msis, BoxWallsAtEveryHeadAngle) {
   // test_box.world: a closed 4 m cube centred on the origin (walls at +-2 m); the robot at the centre.
   const sim::WorldConfig box = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
-  SonarWorld w(box, sensorUrdf(SphereSpec(), msisLinks(), sensorXml("msis", "msis", "T/msis_head_link", 25.0, clean())));
+  SonarWorld w(box,
+               sensorUrdf(SphereSpec(), msisLinks(), sensorXml("msis", "msis", "T/msis_head_link", 25.0, clean())));
   auto& msis = w.sensor<MsisSensor>("msis");
   const auto& echo = msis.echo();
   for (std::size_t k = 0; k < 400; ++k) {
@@ -260,7 +268,8 @@ TEST(Msis, BoxWallsAtEveryHeadAngle)
     for (const auto& d0 : msis.fan()) {
       const Eigen::Vector3d d = head.linear() * d0, p = head.translation();
       for (int a = 0; a < 3; ++a)
-        if (std::abs(d[a]) > 1e-12) nearest = std::min(nearest, ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a]);
+        if (std::abs(d[a]) > 1e-12)
+          nearest = std::min(nearest, ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a]);
     }
     ASSERT_LT(nearest, 3.0);
     EXPECT_LE(std::abs(firstEcho(line.intensity) - echo.bin(nearest)), 1) << "ping " << k << " angle " << line.angle;
@@ -272,8 +281,7 @@ TEST(Msis, BoxWallsAtEveryHeadAngle)
   }
 }
 
-TEST(Msis, GaussianRangeNoiseSpreadsTheEchoWithItsStandardDeviation)
-{
+TEST(Msis, GaussianRangeNoiseSpreadsTheEchoWithItsStandardDeviation) {
   const double R = 2.0, sigma = 0.05;
   SonarWorld w(sphereWorld(R), msisUrdf(clean({{"noise", "gaussian"}, {"gain", "0"}, {"range_noise", num(sigma)}})));
   auto& msis = w.sensor<MsisSensor>("msis");
@@ -284,7 +292,8 @@ TEST(Msis, GaussianRangeNoiseSpreadsTheEchoWithItsStandardDeviation)
     const auto& v = msis.last().intensity;
     for (std::size_t b = 0; b < v.size(); ++b) {
       // Back from the code to the bin's power, divided by one head-on ray's power at r: rays per bin.
-      if (v[b] <= 0.0f) continue;
+      if (v[b] <= 0.0f)
+        continue;
       const double r = echo.binCenter(b);
       const double level = echo.params().display_min + v[b] * echo.params().display_span;
       const double weight = echo.inputPower(level, r) / echo.strength(sensors::sonar::Echo{r, 1.0}, msis.raysPerPing());
@@ -299,12 +308,13 @@ TEST(Msis, GaussianRangeNoiseSpreadsTheEchoWithItsStandardDeviation)
   EXPECT_NEAR(sd, std::sqrt(sigma * sigma + echo.binWidth() * echo.binWidth() / 12), 0.05 * sigma);
 }
 
-TEST(Msis, SaltAndPepperReplacesTheGivenShareOfBinsWithSpikesNearTheNoiseLevel)
-{
+TEST(Msis, SaltAndPepperReplacesTheGivenShareOfBinsWithSpikesNearTheNoiseLevel) {
   // Noise level 135 dB (its spikes show from range_min on), spikes up to 10 dB above it; no noise floor.
   const double R = 2.0, p = 0.1, noise = 135.0, salt = 10.0;
-  SonarWorld w(sphereWorld(R), msisUrdf(clean({{"noise", "gaussian"}, {"salt_pepper", num(p)},
-                                               {"noise_level", num(noise)}, {"salt_level", num(salt)}})));
+  SonarWorld w(
+      sphereWorld(R),
+      msisUrdf(clean(
+          {{"noise", "gaussian"}, {"salt_pepper", num(p)}, {"noise_level", num(noise)}, {"salt_level", num(salt)}})));
   auto& msis = w.sensor<MsisSensor>("msis");
   const auto& echo = msis.echo();
   const int peak = echo.bin(R);
@@ -314,12 +324,15 @@ TEST(Msis, SaltAndPepperReplacesTheGivenShareOfBinsWithSpikesNearTheNoiseLevel)
     w.samples(msis, 1);
     const auto& v = msis.last().intensity;
     for (int b = 0; b < static_cast<int>(v.size()); ++b) {
-      if (std::abs(b - peak) <= 1) continue;
-      ++empty;                   // without noise: 0
-      if (v[b] <= 0.0f) continue;
+      if (std::abs(b - peak) <= 1)
+        continue;
+      ++empty;  // without noise: 0
+      if (v[b] <= 0.0f)
+        continue;
       ++salted;
       // Output level back to the input: the spike's level above the noise level, +- half a code.
-      const double in = echo.params().display_min + v[b] * echo.params().display_span - 8.0 - documentedTvg(echo.binCenter(b));
+      const double in =
+          echo.params().display_min + v[b] * echo.params().display_span - 8.0 - documentedTvg(echo.binCenter(b));
       highest = std::max(highest, in - noise);
       lowest = std::min(lowest, in - noise);
     }
@@ -336,14 +349,17 @@ TEST(Msis, SaltAndPepperReplacesTheGivenShareOfBinsWithSpikesNearTheNoiseLevel)
   EXPECT_GT(highest, salt - 1.0);
 }
 
-TEST(Msis, AcousticShadowSilencesEverythingBehindAStrongEcho)
-{
+TEST(Msis, AcousticShadowSilencesEverythingBehindAStrongEcho) {
   // A plate 1 m ahead of the head (+x at head angle 0) covering the upper half of the fan; the lower half
   // reaches the sphere at 2 m.
   const Eigen::Vector3d h = kRobot + kHead;
-  const auto world = sphereWorld(2.0, {{"plate", box(h + Eigen::Vector3d(1.0, -0.5, 0.0), h + Eigen::Vector3d(1.02, 0.5, 0.6))}});
+  const auto world =
+      sphereWorld(2.0, {{"plate", box(h + Eigen::Vector3d(1.0, -0.5, 0.0), h + Eigen::Vector3d(1.02, 0.5, 0.6))}});
   const auto params = [](const std::string& shadow) {
-    return clean({{"noise", "gaussian"}, {"shadow", shadow}, {"sector_left", "0"}, {"shadow_threshold", "0.6"},
+    return clean({{"noise", "gaussian"},
+                  {"shadow", shadow},
+                  {"sector_left", "0"},
+                  {"shadow_threshold", "0.6"},
                   {"gain", "medium"}});
   };
   SonarWorld off(world, msisUrdf(params("false")));
@@ -358,24 +374,31 @@ TEST(Msis, AcousticShadowSilencesEverythingBehindAStrongEcho)
   EXPECT_GE(*std::max_element(a.last().intensity.begin() + plate - 1, a.last().intensity.begin() + plate + 2), 0.6f);
   EXPECT_GT(*std::max_element(a.last().intensity.begin() + wall - 1, a.last().intensity.begin() + wall + 2), 0.05f);
   // With it: the same up to the plate's echo, nothing and the shadow level after it.
-  const int strong = static_cast<int>(std::find_if(b.last().intensity.begin(), b.last().intensity.end(),
-                                                   [](float i) { return i >= 0.6f; }) - b.last().intensity.begin());
+  const int strong = static_cast<int>(
+      std::find_if(b.last().intensity.begin(), b.last().intensity.end(), [](float i) { return i >= 0.6f; }) -
+      b.last().intensity.begin());
   EXPECT_LE(std::abs(strong - plate), 1);
-  for (int i = 0; i <= strong; ++i) EXPECT_EQ(a.last().intensity[i], b.last().intensity[i]) << i;
+  for (int i = 0; i <= strong; ++i)
+    EXPECT_EQ(a.last().intensity[i], b.last().intensity[i]) << i;
   for (int i = strong + 1; i < 400; ++i) {
     EXPECT_EQ(b.last().intensity[i], 0.0f) << i;
     EXPECT_EQ(b.last().level[i], EchoLevel::shadow) << i;
   }
 }
 
-TEST(Msis, GroundArtifactsFillTheGapsBetweenSparseRaysAndKeepTheEnergy)
-{
+TEST(Msis, GroundArtifactsFillTheGapsBetweenSparseRaysAndKeepTheEnergy) {
   // Head pitched 60 deg down over a floor 1.5 m below it, 8 rays across 35 deg: hits centimetres apart.
   const std::string links = msisLinks(Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d(0, 60 * kDeg, 0));
-  const auto world = meshWorld({{"floor", box(kRobot + Eigen::Vector3d(-10, -10, -1.2), kRobot + Eigen::Vector3d(10, 10, -1.14))}}, kRobot);
+  const auto world = meshWorld(
+      {{"floor", box(kRobot + Eigen::Vector3d(-10, -10, -1.2), kRobot + Eigen::Vector3d(10, 10, -1.14))}}, kRobot);
   const auto params = [](const std::string& artifacts) {
-    return clean({{"noise", "gaussian"}, {"artifacts", artifacts}, {"gain", "0"}, {"hpr", "1"}, {"vpr", "8"},
-                  {"sector_left", "0"}, {"artifacts_gap", "0.5"}});
+    return clean({{"noise", "gaussian"},
+                  {"artifacts", artifacts},
+                  {"gain", "0"},
+                  {"hpr", "1"},
+                  {"vpr", "8"},
+                  {"sector_left", "0"},
+                  {"artifacts_gap", "0.5"}});
   };
   SonarWorld off(world, msisUrdf(params("false"), 25.0, links));
   SonarWorld on(world, msisUrdf(params("true"), 25.0, links));
@@ -386,15 +409,17 @@ TEST(Msis, GroundArtifactsFillTheGapsBetweenSparseRaysAndKeepTheEnergy)
   const auto gaps = [](const std::vector<float>& v) {
     int first = -1, last = -1, zero = 0;
     for (int i = 0; i < static_cast<int>(v.size()); ++i)
-      if (v[i] > 0.0f) last = i, first = first < 0 ? i : first;
-    for (int i = first; i <= last; ++i) zero += v[i] == 0.0f;
+      if (v[i] > 0.0f)
+        last = i, first = first < 0 ? i : first;
+    for (int i = first; i <= last; ++i)
+      zero += v[i] == 0.0f;
     return std::make_pair(last - first, zero);
   };
   const auto [span_off, zero_off] = gaps(a.last().intensity);
   const auto [span_on, zero_on] = gaps(b.last().intensity);
-  EXPECT_GT(span_off, 40);                    // the floor echoes spread over tens of bins...
-  EXPECT_GT(zero_off, span_off / 2);          // ...as isolated spikes with gaps between them
-  EXPECT_EQ(zero_on, 0);                      // filled
+  EXPECT_GT(span_off, 40);                     // the floor echoes spread over tens of bins...
+  EXPECT_GT(zero_off, span_off / 2);           // ...as isolated spikes with gaps between them
+  EXPECT_EQ(zero_on, 0);                       // filled
   EXPECT_LE(std::abs(span_on - span_off), 1);  // between the same first and last hits
   // The power, back from the codes (+- half a code, 3.7 %, each bin), is moved, not made.
   const auto power = [](const MsisSensor& m) {
@@ -402,15 +427,15 @@ TEST(Msis, GroundArtifactsFillTheGapsBetweenSparseRaysAndKeepTheEnergy)
     double sum = 0.0;
     for (std::size_t i = 0; i < m.last().intensity.size(); ++i) {
       const float v = m.last().intensity[i];
-      if (v > 0.0f) sum += echo.inputPower(echo.params().display_min + v * echo.params().display_span, echo.binCenter(i));
+      if (v > 0.0f)
+        sum += echo.inputPower(echo.params().display_min + v * echo.params().display_span, echo.binCenter(i));
     }
     return sum;
   };
   EXPECT_NEAR(power(b), power(a), 0.04 * power(a));
 }
 
-TEST(Msis, SameSeedSameScansOtherSeedOtherScansNoiseNoneIsClean)
-{
+TEST(Msis, SameSeedSameScansOtherSeedOtherScansNoiseNoneIsClean) {
   const auto noisy = clean({{"noise", "gaussian"}, {"range_noise", "0.02"}, {"salt_pepper", "0.01"}});
   const auto run = [&](const std::map<std::string, std::string>& params, std::uint64_t seed) {
     SonarWorld w(sphereWorld(2.0), msisUrdf(params), seed);
@@ -429,8 +454,7 @@ TEST(Msis, SameSeedSameScansOtherSeedOtherScansNoiseNoneIsClean)
   EXPECT_EQ(run(none, 7), run(clean(), 7));
 }
 
-TEST(Msis, FullSweepInTheTankTracesTheWallsAndSeesTheAnchor)
-{
+TEST(Msis, FullSweepInTheTankTracesTheWallsAndSeesTheAnchor) {
   // worlds/tank.world: walls at x = +-3, y = +-2 (interior), floor z = -3, anchor hanging at (0, 0) from
   // z = -1.8 to -2.39. The UX-1's mount (hull elevation 65 deg, head 6 cm up); robot 1.2 m from the anchor,
   // so its top is within the 35 deg beam.
@@ -459,13 +483,15 @@ TEST(Msis, FullSweepInTheTankTracesTheWallsAndSeesTheAnchor)
       ++anchor;
       continue;
     }
-    if (to_anchor < 30 * kDeg) continue;  // the anchor's edges
+    if (to_anchor < 30 * kDeg)
+      continue;                 // the anchor's edges
     double nearest = INFINITY;  // walls and floor over the fan's rays
     for (const auto& d0 : msis.fan()) {
       const Eigen::Vector3d d = head.linear() * d0;
       const double lim[3][2] = {{-3, 3}, {-2, 2}, {-3, 1e9}};
       for (int a = 0; a < 3; ++a)
-        if (std::abs(d[a]) > 1e-12) nearest = std::min(nearest, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
+        if (std::abs(d[a]) > 1e-12)
+          nearest = std::min(nearest, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
     }
     if (nearest < 2.95) {
       EXPECT_LE(std::abs(first - echo.bin(nearest)), 1) << "ping " << k;
@@ -479,27 +505,37 @@ TEST(Msis, FullSweepInTheTankTracesTheWallsAndSeesTheAnchor)
 }
 
 /// The shipped UX-1's MSIS parameters (urdf/properties.xacro): thesis_tank preset, every noise model on.
-std::map<std::string, std::string> ux1(std::map<std::string, std::string> extra = {})
-{
-  std::map<std::string, std::string> p = {
-      {"preset", "thesis_tank"}, {"joint", "T/msis_head_joint"}, {"step", num(0.9 * kDeg)}, {"noise", "gaussian"},
-      {"gain", "0.2"}, {"range_noise", "0.0075"}, {"salt_pepper", "0.002"}, {"salt_level", "10"},
-      {"shadow", "true"}, {"shadow_threshold", "0.6"}, {"artifacts", "true"}, {"artifacts_gap", "0.5"},
-      {"speckle", "true"}, {"noise_floor", "true"}, {"noise_level", "117"}, {"multipath", "true"},
-      {"surface_reflection", "0.9"}, {"surface_backscatter", "-30"}};
-  for (const auto& kv : extra) p[kv.first] = kv.second;
+std::map<std::string, std::string> ux1(std::map<std::string, std::string> extra = {}) {
+  std::map<std::string, std::string> p = {{"preset", "thesis_tank"},
+                                          {"joint", "T/msis_head_joint"},
+                                          {"step", num(0.9 * kDeg)},
+                                          {"noise", "gaussian"},
+                                          {"gain", "0.2"},
+                                          {"range_noise", "0.0075"},
+                                          {"salt_pepper", "0.002"},
+                                          {"salt_level", "10"},
+                                          {"shadow", "true"},
+                                          {"shadow_threshold", "0.6"},
+                                          {"artifacts", "true"},
+                                          {"artifacts_gap", "0.5"},
+                                          {"speckle", "true"},
+                                          {"noise_floor", "true"},
+                                          {"noise_level", "117"},
+                                          {"multipath", "true"},
+                                          {"surface_reflection", "0.9"},
+                                          {"surface_backscatter", "-30"}};
+  for (const auto& kv : extra)
+    p[kv.first] = kv.second;
   return p;
 }
 
 /// The UX-1's MSIS mount: base on the hull at 65 deg elevation, head 6 cm up.
-std::string ux1Links()
-{
+std::string ux1Links() {
   const double el = 65 * kDeg;
   return msisLinks(Eigen::Vector3d(0.3 * std::cos(el), 0, 0.3 * std::sin(el)));
 }
 
-TEST(Msis, TheStrongestBinOfAPingLiesOnAWallOrTheAnchorInTheTankAt1MetreDepth)
-{
+TEST(Msis, TheStrongestBinOfAPingLiesOnAWallOrTheAnchorInTheTankAt1MetreDepth) {
   // The usual MSIS wall detector (the strongest bin of each ping) on a full 360 deg turn of the shipped UX-1's
   // MSIS (every noise model and the surface multipath on) from UX_1's place in worlds/tank.world, 1 m deep.
   // A ping counts when some ray of its fan meets a wall or the floor within 3 m (ray-plane distances computed
@@ -511,56 +547,62 @@ TEST(Msis, TheStrongestBinOfAPingLiesOnAWallOrTheAnchorInTheTankAt1MetreDepth)
   // The same 2 m deep, 1.2 m from the anchor (its top within the beam): the anchor's pings count too.
   for (const auto& [xyz, yaw] : std::vector<std::pair<Eigen::Vector3d, double>>{
            {Eigen::Vector3d(-1.7, -0.85, -1.0), 0.46365}, {Eigen::Vector3d(-1.2, 0.0, -2.0), 0.0}}) {
-  sim::WorldConfig tank = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
-  tank.robots.resize(1);
-  tank.robots[0].pose = sim::poseFromXyzRpy(xyz, Eigen::Vector3d(0, 0, yaw));
-  SonarWorld w(tank, sensorUrdf(SphereSpec(), ux1Links(), sensorXml("msis", "msis", "T/msis_head_link", 25.0, ux1())), 5);
-  auto& msis = w.sensor<MsisSensor>("msis");
-  const auto& echo = msis.echo();
-  int counted = 0, right = 0;
-  for (std::size_t k = 0; k < 400; ++k) {
-    w.samples(msis, 1);
-    const auto& line = msis.last();
-    const Eigen::Isometry3d head = w.robot().state().pose * msis.headPose(line.angle);
-    const Eigen::Vector3d p = head.translation();
-    const int strongest = static_cast<int>(argmax(line.intensity));
-    std::vector<std::pair<int, int>> bins;  // bin intervals where the fan's rays meet a wall, the floor or the anchor
-    for (const auto& d0 : msis.fan()) {
-      const Eigen::Vector3d d = head.linear() * d0;
-      const double lim[3][2] = {{-3, 3}, {-2, 2}, {-3, 1e9}};
-      double nearest = INFINITY;
-      for (int a = 0; a < 3; ++a)
-        if (std::abs(d[a]) > 1e-12) nearest = std::min(nearest, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
-      if (nearest < 3.0) bins.emplace_back(echo.bin(nearest), echo.bin(nearest));
-      // The anchor's bounding box (worlds/meshes/anchor.stl at (0, 0, -1.8)): the ray's entry..exit (slabs).
-      const double box[3][2] = {{-0.2245, 0.2245}, {-0.25, 0.25}, {-2.39, -1.8}};
-      double t_in = 0.0, t_out = nearest;
-      for (int a = 0; a < 3 && t_in <= t_out; ++a) {
-        if (std::abs(d[a]) < 1e-12) {
-          if (p[a] < box[a][0] || p[a] > box[a][1]) t_in = INFINITY;
-          continue;
+    sim::WorldConfig tank = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
+    tank.robots.resize(1);
+    tank.robots[0].pose = sim::poseFromXyzRpy(xyz, Eigen::Vector3d(0, 0, yaw));
+    SonarWorld w(tank, sensorUrdf(SphereSpec(), ux1Links(), sensorXml("msis", "msis", "T/msis_head_link", 25.0, ux1())),
+                 5);
+    auto& msis = w.sensor<MsisSensor>("msis");
+    const auto& echo = msis.echo();
+    int counted = 0, right = 0;
+    for (std::size_t k = 0; k < 400; ++k) {
+      w.samples(msis, 1);
+      const auto& line = msis.last();
+      const Eigen::Isometry3d head = w.robot().state().pose * msis.headPose(line.angle);
+      const Eigen::Vector3d p = head.translation();
+      const int strongest = static_cast<int>(argmax(line.intensity));
+      std::vector<std::pair<int, int>> bins;  // bin intervals where the fan's rays meet a wall, the floor or the anchor
+      for (const auto& d0 : msis.fan()) {
+        const Eigen::Vector3d d = head.linear() * d0;
+        const double lim[3][2] = {{-3, 3}, {-2, 2}, {-3, 1e9}};
+        double nearest = INFINITY;
+        for (int a = 0; a < 3; ++a)
+          if (std::abs(d[a]) > 1e-12)
+            nearest = std::min(nearest, ((d[a] > 0 ? lim[a][1] : lim[a][0]) - p[a]) / d[a]);
+        if (nearest < 3.0)
+          bins.emplace_back(echo.bin(nearest), echo.bin(nearest));
+        // The anchor's bounding box (worlds/meshes/anchor.stl at (0, 0, -1.8)): the ray's entry..exit (slabs).
+        const double box[3][2] = {{-0.2245, 0.2245}, {-0.25, 0.25}, {-2.39, -1.8}};
+        double t_in = 0.0, t_out = nearest;
+        for (int a = 0; a < 3 && t_in <= t_out; ++a) {
+          if (std::abs(d[a]) < 1e-12) {
+            if (p[a] < box[a][0] || p[a] > box[a][1])
+              t_in = INFINITY;
+            continue;
+          }
+          const double t0 = (box[a][0] - p[a]) / d[a], t1 = (box[a][1] - p[a]) / d[a];
+          t_in = std::max(t_in, std::min(t0, t1));
+          t_out = std::min(t_out, std::max(t0, t1));
         }
-        const double t0 = (box[a][0] - p[a]) / d[a], t1 = (box[a][1] - p[a]) / d[a];
-        t_in = std::max(t_in, std::min(t0, t1));
-        t_out = std::min(t_out, std::max(t0, t1));
+        if (t_in <= t_out && t_in < 3.0)
+          bins.emplace_back(echo.bin(t_in), t_out < 3.0 ? echo.bin(t_out) : 399);
       }
-      if (t_in <= t_out && t_in < 3.0) bins.emplace_back(echo.bin(t_in), t_out < 3.0 ? echo.bin(t_out) : 399);
+      if (bins.empty())
+        continue;
+      ++counted;
+      bool ok = false;
+      for (const auto& [lo, hi] : bins)
+        ok = ok || (strongest >= lo - 2 && strongest <= hi + 2);
+      right += ok;
     }
-    if (bins.empty()) continue;
-    ++counted;
-    bool ok = false;
-    for (const auto& [lo, hi] : bins) ok = ok || (strongest >= lo - 2 && strongest <= hi + 2);
-    right += ok;
-  }
-  ASSERT_GT(counted, 200);  // most pings see a wall within 3 m
-  EXPECT_GE(right, 0.95 * counted) << right << " of " << counted << " pings";
-  std::printf("[ MSIS ] %.1f m deep: strongest bin on a wall or the anchor in %d of %d pings (%.1f %%)\n", -xyz.z(),
-              right, counted, 100.0 * right / counted);
+    ASSERT_GT(counted, 200);  // most pings see a wall within 3 m
+    EXPECT_GE(right, 0.95 * counted) << right << " of " << counted << " pings";
+    std::printf("[ MSIS ] %.1f m deep: strongest bin on a wall or the anchor in %d of %d pings (%.1f %%)\n", -xyz.z(),
+                right, counted, 100.0 * right / counted);
   }
 }
 
-TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
-{
+TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper) {
   // The head at 0.4 m depth looking along +x at a box target whose face is 2.5 m ahead and 0.1..0.3 m deep: the
   // direct echo comes from the rays meeting the face (2.3..6.9 deg up), the ghost from the rays that meet the
   // surface and, mirrored, the face: at the range of the face's mirror image (2.55..2.6 m, 11..16 deg up), both
@@ -575,13 +617,13 @@ TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
     const double head_depth = deep ? 2.0 : 0.4;
     const Eigen::Vector3d robot(0, 0, -head_depth - kHead.z());
     const Eigen::Vector3d head = robot + kHead;
-    SonarWorld w(meshWorld({{"target", plateTarget(head, ahead, head_depth - 0.2)}}, robot),
-                 msisUrdf(params));
+    SonarWorld w(meshWorld({{"target", plateTarget(head, ahead, head_depth - 0.2)}}, robot), msisUrdf(params));
     auto& msis = w.sensor<MsisSensor>("msis");
     w.samples(msis, 1);
     ASSERT_EQ(msis.last().angle, 0.0);
     lines[deep] = msis.last().intensity;
-    if (deep) continue;
+    if (deep)
+      continue;
     // Expected ranges at 0.4 m: every ray of the fan against the face x = ahead (0.1..0.3 m deep, |y| <= 0.3)
     // directly, and after the mirror at z = 0.
     const Eigen::Isometry3d& pose = w.robot().state().pose;
@@ -591,12 +633,16 @@ TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
       const double face = head.x() + ahead;
       const double t = (face - o.x()) / d.x();
       const Eigen::Vector3d q = o + t * d;
-      if (q.z() >= -0.3 && q.z() <= -0.1 && std::abs(q.y()) <= 0.3) direct_bins.push_back(msis.echo().bin(t));
-      if (d.z() <= 0) continue;
-      const double s = -o.z() / d.z();            // to the surface
-      if (s >= t) continue;                       // meets the face's plane first
-      const double z_reflected = -q.z();          // the straight ray's height above the surface, mirrored below it
-      if (z_reflected >= -0.3 && z_reflected <= -0.1 && std::abs(q.y()) <= 0.3) ghost_bins.push_back(msis.echo().bin(t));
+      if (q.z() >= -0.3 && q.z() <= -0.1 && std::abs(q.y()) <= 0.3)
+        direct_bins.push_back(msis.echo().bin(t));
+      if (d.z() <= 0)
+        continue;
+      const double s = -o.z() / d.z();  // to the surface
+      if (s >= t)
+        continue;                         // meets the face's plane first
+      const double z_reflected = -q.z();  // the straight ray's height above the surface, mirrored below it
+      if (z_reflected >= -0.3 && z_reflected <= -0.1 && std::abs(q.y()) <= 0.3)
+        ghost_bins.push_back(msis.echo().bin(t));
     }
   }
   ASSERT_FALSE(direct_bins.empty());
@@ -616,15 +662,15 @@ TEST(Msis, SurfaceMultipathGhostsAtTheMirrorRangeNearTheSurfaceAndNoneDeeper)
     }
   }
   // 2 m deep: the direct echo the same, code for code; the ghost gone.
-  for (int b = *dmin - 1; b <= *dmax + 1; ++b) EXPECT_EQ(deep[b], near[b]) << "bin " << b;
+  for (int b = *dmin - 1; b <= *dmax + 1; ++b)
+    EXPECT_EQ(deep[b], near[b]) << "bin " << b;
   for (int b = 0; b < static_cast<int>(deep.size()); ++b)
     if (b < *dmin - 1 || b > *dmax + 1) {
       EXPECT_EQ(deep[b], 0.0f) << "bin " << b << " at 2 m";
     }
 }
 
-TEST(Msis, TheSurfaceItselfEchoesFromWhereTheTopRaysMeetIt)
-{
+TEST(Msis, TheSurfaceItselfEchoesFromWhereTheTopRaysMeetIt) {
   // Open water, the head 0.4 m deep looking along +x, nothing else: the only echo is the surface's own
   // backscatter, starting at the range where the fan's top ray (elevation 17.5 - 0.25 deg) meets it:
   // 0.4 / sin(17.25 deg) = 1.35 m; deeper than 3 sin(17.25 deg) = 0.89 m nothing reaches it.
@@ -644,9 +690,9 @@ TEST(Msis, TheSurfaceItselfEchoesFromWhereTheTopRaysMeetIt)
   }
 }
 
-TEST(Msis, BadParametersNameTheSensorAndTheParameter)
-{
-  const auto expectError = [](const std::map<std::string, std::string>& p, const std::string& what, double rate = 25.0) {
+TEST(Msis, BadParametersNameTheSensorAndTheParameter) {
+  const auto expectError = [](const std::map<std::string, std::string>& p, const std::string& what,
+                              double rate = 25.0) {
     try {
       SonarWorld w(sphereWorld(2.0), msisUrdf(p, rate));
       FAIL() << "no error for " << what;

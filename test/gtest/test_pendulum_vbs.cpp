@@ -21,8 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 using unexmin::test::contains;
 using unexmin::test::thrownMessage;
 
-PendulumParams ux1Pendulum()
-{
+PendulumParams ux1Pendulum() {
   PendulumParams p;
   p.mass = 8.0;
   p.arm = 0.1;
@@ -34,15 +33,13 @@ PendulumParams ux1Pendulum()
 
 /// Steps until the pendulum reaches its target; checks monotonic travel at the set speed on the way.
 /// Returns the arrival time [s], or a negative number if it never arrives within `limit` [s].
-double travel(Pendulum& pendulum, double dt, double limit)
-{
+double travel(Pendulum& pendulum, double dt, double limit) {
   const double start = pendulum.angle();
   const double target = pendulum.target();
   const double direction = target > start ? 1.0 : -1.0;
   double t = 0.0;
   double previous = start;
-  while (t < limit)
-  {
+  while (t < limit) {
     pendulum.update(dt);
     t += dt;
     const double a = pendulum.angle();
@@ -61,12 +58,9 @@ double travel(Pendulum& pendulum, double dt, double limit)
 
 // -------------------------------------------------------------------------------------- pendulum
 
-TEST(Pendulum, ReachesTargetInAngleOverSpeedWithinOneStep)
-{
-  for (double dt : {0.001, 0.01, 0.03})
-  {
-    for (double target : {0.3, -0.45, 0.0123})
-    {
+TEST(Pendulum, ReachesTargetInAngleOverSpeedWithinOneStep) {
+  for (double dt : {0.001, 0.01, 0.03}) {
+    for (double target : {0.3, -0.45, 0.0123}) {
       Pendulum p(ux1Pendulum());
       ASSERT_TRUE(p.setTarget(target));
       const double expected = std::abs(target) / p.params().speed;
@@ -75,8 +69,7 @@ TEST(Pendulum, ReachesTargetInAngleOverSpeedWithinOneStep)
       EXPECT_GE(arrival, expected - 1e-9) << "dt = " << dt << " target = " << target;  // not faster than speed
       EXPECT_LE(arrival, expected + dt + 1e-9) << "dt = " << dt << " target = " << target;
       // Locked: further updates keep it there with zero velocity.
-      for (int i = 0; i < 10; ++i)
-      {
+      for (int i = 0; i < 10; ++i) {
         p.update(dt);
         EXPECT_EQ(p.angle(), target);
         EXPECT_EQ(p.velocity(), 0.0);
@@ -85,8 +78,7 @@ TEST(Pendulum, ReachesTargetInAngleOverSpeedWithinOneStep)
   }
 }
 
-TEST(Pendulum, LastStepVelocityIsTheActualRate)
-{
+TEST(Pendulum, LastStepVelocityIsTheActualRate) {
   Pendulum p(ux1Pendulum());  // 0.1 rad/s
   ASSERT_TRUE(p.setTarget(0.025));
   p.update(0.2);  // 0.02 rad
@@ -100,8 +92,7 @@ TEST(Pendulum, LastStepVelocityIsTheActualRate)
   EXPECT_THROW(p.update(kNaN), ParameterError);
 }
 
-TEST(Pendulum, ReversesWhenTheTargetChanges)
-{
+TEST(Pendulum, ReversesWhenTheTargetChanges) {
   Pendulum p(ux1Pendulum());
   ASSERT_TRUE(p.setTarget(0.4));
   for (int i = 0; i < 100; ++i)  // 1 s at 0.1 rad/s
@@ -115,26 +106,22 @@ TEST(Pendulum, ReversesWhenTheTargetChanges)
   EXPECT_EQ(p.angle(), -0.2);
 }
 
-TEST(Pendulum, TargetLimitsAreEnforced)
-{
+TEST(Pendulum, TargetLimitsAreEnforced) {
   Pendulum p(ux1Pendulum());
   EXPECT_TRUE(p.setTarget(0.5));
   EXPECT_TRUE(p.setTarget(-0.5));
-  for (double bad : {0.5001, -0.6, 3.0, kNaN, kInf, -kInf})
-  {
+  for (double bad : {0.5001, -0.6, 3.0, kNaN, kInf, -kInf}) {
     EXPECT_FALSE(p.setTarget(bad)) << bad;
     EXPECT_EQ(p.target(), -0.5) << bad;
   }
-  for (int i = 0; i < 2000; ++i)
-  {
+  for (int i = 0; i < 2000; ++i) {
     p.update(0.01);
     ASSERT_GE(p.angle(), -0.5);
   }
   EXPECT_EQ(p.angle(), -0.5);
 }
 
-TEST(Pendulum, MassPositionAndItsPitchMoment)
-{
+TEST(Pendulum, MassPositionAndItsPitchMoment) {
   Pendulum p(ux1Pendulum());
   const double arm = p.params().arm;
   EXPECT_LT((p.massPosition() - Eigen::Vector3d(0.0, 0.0, -arm)).norm(), 1e-15);  // hangs straight down
@@ -154,8 +141,7 @@ TEST(Pendulum, MassPositionAndItsPitchMoment)
   EXPECT_NEAR(moment.x(), 0.0, 1e-12);
 }
 
-TEST(Pendulum, ResetReturnsToRest)
-{
+TEST(Pendulum, ResetReturnsToRest) {
   Pendulum p(ux1Pendulum());
   ASSERT_TRUE(p.setTarget(0.2));
   p.update(1.0);
@@ -165,8 +151,7 @@ TEST(Pendulum, ResetReturnsToRest)
   EXPECT_EQ(p.velocity(), 0.0);
 }
 
-TEST(Pendulum, ConstructorValidatesParameters)
-{
+TEST(Pendulum, ConstructorValidatesParameters) {
   PendulumParams p = ux1Pendulum();
   p.speed = 0.0;
   const std::string m = thrownMessage([&] { Pendulum x(p); });
@@ -194,8 +179,7 @@ TEST(Pendulum, ConstructorValidatesParameters)
 
 // ------------------------------------------------------------------------------------------- vbs
 
-TEST(Vbs, MassLimitsAreEnforced)
-{
+TEST(Vbs, MassLimitsAreEnforced) {
   VbsParams params;
   params.min_mass = -0.5;
   params.max_mass = 1.5;
@@ -205,8 +189,7 @@ TEST(Vbs, MassLimitsAreEnforced)
   EXPECT_EQ(vbs.mass(), 1.5);
   EXPECT_TRUE(vbs.setMass(-0.5));
   EXPECT_TRUE(vbs.setMass(0.01));
-  for (double bad : {1.5001, -0.51, kNaN, kInf, -kInf})
-  {
+  for (double bad : {1.5001, -0.51, kNaN, kInf, -kInf}) {
     EXPECT_FALSE(vbs.setMass(bad)) << bad;
     EXPECT_EQ(vbs.mass(), 0.01) << bad;
   }
@@ -214,8 +197,7 @@ TEST(Vbs, MassLimitsAreEnforced)
   EXPECT_EQ(vbs.mass(), 0.0);
 }
 
-TEST(Vbs, ConstructorValidatesLimits)
-{
+TEST(Vbs, ConstructorValidatesLimits) {
   VbsParams p;
   p.min_mass = 1.0;
   p.max_mass = -1.0;

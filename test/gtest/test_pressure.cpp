@@ -1,7 +1,7 @@
 // Pressure model (cpp/unexmin/sensors/pressure_sensor.h): atmospheric + rho g depth at the sensor link,
 // within the configured noise; atmospheric above the surface; full-scale clamp; start-up errors.
-#include "sensor_fixture.h"
 #include <unexmin/sensors/pressure_sensor.h>
+#include "sensor_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +12,12 @@ namespace test {
 namespace {
 
 std::string pressureUrdf(const SphereSpec& s, const Eigen::Vector3d& xyz, double rate,
-                         const std::map<std::string, std::string>& params)
-{
+                         const std::map<std::string, std::string>& params) {
   return sensorUrdf(s, mountLink("T/pressure_link", xyz, Eigen::Vector3d::Zero()),
                     sensorXml("pressure", "pressure", "T/pressure_link", rate, params));
 }
 
-TEST(Pressure, ReadsAtmosphericPlusRhoGDepthWithinNoise)
-{
+TEST(Pressure, ReadsAtmosphericPlusRhoGDepthWithinNoise) {
   SphereSpec s;
   s.rho = 1025.0;  // sea water: the sensor must use the world's density
   s.mass = s.rho * s.volume();
@@ -37,7 +35,8 @@ TEST(Pressure, ReadsAtmosphericPlusRhoGDepthWithinNoise)
   int n = 0;
   for (int i = 0; i < 50000; ++i) {  // 100 s: 1000 samples at 10 Hz
     w.step();
-    if (!w.suite->fresh(0)) continue;
+    if (!w.suite->fresh(0))
+      continue;
     EXPECT_NEAR(p.last().pressure, expected, 5.0 * sigma);
     sum += p.last().pressure;
     sum2 += p.last().pressure * p.last().pressure;
@@ -52,16 +51,15 @@ TEST(Pressure, ReadsAtmosphericPlusRhoGDepthWithinNoise)
   EXPECT_NEAR(w.robot().state().pose.translation().z(), -37.0, 1e-6);
 }
 
-TEST(Pressure, AboveTheSurfaceReadsAtmospheric)
-{
+TEST(Pressure, AboveTheSurfaceReadsAtmospheric) {
   const SphereSpec s;
-  SensorWorld w(openWater(s, Eigen::Vector3d(0, 0, 3.0)), pressureUrdf(s, Eigen::Vector3d::Zero(), 500.0, {{"noise", "none"}}));
+  SensorWorld w(openWater(s, Eigen::Vector3d(0, 0, 3.0)),
+                pressureUrdf(s, Eigen::Vector3d::Zero(), 500.0, {{"noise", "none"}}));
   w.step();
   EXPECT_DOUBLE_EQ(w.sensor<sensors::PressureSensor>("pressure").last().pressure, 101325.0);
 }
 
-TEST(Pressure, ClampsToFullScale)
-{
+TEST(Pressure, ClampsToFullScale) {
   const SphereSpec s;
   SensorWorld w(openWater(s, Eigen::Vector3d(0, 0, -100.0)),
                 pressureUrdf(s, Eigen::Vector3d::Zero(), 500.0, {{"noise", "none"}, {"pressure_range", "5e5"}}));
@@ -69,8 +67,7 @@ TEST(Pressure, ClampsToFullScale)
   EXPECT_DOUBLE_EQ(w.sensor<sensors::PressureSensor>("pressure").last().pressure, 5e5);  // true: 1.08e6 Pa
 }
 
-TEST(Pressure, MalformedParametersStopStartUpNamingSensorAndParameter)
-{
+TEST(Pressure, MalformedParametersStopStartUpNamingSensorAndParameter) {
   const SphereSpec s;
   try {
     SensorWorld w(openWater(s), pressureUrdf(s, Eigen::Vector3d::Zero(), 10.0, {{"pressure_noise", "-3"}}));

@@ -1,8 +1,8 @@
 // Ray caster (cpp/unexmin/raycast) against closed-form answers computed here: an icosphere, a box, a plane, sphere
 // robots; the Embree and Bullet back ends against each other in the shipped tank; thread-count invariance.
 // Every geometry goes through a World built from STL files written by the test (the path sensors use).
-#include "mesh_fixture.h"
 #include <unexmin/raycast/ray_caster.h>
+#include "mesh_fixture.h"
 #include "sphere_fixture.h"
 
 #include <gtest/gtest.h>
@@ -34,8 +34,7 @@ namespace {
 
 /// A world of the given meshes and robots (test spheres of radius SphereSpec().radius at `robots`).
 std::unique_ptr<sim::World> makeWorld(const std::vector<std::pair<std::string, Geometry>>& meshes,
-                                      const std::vector<Eigen::Vector3d>& robots = {})
-{
+                                      const std::vector<Eigen::Vector3d>& robots = {}) {
   test::SphereSpec spec;
   sim::WorldConfig config = test::openWater(spec);
   config.robots.clear();
@@ -56,44 +55,38 @@ std::unique_ptr<sim::World> makeWorld(const std::vector<std::pair<std::string, G
   return std::make_unique<sim::World>(config, descriptions, -1, 0.002, 1);
 }
 
-Eigen::Vector3d randomUnit(std::mt19937_64& rng)
-{
+Eigen::Vector3d randomUnit(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::uniform_real_distribution<double> a(0.0, 2.0 * M_PI);
   const double z = u(rng), s = std::sqrt(1.0 - z * z), phi = a(rng);
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
-Ray makeRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_range)
-{
+Ray makeRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_range) {
   return Ray{origin.cast<float>(), direction.normalized().cast<float>(), static_cast<float>(max_range)};
 }
 
 /// Exit distance of the ray (p, unit u) from inside the sphere (c, r).
-double sphereExit(const Eigen::Vector3d& p, const Eigen::Vector3d& u, const Eigen::Vector3d& c, double r)
-{
+double sphereExit(const Eigen::Vector3d& p, const Eigen::Vector3d& u, const Eigen::Vector3d& c, double r) {
   const Eigen::Vector3d m = p - c;
   const double b = m.dot(u);
   return -b + std::sqrt(b * b - (m.squaredNorm() - r * r));
 }
 
-std::unique_ptr<raycast::RayCaster> caster(const std::string& backend, sim::World& world, int threads = 0)
-{
+std::unique_ptr<raycast::RayCaster> caster(const std::string& backend, sim::World& world, int threads = 0) {
   raycast::RayCasterOptions options;
   options.threads = threads;
   return raycast::makeRayCaster(backend, world, options);
 }
 
 /// Whether two hits are the same bit for bit (range, normal, incidence, kind, index).
-bool sameHit(const Hit& a, const Hit& b)
-{
+bool sameHit(const Hit& a, const Hit& b) {
   return std::memcmp(&a.range, &b.range, sizeof(float)) == 0 && a.normal == b.normal &&
          std::memcmp(&a.incidence, &b.incidence, sizeof(float)) == 0 && a.kind == b.kind && a.index == b.index;
 }
 
 /// The shipped tank world (worlds/tank.world) with each of its robots a plain sphere (test::SphereSpec).
-std::unique_ptr<sim::World> tankOfSpheres()
-{
+std::unique_ptr<sim::World> tankOfSpheres() {
   const auto config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
   test::SphereSpec spec;
   std::map<std::string, sim::RobotDescription> d;
@@ -102,14 +95,11 @@ std::unique_ptr<sim::World> tankOfSpheres()
   return std::make_unique<sim::World>(config, d, -1, 0.002, 1);
 }
 
-class RayCasterBackend : public ::testing::TestWithParam<std::string>
-{
-};
+class RayCasterBackend : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
 
-TEST_P(RayCasterBackend, InsideSphereMeshMeasuresTheRadiusWithinTheChordSag)
-{
+TEST_P(RayCasterBackend, InsideSphereMeshMeasuresTheRadiusWithinTheChordSag) {
   const Eigen::Vector3d c(1.5, -2.0, -3.0);
   const double R = 2.0;
   auto world = makeWorld({{"sphere", icosphere(c, R, 6)}});
@@ -169,8 +159,7 @@ TEST_P(RayCasterBackend, InsideSphereMeshMeasuresTheRadiusWithinTheChordSag)
   }
 }
 
-TEST_P(RayCasterBackend, InsideBoxRangesNormalsAndIncidenceAreAnalytic)
-{
+TEST_P(RayCasterBackend, InsideBoxRangesNormalsAndIncidenceAreAnalytic) {
   const Eigen::Vector3d lo(-0.5, -3.0, -2.25), hi(2.5, -1.0, -0.75);  // 3 x 2 x 1.5 m
   auto world = makeWorld({{"box", box(lo, hi)}});
   auto rc = caster(GetParam(), *world);
@@ -182,12 +171,14 @@ TEST_P(RayCasterBackend, InsideBoxRangesNormalsAndIncidenceAreAnalytic)
   std::vector<Eigen::Vector3d> dirs;
   for (int i = 0; i < 20000; ++i) {
     Eigen::Vector3d p;
-    for (int k = 0; k < 3; ++k) p[k] = lo[k] + 0.01 + (hi[k] - lo[k] - 0.02) * u01(rng);
+    for (int k = 0; k < 3; ++k)
+      p[k] = lo[k] + 0.01 + (hi[k] - lo[k] - 0.02) * u01(rng);
     const Eigen::Vector3d d = randomUnit(rng);
     double t = INFINITY, second = INFINITY;
     int face_axis = -1;
     for (int k = 0; k < 3; ++k) {
-      if (d[k] == 0.0) continue;
+      if (d[k] == 0.0)
+        continue;
       const double tk = ((d[k] > 0 ? hi[k] : lo[k]) - p[k]) / d[k];
       if (tk < t) {
         second = t;
@@ -228,8 +219,7 @@ TEST_P(RayCasterBackend, InsideBoxRangesNormalsAndIncidenceAreAnalytic)
   }
 }
 
-TEST_P(RayCasterBackend, IncidenceOnAPlaneIsAnalyticFromBothSides)
-{
+TEST_P(RayCasterBackend, IncidenceOnAPlaneIsAnalyticFromBothSides) {
   Geometry plane;
   plane.vertices = {{-100, -100, 0}, {100, -100, 0}, {100, 100, 0}, {-100, 100, 0}};
   plane.indices = {0, 1, 2, 0, 2, 3};
@@ -259,8 +249,7 @@ TEST_P(RayCasterBackend, IncidenceOnAPlaneIsAnalyticFromBothSides)
   }
 }
 
-TEST_P(RayCasterBackend, OtherRobotsAreHitTheExcludedOneIsNot)
-{
+TEST_P(RayCasterBackend, OtherRobotsAreHitTheExcludedOneIsNot) {
   const double r = test::SphereSpec().radius;
   auto world = makeWorld({{"room", box({-5, -5, -5}, {5, 5, 5})}}, {{0, 0, 0}, {1.2, 0, 0}, {-1.2, 0, 0}});
   auto rc = caster(GetParam(), *world);
@@ -318,8 +307,7 @@ TEST_P(RayCasterBackend, OtherRobotsAreHitTheExcludedOneIsNot)
   EXPECT_NEAR(h.range, 2.0 - r, tol);
 }
 
-TEST_P(RayCasterBackend, RaysAimedAtSharedEdgesOfAClosedMeshNeverEscape)
-{
+TEST_P(RayCasterBackend, RaysAimedAtSharedEdgesOfAClosedMeshNeverEscape) {
   // Embree's default (non-robust) triangle test lets about 5 % of these rays through; robust mode none.
   // (Rays aimed exactly at a vertex, which real rays meet with probability ~1e-12, are not covered: Embree's
   // robust mode still lets about 0.2 % of those through.)
@@ -343,12 +331,12 @@ TEST_P(RayCasterBackend, RaysAimedAtSharedEdgesOfAClosedMeshNeverEscape)
   std::vector<Hit> hits;
   rc->cast(rays, hits);
   int escaped = 0;
-  for (const Hit& h : hits) escaped += h.hit() ? 0 : 1;
+  for (const Hit& h : hits)
+    escaped += h.hit() ? 0 : 1;
   EXPECT_EQ(escaped, 0) << "rays slipped between triangles sharing an edge";
 }
 
-TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks)
-{
+TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks) {
   // The same edge-aimed rays as above: Embree's default triangle test lets some through, the robust one none.
   const Eigen::Vector3d c(0.2, 0.1, -0.4);
   auto world = makeWorld({{"sphere", icosphere(c, 3.0, 4)}});
@@ -369,14 +357,14 @@ TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks)
     options.watertight = watertight;
     std::vector<Hit> hits;
     raycast::makeRayCaster("embree", *world, options)->cast(rays, hits);
-    for (const Hit& h : hits) escaped[watertight] += h.hit() ? 0 : 1;
+    for (const Hit& h : hits)
+      escaped[watertight] += h.hit() ? 0 : 1;
   }
   EXPECT_GT(escaped[0], 20) << "Embree's default test should leak at edges (else this test proves nothing)";
   EXPECT_EQ(escaped[1], 0);
 }
 
-TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
-{
+TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults) {
   const auto world_ptr = tankOfSpheres();
   sim::World& world = *world_ptr;
   std::mt19937_64 rng(3);
@@ -405,12 +393,12 @@ TEST_P(RayCasterBackend, ThreadCountDoesNotChangeResults)
     EXPECT_EQ(differ, 0) << threads << " threads";
   }
   int robot_hits = 0;
-  for (const Hit& h : reference) robot_hits += h.kind == HitKind::robot ? 1 : 0;
+  for (const Hit& h : reference)
+    robot_hits += h.kind == HitKind::robot ? 1 : 0;
   EXPECT_GT(robot_hits, 0) << "the rays should see the other robots too";
 }
 
-TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBatch)
-{
+TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBatch) {
   // A camera's way of casting: each block of parallelFor casts its own rays (here 300 per block, more than
   // kParallelMin, so a cast that tried to use the busy workers would deadlock or race) and uses the hits at once.
   const auto world_ptr = tankOfSpheres();
@@ -418,7 +406,8 @@ TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBa
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   constexpr std::size_t kBlocks = 37, kPerBlock = 300;
-  static_assert(kPerBlock > raycast::RayCaster::kParallelMin, "the nested casts must be large enough to want the workers");
+  static_assert(kPerBlock > raycast::RayCaster::kParallelMin,
+                "the nested casts must be large enough to want the workers");
   std::vector<Ray> rays;
   for (std::size_t i = 0; i < kBlocks * kPerBlock; ++i)
     rays.push_back(makeRay({2.9 * u(rng), 1.9 * u(rng), -1.5 + 1.4 * u(rng)}, randomUnit(rng), 3.0 + 3.0 * u(rng)));
@@ -432,7 +421,8 @@ TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBa
       ++runs[b];
       rc->cast(&rays[b * kPerBlock], &hits[b * kPerBlock], kPerBlock, 0);
     });
-    for (std::size_t b = 0; b < kBlocks; ++b) EXPECT_EQ(runs[b].load(), 1) << "block " << b << ", " << threads << " threads";
+    for (std::size_t b = 0; b < kBlocks; ++b)
+      EXPECT_EQ(runs[b].load(), 1) << "block " << b << ", " << threads << " threads";
     int differ = 0;
     for (std::size_t i = 0; i < rays.size(); ++i)
       differ += sameHit(reference[i], hits[i]) ? 0 : 1;
@@ -440,8 +430,7 @@ TEST_P(RayCasterBackend, ParallelForRunsEveryBlockOnceAndCastsInsideItMatchTheBa
   }
 }
 
-TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)
-{
+TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn) {
   // Incidence::skip leaves Hit::incidence NaN and nothing else changed; RayCaster::incidence() then gives the very
   // float a default cast writes, for mesh hits seen from either side and robot hits.
   const auto world_ptr = tankOfSpheres();
@@ -464,8 +453,8 @@ TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)
     const Hit& b = without[i];
     ASSERT_TRUE(std::isnan(b.incidence)) << "ray " << i;
     const float recomputed = raycast::RayCaster::incidence(rays[i], b);
-    const bool same = std::memcmp(&a.range, &b.range, sizeof(float)) == 0 && a.normal == b.normal &&
-                      a.kind == b.kind && a.index == b.index &&
+    const bool same = std::memcmp(&a.range, &b.range, sizeof(float)) == 0 && a.normal == b.normal && a.kind == b.kind &&
+                      a.index == b.index &&
                       (a.hit() ? std::memcmp(&a.incidence, &recomputed, sizeof(float)) == 0
                                : std::isnan(a.incidence) && std::isnan(recomputed));
     differ += same ? 0 : 1;
@@ -480,8 +469,7 @@ TEST_P(RayCasterBackend, IncidenceOnDemandIsBitForBitTheCastsOwn)
 INSTANTIATE_TEST_SUITE_P(Backends, RayCasterBackend, ::testing::Values("embree", "bullet"),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
-TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
-{
+TEST(RayCaster, EmbreeAndBulletAgreeInTheTank) {
   const auto world_ptr = tankOfSpheres();
   sim::World& world = *world_ptr;
   const auto spheres = raycast::robotSpheres(world);
@@ -492,10 +480,12 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
   while (rays.size() < 100000) {
     const Eigen::Vector3d p(ux(rng), uy(rng), uz(rng));
     bool inside = false;
-    for (const auto& s : spheres) inside = inside || (p - s.center).norm() < s.radius + 1e-3;
+    for (const auto& s : spheres)
+      inside = inside || (p - s.center).norm() < s.radius + 1e-3;
     const Eigen::Vector3d dir = randomUnit(rng);
     const double max_range = ur(rng);
-    if (!inside) rays.push_back(makeRay(p, dir, max_range));
+    if (!inside)
+      rays.push_back(makeRay(p, dir, max_range));
   }
   std::vector<Hit> e, b;
   caster("embree", world)->cast(rays, e);
@@ -506,7 +496,8 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
   for (const auto& mesh : world.meshes()) {
     std::map<std::pair<int, int>, int> uses;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
-      for (int k = 0; k < 3; ++k) ++uses[std::minmax(mesh.indices[t + k], mesh.indices[t + (k + 1) % 3])];
+      for (int k = 0; k < 3; ++k)
+        ++uses[std::minmax(mesh.indices[t + k], mesh.indices[t + (k + 1) % 3])];
     for (const auto& [edge, count] : uses)
       if (count == 1)
         open_edges.emplace_back(mesh.vertices[edge.first].cast<double>(), mesh.vertices[edge.second].cast<double>());
@@ -529,7 +520,8 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
       ++at_open_edge;
       continue;
     }
-    if (!e[i].hit()) continue;
+    if (!e[i].hit())
+      continue;
     ++hits;
     robot_hits += e[i].kind == HitKind::robot ? 1 : 0;
     anchor_hits += e[i].kind == HitKind::mesh && e[i].index == 1 ? 1 : 0;
@@ -544,12 +536,13 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank)
   EXPECT_GT(hits, 50000);
   EXPECT_GT(robot_hits, 100);
   EXPECT_GT(anchor_hits, 100);
-  std::printf("[ tank     ] %d hits of %zu rays (%d robots, %d anchor); worst range difference %.2e m; "
-              "%d hit/miss at open edges\n", hits, rays.size(), robot_hits, anchor_hits, worst, at_open_edge);
+  std::printf(
+      "[ tank     ] %d hits of %zu rays (%d robots, %d anchor); worst range difference %.2e m; "
+      "%d hit/miss at open edges\n",
+      hits, rays.size(), robot_hits, anchor_hits, worst, at_open_edge);
 }
 
-TEST(RayCaster, DefectsAreNamed)
-{
+TEST(RayCaster, DefectsAreNamed) {
   auto world = makeWorld({{"room", box({-1, -1, -1}, {1, 1, 1})}});
   try {
     raycast::makeRayCaster("optix", *world);
@@ -579,8 +572,7 @@ TEST(RayCaster, DefectsAreNamed)
   nan_origin.origin.x() = NAN;
   EXPECT_NE(message({good, good, good, not_unit}, -1).find("ray 3: direction (1, 1, 0) is not a unit vector"),
             std::string::npos);
-  EXPECT_NE(message({good, no_range}, -1).find("ray 1: max_range 0 m must be finite and > 0"),
-            std::string::npos);
+  EXPECT_NE(message({good, no_range}, -1).find("ray 1: max_range 0 m must be finite and > 0"), std::string::npos);
   EXPECT_NE(message({nan_origin}, -1).find("ray 0: origin"), std::string::npos);
   EXPECT_NE(message({good}, -2).find("exclude_robot = -2"), std::string::npos);
   EXPECT_EQ(message({good}, -1), "");

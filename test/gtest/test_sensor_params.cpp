@@ -22,8 +22,7 @@ namespace {
 using sensors::SensorParams;
 
 /// A DVL-like sensor spec with the given numeric and text parameters, as the description parser fills it.
-sim::SensorSpec spec(const hydro::ParamMap& params, const std::map<std::string, std::string>& text = {})
-{
+sim::SensorSpec spec(const hydro::ParamMap& params, const std::map<std::string, std::string>& text = {}) {
   sim::SensorSpec s;
   s.name = "nav_dvl";
   s.type = "dvl";
@@ -36,45 +35,42 @@ sim::SensorSpec spec(const hydro::ParamMap& params, const std::map<std::string, 
 
 /// The message names the robot and the sensor (with its type) and holds every one of `parts`.
 void expectNames(const std::string& m, const std::string& robot, const std::string& sensor, const std::string& type,
-                 const std::vector<std::string>& parts)
-{
+                 const std::vector<std::string>& parts) {
   EXPECT_TRUE(contains(m, robot + ": sensor '" + sensor + "' (type " + type + ")")) << m;
-  for (const auto& p : parts) EXPECT_TRUE(contains(m, p)) << "'" << p << "' not in: " << m;
+  for (const auto& p : parts)
+    EXPECT_TRUE(contains(m, p)) << "'" << p << "' not in: " << m;
 }
 
-TEST(SensorParams, NumbersInRangeAreReadAndAbsentOnesFallBack)
-{
+TEST(SensorParams, NumbersInRangeAreReadAndAbsentOnesFallBack) {
   const sim::SensorSpec s = spec({{"altitude_max", {30.0}}, {"low", {0.0}}, {"high", {10.0}}});
   SensorParams p(s, "UX_1");
   EXPECT_EQ(p.number("altitude_max", 75.0, 0.0, 1e4, "m"), 30.0);
   EXPECT_EQ(p.number("altitude_min", 0.1, 0.0, 1e4, "m"), 0.1);  // absent: the fallback
-  EXPECT_EQ(p.number("low", 5.0, 0.0, 10.0, "m"), 0.0);            // both ends of a closed range
+  EXPECT_EQ(p.number("low", 5.0, 0.0, 10.0, "m"), 0.0);          // both ends of a closed range
   EXPECT_EQ(p.number("high", 5.0, 0.0, 10.0, "m"), 10.0);
   EXPECT_NO_THROW(p.finish());
   EXPECT_EQ(p.where(), "UX_1: sensor 'nav_dvl' (type dvl)");
 }
 
-TEST(SensorParams, AValueOutOfRangeNamesRobotSensorParameterValueAndRange)
-{
+TEST(SensorParams, AValueOutOfRangeNamesRobotSensorParameterValueAndRange) {
   const sim::SensorSpec s = spec({{"beam_angle", {2.0}}, {"altitude_min", {-0.5}}, {"rate_ok", {10.0}}});
   SensorParams p(s, "UX_1");
-  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_1", "nav_dvl", "dvl",
-              {"parameter 'beam_angle' = 2", "expected a number in [0, 1.5] rad"});
-  expectNames(thrownMessage<ConfigError>([&] { p.number("altitude_min", 0.1, 0.0, 10000.0, "m"); }), "UX_1", "nav_dvl", "dvl",
-              {"parameter 'altitude_min' = -0.5", "[0, 10000] m"});
+  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_1", "nav_dvl",
+              "dvl", {"parameter 'beam_angle' = 2", "expected a number in [0, 1.5] rad"});
+  expectNames(thrownMessage<ConfigError>([&] { p.number("altitude_min", 0.1, 0.0, 10000.0, "m"); }), "UX_1", "nav_dvl",
+              "dvl", {"parameter 'altitude_min' = -0.5", "[0, 10000] m"});
   // An open upper end excludes the end itself and says so.
-  expectNames(thrownMessage<ConfigError>([&] { p.number("rate_ok", 1.0, 0.0, 10.0, "Hz", true); }), "UX_1", "nav_dvl", "dvl",
-              {"parameter 'rate_ok' = 10", "[0, 10) Hz"});
+  expectNames(thrownMessage<ConfigError>([&] { p.number("rate_ok", 1.0, 0.0, 10.0, "Hz", true); }), "UX_1", "nav_dvl",
+              "dvl", {"parameter 'rate_ok' = 10", "[0, 10) Hz"});
 }
 
-TEST(SensorParams, NonNumbersMissingValuesAndWrongCountsAreNamedWithTheirText)
-{
+TEST(SensorParams, NonNumbersMissingValuesAndWrongCountsAreNamedWithTheirText) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const sim::SensorSpec s = spec({{"pair", {1.0, 2.0}}, {"not_finite", {nan}}, {"three", {1.0, 2.0}}},
                                  {{"beam_angle", "steep"}, {"empty", ""}, {"vector_text", "up"}});
   SensorParams p(s, "UX_2");
-  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_2", "nav_dvl", "dvl",
-              {"parameter 'beam_angle' = 'steep'", "expected a number in [0, 1.5] rad"});
+  expectNames(thrownMessage<ConfigError>([&] { p.number("beam_angle", 0.4, 0.0, 1.5, "rad"); }), "UX_2", "nav_dvl",
+              "dvl", {"parameter 'beam_angle' = 'steep'", "expected a number in [0, 1.5] rad"});
   // value='' (no value given): the empty text, quoted.
   expectNames(thrownMessage<ConfigError>([&] { p.number("empty", 1.0, 0.0, 2.0, "m"); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'empty' = ''", "[0, 2] m"});
@@ -84,12 +80,11 @@ TEST(SensorParams, NonNumbersMissingValuesAndWrongCountsAreNamedWithTheirText)
               {"parameter 'not_finite' = nan", "[0, 5] m"});
   expectNames(thrownMessage<ConfigError>([&] { p.vec3("three", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
               {"parameter 'three' = 1 2", "three numbers"});
-  expectNames(thrownMessage<ConfigError>([&] { p.vec3("vector_text", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl", "dvl",
-              {"parameter 'vector_text' = 'up'", "three numbers"});
+  expectNames(thrownMessage<ConfigError>([&] { p.vec3("vector_text", Eigen::Vector3d::Zero()); }), "UX_2", "nav_dvl",
+              "dvl", {"parameter 'vector_text' = 'up'", "three numbers"});
 }
 
-TEST(SensorParams, VectorsTextsAndWordsAreReadWithTheirFallbacks)
-{
+TEST(SensorParams, VectorsTextsAndWordsAreReadWithTheirFallbacks) {
   const sim::SensorSpec s = spec({{"offset", {1.0, -2.0, 0.5}}, {"numeric_word", {3.0}}},
                                  {{"noise", "none"}, {"frames", "a_link  b_link\tc_link"}});
   SensorParams p(s, "UX_1");
@@ -103,18 +98,16 @@ TEST(SensorParams, VectorsTextsAndWordsAreReadWithTheirFallbacks)
   EXPECT_NO_THROW(p.finish());
 }
 
-TEST(SensorParams, AWordNotAllowedNamesTheAllowedOnes)
-{
+TEST(SensorParams, AWordNotAllowedNamesTheAllowedOnes) {
   const sim::SensorSpec s = spec({{"noise", {1.0}}}, {{"mode", "brown"}});
   SensorParams p(s, "UX_3");
-  expectNames(thrownMessage<ConfigError>([&] { p.text("mode", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
-              {"parameter 'mode' = 'brown'", "one of gaussian|none"});
-  expectNames(thrownMessage<ConfigError>([&] { p.text("noise", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl", "dvl",
-              {"parameter 'noise' = '1'", "one of gaussian|none"});
+  expectNames(thrownMessage<ConfigError>([&] { p.text("mode", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl",
+              "dvl", {"parameter 'mode' = 'brown'", "one of gaussian|none"});
+  expectNames(thrownMessage<ConfigError>([&] { p.text("noise", "gaussian", {"gaussian", "none"}); }), "UX_3", "nav_dvl",
+              "dvl", {"parameter 'noise' = '1'", "one of gaussian|none"});
 }
 
-TEST(SensorParams, AFlagIsTrueOrFalseAsWrittenByHandOrByXacro)
-{
+TEST(SensorParams, AFlagIsTrueOrFalseAsWrittenByHandOrByXacro) {
   const sim::SensorSpec s = spec({{"one", {1.0}}, {"zero", {0.0}}},
                                  {{"a", "true"}, {"b", "True"}, {"c", "false"}, {"d", "False"}, {"e", "yes"}});
   SensorParams p(s, "UX_2");
@@ -130,10 +123,9 @@ TEST(SensorParams, AFlagIsTrueOrFalseAsWrittenByHandOrByXacro)
               {"parameter 'e' = 'yes'", "one of true|false|True|False|1|0"});
 }
 
-TEST(SensorParams, AnUnreadParameterIsATypoExceptTopicNames)
-{
-  const sim::SensorSpec s = spec({{"beam_angle", {0.4}}, {"altitud_max", {30.0}}},
-                                 {{"topic", "dvl/data"}, {"range_topic", "dvl/range"}});
+TEST(SensorParams, AnUnreadParameterIsATypoExceptTopicNames) {
+  const sim::SensorSpec s =
+      spec({{"beam_angle", {0.4}}, {"altitud_max", {30.0}}}, {{"topic", "dvl/data"}, {"range_topic", "dvl/range"}});
   SensorParams p(s, "UX_1");
   p.number("beam_angle", 0.4, 0.0, 1.5, "rad");
   p.number("altitude_max", 75.0, 0.0, 1e4, "m");
@@ -144,29 +136,24 @@ TEST(SensorParams, AnUnreadParameterIsATypoExceptTopicNames)
   EXPECT_NO_THROW(SensorParams(topics_only, "UX_1").finish());
 }
 
-TEST(SensorParams, FailIsAConfigErrorUnderTheOneErrorRoot)
-{
+TEST(SensorParams, FailIsAConfigErrorUnderTheOneErrorRoot) {
   static_assert(std::is_base_of<Error, ConfigError>::value, "ConfigError is an unexmin::Error");
   const sim::SensorSpec s = spec({});
   SensorParams p(s, "UX_1");
-  expectNames(thrownMessage<ConfigError>([&] { p.fail("beam_frames", "'x'", "4 link names"); }), "UX_1", "nav_dvl", "dvl",
-              {"parameter 'beam_frames' = 'x': expected 4 link names"});
+  expectNames(thrownMessage<ConfigError>([&] { p.fail("beam_frames", "'x'", "4 link names"); }), "UX_1", "nav_dvl",
+              "dvl", {"parameter 'beam_frames' = 'x': expected 4 link names"});
 }
 
 // ---- Through a robot description, for every core family (the checks every model's constructor makes) ----
 
 /// Start-up of the robot "T" (test_fixture's sphere) in open water with one sensor; the ConfigError's what().
-std::string startup(const std::string& links, const std::string& sensor)
-{
-  return thrownMessage<ConfigError>([&] {
-    SonarWorld w(meshWorld({}, Eigen::Vector3d(0, 0, -50)), sensorUrdf(SphereSpec(), links, sensor));
-  });
+std::string startup(const std::string& links, const std::string& sensor) {
+  return thrownMessage<ConfigError>(
+      [&] { SonarWorld w(meshWorld({}, Eigen::Vector3d(0, 0, -50)), sensorUrdf(SphereSpec(), links, sensor)); });
 }
 
-TEST(SensorParams, EveryFamilyNamesRobotSensorParameterValueAndRangeAtStartUp)
-{
-  struct Case
-  {
+TEST(SensorParams, EveryFamilyNamesRobotSensorParameterValueAndRangeAtStartUp) {
+  struct Case {
     std::string type, link, links, key, value;
     std::vector<std::string> parts;
     std::map<std::string, std::string> extra;
@@ -198,20 +185,21 @@ TEST(SensorParams, EveryFamilyNamesRobotSensorParameterValueAndRangeAtStartUp)
   }
 }
 
-TEST(SensorParams, AParamWithoutValueOrWithANonFiniteOneStopsTheDescriptionNamingSensorAndParameter)
-{
+TEST(SensorParams, AParamWithoutValueOrWithANonFiniteOneStopsTheDescriptionNamingSensorAndParameter) {
   const std::string links = mountLink("T/p_link", Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
   const auto urdf = [&](const std::string& param) {
-    return sensorUrdf(SphereSpec(), links, "<sensor name='depth' type='pressure' link='T/p_link' rate='5'>" + param +
-                                               "</sensor>\n");
+    return sensorUrdf(SphereSpec(), links,
+                      "<sensor name='depth' type='pressure' link='T/p_link' rate='5'>" + param + "</sensor>\n");
   };
-  std::string m = thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise'/>"), "UX_1 description"); });
+  std::string m = thrownMessage<ConfigError>(
+      [&] { sim::parseRobotDescription(urdf("<param name='pressure_noise'/>"), "UX_1 description"); });
   EXPECT_TRUE(contains(m, "UX_1 description")) << m;
   EXPECT_TRUE(contains(m, "sensor name='depth'")) << m;
   EXPECT_TRUE(contains(m, "pressure_noise")) << m;
   EXPECT_TRUE(contains(m, "'value'")) << m;
 
-  m = thrownMessage<ConfigError>([&] { sim::parseRobotDescription(urdf("<param name='pressure_noise' value='nan'/>"), "UX_1 description"); });
+  m = thrownMessage<ConfigError>(
+      [&] { sim::parseRobotDescription(urdf("<param name='pressure_noise' value='nan'/>"), "UX_1 description"); });
   EXPECT_TRUE(contains(m, "UX_1 description")) << m;
   EXPECT_TRUE(contains(m, "sensor name='depth'")) << m;
   EXPECT_TRUE(contains(m, "pressure_noise")) << m;

@@ -15,21 +15,19 @@ namespace {
 
 constexpr double kBeamAngle = 25.0 * M_PI / 180;
 
-std::string dvlUrdf()
-{
+std::string dvlUrdf() {
   std::map<std::string, std::string> p = {{"noise", "none"}, {"beam_angle", num(kBeamAngle)}, {"beam_azimuth_0", "0"}};
   return sensorUrdf(undampedSphere(), dvlLinks(kBeamAngle, 0.0), sensorXml("dvl", "dvl", "T/dvl_link", 500.0, p));
 }
 
-TEST(SensorRays, DvlRangesThroughEmbreeEqualTheAnalyticFloorAndBulletWithinTwoMillimetres)
-{
+TEST(SensorRays, DvlRangesThroughEmbreeEqualTheAnalyticFloorAndBulletWithinTwoMillimetres) {
   const sim::WorldConfig tank = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/tank.world");
   SensorWorld embree(tank, dvlUrdf(), 1, 0.002, "embree");
   SensorWorld bullet(tank, dvlUrdf(), 1, 0.002, "bullet");
   EXPECT_STREQ(embree.caster->name(), "embree");
   EXPECT_STREQ(bullet.caster->name(), "bullet");
-  for (const Eigen::Vector3d& rpy : {Eigen::Vector3d(0.12, -0.08, 0.6), Eigen::Vector3d(-0.2, 0.1, 2.0),
-                                    Eigen::Vector3d(0.0, 0.0, -1.0)}) {
+  for (const Eigen::Vector3d& rpy :
+       {Eigen::Vector3d(0.12, -0.08, 0.6), Eigen::Vector3d(-0.2, 0.1, 2.0), Eigen::Vector3d(0.0, 0.0, -1.0)}) {
     const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 1.0, -1.2), rpy);
     embree.place(pose);
     bullet.place(pose);
@@ -41,8 +39,9 @@ TEST(SensorRays, DvlRangesThroughEmbreeEqualTheAnalyticFloorAndBulletWithinTwoMi
         embree.robot().state().pose * sim::poseFromXyzRpy(Eigen::Vector3d(0, 0, -0.3), Eigen::Vector3d(M_PI, 0, 0));
     for (int i = 0; i < 4; ++i) {
       const double c = i * M_PI / 2;
-      const Eigen::Vector3d d = dvl.linear() * Eigen::Vector3d(std::sin(kBeamAngle) * std::cos(c),
-                                                               std::sin(kBeamAngle) * std::sin(c), std::cos(kBeamAngle));
+      const Eigen::Vector3d d =
+          dvl.linear() *
+          Eigen::Vector3d(std::sin(kBeamAngle) * std::cos(c), std::sin(kBeamAngle) * std::sin(c), std::cos(kBeamAngle));
       const double floor = (dvl.translation().z() + 3.0) / -d.z();  // tank floor at z = -3
       ASSERT_TRUE(e.beams[i].valid && b.beams[i].valid);
       EXPECT_NEAR(e.beams[i].range, floor, 0.002) << "beam " << i;
@@ -51,8 +50,7 @@ TEST(SensorRays, DvlRangesThroughEmbreeEqualTheAnalyticFloorAndBulletWithinTwoMi
   }
 }
 
-TEST(SensorRays, OwnHullIsInvisibleOtherRobotsAreSeenWhereTheyAreNow)
-{
+TEST(SensorRays, OwnHullIsInvisibleOtherRobotsAreSeenWhereTheyAreNow) {
   // Two test spheres (radius 0.3) 2 m apart on x in open water; T carries an M3 looking along +x whose
   // middle beams (k = 127, 128 of 256 over 120 deg: +-0.24 deg) meet U's near side.
   std::map<std::string, std::string> p = {{"noise", "none"}, {"rays_per_beam", "1"}, {"fov_v", "0.001"}};
@@ -80,7 +78,9 @@ TEST(SensorRays, OwnHullIsInvisibleOtherRobotsAreSeenWhereTheyAreNow)
   step();
   // Beam k at angle a: the ray from the centre meets the sphere of radius r at distance D = 2 m ahead at
   // D cos a - sqrt(r^2 - D^2 sin^2 a).
-  auto expected = [](double a, double D) { return D * std::cos(a) - std::sqrt(0.09 - D * D * std::sin(a) * std::sin(a)); };
+  auto expected = [](double a, double D) {
+    return D * std::cos(a) - std::sqrt(0.09 - D * D * std::sin(a) * std::sin(a));
+  };
   const double a = m3.angleIncrement() / 2;
   const double x_u = world.robot(1).state().pose.translation().x();
   EXPECT_NEAR(m3.last().ranges[127], expected(a, x_u), 0.01);

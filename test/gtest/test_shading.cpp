@@ -27,12 +27,13 @@ using sensors::vision::WaterOptics;
 
 constexpr double kDeg = M_PI / 180.0;
 
-CameraModel camera() { return CameraModel(160, 120, 100.0, 100.0, 79.5, 59.5, {-0.2, 0.05, 0.001, -0.002, 0.0}); }
+CameraModel camera() {
+  return CameraModel(160, 120, 100.0, 100.0, 79.5, 59.5, {-0.2, 0.05, 0.001, -0.002, 0.0});
+}
 
 /// Five LEDs around the lens, each lighting part of the view: four spread across it and one down-forward, each
 /// beam different.
-std::vector<LedLight> fiveLights()
-{
+std::vector<LedLight> fiveLights() {
   std::vector<LedLight> lights;
   const double yaw[] = {-60.0, -20.0, 20.0, 60.0};
   for (int k = 0; k < 4; ++k) {
@@ -56,8 +57,7 @@ std::vector<LedLight> fiveLights()
 
 /// n pixels in groups of 8 around random surface patches (some behind or beside every beam), random normals
 /// (some facing away), albedo, shadow masks and a few pixels of open water.
-void randomTile(PixelBatch& b, int n, double max_range, std::mt19937_64& rng)
-{
+void randomTile(PixelBatch& b, int n, double max_range, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   b.n = n;
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();
@@ -71,14 +71,16 @@ void randomTile(PixelBatch& b, int n, double max_range, std::mt19937_64& rng)
         (Eigen::Vector3f(u01(rng) - 0.5, u01(rng) - 0.5, u01(rng) - 0.5) - 0.5f * p.normalized()).normalized();
     const float albedo[3] = {static_cast<float>(u01(rng)), static_cast<float>(u01(rng)), static_cast<float>(u01(rng))};
     const float pu = static_cast<float>(u01(rng) * 170 - 5), pv = static_cast<float>(u01(rng) * 130 - 5);
-    if (u01(rng) < 0.05) b.setWater(i, pu, pv, static_cast<float>(max_range));
-    else b.set(i, pu, pv, p.norm(), p, normal, albedo, static_cast<std::uint32_t>(rng()) | 0x3u);
+    if (u01(rng) < 0.05)
+      b.setWater(i, pu, pv, static_cast<float>(max_range));
+    else
+      b.set(i, pu, pv, p.norm(), p, normal, albedo, static_cast<std::uint32_t>(rng()) | 0x3u);
   }
 }
 
-TEST(Shading, EightLanesGiveWhatOneLaneGivesForEveryTileSize)
-{
-  if (!ImageFormation::simdAvailable()) GTEST_SKIP() << "this CPU (or build) has no AVX2 and FMA: one lane only";
+TEST(Shading, EightLanesGiveWhatOneLaneGivesForEveryTileSize) {
+  if (!ImageFormation::simdAvailable())
+    GTEST_SKIP() << "this CPU (or build) has no AVX2 and FMA: one lane only";
   std::mt19937_64 rng(11);
   int compared = 0, lit = 0;
   float worst = 0.0f;
@@ -110,27 +112,39 @@ TEST(Shading, EightLanesGiveWhatOneLaneGivesForEveryTileSize)
   std::printf("worst relative difference, eight lanes vs one: %.3g\n", worst);
 }
 
-TEST(Shading, ANonFiniteInputSpoilsItsOwnPixelOnlyAndReadsNothingOutOfBounds)
-{
+TEST(Shading, ANonFiniteInputSpoilsItsOwnPixelOnlyAndReadsNothingOutOfBounds) {
   // Every table index is clamped NaN included: a NaN or infinite range, point or coordinate must not make a lane
   // read outside a table (it would crash or read garbage), nor change the other pixels.
   const ImageFormation f(camera(), fiveLights(), WaterOptics::fromVisibility("medium", Eigen::Vector3d::Ones()), 6.0);
   std::mt19937_64 rng(5);
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   for (bool simd : {false, true}) {
-    if (simd && !ImageFormation::simdAvailable()) continue;
+    if (simd && !ImageFormation::simdAvailable())
+      continue;
     PixelBatch clean;
     randomTile(clean, 24, f.maxRange(), rng);
     for (int bad = 0; bad < 6; ++bad) {
       PixelBatch b = clean, ref = clean;
       const int i = 3 + bad;
       switch (bad) {
-        case 0: b.range[i] = nan; break;
-        case 1: b.range[i] = inf; break;
-        case 2: b.px[i] = nan; break;
-        case 3: b.u[i] = nan; break;
-        case 4: b.v[i] = -inf; break;
-        case 5: b.nz[i] = nan; break;
+        case 0:
+          b.range[i] = nan;
+          break;
+        case 1:
+          b.range[i] = inf;
+          break;
+        case 2:
+          b.px[i] = nan;
+          break;
+        case 3:
+          b.u[i] = nan;
+          break;
+        case 4:
+          b.v[i] = -inf;
+          break;
+        case 5:
+          b.nz[i] = nan;
+          break;
       }
       f.radiance(b, simd);
       f.radiance(ref, simd);
@@ -143,8 +157,7 @@ TEST(Shading, ANonFiniteInputSpoilsItsOwnPixelOnlyAndReadsNothingOutOfBounds)
   }
 }
 
-TEST(Shading, EightLanesAreBuiltAndUsedWhereTheCpuHasAvx2AndFma)
-{
+TEST(Shading, EightLanesAreBuiltAndUsedWhereTheCpuHasAvx2AndFma) {
   // A build that silently lost shading_avx2.cpp's -mavx2 -mfma would shade one pixel at a time (and the tests
   // comparing the two would skip): on a CPU with both, the eight lanes must be there.
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -155,8 +168,7 @@ TEST(Shading, EightLanesAreBuiltAndUsedWhereTheCpuHasAvx2AndFma)
 #endif
 }
 
-TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge)
-{
+TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge) {
   // The table's range bins end at s_j = max_range (j / 64)^2; the lookup finds a range's bin from a rounded square
   // root and steps one bin if that landed wrong. Just below, at and just above every edge, at pixels inside and
   // outside the image, in both lane widths: the glow never decreases with range, and across an edge it changes by
@@ -166,9 +178,10 @@ TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge)
   const ImageFormation f(camera(), fiveLights(), WaterOptics::fromVisibility("high", Eigen::Vector3d::Ones()),
                          max_range);
   for (bool simd : {false, true}) {
-    if (simd && !ImageFormation::simdAvailable()) continue;
-    for (const Eigen::Vector2f& uv : {Eigen::Vector2f(80.0f, 60.0f), Eigen::Vector2f(3.3f, 117.9f),
-                                      Eigen::Vector2f(-20.0f, 200.0f)}) {
+    if (simd && !ImageFormation::simdAvailable())
+      continue;
+    for (const Eigen::Vector2f& uv :
+         {Eigen::Vector2f(80.0f, 60.0f), Eigen::Vector2f(3.3f, 117.9f), Eigen::Vector2f(-20.0f, 200.0f)}) {
       std::vector<std::array<float, 3>> at_edge;  // (below, at, above) per edge
       std::vector<float> sweep;
       for (int j = 1; j <= 64; ++j) {
@@ -180,7 +193,8 @@ TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge)
         b.setWater(2, uv.x(), uv.y(), std::nextafter(edge, 100.0f));
         f.radiance(b, simd);
         at_edge.push_back({b.out[1][0], b.out[1][1], b.out[1][2]});
-        for (int i = 0; i < 3; ++i) sweep.push_back(b.out[1][i]);
+        for (int i = 0; i < 3; ++i)
+          sweep.push_back(b.out[1][i]);
       }
       const float top = *std::max_element(sweep.begin(), sweep.end());
       ASSERT_GT(top, 0.0f) << "the lights must light the water along this ray";
@@ -190,13 +204,13 @@ TEST(Shading, BackscatterGrowsWithRangeAndIsContinuousAcrossEveryBinEdge)
         EXPECT_LE(at_edge[e][2] - at_edge[e][0], 1e-6f * top) << "simd " << simd << " edge " << e + 1;
       }
       // Beyond max_range the ray sees open water up to max_range: the same glow.
-      EXPECT_EQ(f.backscatter(uv.x(), uv.y(), 50.0f)[1], f.backscatter(uv.x(), uv.y(), static_cast<float>(max_range))[1]);
+      EXPECT_EQ(f.backscatter(uv.x(), uv.y(), 50.0f)[1],
+                f.backscatter(uv.x(), uv.y(), static_cast<float>(max_range))[1]);
     }
   }
 }
 
-TEST(Shading, OneLaneDirectTermMatchesTheClosedFormOfOneLed)
-{
+TEST(Shading, OneLaneDirectTermMatchesTheClosedFormOfOneLed) {
   LedLight l;
   l.position = Eigen::Vector3d(0.1, -0.05, 0.0);
   l.axis = Eigen::Vector3d(0.0, 0.0, 1.0);
@@ -206,8 +220,8 @@ TEST(Shading, OneLaneDirectTermMatchesTheClosedFormOfOneLed)
   const WaterOptics water = WaterOptics::fromVisibility("medium", Eigen::Vector3d::Ones());
   const ImageFormation f(camera(), {l}, water, 10.0);
   const Eigen::Array3f albedo(0.3f, 0.5f, 0.7f);
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.0, 0.0, 1.5), Eigen::Vector3d(0.4, 0.3, 2.5),
-                                  Eigen::Vector3d(-0.6, 0.2, 3.0)}) {
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.0, 0.0, 1.5), Eigen::Vector3d(0.4, 0.3, 2.5), Eigen::Vector3d(-0.6, 0.2, 3.0)}) {
     const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.1, -1.0).normalized();
     const Eigen::Vector3d v = p - l.position;
     const double r = v.norm(), cos_theta = v.z() / r, cos_phi = -n.dot(v) / r;
@@ -218,7 +232,8 @@ TEST(Shading, OneLaneDirectTermMatchesTheClosedFormOfOneLed)
       EXPECT_NEAR(got[c], want, 2e-3 * want) << "point " << p.transpose() << " channel " << c;
     }
     // The light's bit cleared (a shadow): nothing.
-    EXPECT_EQ(f.direct(p.cast<float>(), static_cast<float>(p.norm()), n.cast<float>(), albedo, ~1u).matrix().norm(), 0.0f);
+    EXPECT_EQ(f.direct(p.cast<float>(), static_cast<float>(p.norm()), n.cast<float>(), albedo, ~1u).matrix().norm(),
+              0.0f);
   }
 }
 

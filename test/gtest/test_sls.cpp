@@ -24,12 +24,11 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kWallX = 2.0;         // [m] the test box's +x wall
 constexpr double kHfov = 80.0 * kDeg;  // [rad]
 constexpr int kWidth = 640, kHeight = 480;
-const double kK1 = -0.1, kK2 = 0.02;   // plumb_bob radial terms (p1 = p2 = k3 = 0)
-const Eigen::Vector3d kLaser(0.3, 0.0, 0.0);                                             // head origin, base frame
+const double kK1 = -0.1, kK2 = 0.02;          // plumb_bob radial terms (p1 = p2 = k3 = 0)
+const Eigen::Vector3d kLaser(0.3, 0.0, 0.0);  // head origin, base frame
 const Eigen::Vector3d kCamera(0.3 * std::cos(20 * kDeg), 0.3 * std::sin(20 * kDeg), 0.0);  // optical centre
 
-sim::WorldConfig testBox(const std::string& visibility = "none")
-{
+sim::WorldConfig testBox(const std::string& visibility = "none") {
   sim::WorldConfig c = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
   c.visibility = visibility;
   return c;
@@ -37,15 +36,15 @@ sim::WorldConfig testBox(const std::string& visibility = "none")
 
 /// Head on a revolute joint about z at (0.3, 0, 0); camera link at azimuth 20 deg (+x out of the lens) with its
 /// optical frame (z forward, x right, y down).
-std::string slsUrdf(std::map<std::string, std::string> params = {}, double rate = 10.0)
-{
+std::string slsUrdf(std::map<std::string, std::string> params = {}, double rate = 10.0) {
   const std::string links =
       mountLink("T/sls_base_link", kLaser, Eigen::Vector3d::Zero()) +
       "<link name='T/sls_link'/><joint name='T/sls_motor_joint' type='revolute'><parent link='T/sls_base_link'/>"
       "<child link='T/sls_link'/><origin xyz='0 0 0' rpy='0 0 0'/><axis xyz='0 0 1'/>"
       "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>\n" +
       mountLink("T/camera_link", kCamera, Eigen::Vector3d(0, 0, 20 * kDeg)) +
-      mountLink("T/camera_optical_frame", Eigen::Vector3d::Zero(), Eigen::Vector3d(-M_PI / 2, 0, -M_PI / 2), "T/camera_link");
+      mountLink("T/camera_optical_frame", Eigen::Vector3d::Zero(), Eigen::Vector3d(-M_PI / 2, 0, -M_PI / 2),
+                "T/camera_link");
   params.emplace("camera_frame", "T/camera_optical_frame");
   params.emplace("camera_width", num(kWidth));
   params.emplace("camera_height", num(kHeight));
@@ -60,9 +59,9 @@ std::string slsUrdf(std::map<std::string, std::string> params = {}, double rate 
 
 /// Pixel of a point given in the camera's optical frame, by the plumb_bob formulas (closed form, p = k3 = 0);
 /// false when behind the lens or outside the image.
-bool pixel(const Eigen::Vector3d& p, double& u, double& v)
-{
-  if (p.z() <= 0) return false;
+bool pixel(const Eigen::Vector3d& p, double& u, double& v) {
+  if (p.z() <= 0)
+    return false;
   const double x = p.x() / p.z(), y = p.y() / p.z(), r2 = x * x + y * y;
   const double radial = 1 + kK1 * r2 + kK2 * r2 * r2;
   const double f = (kWidth / 2.0) / std::tan(kHfov / 2.0);
@@ -72,8 +71,7 @@ bool pixel(const Eigen::Vector3d& p, double& u, double& v)
 }
 
 /// The camera's optical frame in the world for the robot at `base` (yaw 0): z along (cos 20, sin 20, 0).
-Eigen::Isometry3d cameraInWorld(const Eigen::Vector3d& base)
-{
+Eigen::Isometry3d cameraInWorld(const Eigen::Vector3d& base) {
   Eigen::Matrix3d R;
   const double c = std::cos(20 * kDeg), s = std::sin(20 * kDeg);
   R.col(2) = Eigen::Vector3d(c, s, 0);   // z: optical axis
@@ -88,47 +86,49 @@ Eigen::Isometry3d cameraInWorld(const Eigen::Vector3d& base)
 /// Expected laser points on the +x wall for the robot at `base`, motor at 0: ray j at elevation e_j meets the
 /// wall at base + laser + t (cos e, 0, sin e), t = (wall - x) / cos e; kept when the camera sees it and its
 /// line strength reaches the detection level; `blocked` says whether an occluder hides the sight line.
-inline double albedoAt(double albedo, const Eigen::Vector3d&) { return albedo; }
+inline double albedoAt(double albedo, const Eigen::Vector3d&) {
+  return albedo;
+}
 template <class F>
-double albedoAt(const F& albedo, const Eigen::Vector3d& w)
-{
+double albedoAt(const F& albedo, const Eigen::Vector3d& w) {
   return albedo(w);
 }
 
 /// `albedo`: the wall's green albedo, a number or a function of the world point.
 template <class Blocked, class Albedo = double>
 std::vector<Eigen::Vector3d> expectedPoints(const Eigen::Vector3d& base, int rays, double fan, double c, double b,
-                                            double threshold, double glow, Albedo albedo, Blocked blocked)
-{
+                                            double threshold, double glow, Albedo albedo, Blocked blocked) {
   std::vector<Eigen::Vector3d> out;
   const Eigen::Isometry3d cam = cameraInWorld(base);
   for (int j = 0; j < rays; ++j) {
     const double e = -fan / 2 + j * fan / (rays - 1);
     const Eigen::Vector3d o = base + kLaser, d(std::cos(e), 0, std::sin(e));
     const double t = (kWallX - o.x()) / d.x();
-    if (t > 5.0) continue;  // range_max
+    if (t > 5.0)
+      continue;  // range_max
     const Eigen::Vector3d w = o + t * d;
-    if (std::abs(w.z()) > 2.0) continue;  // beyond the wall: floor or ceiling
+    if (std::abs(w.z()) > 2.0)
+      continue;  // beyond the wall: floor or ceiling
     double u, v;
-    if (!pixel(cam.inverse() * w, u, v) || blocked(cam.translation(), w)) continue;
+    if (!pixel(cam.inverse() * w, u, v) || blocked(cam.translation(), w))
+      continue;
     const double rc = (w - cam.translation()).norm();
     const double strength = albedoAt(albedo, w) * std::cos(e) * std::exp(-c * (t + rc)) / t;  // cos(incidence) = cos e
-    if (strength >= threshold * (1 + b * glow)) out.push_back(cam.inverse() * w);
+    if (strength >= threshold * (1 + b * glow))
+      out.push_back(cam.inverse() * w);
   }
   return out;
 }
 
 auto noBlock = [](const Eigen::Vector3d&, const Eigen::Vector3d&) { return false; };
 
-void expectSamePoints(const std::vector<Eigen::Vector3f>& got, const std::vector<Eigen::Vector3d>& want, double tol)
-{
+void expectSamePoints(const std::vector<Eigen::Vector3f>& got, const std::vector<Eigen::Vector3d>& want, double tol) {
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < want.size(); ++i)
     EXPECT_LT((got[i].cast<double>() - want[i]).norm(), tol) << "point " << i;
 }
 
-TEST(Sls, ThePointsAreTheFansHitsOnTheWallThatTheCameraSees)
-{
+TEST(Sls, ThePointsAreTheFansHitsOnTheWallThatTheCameraSees) {
   SensorWorld w(testBox(), slsUrdf());
   auto& sls = w.sensor<SlsSensor>("sls");
   const Eigen::Vector3d base(0.5, 0.0, 0.3);
@@ -150,8 +150,7 @@ TEST(Sls, ThePointsAreTheFansHitsOnTheWallThatTheCameraSees)
   }
 }
 
-TEST(Sls, TheLinesDetectionUsesTheTexturedAlbedoAtTheHit)
-{
+TEST(Sls, TheLinesDetectionUsesTheTexturedAlbedoAtTheHit) {
   // The wall of rock (contrast 0.5 around 0.3): a point is kept where the green albedo of the texture at its hit
   // makes the line strong enough; the threshold is set so that the texture decides for some points.
   sim::WorldConfig box = testBox();
@@ -173,8 +172,7 @@ TEST(Sls, TheLinesDetectionUsesTheTexturedAlbedoAtTheHit)
   expectSamePoints(sls.last().points, want, 1e-3);
 }
 
-TEST(Sls, TheRawFanMeasuresTheAnalyticDistanceToTheBox)
-{
+TEST(Sls, TheRawFanMeasuresTheAnalyticDistanceToTheBox) {
   SensorWorld w(testBox(), slsUrdf());
   auto& sls = w.sensor<SlsSensor>("sls");
   const Eigen::Vector3d base(0.5, 0.2, -0.4);
@@ -191,8 +189,7 @@ TEST(Sls, TheRawFanMeasuresTheAnalyticDistanceToTheBox)
   }
 }
 
-TEST(Sls, ABoxInTheCamerasSightRemovesExactlyThePointsItHides)
-{
+TEST(Sls, ABoxInTheCamerasSightRemovesExactlyThePointsItHides) {
   // A box off the laser plane (y >= 0.03 m) between the wall and the camera (20 deg to the left of it).
   const Eigen::Vector3d lo(1.0, 0.03, 0.05), hi(1.1, 0.08, 0.5);
   sim::WorldConfig config = testBox();
@@ -210,11 +207,13 @@ TEST(Sls, ABoxInTheCamerasSightRemovesExactlyThePointsItHides)
     for (int k = 0; k < 3; ++k) {
       const double d = b[k] - a[k];
       if (std::abs(d) < 1e-12) {
-        if (a[k] < lo[k] || a[k] > hi[k]) return false;
+        if (a[k] < lo[k] || a[k] > hi[k])
+          return false;
         continue;
       }
       double ta = (lo[k] - a[k]) / d, tb = (hi[k] - a[k]) / d;
-      if (ta > tb) std::swap(ta, tb);
+      if (ta > tb)
+        std::swap(ta, tb);
       t0 = std::max(t0, ta);
       t1 = std::min(t1, tb);
     }
@@ -227,8 +226,7 @@ TEST(Sls, ABoxInTheCamerasSightRemovesExactlyThePointsItHides)
   expectSamePoints(sls.last().points, want, 1e-3);
 }
 
-TEST(Sls, InTurbidWaterTheLineIsSeenOnlyAsFarAsTheStrengthFormulaAllows)
-{
+TEST(Sls, InTurbidWaterTheLineIsSeenOnlyAsFarAsTheStrengthFormulaAllows) {
   // Visibility high: c_g = 4, b_g = 3.4 (WaterOptics). The central ray's strength at wall distance t:
   // S(t) = 0.3 exp(-4 (t + r_c(t))) / t against 1e-3 (1 + 3.4). Find the distance where it crosses the level.
   auto central = [](double t) {
@@ -238,7 +236,8 @@ TEST(Sls, InTurbidWaterTheLineIsSeenOnlyAsFarAsTheStrengthFormulaAllows)
   };
   const double level = 1e-3 * (1 + 3.4);
   double lo = 0.1, hi = 3.0;  // bisection: central(lo) > level > central(hi)
-  for (int i = 0; i < 60; ++i) (central(0.5 * (lo + hi)) > level ? lo : hi) = 0.5 * (lo + hi);
+  for (int i = 0; i < 60; ++i)
+    (central(0.5 * (lo + hi)) > level ? lo : hi) = 0.5 * (lo + hi);
   const double reach = lo;
   EXPECT_GT(reach, 0.4);
   EXPECT_LT(reach, 1.2);
@@ -250,15 +249,17 @@ TEST(Sls, InTurbidWaterTheLineIsSeenOnlyAsFarAsTheStrengthFormulaAllows)
     const Eigen::Vector3d at = w.robot().state().pose.translation();
     const auto want = expectedPoints(at, 101, 100 * kDeg, 4.0, 3.4, 1e-3, 1.0, 0.3, noBlock);
     expectSamePoints(sls.last().points, want, 1e-3);
-    if (t < reach) EXPECT_GT(sls.last().points.size(), 0u) << "inside the reach";
-    else EXPECT_EQ(sls.last().points.size(), 0u) << "beyond the reach";
+    if (t < reach)
+      EXPECT_GT(sls.last().points.size(), 0u) << "inside the reach";
+    else
+      EXPECT_EQ(sls.last().points.size(), 0u) << "beyond the reach";
   }
 }
 
-TEST(Sls, TheMotorSweepsATriangleWaveBetweenItsLimits)
-{
-  SensorWorld w(testBox(),
-                slsUrdf({{"motor_speed", "0.5"}, {"motor_min", "-0.4"}, {"motor_max", "0.6"}, {"motor_start", "-0.4"}}));
+TEST(Sls, TheMotorSweepsATriangleWaveBetweenItsLimits) {
+  SensorWorld w(
+      testBox(),
+      slsUrdf({{"motor_speed", "0.5"}, {"motor_min", "-0.4"}, {"motor_max", "0.6"}, {"motor_start", "-0.4"}}));
   auto& sls = w.sensor<SlsSensor>("sls");
   // Start at motor_min, up at 0.5 rad/s: 0.6 at t = 2 s, back to -0.4 at t = 4 s.
   EXPECT_NEAR(sls.motorAngle(0.0), -0.4, 1e-12);
@@ -270,7 +271,8 @@ TEST(Sls, TheMotorSweepsATriangleWaveBetweenItsLimits)
   EXPECT_DOUBLE_EQ(sls.motorVelocity(3.0), -0.5);
   // The head turns with it: after 1 s the laser plane is yawed by 0.1 rad, and joint_states carries it.
   w.place(sim::poseFromXyzRpy(Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d::Zero()));
-  while (w.world->time() < 1.0 - 1e-9) w.step();
+  while (w.world->time() < 1.0 - 1e-9)
+    w.step();
   EXPECT_NEAR(sls.last().motor_angle, sls.motorAngle(sls.last().time), 1e-12);
   const auto joints = w.suite->movedJoints();
   ASSERT_EQ(joints.size(), 1u);
@@ -280,8 +282,7 @@ TEST(Sls, TheMotorSweepsATriangleWaveBetweenItsLimits)
   EXPECT_NEAR(std::atan2(R(1, 0), R(0, 0)), 0.1, 1e-12);
 }
 
-TEST(Sls, TriangulationNoiseHasTheDepthSigmaOfTheBaseline)
-{
+TEST(Sls, TriangulationNoiseHasTheDepthSigmaOfTheBaseline) {
   SensorWorld w(testBox(), slsUrdf({{"noise", "gaussian"}, {"subpixel_noise", "0.3"}}), 7);
   auto& sls = w.sensor<SlsSensor>("sls");
   const double f = (kWidth / 2.0) / std::tan(kHfov / 2.0);
@@ -312,8 +313,7 @@ TEST(Sls, TriangulationNoiseHasTheDepthSigmaOfTheBaseline)
   EXPECT_NEAR(sd, 1.0, 0.1);
 }
 
-TEST(Sls, BadParametersStopConstructionNamingThem)
-{
+TEST(Sls, BadParametersStopConstructionNamingThem) {
   auto message = [](const std::string& urdf) {
     try {
       SensorWorld w(testBox(), urdf);

@@ -33,15 +33,13 @@ std::unique_ptr<ThrustConversion> builtinConversion(const std::string& type, con
 
 // -------------------------------------------------------------------------------------- dynamics
 
-TEST(ThrusterDynamics, FirstOrderStepReachesOneMinusExpMinusOneAtTau)
-{
+TEST(ThrusterDynamics, FirstOrderStepReachesOneMinusExpMinusOneAtTau) {
   const double tau = 0.2;
   const double dt = 0.001;
   FirstOrderDynamics dynamics(tau);
   const int steps = static_cast<int>(std::lround(tau / dt));
   double previous = 0.0;
-  for (int i = 0; i < steps; ++i)
-  {
+  for (int i = 0; i < steps; ++i) {
     const double x = dynamics.update(1.0, dt);
     ASSERT_GT(x, previous);  // monotonic rise
     ASSERT_LT(x, 1.0);       // no overshoot
@@ -49,15 +47,13 @@ TEST(ThrusterDynamics, FirstOrderStepReachesOneMinusExpMinusOneAtTau)
   }
   const double expected = 1.0 - std::exp(-1.0);
   EXPECT_NEAR(dynamics.state(), expected, 0.005 * expected);
-  for (int i = 0; i < 2 * steps; ++i)
-  {
+  for (int i = 0; i < 2 * steps; ++i) {
     dynamics.update(1.0, dt);
   }
   EXPECT_NEAR(dynamics.state(), 1.0 - std::exp(-3.0), 0.005 * (1.0 - std::exp(-3.0)));
 }
 
-TEST(ThrusterDynamics, FirstOrderIsExactForOneBigStep)
-{
+TEST(ThrusterDynamics, FirstOrderIsExactForOneBigStep) {
   const double tau = 0.2;
   FirstOrderDynamics one(tau);
   EXPECT_NEAR(one.update(1.0, tau), 1.0 - std::exp(-1.0), 1e-12);
@@ -74,21 +70,18 @@ TEST(ThrusterDynamics, FirstOrderIsExactForOneBigStep)
   EXPECT_EQ(huge.state(), 0.0);
 }
 
-TEST(ThrusterDynamics, FirstOrderDecaysFromAnyStateTowardsTheCommand)
-{
+TEST(ThrusterDynamics, FirstOrderDecaysFromAnyStateTowardsTheCommand) {
   // x(t) = u + (x0 - u) e^{-t/tau}
   const double tau = 0.5;
   FirstOrderDynamics d(tau);
   d.update(4.0, 100.0);  // settle at 4
-  for (int i = 0; i < 300; ++i)
-  {
+  for (int i = 0; i < 300; ++i) {
     d.update(1.0, 0.001);
   }
   EXPECT_NEAR(d.state(), 1.0 + 3.0 * std::exp(-0.3 / tau), 1e-9);
 }
 
-TEST(ThrusterDynamics, ZeroOrderFollowsAtOnce)
-{
+TEST(ThrusterDynamics, ZeroOrderFollowsAtOnce) {
   ZeroOrderDynamics d;
   EXPECT_EQ(d.update(3.5, 0.001), 3.5);
   EXPECT_EQ(d.state(), 3.5);
@@ -97,8 +90,7 @@ TEST(ThrusterDynamics, ZeroOrderFollowsAtOnce)
   EXPECT_EQ(d.state(), 0.0);
 }
 
-TEST(ThrusterDynamics, FirstOrderRejectsBadTau)
-{
+TEST(ThrusterDynamics, FirstOrderRejectsBadTau) {
   const std::string m = thrownMessage([] { FirstOrderDynamics d(-1.0); });
   EXPECT_TRUE(contains(m, "thruster dynamics 'first_order': parameter 'tau' = -1 must be > 0 [s]")) << m;
   EXPECT_TRUE(contains(thrownMessage([] { FirstOrderDynamics d(0.0); }), "'tau'"));
@@ -108,15 +100,13 @@ TEST(ThrusterDynamics, FirstOrderRejectsBadTau)
 
 // ------------------------------------------------------------------------------------ conversion
 
-TEST(ThrustConversion, BasicIsSignSymmetricQuadratic)
-{
+TEST(ThrustConversion, BasicIsSignSymmetricQuadratic) {
   const double gain = 0.0025;  // N per (rad/s)^2
   BasicConversion c(gain);
   EXPECT_NEAR(c.thrust(100.0), 25.0, 1e-12);  // 0.0025 * 100 * 100
   EXPECT_NEAR(c.thrust(-100.0), -25.0, 1e-12);
   EXPECT_NEAR(c.thrust(0.0), 0.0, 1e-15);
-  for (double w : {0.5, 3.0, 47.0, 180.0})
-  {
+  for (double w : {0.5, 3.0, 47.0, 180.0}) {
     EXPECT_NEAR(c.thrust(-w), -c.thrust(w), 1e-12);
     EXPECT_NEAR(c.thrust(2.0 * w), 4.0 * c.thrust(w), 1e-9);  // quadratic
   }
@@ -126,8 +116,7 @@ TEST(ThrustConversion, BasicIsSignSymmetricQuadratic)
   EXPECT_TRUE(contains(thrownMessage([] { BasicConversion b(kNaN); }), "'gain'"));
 }
 
-TEST(ThrustConversion, TableInterpolatesLinearlyAndClamps)
-{
+TEST(ThrustConversion, TableInterpolatesLinearlyAndClamps) {
   TableConversion c({-100.0, 0.0, 50.0, 100.0}, {-40.0, 0.0, 10.0, 50.0});
   EXPECT_NEAR(c.thrust(25.0), 5.0, 1e-12);     // halfway 0 -> 10
   EXPECT_NEAR(c.thrust(75.0), 30.0, 1e-12);    // halfway 10 -> 50
@@ -136,15 +125,14 @@ TEST(ThrustConversion, TableInterpolatesLinearlyAndClamps)
   EXPECT_NEAR(c.thrust(50.0), 10.0, 1e-12);    // on a node
   EXPECT_NEAR(c.thrust(-100.0), -40.0, 1e-12);
   EXPECT_NEAR(c.thrust(100.0), 50.0, 1e-12);
-  EXPECT_NEAR(c.thrust(250.0), 50.0, 1e-12);   // clamped above
-  EXPECT_NEAR(c.thrust(-1e6), -40.0, 1e-12);   // clamped below
+  EXPECT_NEAR(c.thrust(250.0), 50.0, 1e-12);  // clamped above
+  EXPECT_NEAR(c.thrust(-1e6), -40.0, 1e-12);  // clamped below
 }
 
-TEST(ThrustConversion, TableRejectsBadTables)
-{
+TEST(ThrustConversion, TableRejectsBadTables) {
   EXPECT_TRUE(contains(thrownMessage([] { TableConversion t({0.0, 0.0, 1.0}, {0.0, 1.0, 2.0}); }), "input"));
-  EXPECT_TRUE(contains(thrownMessage([] { TableConversion t({0.0, 2.0, 1.0}, {0.0, 1.0, 2.0}); }),
-                       "strictly increasing"));
+  EXPECT_TRUE(
+      contains(thrownMessage([] { TableConversion t({0.0, 2.0, 1.0}, {0.0, 1.0, 2.0}); }), "strictly increasing"));
   EXPECT_TRUE(contains(thrownMessage([] { TableConversion t({0.0, 1.0}, {0.0, 1.0, 2.0}); }), "output"));
   EXPECT_TRUE(contains(thrownMessage([] { TableConversion t({1.0}, {1.0}); }), "at least 2"));
   EXPECT_TRUE(contains(thrownMessage([] { TableConversion t({0.0, kNaN}, {0.0, 1.0}); }), "input[1]"));
@@ -153,8 +141,7 @@ TEST(ThrustConversion, TableRejectsBadTables)
 
 // ------------------------------------------------------------------------------------- factories
 
-TEST(ThrusterFactories, BuildEachFamilyByName)
-{
+TEST(ThrusterFactories, BuildEachFamilyByName) {
   auto zero = builtinDynamics("zero_order", {});
   EXPECT_EQ(zero->update(2.0, 0.01), 2.0);
   auto first = builtinDynamics("first_order", {{"tau", {0.1}}});
@@ -166,8 +153,7 @@ TEST(ThrusterFactories, BuildEachFamilyByName)
   EXPECT_NEAR(table->thrust(4.0), 2.0, 1e-12);
 }
 
-TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes)
-{
+TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes) {
   const std::string d = thrownMessage([] { builtinDynamics("second_order", {}); });
   EXPECT_TRUE(contains(d, "'second_order'")) << d;
   EXPECT_TRUE(contains(d, "zero_order")) << d;
@@ -180,25 +166,20 @@ TEST(ThrusterFactories, UnknownNamesListTheAcceptedOnes)
   EXPECT_TRUE(contains(c, "table")) << c;
 }
 
-TEST(ThrusterFactories, BadParametersNameTheParameter)
-{
+TEST(ThrusterFactories, BadParametersNameTheParameter) {
   EXPECT_THROW(builtinDynamics("first_order", {}), ParameterError);
   EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {}); }), "'tau'"));
-  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {0.1, 0.2}}}); }),
-                       "'tau'"));
-  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {-1.0}}}); }),
-                       "'tau' = -1 must be > 0 [s]"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {0.1, 0.2}}}); }), "'tau'"));
+  EXPECT_TRUE(
+      contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {-1.0}}}); }), "'tau' = -1 must be > 0 [s]"));
   EXPECT_TRUE(contains(thrownMessage([] { builtinDynamics("first_order", {{"tau", {kNaN}}}); }), "'tau'"));
   EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("basic", {{"k", {0.1}}}); }), "'gain'"));
   EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("basic", {{"gain", {}}}); }), "'gain'"));
-  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"input", {0.0, 1.0}}}); }),
-                       "'output'"));
-  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"output", {0.0, 1.0}}}); }),
-                       "'input'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"input", {0.0, 1.0}}}); }), "'output'"));
+  EXPECT_TRUE(contains(thrownMessage([] { builtinConversion("table", {{"output", {0.0, 1.0}}}); }), "'input'"));
 }
 
-TEST(ThrusterFactories, TheBuiltinFamiliesAreRegisteredByNameAndListedSorted)
-{
+TEST(ThrusterFactories, TheBuiltinFamiliesAreRegisteredByNameAndListedSorted) {
   const ThrusterFactory f = ThrusterFactory::builtin();
   EXPECT_EQ(f.dynamics.types(), (std::vector<std::string>{"first_order", "zero_order"}));
   EXPECT_EQ(f.conversion.types(), (std::vector<std::string>{"basic", "identity", "table"}));
@@ -212,8 +193,7 @@ TEST(ThrusterFactories, TheBuiltinFamiliesAreRegisteredByNameAndListedSorted)
             "thruster dynamics: unknown type 'zero_order'; expected one of: none");
 }
 
-TEST(ThrusterFactories, AParameterTheFamilyDoesNotReadIsRejected)
-{
+TEST(ThrusterFactories, AParameterTheFamilyDoesNotReadIsRejected) {
   EXPECT_EQ(thrownMessage([] { builtinDynamics("first_order", {{"tau", {0.1}}, {"taus", {0.2}}}); }),
             "thruster dynamics 'first_order': unknown parameter 'taus' (accepted: tau)");
   EXPECT_EQ(thrownMessage([] { builtinDynamics("zero_order", {{"tau", {0.1}}}); }),
@@ -222,8 +202,7 @@ TEST(ThrusterFactories, AParameterTheFamilyDoesNotReadIsRejected)
             "thrust conversion 'table': unknown parameter 'gain' (accepted: input, output)");
 }
 
-TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne)
-{
+TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne) {
   ThrusterFactory f = ThrusterFactory::builtin();
   // "scaled": the basic law k w |w| under another name, k in [0, 2]: a family registered by a creator.
   f.conversion.add("scaled", [](ThrusterFamilyParams& p) -> std::unique_ptr<ThrustConversion> {
@@ -246,8 +225,7 @@ TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne)
   EXPECT_THROW(f.dynamics.add("none", ThrusterFamilyFactory<ThrusterDynamics>::Creator()), ConfigError);
 }
 
-TEST(RequireScalar, ReturnsTheValueOrNamesTheKey)
-{
+TEST(RequireScalar, ReturnsTheValueOrNamesTheKey) {
   const ParamMap params{{"tau", {0.25}}, {"table", {1.0, 2.0}}, {"bad", {kInf}}};
   EXPECT_EQ(requireScalar(params, "tau", "model 'x'"), 0.25);
   const std::string missing = thrownMessage([&] { requireScalar(params, "gain", "model 'x'"); });
@@ -259,8 +237,7 @@ TEST(RequireScalar, ReturnsTheValueOrNamesTheKey)
 
 // -------------------------------------------------------------------------------------- thruster
 
-ThrusterParams identityThruster()
-{
+ThrusterParams identityThruster() {
   ThrusterParams p;
   p.id = 3;
   p.min_thrust = -30.0;
@@ -271,8 +248,7 @@ ThrusterParams identityThruster()
   return p;
 }
 
-TEST(Thruster, SaturatesAtTheThrustLimits)
-{
+TEST(Thruster, SaturatesAtTheThrustLimits) {
   Thruster t(identityThruster());
   ASSERT_TRUE(t.setCommand(45.0, 0.0));
   EXPECT_NEAR(t.update(0.01, 0.01), 30.0, 1e-12);
@@ -283,23 +259,20 @@ TEST(Thruster, SaturatesAtTheThrustLimits)
   EXPECT_NEAR(t.thrust(), 12.0, 1e-12);
 }
 
-TEST(Thruster, RejectsNonFiniteAndOutOfRangeCommands)
-{
+TEST(Thruster, RejectsNonFiniteAndOutOfRangeCommands) {
   ThrusterParams p = identityThruster();
   p.dynamics = "first_order";
   p.dynamics_params = {{"tau", {0.05}}};
   Thruster t(p);
   ASSERT_TRUE(t.setCommand(10.0, 0.0));
-  for (double bad : {kNaN, kInf, -kInf, 50.5, -60.0, 1e300})
-  {
+  for (double bad : {kNaN, kInf, -kInf, 50.5, -60.0, 1e300}) {
     EXPECT_FALSE(t.setCommand(bad, 0.001)) << bad;
     EXPECT_EQ(t.command(), 10.0) << bad;
   }
   EXPECT_FALSE(t.setCommand(5.0, kNaN));  // a non-finite stamp is rejected too
   EXPECT_EQ(t.command(), 10.0);
   double time = 0.0;
-  for (int i = 0; i < 200; ++i)
-  {
+  for (int i = 0; i < 200; ++i) {
     time += 0.001;
     t.update(time, 0.001);
     ASSERT_TRUE(std::isfinite(t.thrust()));
@@ -311,8 +284,7 @@ TEST(Thruster, RejectsNonFiniteAndOutOfRangeCommands)
   EXPECT_TRUE(t.setCommand(-50.0, time));
 }
 
-TEST(Thruster, WatchdogZeroesTheCommandAfterTimeout)
-{
+TEST(Thruster, WatchdogZeroesTheCommandAfterTimeout) {
   Thruster t(identityThruster());  // zero-order, timeout 0.5 s
   ASSERT_TRUE(t.setCommand(10.0, 1.0));
   EXPECT_NEAR(t.update(1.2, 0.01), 10.0, 1e-12);
@@ -330,8 +302,7 @@ TEST(Thruster, WatchdogZeroesTheCommandAfterTimeout)
   EXPECT_NEAR(forever.update(1000.0, 0.01), 7.0, 1e-12);
 }
 
-TEST(Thruster, WatchdogLetsAFirstOrderThrusterDecay)
-{
+TEST(Thruster, WatchdogLetsAFirstOrderThrusterDecay) {
   ThrusterParams p = identityThruster();
   p.dynamics = "first_order";
   p.dynamics_params = {{"tau", {0.1}}};
@@ -344,8 +315,7 @@ TEST(Thruster, WatchdogLetsAFirstOrderThrusterDecay)
   EXPECT_NEAR(t.thrust(), settled * std::exp(-1.0), 1e-9);
 }
 
-TEST(Thruster, WrenchIsThrustAlongAxisAndPositionCrossForce)
-{
+TEST(Thruster, WrenchIsThrustAlongAxisAndPositionCrossForce) {
   ThrusterParams p = identityThruster();
   p.position = Eigen::Vector3d(0.2, 0.1, -0.05);
   p.axis = Eigen::Vector3d(0.0, 0.0, 2.0);  // normalised by the thruster
@@ -373,8 +343,7 @@ TEST(Thruster, WrenchIsThrustAlongAxisAndPositionCrossForce)
   EXPECT_NEAR(s.wrench()[0], 4.0, 1e-12);
 }
 
-TEST(Thruster, BasicConversionReachesItsSteadyThrust)
-{
+TEST(Thruster, BasicConversionReachesItsSteadyThrust) {
   ThrusterParams p = identityThruster();
   p.dynamics = "first_order";
   p.dynamics_params = {{"tau", {0.05}}};
@@ -392,8 +361,7 @@ TEST(Thruster, BasicConversionReachesItsSteadyThrust)
   EXPECT_NEAR(t.state(), -80.0, 1e-6);
 }
 
-TEST(Thruster, ResetZeroesEverything)
-{
+TEST(Thruster, ResetZeroesEverything) {
   ThrusterParams p = identityThruster();
   p.dynamics = "first_order";
   p.dynamics_params = {{"tau", {0.1}}};
@@ -408,8 +376,7 @@ TEST(Thruster, ResetZeroesEverything)
   EXPECT_EQ(t.wrench().cwiseAbs().maxCoeff(), 0.0);
 }
 
-TEST(Thruster, ConstructorValidatesGeometryLimitsAndFamilies)
-{
+TEST(Thruster, ConstructorValidatesGeometryLimitsAndFamilies) {
   ThrusterParams p = identityThruster();
   p.axis = Eigen::Vector3d::Zero();
   EXPECT_TRUE(contains(thrownMessage([&] { Thruster t(p); }), "thruster 3: parameter 'axis'"));
@@ -441,8 +408,7 @@ TEST(Thruster, ConstructorValidatesGeometryLimitsAndFamilies)
   EXPECT_THROW(ok.update(1.0, -0.01), ParameterError);
 }
 
-TEST(Thruster, BuildsItsModelsFromTheGivenFactory)
-{
+TEST(Thruster, BuildsItsModelsFromTheGivenFactory) {
   ThrusterFactory f = ThrusterFactory::builtin();
   f.dynamics.add<ZeroOrderDynamics>("instant");
   ThrusterParams p = identityThruster();

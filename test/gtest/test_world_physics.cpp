@@ -3,17 +3,16 @@
 
 #include <gtest/gtest.h>
 
-using unexmin::test::SphereSpec;
 using unexmin::test::makeWorld;
 using unexmin::test::openWater;
 using unexmin::test::runFor;
+using unexmin::test::SphereSpec;
 
 namespace {
 
 constexpr double kG = 9.81;
 
-double pitchOf(const Eigen::Isometry3d& pose)
-{
+double pitchOf(const Eigen::Isometry3d& pose) {
   // Rotation of the body x axis about world y: positive = nose down (ENU/FLU, right-handed about +y).
   const Eigen::Vector3d x = pose.linear().col(0);
   return std::atan2(-x.z(), std::hypot(x.x(), x.y()));
@@ -21,8 +20,7 @@ double pitchOf(const Eigen::Isometry3d& pose)
 
 }  // namespace
 
-TEST(WorldPhysics, TerminalSpeedUnderConstantThrust)
-{
+TEST(WorldPhysics, TerminalSpeedUnderConstantThrust) {
   SphereSpec s;
   auto world = makeWorld(openWater(s), s);
   const double F = 20.0;
@@ -37,8 +35,7 @@ TEST(WorldPhysics, TerminalSpeedUnderConstantThrust)
   EXPECT_NEAR(world->robot(0).state().linear_velocity.y(), 0.0, 1e-4);
 }
 
-TEST(WorldPhysics, InitialAccelerationIncludesAddedMass)
-{
+TEST(WorldPhysics, InitialAccelerationIncludesAddedMass) {
   SphereSpec s;
   auto world = makeWorld(openWater(s), s);
   const double F = 20.0;
@@ -51,8 +48,7 @@ TEST(WorldPhysics, InitialAccelerationIncludesAddedMass)
   EXPECT_LT(a, 0.8 * F / s.mass);
 }
 
-TEST(WorldPhysics, NeutralRobotHoldsStation)
-{
+TEST(WorldPhysics, NeutralRobotHoldsStation) {
   SphereSpec s;
   auto world = makeWorld(openWater(s), s);
   const Eigen::Vector3d start = world->robot(0).state().pose.translation();
@@ -62,8 +58,7 @@ TEST(WorldPhysics, NeutralRobotHoldsStation)
   EXPECT_NEAR(pitchOf(world->robot(0).state().pose), 0.0, 1e-4);
 }
 
-TEST(WorldPhysics, PendulumSetsStaticPitch)
-{
+TEST(WorldPhysics, PendulumSetsStaticPitch) {
   SphereSpec s;
   s.lin[4] = 20.0;  // settle the pitch oscillation quickly; statics do not depend on damping
   auto world = makeWorld(openWater(s), s);
@@ -86,8 +81,7 @@ TEST(WorldPhysics, PendulumSetsStaticPitch)
   EXPECT_GT(expected, 5.0 * M_PI / 180.0) << "test must use a pitch large enough to tell models apart";
 }
 
-TEST(WorldPhysics, BallastSinksAtPredictedRate)
-{
+TEST(WorldPhysics, BallastSinksAtPredictedRate) {
   SphereSpec s;
   auto world = makeWorld(openWater(s), s);
   const double mb = 1.0;
@@ -101,10 +95,10 @@ TEST(WorldPhysics, BallastSinksAtPredictedRate)
   EXPECT_NEAR(world->robot(0).state().linear_velocity.z(), -vt, 0.01 * vt);
 }
 
-TEST(WorldPhysics, RobotAtRestIsCarriedByCurrent)
-{
+TEST(WorldPhysics, RobotAtRestIsCarriedByCurrent) {
   SphereSpec s;
-  for (double& d : s.lin) d = 0.0;  // pure quadratic drag has a closed-form spin-up
+  for (double& d : s.lin)
+    d = 0.0;  // pure quadratic drag has a closed-form spin-up
   auto config = openWater(s);
   const double vc = 0.2;
   config.current.speed = {vc, 0.0, 1.0, 0.0, 0.0};
@@ -121,8 +115,7 @@ TEST(WorldPhysics, RobotAtRestIsCarriedByCurrent)
   EXPECT_GT(world->robot(0).state().linear_velocity.x(), 0.95 * vc);
 }
 
-TEST(WorldPhysics, SameSeedSameTrajectory)
-{
+TEST(WorldPhysics, SameSeedSameTrajectory) {
   SphereSpec s;
   auto config = openWater(s);
   config.current.speed = {0.1, 0.0, 0.3, 0.05, 0.2};
@@ -146,8 +139,7 @@ TEST(WorldPhysics, SameSeedSameTrajectory)
   EXPECT_EQ(world->robot(0).state().pose.translation(), a) << "reset(seed) must reproduce a fresh world";
 }
 
-TEST(WorldPhysics, PartlyEmergedSphereFloatsAtCapEquilibrium)
-{
+TEST(WorldPhysics, PartlyEmergedSphereFloatsAtCapEquilibrium) {
   SphereSpec s;
   s.mass = 0.5 * s.rho * s.volume();  // half the displacement: floats half out
   s.lin[2] = 50.0;
@@ -156,8 +148,7 @@ TEST(WorldPhysics, PartlyEmergedSphereFloatsAtCapEquilibrium)
   EXPECT_NEAR(world->robot(0).state().pose.translation().z(), 0.0, 0.01);
 }
 
-TEST(WorldPhysics, CommandsAreRejectedAndStateStaysFinite)
-{
+TEST(WorldPhysics, CommandsAreRejectedAndStateStaysFinite) {
   SphereSpec s;
   auto world = makeWorld(openWater(s), s);
   auto& r = world->robot(0);

@@ -9,8 +9,7 @@
 namespace unexmin {
 namespace test {
 
-inline int runRosTests(int argc, char** argv, const std::string& node)
-{
+inline int runRosTests(int argc, char** argv, const std::string& node) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, node);
   ros::NodeHandle keep;  // keeps roscpp up between the tests

@@ -33,11 +33,9 @@ namespace {
 using ros_layer::SubscriberPacer;
 
 /// A TCPROS subscriber of a std_msgs/String topic of this process, speaking the protocol on a plain socket.
-class RawSubscriber
-{
+class RawSubscriber {
 public:
-  explicit RawSubscriber(const std::string& topic)
-  {
+  explicit RawSubscriber(const std::string& topic) {
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in to{};
     to.sin_family = AF_INET;
@@ -51,7 +49,8 @@ public:
                                                     {"md5sum", ros::message_traits::md5sum<std_msgs::String>()},
                                                     {"type", ros::message_traits::datatype<std_msgs::String>()},
                                                     {"tcp_nodelay", "1"}};
-    for (const auto& f : fields) header += length(f.first.size() + 1 + f.second.size()) + f.first + "=" + f.second;
+    for (const auto& f : fields)
+      header += length(f.first.size() + 1 + f.second.size()) + f.first + "=" + f.second;
     const std::string packet = length(header.size()) + header;
     if (::send(fd_, packet.data(), packet.size(), 0) != static_cast<ssize_t>(packet.size()))
       throw std::runtime_error("cannot send the connection header");
@@ -60,37 +59,35 @@ public:
     std::vector<char> rest(reply);
     readExactly(rest.data(), rest.size());
     const std::string text(rest.begin(), rest.end());
-    if (text.find("error=") != std::string::npos) throw std::runtime_error("the publisher refused: " + text);
+    if (text.find("error=") != std::string::npos)
+      throw std::runtime_error("the publisher refused: " + text);
   }
   ~RawSubscriber() { ::close(fd_); }
 
   /// Local port of the connection (the publisher sees it as the subscriber's).
-  std::uint16_t port() const
-  {
+  std::uint16_t port() const {
     sockaddr_in self{};
     socklen_t size = sizeof(self);
     ::getsockname(fd_, reinterpret_cast<sockaddr*>(&self), &size);
     return ntohs(self.sin_port);
   }
   /// Bytes received by the kernel and not read yet.
-  std::size_t unread() const
-  {
+  std::size_t unread() const {
     int n = 0;
     ::ioctl(fd_, FIONREAD, &n);
     return static_cast<std::size_t>(n);
   }
   /// Reads exactly `size` bytes (blocking).
-  void readExactly(char* out, std::size_t size)
-  {
+  void readExactly(char* out, std::size_t size) {
     for (std::size_t got = 0; got < size;) {
       const ssize_t n = ::recv(fd_, out + got, size - got, 0);
-      if (n <= 0) throw std::runtime_error("the publisher closed the connection");
+      if (n <= 0)
+        throw std::runtime_error("the publisher closed the connection");
       got += static_cast<std::size_t>(n);
       read_ += static_cast<std::size_t>(n);
     }
   }
-  void skip(std::size_t size)
-  {
+  void skip(std::size_t size) {
     std::vector<char> sink(size);
     readExactly(sink.data(), size);
   }
@@ -99,8 +96,7 @@ public:
   void startCounting() { header_ = read_; }
 
 private:
-  static std::string length(std::size_t n)
-  {
+  static std::string length(std::size_t n) {
     const auto v = static_cast<std::uint32_t>(n);  // little-endian, as TCPROS
     return std::string(reinterpret_cast<const char*>(&v), 4);
   }
@@ -111,19 +107,18 @@ private:
 };
 
 /// Advertises `topic` and connects a RawSubscriber to it; returns once roscpp counts it.
-struct Connected
-{
+struct Connected {
   explicit Connected(const std::string& topic)
-      : pub(ros::NodeHandle().advertise<std_msgs::String>(topic, 1000)), subscriber(topic)
-  {
+      : pub(ros::NodeHandle().advertise<std_msgs::String>(topic, 1000)), subscriber(topic) {
     subscriber.startCounting();
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(10.0);
-    while (pub.subscribers() == 0 && ros::WallTime::now() < deadline) ros::WallDuration(0.001).sleep();
-    if (pub.subscribers() == 0) throw std::runtime_error(topic + ": roscpp never counted the raw subscriber");
+    while (pub.subscribers() == 0 && ros::WallTime::now() < deadline)
+      ros::WallDuration(0.001).sleep();
+    if (pub.subscribers() == 0)
+      throw std::runtime_error(topic + ": roscpp never counted the raw subscriber");
   }
   /// Publishes a message of `size` characters; returns its bytes on the wire.
-  std::size_t publish(std::size_t size)
-  {
+  std::size_t publish(std::size_t size) {
     std_msgs::String m;
     m.data.assign(size, 'x');
     pub.publish(m);
@@ -133,10 +128,10 @@ struct Connected
   RawSubscriber subscriber;
 };
 
-TEST(SubscriberPacer, KernelReportsThisProcesssConnectionsWithTheirByteCounters)
-{
+TEST(SubscriberPacer, KernelReportsThisProcesssConnectionsWithTheirByteCounters) {
   const auto port = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
-  ASSERT_TRUE(ros_layer::viewTcpPort(port).ok) << "sock_diag with tcp_info cannot be read: lockstep_wait_subscribers cannot work here";
+  ASSERT_TRUE(ros_layer::viewTcpPort(port).ok)
+      << "sock_diag with tcp_info cannot be read: lockstep_wait_subscribers cannot work here";
   Connected c("/pacer_test/kernel");
   const std::size_t bytes = c.publish(1000);
   std::vector<char> message(bytes);
@@ -150,8 +145,7 @@ TEST(SubscriberPacer, KernelReportsThisProcesssConnectionsWithTheirByteCounters)
   EXPECT_GT(it->second, bytes);
 }
 
-TEST(SubscriberPacer, ReturnsAtOnceWithoutSubscribers)
-{
+TEST(SubscriberPacer, ReturnsAtOnceWithoutSubscribers) {
   ros::Publisher pub = ros::NodeHandle().advertise<std_msgs::String>("/pacer_test/alone", 10);
   std_msgs::String m;
   m.data = "nobody listens";
@@ -164,11 +158,11 @@ TEST(SubscriberPacer, ReturnsAtOnceWithoutSubscribers)
 // More than the kernel buffers between two sockets: while the subscriber reads, part of it is still in roscpp's own
 // queues. After every partial read (all the kernel had for it), the pacer must see that something is left; after
 // the last byte, that nothing is.
-TEST(SubscriberPacer, WaitsUntilTheSubscriberHasReadEveryByte)
-{
+TEST(SubscriberPacer, WaitsUntilTheSubscriberHasReadEveryByte) {
   Connected c("/pacer_test/bulk");
   std::size_t total = 0;
-  for (int i = 0; i < 8; ++i) total += c.publish(1000000);
+  for (int i = 0; i < 8; ++i)
+    total += c.publish(1000000);
   SubscriberPacer pacer;
   int rounds = 0;
   while (c.subscriber.read() < total) {
@@ -186,8 +180,7 @@ TEST(SubscriberPacer, WaitsUntilTheSubscriberHasReadEveryByte)
 
 // A message published just before the wait is still in roscpp's publication queue (its poll thread hands it to the
 // connections later) while the kernel holds nothing: the pacer must wait for it all the same.
-TEST(SubscriberPacer, WaitsForAMessageStillInRoscppsQueue)
-{
+TEST(SubscriberPacer, WaitsForAMessageStillInRoscppsQueue) {
   Connected c("/pacer_test/fresh");
   SubscriberPacer pacer;
   EXPECT_TRUE(pacer.waitDrained(5.0));  // nothing sent yet
@@ -203,4 +196,6 @@ TEST(SubscriberPacer, WaitsForAMessageStillInRoscppsQueue)
 }  // namespace
 }  // namespace unexmin
 
-int main(int argc, char** argv) { return unexmin::test::runRosTests(argc, argv, "subscriber_pacer_test"); }
+int main(int argc, char** argv) {
+  return unexmin::test::runRosTests(argc, argv, "subscriber_pacer_test");
+}

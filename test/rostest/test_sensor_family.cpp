@@ -26,11 +26,9 @@ namespace {
 
 // ---------------------------------------------------------------- the family: model (ROS-free) ...
 /// Range [m] along the link's -z to the first surface, up to `max_range` [m] (default 10); +inf beyond.
-class Altimeter : public sensors::Sensor
-{
+class Altimeter : public sensors::Sensor {
 public:
-  Altimeter(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup)
-  {
+  Altimeter(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup) {
     sensors::SensorParams p(spec, setup.robot);
     max_range_ = p.number("max_range", 10.0, 0.01, 1000.0, "m");
     p.finish();  // a misspelt <param> stops start-up
@@ -40,8 +38,7 @@ public:
   double maxRange() const { return max_range_; }
 
 protected:
-  void sample(const sensors::SensorContext& ctx) override
-  {
+  void sample(const sensors::SensorContext& ctx) override {
     const Eigen::Isometry3d link = ctx.state.pose * spec().pose;
     rays_[0].origin = link.translation().cast<float>();
     rays_[0].direction = (-link.linear().col(2)).cast<float>();
@@ -58,16 +55,13 @@ private:
 };
 
 // ---------------------------------------------------------------- ... and its publisher
-class AltimeterPublisher : public ros_layer::SensorPublisher
-{
+class AltimeterPublisher : public ros_layer::SensorPublisher {
 public:
-  AltimeterPublisher(const Altimeter& sensor, const ros_layer::PublisherContext& ctx) : sensor_(sensor)
-  {
+  AltimeterPublisher(const Altimeter& sensor, const ros_layer::PublisherContext& ctx) : sensor_(sensor) {
     pub_ = ctx.nh.advertise<sensor_msgs::Range>(resolve(ctx.ns, topicParam(sensor, "topic", sensor.name())),
                                                 ros_layer::queueSize(sensor.rate()));
   }
-  void publish() override
-  {
+  void publish() override {
     sensor_msgs::Range m;
     m.header.stamp.fromSec(sensor_.sampleTime());
     m.header.frame_id = sensor_.frame();
@@ -85,8 +79,7 @@ private:
 };
 
 /// UX_1's description (loaded by the .test file) with an altimeter on its base link at `rate` Hz.
-std::string describedWithAltimeter(double rate)
-{
+std::string describedWithAltimeter(double rate) {
   std::string urdf;
   EXPECT_TRUE(ros::param::get("/UX_1/robot_description", urdf));
   const std::string sensor = "<sensor name='altimeter' type='altimeter' link='UX_1/base_link' rate='" +
@@ -95,17 +88,19 @@ std::string describedWithAltimeter(double rate)
   return urdf;
 }
 
-void configure(const std::string& urdf)
-{
+void configure(const std::string& urdf) {
   ros::param::set("/UX_1/robot_description", urdf);
   ros::param::set("~world_file", std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
   ros::param::set("~paused", true);
   ros::param::set("~sensors", std::string("altimeter,imu"));
 }
 
-TEST(SensorFamily, AnUnknownTypeStopsStartUpNamingRobotSensorAndKnownTypes)
-{
-  const std::string original = [] { std::string u; ros::param::get("/UX_1/robot_description", u); return u; }();
+TEST(SensorFamily, AnUnknownTypeStopsStartUpNamingRobotSensorAndKnownTypes) {
+  const std::string original = [] {
+    std::string u;
+    ros::param::get("/UX_1/robot_description", u);
+    return u;
+  }();
   configure(describedWithAltimeter(10.0));
   ros::param::set("~sensors", std::string("all"));
   try {
@@ -113,16 +108,20 @@ TEST(SensorFamily, AnUnknownTypeStopsStartUpNamingRobotSensorAndKnownTypes)
     ADD_FAILURE() << "expected ConfigError";
   } catch (const ConfigError& e) {
     std::string known;
-    for (const auto& t : ros_layer::SensorRegistry::builtin().types()) known += (known.empty() ? "" : ", ") + t;
+    for (const auto& t : ros_layer::SensorRegistry::builtin().types())
+      known += (known.empty() ? "" : ", ") + t;
     EXPECT_NE(known.find("imu, m3, msis, pressure"), std::string::npos) << known;
     EXPECT_EQ(std::string(e.what()), "UX_1: sensor 'altimeter': unknown type 'altimeter' (known: " + known + ")");
   }
   ros::param::set("/UX_1/robot_description", original);
 }
 
-TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished)
-{
-  const std::string original = [] { std::string u; ros::param::get("/UX_1/robot_description", u); return u; }();
+TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished) {
+  const std::string original = [] {
+    std::string u;
+    ros::param::get("/UX_1/robot_description", u);
+    return u;
+  }();
   const double rate = 20.0;  // [Hz]
   configure(describedWithAltimeter(rate));
 
@@ -134,29 +133,36 @@ TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished)
   std::mutex mutex;
   std::vector<sensor_msgs::Range> ranges;
   nav_msgs::Odometry odom;
-  ros::Subscriber sub = nh.subscribe<sensor_msgs::Range>("/UX_1/altimeter", 1000, [&](const sensor_msgs::RangeConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    ranges.push_back(*m);
-  });
-  ros::Subscriber odom_sub = nh.subscribe<nav_msgs::Odometry>("/UX_1/odom", 10, [&](const nav_msgs::OdometryConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    odom = *m;
-  });
+  ros::Subscriber sub =
+      nh.subscribe<sensor_msgs::Range>("/UX_1/altimeter", 1000, [&](const sensor_msgs::RangeConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        ranges.push_back(*m);
+      });
+  ros::Subscriber odom_sub =
+      nh.subscribe<nav_msgs::Odometry>("/UX_1/odom", 10, [&](const nav_msgs::OdometryConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        odom = *m;
+      });
   std::thread spin([&] { sim->spin(); });  // serves /sim/step and runs our callbacks (global queue)
 
   ros::ServiceClient step = nh.serviceClient<unexmin::Step>("/sim/step");
   ASSERT_TRUE(step.waitForExistence(ros::Duration(30.0)));
   // Wait until the simulator's publisher is connected (it builds messages only for subscribed topics).
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
-  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < deadline) ros::WallDuration(0.01).sleep();
+  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.01).sleep();
   ASSERT_GT(sub.getNumPublishers(), 0u);
 
   unexmin::Step srv;
   srv.request.duration = 1.0;  // [s] of sim time: 20 samples at 20 Hz
   ASSERT_TRUE(step.call(srv));
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(30.0);
-  auto count = [&] { std::lock_guard<std::mutex> lock(mutex); return ranges.size(); };
-  while (count() < 20 && ros::WallTime::now() < until) ros::WallDuration(0.01).sleep();
+  auto count = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return ranges.size();
+  };
+  while (count() < 20 && ros::WallTime::now() < until)
+    ros::WallDuration(0.01).sleep();
   ros::shutdown();  // ends sim->spin()
   spin.join();
 
@@ -179,4 +185,6 @@ TEST(SensorFamily, ARegisteredFamilyIsBuiltSteppedAndPublished)
 }  // namespace
 }  // namespace unexmin
 
-int main(int argc, char** argv) { return unexmin::test::runRosTests(argc, argv, "sensor_family_test"); }
+int main(int argc, char** argv) {
+  return unexmin::test::runRosTests(argc, argv, "sensor_family_test");
+}

@@ -5,8 +5,7 @@
 
 namespace unexmin {
 
-std::string formatNumber(double x)
-{
+std::string formatNumber(double x) {
   std::ostringstream s;
   s << std::setprecision(12) << x;
   return s.str();

@@ -11,31 +11,27 @@
 namespace unexmin {
 
 /// Root of the simulator's errors; catch this to catch them all.
-class Error : public std::runtime_error
-{
+class Error : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
 
 /// A robot description, world file, launch parameter or sensor selection is wrong: start-up stops with
 /// this one message.
-class ConfigError : public Error
-{
+class ConfigError : public Error {
 public:
   using Error::Error;
 };
 
 /// A numeric model parameter (thruster, damping, noise, echo model, ...) is missing, has the wrong size,
 /// or is out of its range.
-class ParameterError : public ConfigError
-{
+class ParameterError : public ConfigError {
 public:
   using ConfigError::ConfigError;
 };
 
 /// A ray caster cannot be built (unknown back end, Embree error) or was handed a bad ray.
-class RayCasterError : public Error
-{
+class RayCasterError : public Error {
 public:
   using Error::Error;
 };

@@ -11,8 +11,7 @@
 namespace unexmin {
 namespace hydro {
 
-struct GaussMarkovParams
-{
+struct GaussMarkovParams {
   double mean = 0.0;
   double min = 0.0;
   double max = 0.0;
@@ -20,8 +19,7 @@ struct GaussMarkovParams
   double mu = 0.0;     ///< Return rate to the mean [1/s] >= 0.
 };
 
-struct CurrentParams
-{
+struct CurrentParams {
   GaussMarkovParams speed;             ///< [m/s]
   GaussMarkovParams horizontal_angle;  ///< Direction in the world x-y plane from +x, CCW [rad].
   GaussMarkovParams vertical_angle;    ///< Elevation above the horizontal [rad].
@@ -31,8 +29,7 @@ struct CurrentParams
 /// or noise/mu are negative or not finite.
 void validate(const CurrentParams& params);
 
-class CurrentModel
-{
+class CurrentModel {
 public:
   CurrentModel(const CurrentParams& params, std::uint64_t seed);
 

@@ -15,15 +15,14 @@ namespace unexmin {
 namespace hydro {
 
 /// Hydrodynamic and mass parameters of a vehicle, all in the body frame (x forward, y left, z up).
-struct HydroParams
-{
-  double mass = 0.0;                       ///< Dry mass, pendulum included, VBS empty [kg].
-  double volume = 0.0;                     ///< Displaced volume when fully submerged [m^3].
-  double radius = 0.0;                     ///< Hull radius for partial submersion at the surface [m].
-  Eigen::Vector3d center_of_gravity{0, 0, 0};   ///< CoG of the vehicle less the pendulum [m].
-  Eigen::Vector3d center_of_buoyancy{0, 0, 0};  ///< Centre of buoyancy [m].
-  Eigen::Vector3d inertia{0, 0, 0};        ///< Principal rigid-body moments of inertia [kg m^2].
-  Matrix6d added_mass = Matrix6d::Zero();  ///< M_A, symmetric positive semi-definite [kg, kg m, kg m^2].
+struct HydroParams {
+  double mass = 0.0;                              ///< Dry mass, pendulum included, VBS empty [kg].
+  double volume = 0.0;                            ///< Displaced volume when fully submerged [m^3].
+  double radius = 0.0;                            ///< Hull radius for partial submersion at the surface [m].
+  Eigen::Vector3d center_of_gravity{0, 0, 0};     ///< CoG of the vehicle less the pendulum [m].
+  Eigen::Vector3d center_of_buoyancy{0, 0, 0};    ///< Centre of buoyancy [m].
+  Eigen::Vector3d inertia{0, 0, 0};               ///< Principal rigid-body moments of inertia [kg m^2].
+  Matrix6d added_mass = Matrix6d::Zero();         ///< M_A, symmetric positive semi-definite [kg, kg m, kg m^2].
   Vector6d linear_damping = Vector6d::Zero();     ///< Diagonal of D_l [N s/m | N m s/rad].
   Vector6d quadratic_damping = Vector6d::Zero();  ///< Diagonal of D_q [N s^2/m^2 | N m s^2/rad^2].
 };
@@ -32,8 +31,7 @@ struct HydroParams
 /// must be, or (for M_A) not symmetric.
 void validate(const HydroParams& params);
 
-class FossenModel
-{
+class FossenModel {
 public:
   explicit FossenModel(const HydroParams& params);
 
@@ -59,8 +57,7 @@ public:
   /// nu_r: body velocity relative to the water [m/s | rad/s];
   /// nu_r_dot: latest estimate of its derivative (used only for the residual added mass) [m/s^2 | rad/s^2];
   /// current_accel_body: acceleration of the water in body axes (world-frame rate, rotated) [m/s^2].
-  Vector6d wrench(const Vector6d& nu_r, const Vector6d& nu_r_dot,
-                  const Eigen::Vector3d& current_accel_body) const;
+  Vector6d wrench(const Vector6d& nu_r, const Vector6d& nu_r_dot, const Eigen::Vector3d& current_accel_body) const;
 
 private:
   HydroParams params_;
@@ -78,9 +75,8 @@ double submergedFraction(double z_centre, double z_surface, double radius);
 /// q_world_body: attitude; weight_mass: total mass incl. pendulum and VBS [kg]; cog: its centre in the
 /// body frame [m]; buoyancy_volume: submerged volume [m^3]; cob: centre of buoyancy [m];
 /// rho: water density [kg/m^3]; gravity: magnitude of g [m/s^2], acting along world -z.
-Vector6d restoringWrench(const Eigen::Quaterniond& q_world_body, double weight_mass,
-                         const Eigen::Vector3d& cog, double buoyancy_volume,
-                         const Eigen::Vector3d& cob, double rho, double gravity);
+Vector6d restoringWrench(const Eigen::Quaterniond& q_world_body, double weight_mass, const Eigen::Vector3d& cog,
+                         double buoyancy_volume, const Eigen::Vector3d& cob, double rho, double gravity);
 
 }  // namespace hydro
 }  // namespace unexmin

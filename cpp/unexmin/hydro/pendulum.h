@@ -6,17 +6,15 @@
 namespace unexmin {
 namespace hydro {
 
-struct PendulumParams
-{
-  double mass = 0.0;         ///< Pendulum mass, part of the vehicle mass [kg].
-  double arm = 0.0;          ///< Pivot-to-mass distance [m].
-  double speed = 0.1;        ///< Constant angular speed towards the target [rad/s] > 0.
-  double min_angle = -0.5;   ///< Limits of the command [rad].
+struct PendulumParams {
+  double mass = 0.0;        ///< Pendulum mass, part of the vehicle mass [kg].
+  double arm = 0.0;         ///< Pivot-to-mass distance [m].
+  double speed = 0.1;       ///< Constant angular speed towards the target [rad/s] > 0.
+  double min_angle = -0.5;  ///< Limits of the command [rad].
   double max_angle = 0.5;
 };
 
-class Pendulum
-{
+class Pendulum {
 public:
   explicit Pendulum(const PendulumParams& params);  // throws ParameterError
 
@@ -26,8 +24,8 @@ public:
   /// Turn towards the target at constant speed for dt [s], locking on arrival.
   void update(double dt);
 
-  double angle() const { return angle_; }     ///< [rad]
-  double target() const { return target_; }   ///< [rad]
+  double angle() const { return angle_; }        ///< [rad]
+  double target() const { return target_; }      ///< [rad]
   double velocity() const { return velocity_; }  ///< [rad/s] during the last update
   /// Position of the pendulum mass in the body frame [m]: arm * (sin a, 0, -cos a).
   Eigen::Vector3d massPosition() const;
@@ -42,15 +40,13 @@ private:
 };
 
 /// Variable ballast system: water mass [kg] added at `position` (body frame), within [min, max].
-struct VbsParams
-{
-  double min_mass = -1.0;  ///< [kg] (negative: lighter than the trim point)
-  double max_mass = 1.0;   ///< [kg]
+struct VbsParams {
+  double min_mass = -1.0;             ///< [kg] (negative: lighter than the trim point)
+  double max_mass = 1.0;              ///< [kg]
   Eigen::Vector3d position{0, 0, 0};  ///< [m]
 };
 
-class Vbs
-{
+class Vbs {
 public:
   explicit Vbs(const VbsParams& params);  // throws ParameterError
   /// False (mass unchanged) if not finite or outside [min, max].

@@ -12,8 +12,7 @@ namespace unexmin {
 namespace hydro {
 
 /// Rotor/command dynamics: filters the commanded input (in the command's own unit).
-class ThrusterDynamics
-{
+class ThrusterDynamics {
 public:
   virtual ~ThrusterDynamics() = default;
   /// Advance by dt [s] towards `command`; returns the new state (command unit).
@@ -23,8 +22,7 @@ public:
 };
 
 /// "zero_order": the state follows the command at once. No parameters.
-class ZeroOrderDynamics : public ThrusterDynamics
-{
+class ZeroOrderDynamics : public ThrusterDynamics {
 public:
   double update(double command, double dt) override;
   double state() const override { return state_; }
@@ -36,8 +34,7 @@ private:
 
 /// "first_order": tau x_dot = u - x, discretised exactly: x += (1 - exp(-dt/tau)) (u - x).
 /// Parameters: tau [s] > 0.
-class FirstOrderDynamics : public ThrusterDynamics
-{
+class FirstOrderDynamics : public ThrusterDynamics {
 public:
   explicit FirstOrderDynamics(double tau);
   explicit FirstOrderDynamics(ThrusterFamilyParams& params);
@@ -51,8 +48,7 @@ private:
 };
 
 /// Maps the dynamics' state (command unit) to thrust [N] along the thruster axis.
-class ThrustConversion
-{
+class ThrustConversion {
 public:
   virtual ~ThrustConversion() = default;
   virtual double thrust(double state) const = 0;
@@ -62,16 +58,14 @@ public:
 };
 
 /// "identity": the command is thrust [N]. No parameters.
-class IdentityConversion : public ThrustConversion
-{
+class IdentityConversion : public ThrustConversion {
 public:
   double thrust(double state) const override { return state; }
 };
 
 /// "basic": thrust = gain * w * |w|, w the rotor speed in the command's unit. Parameters: gain
 /// [N per unit^2], non-zero.
-class BasicConversion : public ThrustConversion
-{
+class BasicConversion : public ThrustConversion {
 public:
   explicit BasicConversion(double gain);
   explicit BasicConversion(ThrusterFamilyParams& params);
@@ -84,8 +78,7 @@ private:
 
 /// "table": linear interpolation in (input, output) pairs, clamped at the ends. Parameters: input
 /// (command unit, strictly increasing, >= 2 entries), output [N], same length.
-class TableConversion : public ThrustConversion
-{
+class TableConversion : public ThrustConversion {
 public:
   TableConversion(std::vector<double> input, std::vector<double> output);
   explicit TableConversion(ThrusterFamilyParams& params);
@@ -98,8 +91,7 @@ private:
 
 struct ThrusterFactory;
 
-struct ThrusterParams
-{
+struct ThrusterParams {
   int id = 0;
   Eigen::Vector3d position{0, 0, 0};  ///< Thruster origin in the body frame [m].
   Eigen::Vector3d axis{1, 0, 0};      ///< Unit thrust direction for positive thrust, body frame.
@@ -107,15 +99,14 @@ struct ThrusterParams
   ParamMap dynamics_params;
   std::string conversion = "identity";
   ParamMap conversion_params;
-  double min_thrust = -50.0;          ///< Saturation [N].
-  double max_thrust = 50.0;           ///< Saturation [N].
-  double min_command = -50.0;         ///< Accepted command range (command unit); outside: rejected.
+  double min_thrust = -50.0;   ///< Saturation [N].
+  double max_thrust = 50.0;    ///< Saturation [N].
+  double min_command = -50.0;  ///< Accepted command range (command unit); outside: rejected.
   double max_command = 50.0;
-  double timeout = 1.0;               ///< Command watchdog: command set to zero after this [s]; <= 0 off.
+  double timeout = 1.0;  ///< Command watchdog: command set to zero after this [s]; <= 0 off.
 };
 
-class Thruster
-{
+class Thruster {
 public:
   /// Dynamics and conversion built by `families` (by the names in `params`). Throws ParameterError naming the
   /// thruster, the parameter, its value and the accepted range, or an unknown family and the registered ones.
@@ -135,7 +126,7 @@ public:
   double update(double t, double dt);
 
   double command() const { return command_; }
-  double thrust() const { return thrust_; }        ///< Achieved thrust [N].
+  double thrust() const { return thrust_; }  ///< Achieved thrust [N].
   double state() const { return dynamics_->state(); }
   /// Whether state() is a rotor speed [rad/s] (ThrustConversion::stateIsRotorSpeed).
   bool stateIsRotorSpeed() const { return conversion_->stateIsRotorSpeed(); }

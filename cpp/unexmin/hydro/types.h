@@ -25,8 +25,7 @@ using ParamMap = std::map<std::string, std::vector<double>>;
 double requireScalar(const ParamMap& params, const std::string& key, const std::string& what);
 
 /// Skew-symmetric matrix S(a) with S(a) b = a x b.
-inline Eigen::Matrix3d skew(const Eigen::Vector3d& a)
-{
+inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
   Eigen::Matrix3d s;
   s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
   return s;

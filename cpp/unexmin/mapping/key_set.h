@@ -16,8 +16,7 @@ namespace mapping {
 uint64_t spreadBits(uint16_t v);
 /// Morton code of a key: bits of z, y, x interleaved, the root's child index in the top 3 bits (of 48).
 /// (code >> 3 * (15 - depth)) & 7 is the child index OctoMap's computeChildIdx gives at that depth.
-inline uint64_t mortonCode(const octomap::OcTreeKey& key)
-{
+inline uint64_t mortonCode(const octomap::OcTreeKey& key) {
   return spreadBits(key[0]) | (spreadBits(key[1]) << 1) | (spreadBits(key[2]) << 2);
 }
 
@@ -25,8 +24,7 @@ inline uint64_t mortonCode(const octomap::OcTreeKey& key)
 constexpr uint64_t kMortonAxisBits = 0x249249249249ull;
 /// Open-addressing hash set of Morton codes with one "occupied" bit each; clear() costs the number of
 /// entries, not the capacity, so one set serves every cloud.
-class KeySet
-{
+class KeySet {
 public:
   KeySet();
 
@@ -45,15 +43,14 @@ private:
   void grow();
 
   static constexpr uint64_t kEmpty = ~uint64_t(0);
-  std::vector<uint64_t> slots_;   // (code << 1 | occupied) or kEmpty
-  std::vector<uint32_t> used_;    // indices of the filled slots
+  std::vector<uint64_t> slots_;  // (code << 1 | occupied) or kEmpty
+  std::vector<uint32_t> used_;   // indices of the filled slots
   std::vector<uint64_t> sorted_, scratch_;
   uint64_t mask_;
   int shift_;
 };
 
-inline void KeySet::insert(uint64_t code, bool occupied)
-{
+inline void KeySet::insert(uint64_t code, bool occupied) {
   const uint64_t entry = (code << 1) | (occupied ? 1u : 0u);
   // Low Morton bits first: voxels near each other (a ray's consecutive voxels) land in nearby slots, so the
   // walk stays in cache; the high bits are folded in to separate distant blocks.
@@ -63,7 +60,8 @@ inline void KeySet::insert(uint64_t code, bool occupied)
     if (slot == kEmpty) {
       slot = entry;
       used_.push_back(static_cast<uint32_t>(i));
-      if (used_.size() * 2 > slots_.size()) grow();
+      if (used_.size() * 2 > slots_.size())
+        grow();
       return;
     }
     if ((slot >> 1) == code) {

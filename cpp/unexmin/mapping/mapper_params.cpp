@@ -10,8 +10,7 @@ namespace mapping {
 
 namespace {
 
-void check(const char* name, double value, bool ok, const std::string& expected)
-{
+void check(const char* name, double value, bool ok, const std::string& expected) {
   if (!std::isfinite(value) || !ok) {
     throw ParameterError(std::string("mapper: parameter '") + name + "' = " + formatNumber(value) + ": expected " +
                          expected);
@@ -20,8 +19,7 @@ void check(const char* name, double value, bool ok, const std::string& expected)
 
 }  // namespace
 
-void MapperParams::validate() const
-{
+void MapperParams::validate() const {
   check("resolution", resolution, resolution >= 0.001 && resolution <= 10.0, "[0.001, 10] m");
   check("max_range", max_range, true, "a finite number of metres (<= 0: no limit)");
   check("prob_hit", prob_hit, prob_hit > 0.5 && prob_hit < 1.0, "(0.5, 1)");

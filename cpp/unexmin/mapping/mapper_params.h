@@ -6,8 +6,7 @@ namespace unexmin {
 namespace mapping {
 
 /// The mapper's parameters; validate() checks every one of them.
-struct MapperParams
-{
+struct MapperParams {
   /// Edge of a leaf voxel [m], in [0.001, 10].
   double resolution = 0.1;
   /// Free-space range [m]: an endpoint farther than this from its sensor origin is not marked occupied and

@@ -14,8 +14,7 @@ namespace unexmin {
 namespace mapping {
 
 /// OctoMap's OcTree with a batched leaf update that reaches its protected root.
-class OccupancyMap::Tree : public octomap::OcTree
-{
+class OccupancyMap::Tree : public octomap::OcTree {
 public:
   using octomap::OcTree::OcTree;
 
@@ -24,9 +23,9 @@ public:
   /// the batch touched is brought up to date (maximum of its children, or pruned when its 8 children are equal
   /// leaves) once, when the sorted walk leaves its subtree for good: the tree stays as OctoMap's
   /// updateInnerOccupancy() and prune() would leave it, at the cost of the touched nodes only.
-  void apply(const std::vector<uint64_t>& entries)
-  {
-    if (entries.empty()) return;
+  void apply(const std::vector<uint64_t>& entries) {
+    if (entries.empty())
+      return;
     const float hit = getProbHitLog(), miss = getProbMissLog();
     const float lo = getClampingThresMinLog(), hi = getClampingThresMaxLog();
     constexpr unsigned depth_max = 16;
@@ -46,7 +45,8 @@ public:
       unsigned start = 0;
       if (!first) {
         start = depth_max - 1 - (63 - __builtin_clzll(code ^ previous)) / 3;
-        for (unsigned depth = depth_max - 1; depth > start; --depth) finish(path[depth]);
+        for (unsigned depth = depth_max - 1; depth > start; --depth)
+          finish(path[depth]);
       }
       for (unsigned depth = start; depth < depth_max; ++depth) {
         octomap::OcTreeNode* node = path[depth];
@@ -69,15 +69,16 @@ public:
       previous = code;
       first = false;
     }
-    for (unsigned depth = depth_max; depth-- > 0;) finish(path[depth]);
+    for (unsigned depth = depth_max; depth-- > 0;)
+      finish(path[depth]);
     size_changed = true;
   }
 
 private:
   /// An inner node whose children are final: pruned if they are 8 equal leaves, else it takes their maximum.
-  void finish(octomap::OcTreeNode* node)
-  {
-    if (!nodeHasChildren(node)) return;
+  void finish(octomap::OcTreeNode* node) {
+    if (!nodeHasChildren(node))
+      return;
     // One pass over the children for both pruneNode's test (8 leaves of equal value) and
     // updateOccupancyChildren's maximum.
     bool collapsible = true;
@@ -89,25 +90,26 @@ private:
         continue;
       }
       const octomap::OcTreeNode* child = getNodeChild(node, i);
-      if (first == nullptr) first = child;
+      if (first == nullptr)
+        first = child;
       collapsible = collapsible && !nodeHasChildren(child) && *child == *first;
       max = std::max(max, child->getLogOdds());
     }
-    if (collapsible) pruneNode(node);
-    else node->setLogOdds(max);
+    if (collapsible)
+      pruneNode(node);
+    else
+      node->setLogOdds(max);
   }
 };
 
-OccupancyMap::OccupancyMap(const MapperParams& params) : params_(params)
-{
+OccupancyMap::OccupancyMap(const MapperParams& params) : params_(params) {
   params_.validate();
   reset();
 }
 
 OccupancyMap::~OccupancyMap() = default;
 
-void OccupancyMap::reset()
-{
+void OccupancyMap::reset() {
   tree_ = std::make_unique<Tree>(params_.resolution);
   tree_->setProbHit(params_.prob_hit);
   tree_->setProbMiss(params_.prob_miss);
@@ -119,12 +121,12 @@ void OccupancyMap::reset()
 }
 
 void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::OcTreeKey& key_origin, uint64_t code_origin,
-                            const octomap::point3d& end, uint64_t code_end)
-{
+                            const octomap::point3d& end, uint64_t code_end) {
   // 3D DDA through the voxels from origin's to end's, both excluded unless distinct (origin included):
   // the same walk as OctoMap's computeRayKeys (the same double-precision arithmetic, the same choice of axis
   // on ties), so both mark the same voxels free. The key is carried as its Morton code, stepped per axis.
-  if (code_origin == code_end) return;
+  if (code_origin == code_end)
+    return;
   keys_.addFree(code_origin);
   octomap::point3d direction = end - origin;
   const float length = static_cast<float>(direction.norm());
@@ -162,22 +164,33 @@ void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::OcTre
   for (;;) {
     unsigned dim;
     if (t0 < t1) {
-      if (t0 < t2) { dim = 0; t0 += d0; }
-      else { dim = 2; t2 += d2; }
+      if (t0 < t2) {
+        dim = 0;
+        t0 += d0;
+      } else {
+        dim = 2;
+        t2 += d2;
+      }
     } else {
-      if (t1 < t2) { dim = 1; t1 += d1; }
-      else { dim = 2; t2 += d2; }
+      if (t1 < t2) {
+        dim = 1;
+        t1 += d1;
+      } else {
+        dim = 2;
+        t2 += d2;
+      }
     }
     const uint64_t moved = ((code & axis_bits[dim]) | fill[dim]) + add[dim];
     code = (moved & axis_bits[dim]) | (code & ~axis_bits[dim]);
-    if (code == code_end) return;
-    if (std::min(std::min(t0, t1), t2) > length) return;
+    if (code == code_end)
+      return;
+    if (std::min(std::min(t0, t1), t2) > length)
+      return;
     keys_.addFree(code);
   }
 }
 
-CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin)
-{
+CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin) {
   CloudStats stats;
   stats.points = points.size();
   if (!std::isfinite(origin.x()) || !std::isfinite(origin.y()) || !std::isfinite(origin.z())) {
@@ -198,58 +211,59 @@ CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points
     }
     if (max_range <= 0.0 || (p - origin).norm() <= max_range) {
       const uint64_t code = mortonCode(key);
-      if (rays) traceRay(origin, key_origin, code_origin, p, code);
+      if (rays)
+        traceRay(origin, key_origin, code_origin, p, code);
       keys_.addOccupied(code);
     } else {
       ++stats.beyond_range;
       const octomap::point3d end = origin + (p - origin).normalized() * static_cast<float>(max_range);
-      if (rays && tree_->coordToKeyChecked(end, key)) traceRay(origin, key_origin, code_origin, end, mortonCode(key));
+      if (rays && tree_->coordToKeyChecked(end, key))
+        traceRay(origin, key_origin, code_origin, end, mortonCode(key));
     }
   }
   const std::vector<uint64_t>& entries = keys_.sorted();
-  for (uint64_t e : entries) ++((e & 1u) ? stats.occupied_voxels : stats.free_voxels);
+  for (uint64_t e : entries)
+    ++((e & 1u) ? stats.occupied_voxels : stats.free_voxels);
   tree_->apply(entries);
   ++clouds_;
   points_ += points.size();
   return stats;
 }
 
-void OccupancyMap::update()
-{
-  if (!dirty_) return;
+void OccupancyMap::update() {
+  if (!dirty_)
+    return;
   tree_->updateInnerOccupancy();
   tree_->prune();
   dirty_ = false;
 }
 
-const octomap::OcTree& OccupancyMap::tree()
-{
+const octomap::OcTree& OccupancyMap::tree() {
   update();
   return *tree_;
 }
 
-std::size_t OccupancyMap::occupiedLeafCount()
-{
+std::size_t OccupancyMap::occupiedLeafCount() {
   update();
   std::size_t n = 0;
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
-    if (tree_->isNodeOccupied(*it)) ++n;
+    if (tree_->isNodeOccupied(*it))
+      ++n;
   }
   return n;
 }
 
-std::vector<Voxel> OccupancyMap::occupiedVoxels()
-{
+std::vector<Voxel> OccupancyMap::occupiedVoxels() {
   update();
   std::vector<Voxel> voxels;
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
-    if (tree_->isNodeOccupied(*it)) voxels.push_back({it.getX(), it.getY(), it.getZ(), it.getSize()});
+    if (tree_->isNodeOccupied(*it))
+      voxels.push_back({it.getX(), it.getY(), it.getZ(), it.getSize()});
   }
   return voxels;
 }
 
-void OccupancyMap::save(const std::string& path)
-{
+void OccupancyMap::save(const std::string& path) {
   update();
   const std::string tmp = path + ".tmp";
   {
@@ -265,16 +279,14 @@ void OccupancyMap::save(const std::string& path)
   }
 }
 
-std::string OccupancyMap::binaryData()
-{
+std::string OccupancyMap::binaryData() {
   update();
   std::stringstream data;
   tree_->writeBinaryData(data);
   return data.str();
 }
 
-std::size_t OccupancyMap::memoryUsage() const
-{
+std::size_t OccupancyMap::memoryUsage() const {
   return tree_->memoryUsage();
 }
 

@@ -1,8 +1,8 @@
 // A world-frame occupancy map (an OctoMap OcTree) built from point clouds, each ray-cast from its own sensor
 // origin. Per cloud, every voxel is updated once (occupied wins over free), the leaves are visited in Morton
 // order so that one descent serves neighbouring voxels, and each touched inner node is updated (or pruned)
-// once per cloud, not once per voxel below it as OctoMap's updateNode does. The result equals OctoMap's own insertPointCloud on the same clouds
-// (test_mapping.cpp checks it voxel for voxel). Knows no ROS.
+// once per cloud, not once per voxel below it as OctoMap's updateNode does. The result equals OctoMap's own
+// insertPointCloud on the same clouds (test_mapping.cpp checks it voxel for voxel). Knows no ROS.
 #pragma once
 
 #include <unexmin/mapping/key_set.h>
@@ -19,23 +19,20 @@ namespace unexmin {
 namespace mapping {
 
 /// What one insertCloud() did.
-struct CloudStats
-{
-  std::size_t points = 0;         ///< points handed in
-  std::size_t invalid = 0;        ///< non-finite or outside the tree: ignored
-  std::size_t beyond_range = 0;   ///< farther than max_range: free space up to it, no endpoint
+struct CloudStats {
+  std::size_t points = 0;           ///< points handed in
+  std::size_t invalid = 0;          ///< non-finite or outside the tree: ignored
+  std::size_t beyond_range = 0;     ///< farther than max_range: free space up to it, no endpoint
   std::size_t occupied_voxels = 0;  ///< distinct voxels updated as occupied
   std::size_t free_voxels = 0;      ///< distinct voxels updated as free
 };
 
 /// One occupied leaf of the pruned tree: its centre [m, world frame] and edge [m].
-struct Voxel
-{
+struct Voxel {
   double x, y, z, size;
 };
 
-class OccupancyMap
-{
+class OccupancyMap {
 public:
   /// Throws ParameterError when params are out of range.
   explicit OccupancyMap(const MapperParams& params);

@@ -10,11 +10,12 @@ namespace raycast {
 namespace {
 
 /// Start of the vertex array of a triangle-mesh shape (to recognise the world mesh it was built on), or null.
-const void* vertexBase(const btCollisionShape* shape)
-{
-  if (shape->getShapeType() != TRIANGLE_MESH_SHAPE_PROXYTYPE) return nullptr;
+const void* vertexBase(const btCollisionShape* shape) {
+  if (shape->getShapeType() != TRIANGLE_MESH_SHAPE_PROXYTYPE)
+    return nullptr;
   const btStridingMeshInterface* mesh = static_cast<const btBvhTriangleMeshShape*>(shape)->getMeshInterface();
-  if (!mesh || mesh->getNumSubParts() < 1) return nullptr;
+  if (!mesh || mesh->getNumSubParts() < 1)
+    return nullptr;
   const unsigned char* vertices = nullptr;
   const unsigned char* indices = nullptr;
   int num_vertices = 0, vertex_stride = 0, index_stride = 0, num_faces = 0;
@@ -25,8 +26,7 @@ const void* vertexBase(const btCollisionShape* shape)
   return vertices;
 }
 
-std::vector<BulletTarget> worldTargets(sim::World& world)
-{
+std::vector<BulletTarget> worldTargets(sim::World& world) {
   std::vector<BulletTarget> targets;
   const btCollisionObjectArray& objects = world.physics().getCollisionObjectArray();
   for (int k = 0; k < objects.size(); ++k) {
@@ -44,7 +44,8 @@ std::vector<BulletTarget> worldTargets(sim::World& world)
           t.kind = HitKind::mesh;
           t.index = static_cast<int>(m);
         }
-    if (t.index >= 0) targets.push_back(t);
+    if (t.index >= 0)
+      targets.push_back(t);
   }
   return targets;
 }
@@ -52,11 +53,11 @@ std::vector<BulletTarget> worldTargets(sim::World& world)
 }  // namespace
 
 BulletRayCaster::BulletRayCaster(std::vector<BulletTarget> targets, const RayCasterOptions& options)
-    : RayCaster(options)
-{
+    : RayCaster(options) {
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const BulletTarget& t = targets[i];
-    if (!t.object) throw RayCasterError("bullet ray caster: target " + formatNumber(i) + " has no collision object");
+    if (!t.object)
+      throw RayCasterError("bullet ray caster: target " + formatNumber(i) + " has no collision object");
     if (t.kind != HitKind::mesh && t.kind != HitKind::robot)
       throw RayCasterError("bullet ray caster: target " + formatNumber(i) + " must be a mesh or a robot");
     const btCollisionShape* shape = t.object->getCollisionShape();
@@ -68,22 +69,18 @@ BulletRayCaster::BulletRayCaster(std::vector<BulletTarget> targets, const RayCas
 }
 
 BulletRayCaster::BulletRayCaster(sim::World& world, const RayCasterOptions& options)
-    : BulletRayCaster(worldTargets(world), options)
-{
-}
+    : BulletRayCaster(worldTargets(world), options) {}
 
 BulletRayCaster::~BulletRayCaster() = default;
 
-void BulletRayCaster::update()
-{
+void BulletRayCaster::update() {
   for (Target& t : targets_) {
     t.transform = t.target.object->getWorldTransform();
     t.target.object->getCollisionShape()->getAabb(t.transform, t.aabb_min, t.aabb_max);
   }
 }
 
-void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const
-{
+void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const {
   // btCollisionWorld::rayTest is this loop behind a broadphase whose ray traversal stack is shared (Debian
   // builds Bullet without BT_THREADSAFE), so we cull by AABB ourselves and call Bullet's per-object ray test,
   // which only reads shared state.
@@ -102,7 +99,8 @@ void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
     const Target* sphere = nullptr;
     double t_sphere = ray.max_range;
     for (const Target& t : targets_) {
-      if (t.target.kind == HitKind::robot && t.target.index == exclude_robot) continue;
+      if (t.target.kind == HitKind::robot && t.target.index == exclude_robot)
+        continue;
       if (t.sphere_radius > 0.0) {
         const btVector3& c = t.transform.getOrigin();
         double ts;
@@ -116,11 +114,13 @@ void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
       }
       btScalar entry = callback.m_closestHitFraction;
       btVector3 box_normal;
-      if (!btRayAabb(from, to, t.aabb_min, t.aabb_max, entry, box_normal)) continue;
+      if (!btRayAabb(from, to, t.aabb_min, t.aabb_max, entry, box_normal))
+        continue;
       const btScalar before = callback.m_closestHitFraction;
       btCollisionWorld::rayTestSingle(from_tf, to_tf, const_cast<btCollisionObject*>(t.target.object),
                                       t.target.object->getCollisionShape(), t.transform, callback);
-      if (callback.m_closestHitFraction < before) nearest = &t;
+      if (callback.m_closestHitFraction < before)
+        nearest = &t;
     }
     const float range = callback.m_closestHitFraction * ray.max_range;
     if (nearest && (!sphere || range <= t_sphere)) {

@@ -13,15 +13,13 @@ namespace unexmin {
 namespace raycast {
 
 /// A collision object rays can hit and what a hit on it reports.
-struct BulletTarget
-{
+struct BulletTarget {
   const btCollisionObject* object = nullptr;
   HitKind kind = HitKind::mesh;  ///< mesh or robot
   int index = -1;                ///< Hit::index of a hit on it
 };
 
-class BulletRayCaster : public RayCaster
-{
+class BulletRayCaster : public RayCaster {
 public:
   /// Casts against `targets` with their shapes and world transforms as of update(). The objects must
   /// outlive the caster. Throws RayCasterError on a null object or a kind that is not mesh or robot.
@@ -41,12 +39,11 @@ protected:
   void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const override;
 
 private:
-  struct Target
-  {
+  struct Target {
     BulletTarget target;
     btTransform transform;  // world transform as of update()
     btVector3 aabb_min, aabb_max;
-    double sphere_radius;    // > 0: a sphere, cast exactly rather than by Bullet's iterative convex cast
+    double sphere_radius;  // > 0: a sphere, cast exactly rather than by Bullet's iterative convex cast
   };
   std::vector<Target> targets_;
 };

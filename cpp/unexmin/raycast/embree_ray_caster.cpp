@@ -10,16 +10,22 @@ namespace unexmin {
 namespace raycast {
 namespace {
 
-const char* errorName(RTCError e)
-{
+const char* errorName(RTCError e) {
   switch (e) {
-    case RTC_ERROR_NONE: return "no error";
-    case RTC_ERROR_UNKNOWN: return "unknown error";
-    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-    case RTC_ERROR_CANCELLED: return "cancelled";
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_UNKNOWN:
+      return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
   }
   return "unrecognised error";
 }
@@ -27,17 +33,18 @@ const char* errorName(RTCError e)
 /// Nearest robot sphere along the ray (origin o, unit direction d) closer than t_max [m], robot `exclude`
 /// left out; returns its index (t_max lowered to its range) or -1.
 int nearestRobot(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const std::vector<RobotSphere>& robots,
-                 int exclude, float& t_max)
-{
+                 int exclude, float& t_max) {
   int best = -1;
   double t_best = t_max;
   for (int i = 0; i < static_cast<int>(robots.size()); ++i) {
     double t;
-    if (i == exclude || !raySphere(o, d, robots[i].center, robots[i].radius, t) || t > t_best) continue;
+    if (i == exclude || !raySphere(o, d, robots[i].center, robots[i].radius, t) || t > t_best)
+      continue;
     t_best = t;
     best = i;
   }
-  if (best >= 0) t_max = static_cast<float>(t_best);
+  if (best >= 0)
+    t_max = static_cast<float>(t_best);
   return best;
 }
 
@@ -45,15 +52,13 @@ int nearestRobot(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const std::
 
 EmbreeRayCaster::EmbreeRayCaster(const std::vector<const sim::TriangleMesh*>& meshes, RobotSphereSource robots,
                                  const RayCasterOptions& options)
-    : RayCaster(options), source_(std::move(robots))
-{
+    : RayCaster(options), source_(std::move(robots)) {
   build(meshes, options.watertight);
   update();
 }
 
 EmbreeRayCaster::EmbreeRayCaster(sim::World& world, const RayCasterOptions& options)
-    : RayCaster(options), source_([&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); })
-{
+    : RayCaster(options), source_([&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); }) {
   const auto& entries = world.config().meshes;
   std::vector<const sim::TriangleMesh*> meshes;
   for (std::size_t i = 0; i < world.meshes().size(); ++i) {
@@ -64,23 +69,24 @@ EmbreeRayCaster::EmbreeRayCaster(sim::World& world, const RayCasterOptions& opti
   update();
 }
 
-EmbreeRayCaster::~EmbreeRayCaster()
-{
-  if (scene_) rtcReleaseScene(scene_);
-  if (device_) rtcReleaseDevice(device_);
+EmbreeRayCaster::~EmbreeRayCaster() {
+  if (scene_)
+    rtcReleaseScene(scene_);
+  if (device_)
+    rtcReleaseDevice(device_);
 }
 
-void EmbreeRayCaster::check(const char* what) const
-{
+void EmbreeRayCaster::check(const char* what) const {
   const RTCError e = rtcGetDeviceError(device_);
-  if (e != RTC_ERROR_NONE) throw RayCasterError(std::string("embree ray caster: ") + what + ": " + errorName(e));
+  if (e != RTC_ERROR_NONE)
+    throw RayCasterError(std::string("embree ray caster: ") + what + ": " + errorName(e));
 }
 
-void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight)
-{
+void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight) {
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw RayCasterError(std::string("embree ray caster: cannot create a device: ") +
-                                     errorName(rtcGetDeviceError(nullptr)));
+  if (!device_)
+    throw RayCasterError(std::string("embree ray caster: cannot create a device: ") +
+                         errorName(rtcGetDeviceError(nullptr)));
   scene_ = rtcNewScene(device_);
   // Robust mode makes shared triangle edges watertight: without it 1-5 % of rays aimed exactly at a shared
   // edge of a closed mesh slip through (measured: tunnel, icosphere); with it none do, for 5-25 % of speed.
@@ -89,7 +95,8 @@ void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes,
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const sim::TriangleMesh* mesh = meshes[m];
-    if (!mesh || mesh->triangleCount() == 0) continue;
+    if (!mesh || mesh->triangleCount() == 0)
+      continue;
     const std::size_t nv = mesh->vertices.size();
     for (int i : mesh->indices)
       if (i < 0 || static_cast<std::size_t>(i) >= nv)
@@ -102,8 +109,10 @@ void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes,
     auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                              3 * sizeof(unsigned), mesh->triangleCount()));
     check(("allocating mesh '" + mesh->name + "'").c_str());
-    for (std::size_t i = 0; i < nv; ++i) std::memcpy(v + 3 * i, mesh->vertices[i].data(), 3 * sizeof(float));
-    for (std::size_t i = 0; i < mesh->indices.size(); ++i) t[i] = static_cast<unsigned>(mesh->indices[i]);
+    for (std::size_t i = 0; i < nv; ++i)
+      std::memcpy(v + 3 * i, mesh->vertices[i].data(), 3 * sizeof(float));
+    for (std::size_t i = 0; i < mesh->indices.size(); ++i)
+      t[i] = static_cast<unsigned>(mesh->indices[i]);
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));  // geometry ID = mesh index
     rtcReleaseGeometry(geometry);
@@ -113,13 +122,12 @@ void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes,
   check("building the scene");
 }
 
-void EmbreeRayCaster::update()
-{
-  if (source_) source_(robots_);
+void EmbreeRayCaster::update() {
+  if (source_)
+    source_(robots_);
 }
 
-void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const
-{
+void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const {
   RTCRayHit rh[kBlock];
   int robot[kBlock];
   const Eigen::Vector3f d0 = rays[0].direction.normalized();
@@ -164,8 +172,8 @@ void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
     } else if (robot[i] >= 0) {
       const RobotSphere& s = robots_[robot[i]];
       const double t = h.ray.tfar;
-      const Eigen::Vector3d p =
-          Eigen::Vector3d(h.ray.org_x, h.ray.org_y, h.ray.org_z) + t * Eigen::Vector3d(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z);
+      const Eigen::Vector3d p = Eigen::Vector3d(h.ray.org_x, h.ray.org_y, h.ray.org_z) +
+                                t * Eigen::Vector3d(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z);
       finishHit(ray, (p - s.center).cast<float>(), h.ray.tfar, HitKind::robot, robot[i], hit);
     } else {
       hit = Hit();

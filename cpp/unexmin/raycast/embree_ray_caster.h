@@ -2,16 +2,15 @@
 // robots as analytic spheres. The default back end ("embree").
 #pragma once
 
-#include <unexmin/sim/mesh.h>
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/sim/mesh.h>
 
 #include <embree3/rtcore.h>
 
 namespace unexmin {
 namespace raycast {
 
-class EmbreeRayCaster : public RayCaster
-{
+class EmbreeRayCaster : public RayCaster {
 public:
   /// Casts against `meshes` (world frame; Hit::index of a mesh hit is its position in this list, nullptr
   /// entries are skipped, e.g. visual-only meshes) and the spheres `robots` fills on update() (may be empty:

@@ -25,23 +25,20 @@ class World;
 namespace raycast {
 
 /// One ray, world frame. Single precision, like the meshes and both back ends.
-struct Ray
-{
+struct Ray {
   Eigen::Vector3f origin{0, 0, 0};     ///< Start point, world frame [m].
   Eigen::Vector3f direction{1, 0, 0};  ///< World frame, unit length (checked to 1e-3).
   float max_range = 1.0f;              ///< Farthest distance that counts as a hit [m], finite and > 0.
 };
 
 /// What a ray hit.
-enum class HitKind : std::uint8_t
-{
+enum class HitKind : std::uint8_t {
   none,   ///< Nothing within max_range.
   mesh,   ///< A static mesh: Hit::index is its index in World::meshes().
   robot,  ///< A robot hull: Hit::index is its index in World::robot(i).
 };
 
-struct Hit
-{
+struct Hit {
   /// Distance from the ray origin to the first surface [m]; +inf when nothing within max_range.
   float range = std::numeric_limits<float>::infinity();
   /// Surface normal at the hit, world frame, unit, facing the ray (normal . direction <= 0); zero on no hit.
@@ -58,16 +55,14 @@ struct Hit
 };
 
 /// A robot hull as rays see it: a sphere, world frame.
-struct RobotSphere
-{
+struct RobotSphere {
   Eigen::Vector3d center{0, 0, 0};  ///< World frame [m].
   double radius = 0.0;              ///< [m]
 };
 
 /// Whether RayCaster::cast() fills Hit::incidence. `skip` saves an atan2 per hit (about a tenth of a sonar's cost)
 /// for callers that need the incidence of a few hits only (RayCaster::incidence() gives the same value) or none.
-enum class Incidence : std::uint8_t
-{
+enum class Incidence : std::uint8_t {
   compute,  ///< every hit's incidence (the default)
   skip,     ///< left NaN
 };
@@ -76,12 +71,12 @@ enum class Incidence : std::uint8_t
 /// point when o is inside (as a ray meets the inside of a closed mesh); false when it misses or is behind.
 /// Exact in double precision; both back ends use it for robot hulls (inline: it runs for every ray and robot).
 inline bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c, double r,
-                      double& t)
-{
+                      double& t) {
   const Eigen::Vector3d oc = c - o;
   const double b = oc.dot(d);                            // along the ray to the closest approach
   const double h2 = r * r - (oc - b * d).squaredNorm();  // half chord squared, free of cancellation
-  if (h2 < 0.0) return false;
+  if (h2 < 0.0)
+    return false;
   const double h = std::sqrt(h2);
   t = oc.squaredNorm() < r * r ? b + h : b - h;
   return t >= 0.0;
@@ -94,8 +89,7 @@ using RobotSphereSource = std::function<void(std::vector<RobotSphere>&)>;
 /// Throws RayCasterError when a robot's collision shape is not a sphere.
 std::vector<RobotSphere> robotSpheres(sim::World& world);
 
-struct RayCasterOptions
-{
+struct RayCasterOptions {
   /// Threads that cast, the calling thread included; 0 = every hardware thread. Results do not depend on it.
   int threads = 0;
   /// Embree: robust triangle test, so no ray slips between two triangles sharing an edge. false is 5-25 %
@@ -110,8 +104,7 @@ class WorkerPool;
 /// move (seen as of the last update()). update() and cast() must not run while the world steps; cast() is
 /// const and may be called from several threads at once (only one call at a time uses the worker threads,
 /// the others cast on their caller's thread; the results are the same).
-class RayCaster
-{
+class RayCaster {
 public:
   /// Batches shorter than this are cast on the calling thread alone (waking workers costs more).
   static constexpr std::size_t kParallelMin = 256;
@@ -160,11 +153,11 @@ protected:
   /// Fills the range, kind, index and normal (unit, facing the ray) of a hit from any surface normal (cast() adds
   /// the incidence when asked).
   static void finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
-                        Hit& hit)
-  {
+                        Hit& hit) {
     const float length = surface_normal.norm();
     Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
-    if (n.dot(ray.direction) > 0.0f) n = -n;
+    if (n.dot(ray.direction) > 0.0f)
+      n = -n;
     hit.range = range;
     hit.normal = n;
     hit.incidence = std::numeric_limits<float>::quiet_NaN();

@@ -7,18 +7,15 @@
 namespace unexmin {
 namespace ros_layer {
 
-const std::set<std::string>& BagRecorder::excludedByDefault()
-{
+const std::set<std::string>& BagRecorder::excludedByDefault() {
   static const std::set<std::string> excluded{"/clock", "/tf", "/tf_static", "/rosout"};
   return excluded;
 }
 
-BagRecorder::BagRecorder(std::vector<std::string> topics) : topics_(std::move(topics)), topic_set_(topics_.begin(), topics_.end())
-{
-}
+BagRecorder::BagRecorder(std::vector<std::string> topics)
+    : topics_(std::move(topics)), topic_set_(topics_.begin(), topics_.end()) {}
 
-BagRecorder::~BagRecorder()
-{
+BagRecorder::~BagRecorder() {
   try {
     stop();
   } catch (const std::exception& e) {
@@ -26,18 +23,19 @@ BagRecorder::~BagRecorder()
   }
 }
 
-bool BagRecorder::select(const std::string& topic) const
-{
-  if (!topic_set_.empty()) return topic_set_.count(topic) > 0;
-  if (excludedByDefault().count(topic)) return false;
+bool BagRecorder::select(const std::string& topic) const {
+  if (!topic_set_.empty())
+    return topic_set_.count(topic) > 0;
+  if (excludedByDefault().count(topic))
+    return false;
   const std::string suffix = "/joint_states";  // limited to a wall-clock rate in lockstep
   return !(topic.size() >= suffix.size() && topic.compare(topic.size() - suffix.size(), suffix.size(), suffix) == 0);
 }
 
-void BagRecorder::start(const std::string& path)
-{
+void BagRecorder::start(const std::string& path) {
   stop();
-  if (path.empty()) throw std::runtime_error("recording: empty bag path");
+  if (path.empty())
+    throw std::runtime_error("recording: empty bag path");
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -51,8 +49,7 @@ void BagRecorder::start(const std::string& path)
   ROS_INFO_STREAM("simulator recorder: recording to " << path_);
 }
 
-void BagRecorder::fail(const std::string& what)
-{
+void BagRecorder::fail(const std::string& what) {
   ROS_ERROR_STREAM("simulator recorder: writing " << path_ << " failed (" << what << "); recording stopped");
   try {
     stop();
@@ -61,13 +58,14 @@ void BagRecorder::fail(const std::string& what)
   }
 }
 
-void BagRecorder::stop()
-{
-  if (!active_) return;
+void BagRecorder::stop() {
+  if (!active_)
+    return;
   active_ = false;
   bag_.close();
   std::uint64_t total = 0;
-  for (const auto& c : counts_) total += c.second;
+  for (const auto& c : counts_)
+    total += c.second;
   ROS_INFO_STREAM("simulator recorder: closed " << path_ << " (" << total << " messages on " << counts_.size()
                                                 << " topics)");
 }

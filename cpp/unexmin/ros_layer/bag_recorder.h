@@ -7,8 +7,8 @@
 
 #include <unexmin/ros_layer/stream.h>
 
-#include <rosbag/bag.h>
 #include <ros/ros.h>
+#include <rosbag/bag.h>
 
 #include <cstdint>
 #include <map>
@@ -20,8 +20,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class BagRecorder
-{
+class BagRecorder {
 public:
   /// Topics recorded when no list is given: everything the simulator publishes or receives except these
   /// (in lockstep they are limited to a wall-clock rate, docs/simulator_node.md; /tf duplicates odom).
@@ -46,26 +45,27 @@ public:
 
   /// Sim time [s] written as the bag time of the messages that follow (t = 0, which a bag cannot hold,
   /// is written as ros::TIME_MIN, 1 ns).
-  void setTime(double t)
-  {
+  void setTime(double t) {
     time_.fromSec(t);
-    if (time_ < ros::TIME_MIN) time_ = ros::TIME_MIN;
+    if (time_ < ros::TIME_MIN)
+      time_ = ros::TIME_MIN;
   }
 
   /// Whether a message on `topic` is recorded now (recording and the topic selected).
-  bool records(const std::string& topic)
-  {
-    if (!active_) return false;
+  bool records(const std::string& topic) {
+    if (!active_)
+      return false;
     auto it = selected_.find(topic);
-    if (it == selected_.end()) it = selected_.emplace(topic, select(topic)).first;
+    if (it == selected_.end())
+      it = selected_.emplace(topic, select(topic)).first;
     return it->second;
   }
 
   /// Writes `m` on `topic` when it is recorded.
   template <class M>
-  void write(const std::string& topic, const M& m)
-  {
-    if (!records(topic)) return;
+  void write(const std::string& topic, const M& m) {
+    if (!records(topic))
+      return;
     try {
       bag_.write(topic, time_, m);
     } catch (const std::exception& e) {
@@ -92,15 +92,15 @@ private:
 
 /// Publishes `m` on `stream` and hands it to `recorder` (may be null): the one way out of every simulator stream.
 template <class M>
-void publishRecorded(const Stream& stream, BagRecorder* recorder, const M& m)
-{
-  if (recorder && recorder->active()) recorder->write(stream.topic(), m);
-  if (stream.subscribers() > 0) stream.publish(m);
+void publishRecorded(const Stream& stream, BagRecorder* recorder, const M& m) {
+  if (recorder && recorder->active())
+    recorder->write(stream.topic(), m);
+  if (stream.subscribers() > 0)
+    stream.publish(m);
 }
 
 /// Whether a message for `stream` is needed: someone subscribes or the recorder records its topic.
-inline bool wanted(const Stream& stream, BagRecorder* recorder)
-{
+inline bool wanted(const Stream& stream, BagRecorder* recorder) {
   return stream.subscribers() > 0 || (recorder && recorder->active() && recorder->records(stream.topic()));
 }
 

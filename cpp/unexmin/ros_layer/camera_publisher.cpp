@@ -7,8 +7,7 @@ namespace unexmin {
 namespace ros_layer {
 
 CameraPublisher::CameraPublisher(sensors::vision::CameraSensor& sensor, const PublisherContext& ctx)
-    : sensor_(sensor), info_(cameraInfo(sensor))
-{
+    : sensor_(sensor), info_(cameraInfo(sensor)) {
   info_.header.frame_id = sensor.frame();
   // Frames are large: a short queue (a slow subscriber drops frames rather than filling the memory).
   const int queue = std::max(2, static_cast<int>(2.0 * sensor.rate()));
@@ -22,10 +21,11 @@ CameraPublisher::CameraPublisher(sensors::vision::CameraSensor& sensor, const Pu
   }
 }
 
-CameraPublisher::~CameraPublisher() { sensor_.setDemand(nullptr); }
+CameraPublisher::~CameraPublisher() {
+  sensor_.setDemand(nullptr);
+}
 
-sensor_msgs::CameraInfo CameraPublisher::cameraInfo(const sensors::vision::CameraSensor& sensor)
-{
+sensor_msgs::CameraInfo CameraPublisher::cameraInfo(const sensors::vision::CameraSensor& sensor) {
   const sensors::vision::CameraModel& m = sensor.model();
   sensor_msgs::CameraInfo info;
   info.width = static_cast<std::uint32_t>(m.width());
@@ -40,15 +40,15 @@ sensor_msgs::CameraInfo CameraPublisher::cameraInfo(const sensors::vision::Camer
   return info;
 }
 
-void CameraPublisher::publish()
-{
+void CameraPublisher::publish() {
   const sensors::vision::CameraFrame& f = sensor_.last();
   const ros::Time stamp(f.time);
   if (wanted(info_pub_)) {
     info_.header.stamp = stamp;
     emit(info_pub_, info_);
   }
-  if (!f.rendered || !image_pub_ || !wanted(image_pub_)) return;
+  if (!f.rendered || !image_pub_ || !wanted(image_pub_))
+    return;
   sensor_msgs::Image m;
   m.header.stamp = stamp;
   m.header.frame_id = sensor_.frame();

@@ -16,8 +16,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class CameraPublisher : public SensorPublisher
-{
+class CameraPublisher : public SensorPublisher {
 public:
   /// Tells the camera to render only while its image topic has a subscriber.
   CameraPublisher(sensors::vision::CameraSensor& sensor, const PublisherContext& ctx);

@@ -16,9 +16,7 @@ constexpr double kUnmeasuredVariance = 1e6;
 
 }  // namespace
 
-DvlPublisher::DvlPublisher(const sensors::DvlSensor& sensor, const PublisherContext& ctx)
-    : sensor_(sensor)
-{
+DvlPublisher::DvlPublisher(const sensors::DvlSensor& sensor, const PublisherContext& ctx) : sensor_(sensor) {
   const std::string& name = sensor.name();
   const int queue = queueSize(sensor.rate());
   dvl_ = ctx.nh.advertise<unexmin::Dvl>(resolve(ctx.ns, topicParam(sensor, "topic", name)), queue);
@@ -33,12 +31,12 @@ DvlPublisher::DvlPublisher(const sensors::DvlSensor& sensor, const PublisherCont
   std::istringstream frames(topicParam(sensor, "beam_frames", ""));
   for (std::size_t i = 0; i < 4; ++i) {
     sonar_[i] = ctx.nh.advertise<sensor_msgs::Range>(resolve(ctx.ns, sonar + std::to_string(i)), queue);
-    if (!(frames >> beam_frames_[i])) beam_frames_[i] = sensor.frame();
+    if (!(frames >> beam_frames_[i]))
+      beam_frames_[i] = sensor.frame();
   }
 }
 
-void DvlPublisher::publish()
-{
+void DvlPublisher::publish() {
   const sensors::DvlSample& s = sensor_.last();
   std_msgs::Header header;
   header.stamp.fromSec(s.time);
@@ -52,7 +50,8 @@ void DvlPublisher::publish()
     m.velocity.y = s.velocity.y();
     m.velocity.z = s.velocity.z();
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m.velocity_covariance[3 * r + c] = s.covariance(r, c);
+      for (int c = 0; c < 3; ++c)
+        m.velocity_covariance[3 * r + c] = s.covariance(r, c);
     m.velocity_z1 = s.velocity_z1;
     m.velocity_z2 = s.velocity_z2;
     m.altitude = s.altitude;
@@ -67,11 +66,14 @@ void DvlPublisher::publish()
       m.beam_velocity[i] = s.beams[i].velocity;
       m.beam_velocity_std[i] = s.beams[i].velocity_std;
     }
-    if (wanted(dvl_)) emit(dvl_, m);
-    if (track) emit(track_, waterTrack(m));
+    if (wanted(dvl_))
+      emit(dvl_, m);
+    if (track)
+      emit(track_, waterTrack(m));
   }
   for (std::size_t i = 0; i < 4; ++i) {
-    if (!wanted(sonar_[i])) continue;
+    if (!wanted(sonar_[i]))
+      continue;
     sensor_msgs::Range m;
     m.header.stamp = header.stamp;
     m.header.frame_id = beam_frames_[i];
@@ -89,8 +91,10 @@ void DvlPublisher::publish()
     m.twist.twist.linear.y = s.velocity.y();
     m.twist.twist.linear.z = s.velocity.z();
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m.twist.covariance[6 * r + c] = s.covariance(r, c);
-    for (int i = 3; i < 6; ++i) m.twist.covariance[7 * i] = kUnmeasuredVariance;
+      for (int c = 0; c < 3; ++c)
+        m.twist.covariance[6 * r + c] = s.covariance(r, c);
+    for (int i = 3; i < 6; ++i)
+      m.twist.covariance[7 * i] = kUnmeasuredVariance;
     emit(twist_, m);
   }
 }

@@ -18,8 +18,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class DvlPublisher : public SensorPublisher
-{
+class DvlPublisher : public SensorPublisher {
 public:
   DvlPublisher(const sensors::DvlSensor& sensor, const PublisherContext& ctx);
   void publish() override;

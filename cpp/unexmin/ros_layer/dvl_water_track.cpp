@@ -13,18 +13,18 @@ constexpr double kPascalPerDbar = 1e4;
 /// Beams behind x, y, z1, z2.
 constexpr std::array<std::array<int, 2>, 4> kPairs{{{0, 2}, {1, 3}, {0, 2}, {1, 3}}};
 
-double mean(const std::vector<double>& v)
-{
-  if (v.empty()) return 0.0;
+double mean(const std::vector<double>& v) {
+  if (v.empty())
+    return 0.0;
   double s = 0.0;
-  for (double x : v) s += x;  // in order, as Python's sum
+  for (double x : v)
+    s += x;  // in order, as Python's sum
   return s / static_cast<double>(v.size());
 }
 
 }  // namespace
 
-dvl_nortek::DvlBottomWaterTrack waterTrack(const unexmin::Dvl& dvl)
-{
+dvl_nortek::DvlBottomWaterTrack waterTrack(const unexmin::Dvl& dvl) {
   using Track = dvl_nortek::DvlBottomWaterTrack;
   Track out;
   out.header = dvl.header;
@@ -39,7 +39,8 @@ dvl_nortek::DvlBottomWaterTrack waterTrack(const unexmin::Dvl& dvl)
   for (int i = 0; i < 4; ++i) {
     valid[i] = dvl.beam_valid[i] && std::isfinite(dvl.range[i]) && std::isfinite(dvl.beam_velocity[i]);
     dt1[i] = valid[i] ? 2.0 * dvl.range[i] / dvl.sound_speed : 0.0;
-    if (valid[i]) last_echo = any ? std::max(last_echo, dt1[i]) : dt1[i];
+    if (valid[i])
+      last_echo = any ? std::max(last_echo, dt1[i]) : dt1[i];
     any = any || valid[i];
   }
   for (int i = 0; i < 4; ++i) {
@@ -67,11 +68,13 @@ dvl_nortek::DvlBottomWaterTrack waterTrack(const unexmin::Dvl& dvl)
     if (dvl.bottom_lock && std::isfinite(values[k])) {
       std::vector<int> used;
       for (int b : kPairs[k])
-        if (valid[b]) used.push_back(b);
+        if (valid[b])
+          used.push_back(b);
       if (used.size() != 2) {
         used.clear();
         for (int b = 0; b < 4; ++b)
-          if (valid[b]) used.push_back(b);
+          if (valid[b])
+            used.push_back(b);
       }
       std::vector<double> d1, d2, t;
       for (int b : used) {

@@ -13,16 +13,14 @@ constexpr double kTeslaPerMilliGauss = 1e-7;
 constexpr double kBarPerPascal = 1e-5;
 
 template <class V>
-void set(V& out, const Eigen::Vector3d& v, double scale = 1.0)
-{
+void set(V& out, const Eigen::Vector3d& v, double scale = 1.0) {
   out.x = scale * v.x();
   out.y = scale * v.y();
   out.z = scale * v.z();
 }
 
 /// The fields of a raw IMU message (unexmin/ImuRaw, kvh_1775/ImuRawKvh: the same quantities under other names).
-struct RawFields
-{
+struct RawFields {
   geometry_msgs::Vector3& specific_force;
   geometry_msgs::Vector3& angular_velocity;
   geometry_msgs::Vector3& magnetic_field;
@@ -32,8 +30,7 @@ struct RawFields
 };
 
 /// Fills `out` from `s`: the magnetic field [mG] times `field_scale`, the pressure [Pa] times `pressure_scale`.
-void setRaw(const RawFields& out, const sensors::ImuSample& s, double field_scale, double pressure_scale)
-{
+void setRaw(const RawFields& out, const sensors::ImuSample& s, double field_scale, double pressure_scale) {
   set(out.specific_force, s.specific_force);
   set(out.angular_velocity, s.angular_velocity);
   set(out.magnetic_field, s.magnetic_field, field_scale);
@@ -44,8 +41,7 @@ void setRaw(const RawFields& out, const sensors::ImuSample& s, double field_scal
 
 }  // namespace
 
-ImuPublisher::ImuPublisher(const sensors::ImuSensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
-{
+ImuPublisher::ImuPublisher(const sensors::ImuSensor& sensor, const PublisherContext& ctx) : sensor_(sensor) {
   ros::NodeHandle& nh = ctx.nh;
   const std::string& ns = ctx.ns;
   bool kvh_direct = true, raw = false;
@@ -55,13 +51,14 @@ ImuPublisher::ImuPublisher(const sensors::ImuSensor& sensor, const PublisherCont
   const int kQueue = queueSize(sensor.rate());
   imu_ = nh.advertise<sensor_msgs::Imu>(resolve(ns, topicParam(sensor, "topic", name)), kQueue);
   mag_ = nh.advertise<sensor_msgs::MagneticField>(resolve(ns, topicParam(sensor, "mag_topic", name + "/mag")), kQueue);
-  if (raw) raw_ = nh.advertise<unexmin::ImuRaw>(resolve(ns, topicParam(sensor, "raw_topic", name + "/raw")), kQueue);
+  if (raw)
+    raw_ = nh.advertise<unexmin::ImuRaw>(resolve(ns, topicParam(sensor, "raw_topic", name + "/raw")), kQueue);
   const std::string kvh = topicParam(sensor, "kvh_topic", "");
-  if (kvh_direct && !kvh.empty()) kvh_ = nh.advertise<kvh_1775::ImuRawKvh>(resolve(ns, kvh), kQueue);
+  if (kvh_direct && !kvh.empty())
+    kvh_ = nh.advertise<kvh_1775::ImuRawKvh>(resolve(ns, kvh), kQueue);
 }
 
-void ImuPublisher::publish()
-{
+void ImuPublisher::publish() {
   const sensors::ImuSample& s = sensor_.last();
   std_msgs::Header header;
   header.stamp.fromSec(s.time);
@@ -83,7 +80,8 @@ void ImuPublisher::publish()
     sensor_msgs::MagneticField m;
     m.header = header;
     set(m.magnetic_field, s.magnetic_field, kTeslaPerMilliGauss);
-    for (int i = 0; i < 3; ++i) m.magnetic_field_covariance[4 * i] = s.mag_variance * kTeslaPerMilliGauss * kTeslaPerMilliGauss;
+    for (int i = 0; i < 3; ++i)
+      m.magnetic_field_covariance[4 * i] = s.mag_variance * kTeslaPerMilliGauss * kTeslaPerMilliGauss;
     emit(mag_, m);
   }
   if (raw_ && wanted(raw_)) {

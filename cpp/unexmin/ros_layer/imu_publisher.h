@@ -14,8 +14,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class ImuPublisher : public SensorPublisher
-{
+class ImuPublisher : public SensorPublisher {
 public:
   /// Reads the robot's parameters kvh_from_simulator and kvh_raw (docs/sensors.md).
   ImuPublisher(const sensors::ImuSensor& sensor, const PublisherContext& ctx);

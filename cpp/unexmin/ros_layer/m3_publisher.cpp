@@ -6,21 +6,20 @@
 namespace unexmin {
 namespace ros_layer {
 
-M3Publisher::M3Publisher(const sensors::sonar::M3Sensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
-{
+M3Publisher::M3Publisher(const sensors::sonar::M3Sensor& sensor, const PublisherContext& ctx) : sensor_(sensor) {
   pub_ = ctx.nh.advertise<sensor_msgs::LaserScan>(resolve(ctx.ns, topicParam(sensor, "topic", "m3/scan")),
-                                              queueSize(sensor.rate()));
+                                                  queueSize(sensor.rate()));
   bool translate = true;
   ctx.nh.param(ctx.ns + "m3_from_simulator", translate, true);
   if (translate)
-    points_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(resolve(ctx.ns, topicParam(sensor, "points_topic", "m3/points")),
-                                                         queueSize(sensor.rate()));
+    points_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(
+        resolve(ctx.ns, topicParam(sensor, "points_topic", "m3/points")), queueSize(sensor.rate()));
 }
 
-void M3Publisher::publish()
-{
+void M3Publisher::publish() {
   const bool points = points_ && wanted(points_);
-  if (!wanted(pub_) && !points) return;
+  if (!wanted(pub_) && !points)
+    return;
   const sensors::sonar::M3Scan& s = sensor_.last();
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
@@ -34,8 +33,10 @@ void M3Publisher::publish()
   m.range_max = static_cast<float>(sensor_.rangeMax());
   m.ranges = s.ranges;
   m.intensities = s.intensities;
-  if (wanted(pub_)) emit(pub_, m);
-  if (points) emit(points_, scanToCloud(m));
+  if (wanted(pub_))
+    emit(pub_, m);
+  if (points)
+    emit(points_, scanToCloud(m));
 }
 
 }  // namespace ros_layer

@@ -14,8 +14,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class M3Publisher : public SensorPublisher
-{
+class M3Publisher : public SensorPublisher {
 public:
   M3Publisher(const sensors::sonar::M3Sensor& sensor, const PublisherContext& ctx);
   void publish() override;

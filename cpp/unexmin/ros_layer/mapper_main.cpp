@@ -1,8 +1,7 @@
 // The mapper node: see docs/mapping.md.
 #include <unexmin/ros_layer/mapper_ros.h>
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   ros::init(argc, argv, "mapper");
   ros::NodeHandle nh;  // outlives the mapper, so its start-up error is printed
   try {

@@ -21,12 +21,10 @@ namespace ros_layer {
 namespace {
 
 /// A function run by a ros::CallbackQueue.
-class FunctionCallback : public ros::CallbackInterface
-{
+class FunctionCallback : public ros::CallbackInterface {
 public:
   explicit FunctionCallback(std::function<void()> f) : f_(std::move(f)) {}
-  CallResult call() override
-  {
+  CallResult call() override {
     f_();
     return Success;
   }
@@ -35,15 +33,13 @@ private:
   std::function<void()> f_;
 };
 
-void require(bool ok, const std::string& name, double value, const std::string& expected)
-{
+void require(bool ok, const std::string& name, double value, const std::string& expected) {
   if (!ok || !std::isfinite(value)) {
     throw ParameterError("mapper: parameter '~" + name + "' = " + formatNumber(value) + ": expected " + expected);
   }
 }
 
-mapping::TfSample sampleOf(const geometry_msgs::TransformStamped& t)
-{
+mapping::TfSample sampleOf(const geometry_msgs::TransformStamped& t) {
   mapping::TfSample s;
   s.parent = t.header.frame_id;
   s.child = t.child_frame_id;
@@ -57,8 +53,7 @@ mapping::TfSample sampleOf(const geometry_msgs::TransformStamped& t)
 
 }  // namespace
 
-MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh)
-{
+MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   loadParams();
   queue_ = std::make_unique<mapping::CloudQueue>(world_frame_, tf_timeout_, tf_max_gap_);
   // Our own /tf subscribers with the clouds' queue depth: in lockstep the simulator publishes tf far faster
@@ -70,11 +65,12 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   tf_sub_ = tf_nh.subscribe<tf2_msgs::TFMessage, const TfEvent&>(
       "/tf", queue_size_, [this](const TfEvent& e) { onTf(e, false); }, ros::VoidConstPtr(),
       ros::TransportHints().tcpNoDelay());
-  tf_static_sub_ = tf_nh.subscribe<tf2_msgs::TFMessage, const TfEvent&>(
-      "/tf_static", queue_size_, [this](const TfEvent& e) { onTf(e, true); });
+  tf_static_sub_ = tf_nh.subscribe<tf2_msgs::TFMessage, const TfEvent&>("/tf_static", queue_size_,
+                                                                        [this](const TfEvent& e) { onTf(e, true); });
   all_ = makeOutput(nh_);
   for (const std::string& robot : robots_) {
-    if (per_robot_) robot_maps_.emplace(robot, makeOutput(ros::NodeHandle(nh_, robot)));
+    if (per_robot_)
+      robot_maps_.emplace(robot, makeOutput(ros::NodeHandle(nh_, robot)));
     subscribe(robot);
   }
   stats_pub_ = pnh_.advertise<unexmin::MapperStats>("stats", 10);
@@ -88,8 +84,7 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
                              << " SLS unit(s)" << (map_file_.empty() ? "" : ", saves to " + map_file_));
 }
 
-void MapperRos::loadParams()
-{
+void MapperRos::loadParams() {
   pnh_.param("resolution", params_.resolution, params_.resolution);
   pnh_.param("max_range", params_.max_range, params_.max_range);
   pnh_.param("prob_hit", params_.prob_hit, params_.prob_hit);
@@ -114,7 +109,8 @@ void MapperRos::loadParams()
   require(tf_max_gap_ > 0.0, "tf_max_gap", tf_max_gap_, "> 0 s");
   require(queue_size_ >= 1, "queue_size", queue_size_, ">= 1");
   require(robots_timeout >= 0.0, "robots_timeout", robots_timeout, ">= 0 s");
-  if (world_frame_.empty()) throw ParameterError("mapper: parameter '~frame_id' is empty: expected a frame");
+  if (world_frame_.empty())
+    throw ParameterError("mapper: parameter '~frame_id' is empty: expected a frame");
 
   // The robots: ~robots, else the simulator's /sim/robots (set at its start-up: wait for it).
   if (!pnh_.getParam("robots", robots_)) {
@@ -124,13 +120,12 @@ void MapperRos::loadParams()
     }
   }
   if (robots_.empty()) {
-    throw ConfigError("mapper: no robots: neither '~robots' nor '/sim/robots' (waited " +
-                      formatNumber(robots_timeout) + " s) names any");
+    throw ConfigError("mapper: no robots: neither '~robots' nor '/sim/robots' (waited " + formatNumber(robots_timeout) +
+                      " s) names any");
   }
 }
 
-MapperRos::Output MapperRos::makeOutput(ros::NodeHandle nh)
-{
+MapperRos::Output MapperRos::makeOutput(ros::NodeHandle nh) {
   Output out;
   out.map = std::make_unique<mapping::OccupancyMap>(params_);
   out.binary = nh.advertise<octomap_msgs::Octomap>("octomap_binary", 1, true);
@@ -139,8 +134,7 @@ MapperRos::Output MapperRos::makeOutput(ros::NodeHandle nh)
   return out;
 }
 
-void MapperRos::subscribe(const std::string& robot)
-{
+void MapperRos::subscribe(const std::string& robot) {
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   if (use_m3_) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::LaserScan>(
@@ -150,36 +144,34 @@ void MapperRos::subscribe(const std::string& robot)
   for (int i = 0; i < sls_units_; ++i) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::PointCloud2>(
         "/" + robot + "/sls_" + std::to_string(i) + "/points", queue_size_,
-        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m); }, ros::VoidConstPtr(),
-        hints));
+        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m); }, ros::VoidConstPtr(), hints));
   }
 }
 
-void MapperRos::onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan)
-{
+void MapperRos::onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan) {
   enqueue(robot, scan->header,
           mapping::scanPoints(
               mapping::ScanGeometry{scan->angle_min, scan->angle_increment, scan->range_min, scan->range_max},
               scan->ranges));
 }
 
-void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& msg)
-{
+void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& msg) {
   std::vector<octomap::point3d> points;
   points.reserve(static_cast<std::size_t>(msg->width) * msg->height);
   if (msg->width * msg->height > 0) {
     sensor_msgs::PointCloud2ConstIterator<float> x(*msg, "x"), y(*msg, "y"), z(*msg, "z");
-    for (; x != x.end(); ++x, ++y, ++z) points.emplace_back(*x, *y, *z);
+    for (; x != x.end(); ++x, ++y, ++z)
+      points.emplace_back(*x, *y, *z);
   }
   enqueue(robot, msg->header, std::move(points));
 }
 
-void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static)
-{
+void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {
   const tf2_msgs::TFMessage& msg = *event.getConstMessage();
   std::vector<mapping::TfSample> samples;
   samples.reserve(msg.transforms.size());
-  for (const geometry_msgs::TransformStamped& t : msg.transforms) samples.push_back(sampleOf(t));
+  for (const geometry_msgs::TransformStamped& t : msg.transforms)
+    samples.push_back(sampleOf(t));
   mapping::TfUpdate update;
   {
     std::lock_guard<std::mutex> lock(tf_mutex_);
@@ -189,8 +181,10 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
     ROS_WARN_STREAM("mapper: tf of " << update.jump << ": clearing the tf buffer and the clouds waiting for it");
   }
   // Once per frame and publisher (a throttle runs on ROS time, which a reset sets back).
-  for (const std::string& what : update.newly_ignored) ROS_WARN_STREAM("mapper: ignoring tf of " << what);
-  for (const std::string& why : update.refused) ROS_WARN_STREAM_THROTTLE(5.0, "mapper: ignoring a tf sample: " << why);
+  for (const std::string& what : update.newly_ignored)
+    ROS_WARN_STREAM("mapper: ignoring tf of " << what);
+  for (const std::string& why : update.refused)
+    ROS_WARN_STREAM_THROTTLE(5.0, "mapper: ignoring a tf sample: " << why);
   // The clouds waiting for tf are drained on the main thread (one request at a time).
   if (pending_count_ > 0 && !drain_posted_.exchange(true)) {
     ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<FunctionCallback>([this] {
@@ -201,16 +195,14 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
 }
 
 void MapperRos::enqueue(const std::string& robot, const std_msgs::Header& header,
-                        std::vector<octomap::point3d>&& points)
-{
+                        std::vector<octomap::point3d>&& points) {
   queue_->push(mapping::PendingCloud{robot, header.frame_id, static_cast<mapping::Stamp>(header.stamp.toNSec()),
                                      std::move(points), ros::WallTime::now().toSec()});
   pending_count_ = queue_->size();
   drain();
 }
 
-void MapperRos::drain()
-{
+void MapperRos::drain() {
   const double now = ros::WallTime::now().toSec();
   for (;;) {
     mapping::CloudStep step;
@@ -218,12 +210,13 @@ void MapperRos::drain()
       std::lock_guard<std::mutex> lock(tf_mutex_);
       step = queue_->next(tf_, now);
     }
-    if (step.kind == mapping::CloudStep::Kind::kWait) break;
+    if (step.kind == mapping::CloudStep::Kind::kWait)
+      break;
     const mapping::PendingCloud& cloud = step.cloud;
     const ros::Time stamp = ros::Time().fromNSec(static_cast<uint64_t>(cloud.stamp));
     if (step.kind == mapping::CloudStep::Kind::kDrop) {
       ROS_WARN_STREAM_THROTTLE(5.0, "mapper: dropping a cloud of " << cloud.robot << " in '" << cloud.frame << "' at "
-                                                                    << stamp << ": " << step.why);
+                                                                   << stamp << ": " << step.why);
       continue;
     }
     const std::vector<octomap::point3d> world = step.sensor_in_map.apply(cloud.points);
@@ -245,8 +238,7 @@ void MapperRos::drain()
   pending_count_ = queue_->size();
 }
 
-void MapperRos::publish(Output& out, const ros::Time& stamp)
-{
+void MapperRos::publish(Output& out, const ros::Time& stamp) {
   // Each output only when someone listens and the map changed since, or a listener joined.
   const uint32_t nb = out.binary.getNumSubscribers(), nm = out.markers.getNumSubscribers(),
                  nc = out.centers.getNumSubscribers();
@@ -268,7 +260,8 @@ void MapperRos::publish(Output& out, const ros::Time& stamp)
     out.binary.publish(msg);
     out.changed_binary = false;
   }
-  if (!want_markers && !want_centers) return;
+  if (!want_markers && !want_centers)
+    return;
   const std::vector<mapping::Voxel> voxels = out.map->occupiedVoxels();
   if (want_markers) {
     const std::vector<mapping::CubeList> cubes = mapping::occupiedCubes(*out.map, voxels);
@@ -320,11 +313,11 @@ void MapperRos::publish(Output& out, const ros::Time& stamp)
   }
 }
 
-void MapperRos::onTimer(const ros::WallTimerEvent&)
-{
+void MapperRos::onTimer(const ros::WallTimerEvent&) {
   drain();
   publish(all_, newest_stamp_);
-  for (auto& entry : robot_maps_) publish(entry.second, newest_stamp_);
+  for (auto& entry : robot_maps_)
+    publish(entry.second, newest_stamp_);
   unexmin::MapperStats stats;
   stats.stamp = newest_stamp_;
   stats.clouds_received = queue_->received();
@@ -338,8 +331,7 @@ void MapperRos::onTimer(const ros::WallTimerEvent&)
   stats_pub_.publish(stats);
 }
 
-bool MapperRos::onSaveMap(unexmin::SaveMap::Request& req, unexmin::SaveMap::Response& res)
-{
+bool MapperRos::onSaveMap(unexmin::SaveMap::Request& req, unexmin::SaveMap::Response& res) {
   drain();
   const std::string path = req.path.empty() ? map_file_ : req.path;
   Output* out = &all_;
@@ -369,18 +361,19 @@ bool MapperRos::onSaveMap(unexmin::SaveMap::Request& req, unexmin::SaveMap::Resp
   return true;
 }
 
-bool MapperRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
-{
+bool MapperRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   all_.map->reset();
-  for (auto& entry : robot_maps_) entry.second.map->reset();
+  for (auto& entry : robot_maps_)
+    entry.second.map->reset();
   all_.changed();
-  for (auto& entry : robot_maps_) entry.second.changed();
+  for (auto& entry : robot_maps_)
+    entry.second.changed();
   return true;
 }
 
-void MapperRos::saveOnShutdown()
-{
-  if (map_file_.empty()) return;
+void MapperRos::saveOnShutdown() {
+  if (map_file_.empty())
+    return;
   try {
     all_.map->save(map_file_);
     ROS_INFO_STREAM("mapper: saved " << all_.map->occupiedLeafCount() << " occupied leaves to " << map_file_);
@@ -393,8 +386,7 @@ void MapperRos::saveOnShutdown()
   }
 }
 
-void MapperRos::spin()
-{
+void MapperRos::spin() {
   ros::spin();  // returns on SIGINT/SIGTERM (roscpp's handler) or ros::shutdown()
   tf_spinner_->stop();
   saveOnShutdown();

@@ -28,8 +28,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class MapperRos
-{
+class MapperRos {
 public:
   /// Loads and checks the parameters (throws ConfigError naming the bad one), waits (up to ~robots_timeout
   /// wall seconds) for the robot list, subscribes and advertises.
@@ -39,8 +38,7 @@ public:
 
 private:
   /// One map with its output publishers.
-  struct Output
-  {
+  struct Output {
     std::unique_ptr<mapping::OccupancyMap> map;
     ros::Publisher binary, markers, centers;
     bool changed_binary = false, changed_markers = false, changed_centers = false;
@@ -71,9 +69,9 @@ private:
   bool use_m3_ = true;
   int sls_units_ = 4;
   bool per_robot_ = false;
-  double publish_rate_ = 1.0;   ///< [Hz, wall]
-  double tf_timeout_ = 10.0;    ///< [s, wall]
-  double tf_max_gap_ = 0.5;     ///< [s, sim]
+  double publish_rate_ = 1.0;  ///< [Hz, wall]
+  double tf_timeout_ = 10.0;   ///< [s, wall]
+  double tf_max_gap_ = 0.5;    ///< [s, sim]
   int queue_size_ = 5000;
   std::string map_file_;
 
@@ -85,8 +83,8 @@ private:
   ros::Subscriber tf_sub_, tf_static_sub_;  ///< deep queues: tf2_ros's listener drops beyond 100 messages
   std::atomic<bool> drain_posted_{false};
   std::atomic<std::size_t> pending_count_{0};
-  std::mutex tf_mutex_;         ///< guards tf_: written on the tf thread, read on the main thread
-  mapping::TfHistory tf_;       ///< 120 s of samples; a frame handed over after 1 s of silence
+  std::mutex tf_mutex_;                         ///< guards tf_: written on the tf thread, read on the main thread
+  mapping::TfHistory tf_;                       ///< 120 s of samples; a frame handed over after 1 s of silence
   std::unique_ptr<mapping::CloudQueue> queue_;  ///< main thread only
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher stats_pub_;

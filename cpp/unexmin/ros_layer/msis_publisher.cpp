@@ -8,8 +8,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-const std::array<std::uint32_t, 5>& MsisPublisher::colours()
-{
+const std::array<std::uint32_t, 5>& MsisPublisher::colours() {
   static const std::array<std::uint32_t, 5> rgb = {
       0x0000ffu,  // none: blue
       0xffffb4u,  // low: white-yellow
@@ -20,16 +19,15 @@ const std::array<std::uint32_t, 5>& MsisPublisher::colours()
   return rgb;
 }
 
-MsisPublisher::MsisPublisher(const sensors::sonar::MsisSensor& sensor, const PublisherContext& ctx)
-    : sensor_(sensor)
-{
+MsisPublisher::MsisPublisher(const sensors::sonar::MsisSensor& sensor, const PublisherContext& ctx) : sensor_(sensor) {
   const int queue = queueSize(sensor.rate());
-  scan_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(resolve(ctx.ns, topicParam(sensor, "topic", "tritech_micron/scan")), queue);
-  angle_ = ctx.nh.advertise<std_msgs::Float64>(resolve(ctx.ns, topicParam(sensor, "angle_topic", "msis/msis_r")), queue);
+  scan_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(
+      resolve(ctx.ns, topicParam(sensor, "topic", "tritech_micron/scan")), queue);
+  angle_ =
+      ctx.nh.advertise<std_msgs::Float64>(resolve(ctx.ns, topicParam(sensor, "angle_topic", "msis/msis_r")), queue);
 }
 
-sensor_msgs::PointCloud2 MsisPublisher::cloud() const
-{
+sensor_msgs::PointCloud2 MsisPublisher::cloud() const {
   const sensors::sonar::MsisLine& line = sensor_.last();
   sensor_msgs::PointCloud2 m;
   m.header.stamp.fromSec(line.time);
@@ -46,14 +44,14 @@ sensor_msgs::PointCloud2 MsisPublisher::cloud() const
   return m;
 }
 
-void MsisPublisher::publish()
-{
+void MsisPublisher::publish() {
   if (wanted(angle_)) {
     std_msgs::Float64 a;
     a.data = sensor_.last().angle;
     emit(angle_, a);
   }
-  if (wanted(scan_)) emit(scan_, cloud());
+  if (wanted(scan_))
+    emit(scan_, cloud());
 }
 
 }  // namespace ros_layer

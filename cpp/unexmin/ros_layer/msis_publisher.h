@@ -19,8 +19,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class MsisPublisher : public SensorPublisher
-{
+class MsisPublisher : public SensorPublisher {
 public:
   /// RGB of each sensors::sonar::EchoLevel (none, low, medium, high, shadow), packed 0x00RRGGBB.
   static const std::array<std::uint32_t, 5>& colours();

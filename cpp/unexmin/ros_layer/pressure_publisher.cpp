@@ -6,15 +6,14 @@ namespace unexmin {
 namespace ros_layer {
 
 PressurePublisher::PressurePublisher(const sensors::PressureSensor& sensor, const PublisherContext& ctx)
-    : sensor_(sensor)
-{
+    : sensor_(sensor) {
   pub_ = ctx.nh.advertise<sensor_msgs::FluidPressure>(resolve(ctx.ns, topicParam(sensor, "topic", sensor.name())),
-                                                  queueSize(sensor.rate()));
+                                                      queueSize(sensor.rate()));
 }
 
-void PressurePublisher::publish()
-{
-  if (!wanted(pub_)) return;
+void PressurePublisher::publish() {
+  if (!wanted(pub_))
+    return;
   const sensors::PressureSample& s = sensor_.last();
   sensor_msgs::FluidPressure m;
   m.header.stamp.fromSec(s.time);

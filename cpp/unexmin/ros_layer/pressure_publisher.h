@@ -8,8 +8,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class PressurePublisher : public SensorPublisher
-{
+class PressurePublisher : public SensorPublisher {
 public:
   PressurePublisher(const sensors::PressureSensor& sensor, const PublisherContext& ctx);
   void publish() override;

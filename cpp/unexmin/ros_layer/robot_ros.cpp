@@ -14,10 +14,9 @@ namespace {
 
 /// Command subscriber whose callback sees the publisher's name (to count applied commands).
 ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
-                                 const boost::function<void(const Float64Event&)>& callback)
-{
+                                 const boost::function<void(const Float64Event&)>& callback) {
   return nh.subscribe<std_msgs::Float64, const Float64Event&>(topic, 10, callback, ros::VoidConstPtr(),
-                                                               ros::TransportHints().tcpNoDelay());
+                                                              ros::TransportHints().tcpNoDelay());
 }
 
 }  // namespace
@@ -26,12 +25,12 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
                    const PublishRates& rates, double physics_rate, std::map<std::string, std::uint64_t>& received,
                    const raycast::RayCaster* rays, const SensorRegistry& registry,
                    const sensors::SensorSelection& selection, bool visual)
-    : robot_(robot), received_(received)
-{
+    : robot_(robot), received_(received) {
   const std::string ns = "/" + robot.name() + "/";
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
     const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
-    subs_.push_back(subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
+    subs_.push_back(
+        subscribeCommand(command_nh, base + "input", [this, i](const Float64Event& e) { onThrusterInput(i, e); }));
     thrust_pubs_.push_back(nh.advertise<std_msgs::Float64>(base + "thrust", queueSize(rates.thrust)));
   }
   for (std::size_t i = 0; i < robot.finCount(); ++i)
@@ -51,53 +50,51 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
   sensors_ = std::make_unique<SensorsRos>(world, robot, rays, registry, selection, nh, visual);
 }
 
-bool RobotRos::finite(const std::string& topic, double value) const
-{
-  if (std::isfinite(value)) return true;
+bool RobotRos::finite(const std::string& topic, double value) const {
+  if (std::isfinite(value))
+    return true;
   ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected non-finite command " << value);
   return false;
 }
 
-void RobotRos::record(const std::string& topic, const Float64Event& event) const
-{
-  if (recorder_ && recorder_->active()) recorder_->write("/" + robot_.name() + "/" + topic, *event.getConstMessage());
+void RobotRos::record(const std::string& topic, const Float64Event& event) const {
+  if (recorder_ && recorder_->active())
+    recorder_->write("/" + robot_.name() + "/" + topic, *event.getConstMessage());
 }
 
 void RobotRos::onActuatorInput(const std::string& topic, const Float64Event& event,
                                const std::function<bool(double)>& set, double min, double max, const char* what,
-                               const char* unit)
-{
+                               const char* unit) {
   ++received_[event.getPublisherName()];
   const auto& msg = event.getConstMessage();
   record(topic, event);
-  if (!finite(topic, msg->data)) return;
+  if (!finite(topic, msg->data))
+    return;
   if (!set(msg->data))
     ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/" << topic << ": rejected " << what << " " << msg->data
                                       << unit << ", expected [" << min << ", " << max << "]");
 }
 
-void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event)
-{
+void RobotRos::onThrusterInput(std::size_t i, const Float64Event& event) {
   auto& th = robot_.thruster(i);
-  onActuatorInput("thrusters/" + std::to_string(i) + "/input", event,
-                  [&](double command) { return th.setCommand(command, now_); }, th.params().min_command,
-                  th.params().max_command, "command", "");
+  onActuatorInput(
+      "thrusters/" + std::to_string(i) + "/input", event, [&](double command) { return th.setCommand(command, now_); },
+      th.params().min_command, th.params().max_command, "command", "");
 }
 
-void RobotRos::onFinInput(std::size_t i, const Float64Event& event)
-{
+void RobotRos::onFinInput(std::size_t i, const Float64Event& event) {
   auto& fin = robot_.fin(i);
-  onActuatorInput("fins/" + std::to_string(i) + "/input", event,
-                  [&](double angle) { return fin.setCommand(angle, now_); }, fin.params().min_angle,
-                  fin.params().max_angle, "angle", " rad");
+  onActuatorInput(
+      "fins/" + std::to_string(i) + "/input", event, [&](double angle) { return fin.setCommand(angle, now_); },
+      fin.params().min_angle, fin.params().max_angle, "angle", " rad");
 }
 
-void RobotRos::onPendulum(const Float64Event& event)
-{
+void RobotRos::onPendulum(const Float64Event& event) {
   ++received_[event.getPublisherName()];
   record("pendulum", event);
   const auto& msg = event.getConstMessage();
-  if (!finite("pendulum", msg->data)) return;
+  if (!finite("pendulum", msg->data))
+    return;
   if (!robot_.hasPendulum()) {
     ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/pendulum: this robot has no pendulum");
     return;
@@ -108,20 +105,19 @@ void RobotRos::onPendulum(const Float64Event& event)
                                       << " rad, expected [" << p.min_angle << ", " << p.max_angle << "]");
 }
 
-void RobotRos::onVbs(const Float64Event& event)
-{
+void RobotRos::onVbs(const Float64Event& event) {
   ++received_[event.getPublisherName()];
   record("vbs", event);
   const auto& msg = event.getConstMessage();
-  if (!finite("vbs", msg->data)) return;
+  if (!finite("vbs", msg->data))
+    return;
   const auto& p = robot_.vbs().params();
   if (!robot_.vbs().setMass(msg->data))
     ROS_WARN_STREAM_THROTTLE(1.0, "/" << robot_.name() << "/vbs: rejected ballast mass " << msg->data
                                       << " kg, expected [" << p.min_mass << ", " << p.max_mass << "]");
 }
 
-nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const
-{
+nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const {
   const sim::RobotState s = robot_.state();
   const Eigen::Quaterniond q(s.pose.linear());
   nav_msgs::Odometry o;
@@ -147,13 +143,13 @@ nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const
   return o;
 }
 
-void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
-{
+void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all) {
   now_ = stamp.toSec();
   sensors_->publish(step);  // the samples of this step (nothing extra when `all`)
   // A stream is published when its schedule says so or when `all` asks, once per step at most.
   auto due = [&](std::uint64_t every, std::uint64_t& last) {
-    if (!every || last == step || !(all || step % every == 0)) return false;
+    if (!every || last == step || !(all || step % every == 0))
+      return false;
     last = step;
     return true;
   };
@@ -174,12 +170,14 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
         m.transforms.push_back(t);
         tf_pub_.publish(m);
       }
-      if (odom_wanted) publishRecorded(odom_pub_, recorder_, o);
+      if (odom_wanted)
+        publishRecorded(odom_pub_, recorder_, o);
     }
   }
   if (due(thrust_every_, last_thrust_)) {
     for (std::size_t i = 0; i < thrust_pubs_.size(); ++i) {
-      if (!wanted(thrust_pubs_[i], recorder_)) continue;
+      if (!wanted(thrust_pubs_[i], recorder_))
+        continue;
       std_msgs::Float64 m;
       m.data = robot_.thruster(i).thrust();
       publishRecorded(thrust_pubs_[i], recorder_, m);
@@ -195,9 +193,11 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all)
     for (const auto& name : joint_names_) {
       double position = 0.0, velocity = 0.0;
       for (std::size_t i = 0; i < d.thruster_joints.size(); ++i)
-        if (d.thruster_joints[i] == name) position = robot_.propellerAngle(i);
+        if (d.thruster_joints[i] == name)
+          position = robot_.propellerAngle(i);
       for (std::size_t i = 0; i < d.fin_joints.size(); ++i)
-        if (d.fin_joints[i] == name) position = robot_.fin(i).angle();
+        if (d.fin_joints[i] == name)
+          position = robot_.fin(i).angle();
       if (name == d.pendulum_joint && robot_.hasPendulum()) {
         position = robot_.pendulum().angle();
         velocity = robot_.pendulum().velocity();

@@ -20,23 +20,22 @@ namespace ros_layer {
 /// A command message with its publisher's name (to count applied commands).
 using Float64Event = ros::MessageEvent<std_msgs::Float64 const>;
 
-struct PublishRates
-{
-  double odom = 50.0;         ///< nav_msgs/Odometry and tf [Hz of sim time]
-  double joint_states = 50.0; ///< sensor_msgs/JointState [Hz of sim time]
-  double thrust = 50.0;       ///< achieved thrust per thruster [Hz of sim time]
+struct PublishRates {
+  double odom = 50.0;          ///< nav_msgs/Odometry and tf [Hz of sim time]
+  double joint_states = 50.0;  ///< sensor_msgs/JointState [Hz of sim time]
+  double thrust = 50.0;        ///< achieved thrust per thruster [Hz of sim time]
 };
 
-class RobotRos
-{
+class RobotRos {
 public:
   /// Subscribes /<robot>/thrusters/<i>/input, fins/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
   /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`, in
   /// visual mode when `visual` (SensorSetup::visual).
-  RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh, const PublishRates& rates,
-           double physics_rate, std::map<std::string, std::uint64_t>& received, const raycast::RayCaster* rays,
-           const SensorRegistry& registry, const sensors::SensorSelection& selection, bool visual = false);
+  RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh,
+           const PublishRates& rates, double physics_rate, std::map<std::string, std::uint64_t>& received,
+           const raycast::RayCaster* rays, const SensorRegistry& registry, const sensors::SensorSelection& selection,
+           bool visual = false);
 
   /// Samples the sensors due at this physics step (after every step, before publish()).
   void sample(std::uint64_t step) { sensors_->sample(step); }
@@ -49,23 +48,20 @@ public:
 
   /// Whether streams for viewers (joint_states) may go out now: in lockstep they are limited
   /// to a wall-clock rate, as nothing that consumes them needs more (see docs/simulator_node.md).
-  void setWallGate(const ros::WallTime& now, double min_period)
-  {
+  void setWallGate(const ros::WallTime& now, double min_period) {
     wall_now_ = now;
     min_wall_period_ = min_period;
   }
 
   /// Hands every message of this robot (its streams, its sensors, the commands it receives) to `recorder`
   /// too (null: none); it must outlive this.
-  void attach(BagRecorder* recorder)
-  {
+  void attach(BagRecorder* recorder) {
     recorder_ = recorder;
     sensors_->attach(recorder);
   }
 
   /// Forget what was published (the world was reset to step 0).
-  void restart()
-  {
+  void restart() {
     last_odom_ = last_joint_ = last_thrust_ = UINT64_MAX;
     sensors_->restart();
   }
@@ -97,7 +93,7 @@ private:
   /// that tf2 interpolated over.
   Stream tf_pub_;
   ros::WallTime wall_now_;
-  double min_wall_period_ = 0.0;   ///< [s] of wall time between viewer-stream messages (0: none)
+  double min_wall_period_ = 0.0;  ///< [s] of wall time between viewer-stream messages (0: none)
   ros::WallTime last_joint_wall_;
   std::uint64_t odom_every_ = 1;
   std::uint64_t joint_every_ = 1;

@@ -15,18 +15,17 @@
 namespace unexmin {
 namespace ros_layer {
 
-SensorRegistry SensorRegistry::builtin()
-{
+SensorRegistry SensorRegistry::builtin() {
   SensorRegistry r;
-  r.add<sensors::ImuSensor, ImuPublisher>("imu");                  // docs/sensors.md
-  r.add<sensors::DvlSensor, DvlPublisher>("dvl");                  // docs/sensors.md
-  r.add<sensors::PressureSensor, PressurePublisher>("pressure");   // docs/sensors.md
-  r.add<sensors::sonar::MsisSensor, MsisPublisher>("msis");                 // docs/sonars.md
-  r.add<sensors::sonar::M3Sensor, M3Publisher>("m3");                       // docs/sonars.md
+  r.add<sensors::ImuSensor, ImuPublisher>("imu");                                     // docs/sensors.md
+  r.add<sensors::DvlSensor, DvlPublisher>("dvl");                                     // docs/sensors.md
+  r.add<sensors::PressureSensor, PressurePublisher>("pressure");                      // docs/sensors.md
+  r.add<sensors::sonar::MsisSensor, MsisPublisher>("msis");                           // docs/sonars.md
+  r.add<sensors::sonar::M3Sensor, M3Publisher>("m3");                                 // docs/sonars.md
   r.add<sensors::sonar::ImagingSonarSensor, ImagingSonarPublisher>("imaging_sonar");  // docs/sonars.md
-  r.add<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");             // docs/sonars.md
-  r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");          // docs/sls.md
-  r.add<sensors::vision::CameraSensor, CameraPublisher>("camera");  // docs/vision.md
+  r.add<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
+  r.add<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
+  r.add<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
   return r;
 }
 

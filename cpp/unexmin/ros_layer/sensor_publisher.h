@@ -18,14 +18,12 @@ namespace unexmin {
 namespace ros_layer {
 
 /// What a publisher is built with: the node handle (topics, the robot's parameters) and the robot's namespace.
-struct PublisherContext
-{
+struct PublisherContext {
   ros::NodeHandle& nh;
   std::string ns;  ///< "/<robot>/"
 };
 
-class SensorPublisher
-{
+class SensorPublisher {
 public:
   virtual ~SensorPublisher() = default;
   /// Publishes the sensor's latest sample, stamped with its sample time, on every topic that has
@@ -37,15 +35,13 @@ public:
   void attach(BagRecorder* recorder) { recorder_ = recorder; }
 
   /// `topic` relative to the robot's namespace `ns` ("/UX_1/"), unless it is absolute.
-  static std::string resolve(const std::string& ns, const std::string& topic)
-  {
+  static std::string resolve(const std::string& ns, const std::string& topic) {
     return !topic.empty() && topic[0] == '/' ? topic : ns + topic;
   }
 
   /// Sets `cloud`'s fields to FLOAT32 `names` at offsets 0, 4, 8, ... (point_step = 4 per name), one row of
   /// `points` points, little-endian, dense, and sizes its data.
-  static void floatCloud(sensor_msgs::PointCloud2& cloud, const std::vector<std::string>& names, std::size_t points)
-  {
+  static void floatCloud(sensor_msgs::PointCloud2& cloud, const std::vector<std::string>& names, std::size_t points) {
     cloud.fields.clear();
     for (std::size_t f = 0; f < names.size(); ++f) {
       sensor_msgs::PointField field;
@@ -65,8 +61,7 @@ public:
   }
 
   /// The sensor's text parameter `key` (a topic name), `fallback` when absent.
-  static std::string topicParam(const sensors::Sensor& s, const std::string& key, const std::string& fallback)
-  {
+  static std::string topicParam(const sensors::Sensor& s, const std::string& key, const std::string& fallback) {
     const auto it = s.spec().text.find(key);
     return it == s.spec().text.end() ? fallback : it->second;
   }
@@ -76,8 +71,7 @@ protected:
   bool wanted(const Stream& pub) const { return ros_layer::wanted(pub, recorder_); }
   /// Publishes `m` on `pub` and writes it to the recording when its topic is recorded.
   template <class M>
-  void emit(const Stream& pub, const M& m) const
-  {
+  void emit(const Stream& pub, const M& m) const {
     publishRecorded(pub, recorder_, m);
   }
 

@@ -3,12 +3,11 @@
 namespace unexmin {
 namespace ros_layer {
 
-std::unique_ptr<SensorPublisher> SensorRegistry::publisher(sensors::Sensor& sensor, const PublisherContext& ctx) const
-{
+std::unique_ptr<SensorPublisher> SensorRegistry::publisher(sensors::Sensor& sensor, const PublisherContext& ctx) const {
   const auto it = publishers_.find(sensor.type());
   if (it == publishers_.end())
-    throw ConfigError(sensor.robotName() + ": sensor '" + sensor.name() + "': no publisher for type '" +
-                      sensor.type() + "'");
+    throw ConfigError(sensor.robotName() + ": sensor '" + sensor.name() + "': no publisher for type '" + sensor.type() +
+                      "'");
   return it->second(sensor, ctx);
 }
 

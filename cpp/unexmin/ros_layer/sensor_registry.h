@@ -17,18 +17,15 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SensorRegistry
-{
+class SensorRegistry {
 public:
-  using PublisherCreator =
-      std::function<std::unique_ptr<SensorPublisher>(sensors::Sensor&, const PublisherContext&)>;
+  using PublisherCreator = std::function<std::unique_ptr<SensorPublisher>(sensors::Sensor&, const PublisherContext&)>;
 
   /// Registers (or replaces) family `type`: sensors built as Model(const sim::SensorSpec&, const
   /// sensors::SensorSetup&), published by Publisher(const Model&, const PublisherContext&) (or Publisher(Model&,
   /// ...) when the publisher tells its model something, e.g. a camera renders only while someone subscribes).
   template <class Model, class Publisher>
-  void add(const std::string& type)
-  {
+  void add(const std::string& type) {
     models_.add<Model>(type);
     // The model of this family was built by the line above: the downcast cannot fail.
     publishers_[type] = [](sensors::Sensor& s, const PublisherContext& ctx) -> std::unique_ptr<SensorPublisher> {

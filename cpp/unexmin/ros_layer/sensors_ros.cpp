@@ -6,8 +6,7 @@ namespace ros_layer {
 SensorsRos::SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays,
                        const SensorRegistry& registry, const sensors::SensorSelection& selection, ros::NodeHandle& nh,
                        bool visual)
-    : world_(world)
-{
+    : world_(world) {
   suite_ = std::make_unique<sensors::SensorSuite>(world, robot, rays, registry.models(), selection, visual);
   const PublisherContext ctx{nh, "/" + robot.name() + "/"};
   for (std::size_t i = 0; i < suite_->size(); ++i) {
@@ -20,28 +19,28 @@ SensorsRos::SensorsRos(sim::World& world, sim::Robot& robot, const raycast::RayC
   last_step_ = world.stepCount();
 }
 
-void SensorsRos::sample(std::uint64_t step)
-{
-  if (step == last_sampled_) return;
+void SensorsRos::sample(std::uint64_t step) {
+  if (step == last_sampled_)
+    return;
   last_sampled_ = step;
   suite_->update();
 }
 
-void SensorsRos::publish(std::uint64_t step)
-{
-  if (step == last_step_ || step != last_sampled_) return;
+void SensorsRos::publish(std::uint64_t step) {
+  if (step == last_step_ || step != last_sampled_)
+    return;
   last_step_ = step;
   for (std::size_t i = 0; i < publishers_.size(); ++i)
-    if (suite_->fresh(i)) publishers_[i]->publish();
+    if (suite_->fresh(i))
+      publishers_[i]->publish();
 }
 
-void SensorsRos::attach(BagRecorder* recorder)
-{
-  for (auto& p : publishers_) p->attach(recorder);
+void SensorsRos::attach(BagRecorder* recorder) {
+  for (auto& p : publishers_)
+    p->attach(recorder);
 }
 
-void SensorsRos::restart()
-{
+void SensorsRos::restart() {
   suite_->reset(world_.seed());
   last_step_ = last_sampled_ = world_.stepCount();
 }

@@ -17,8 +17,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SensorsRos
-{
+class SensorsRos {
 public:
   /// Builds `robot`'s sensors of the families `selection` keeps (throws ConfigError naming the robot, the
   /// sensor and the parameter or the known types on a bad one) and advertises their topics under /<robot>/.
@@ -45,8 +44,8 @@ private:
   sim::World& world_;
   std::unique_ptr<sensors::SensorSuite> suite_;
   std::vector<std::unique_ptr<SensorPublisher>> publishers_;  ///< one per suite sensor
-  std::uint64_t last_step_ = 0;     ///< last step published
-  std::uint64_t last_sampled_ = 0;  ///< last step sampled
+  std::uint64_t last_step_ = 0;                               ///< last step published
+  std::uint64_t last_sampled_ = 0;                            ///< last step sampled
 };
 
 }  // namespace ros_layer

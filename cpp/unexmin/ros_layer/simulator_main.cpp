@@ -8,12 +8,13 @@ namespace {
 
 /// SIGTERM (roslaunch's escalation, `kill`) ends the process as SIGINT does: the spin loop returns and
 /// the recorder closes and indexes its bag.
-void requestShutdown(int) { ros::requestShutdown(); }
+void requestShutdown(int) {
+  ros::requestShutdown();
+}
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   ros::init(argc, argv, "simulator");
   // Outlives `sim`: when the last NodeHandle goes, roscpp shuts rosconsole down and the start-up
   // error below would not be printed.

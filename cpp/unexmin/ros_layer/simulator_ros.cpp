@@ -13,8 +13,7 @@ namespace unexmin {
 namespace ros_layer {
 namespace {
 
-[[noreturn]] void badParam(const std::string& name, const std::string& value, const std::string& expected)
-{
+[[noreturn]] void badParam(const std::string& name, const std::string& value, const std::string& expected) {
   throw ParameterError("parameter ~" + name + " = " + value + ": expected " + expected);
 }
 
@@ -22,14 +21,14 @@ namespace {
 
 SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegistry registry,
                            const hydro::ThrusterFactory& thrusters)
-    : nh_(nh), pnh_(pnh), command_nh_(nh), registry_(std::move(registry))
-{
+    : nh_(nh), pnh_(pnh), command_nh_(nh), registry_(std::move(registry)) {
   command_nh_.setCallbackQueue(&command_queue_);
   loadParams();
 
   sim::WorldConfig config = sim::loadWorldConfig(world_file_);
-  if (!visibility_.empty()) config.visibility = visibility_;  // before the world (and every sensor) sees it
-  if (!spawns_.empty()) {  // ~spawns: the world's robots to run, by name, in this order
+  if (!visibility_.empty())
+    config.visibility = visibility_;  // before the world (and every sensor) sees it
+  if (!spawns_.empty()) {             // ~spawns: the world's robots to run, by name, in this order
     sim::selectRobots(config, spawns_);
     robot_count_ = static_cast<int>(spawns_.size());
   }
@@ -69,8 +68,7 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   std::vector<std::string> names;
   for (std::size_t i = 0; i < world_->robotCount(); ++i) {
     names.push_back(world_->robot(i).name());
-    nh_.setParam("/sim/thruster_count/" + world_->robot(i).name(),
-                 static_cast<int>(world_->robot(i).thrusterCount()));
+    nh_.setParam("/sim/thruster_count/" + world_->robot(i).name(), static_cast<int>(world_->robot(i).thrusterCount()));
   }
   nh_.setParam("/sim/robots", names);
 
@@ -84,7 +82,8 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   services_.push_back(nh_.advertiseService("/sim/reset_seed", &SimulatorRos::onResetSeed, this));
   services_.push_back(nh_.advertiseService("/sim/step", &SimulatorRos::onStep, this));
   services_.push_back(nh_.advertiseService("/sim/record", &SimulatorRos::onRecord, this));
-  for (auto& r : robots_) r->attach(recorder_.get());
+  for (auto& r : robots_)
+    r->attach(recorder_.get());
   if (!record_path_.empty()) {
     try {
       recorder_->start(record_path_);
@@ -93,29 +92,32 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
     }
   }
 
-  ROS_INFO_STREAM("unexmin simulator: world '" << config.name << "' (" << world_file_ << "), "
-                  << world_->robotCount() << " robot(s), physics " << physics_rate_ << " Hz, "
-                  << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_ << ", sensors " << selection_.text()
-                  << ", " << (visual_ ? "visual" : "operational") << " mode, visibility " << config.visibility
-                  << (paused_ ? ", paused" : ""));
+  ROS_INFO_STREAM("unexmin simulator: world '"
+                  << config.name << "' (" << world_file_ << "), " << world_->robotCount() << " robot(s), physics "
+                  << physics_rate_ << " Hz, " << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_
+                  << ", sensors " << selection_.text() << ", " << (visual_ ? "visual" : "operational")
+                  << " mode, visibility " << config.visibility << (paused_ ? ", paused" : ""));
 }
 
-void SimulatorRos::loadParams()
-{
+void SimulatorRos::loadParams() {
   if (!pnh_.getParam("world_file", world_file_) || world_file_.empty())
     badParam("world_file", "(unset)", "the path of a world file (YAML), e.g. $(find unexmin)/worlds/tank.world");
   pnh_.param("robots", robot_count_, 1);
-  if (robot_count_ < 1 || robot_count_ > 3) badParam("robots", formatNumber(robot_count_), "1, 2 or 3");
+  if (robot_count_ < 1 || robot_count_ > 3)
+    badParam("robots", formatNumber(robot_count_), "1, 2 or 3");
   std::string spawns;
   pnh_.param<std::string>("spawns", spawns, "");
   std::istringstream names(spawns);
   for (std::string name; std::getline(names, name, ',');)
-    if (!name.empty()) spawns_.push_back(name);
+    if (!name.empty())
+      spawns_.push_back(name);
   pnh_.param("realtime", realtime_, false);
   pnh_.param("realtime_factor", realtime_factor_, 1.0);
-  if (!(realtime_factor_ > 0.0)) badParam("realtime_factor", formatNumber(realtime_factor_), "> 0");
+  if (!(realtime_factor_ > 0.0))
+    badParam("realtime_factor", formatNumber(realtime_factor_), "> 0");
   pnh_.param("seed", seed_, 0);
-  if (seed_ < 0) badParam("seed", formatNumber(seed_), "a non-negative integer");
+  if (seed_ < 0)
+    badParam("seed", formatNumber(seed_), "a non-negative integer");
   pnh_.param("paused", paused_, false);
   pnh_.param<std::string>("sensors", sensors_param_, "all");
   std::string mode;
@@ -152,40 +154,42 @@ void SimulatorRos::loadParams()
   std::vector<std::string> topics;
   std::istringstream words(topics_text);
   for (std::string t; words >> t;) {
-    if (t.empty() || t[0] != '/') badParam("record_topics", topics_text, "absolute topic names separated by spaces");
+    if (t.empty() || t[0] != '/')
+      badParam("record_topics", topics_text, "absolute topic names separated by spaces");
     topics.push_back(t);
   }
   recorder_ = std::make_unique<BagRecorder>(topics);
   pnh_.param("lockstep_wait_subscribers", wait_subscribers_, false);
 }
 
-void SimulatorRos::publishClock()
-{
+void SimulatorRos::publishClock() {
   rosgraph_msgs::Clock c;
   c.clock.fromSec(world_->time());
   recorder_->setTime(world_->time());
   publishRecorded(clock_pub_, recorder_.get(), c);
 }
 
-void SimulatorRos::publishNow()
-{
+void SimulatorRos::publishNow() {
   recorder_->setTime(world_->time());
   publishClock();
   const ros::Time stamp(world_->time());
-  for (auto& r : robots_) r->publish(world_->stepCount(), stamp, true);
+  for (auto& r : robots_)
+    r->publish(world_->stepCount(), stamp, true);
 }
 
-void SimulatorRos::stepOnce()
-{
+void SimulatorRos::stepOnce() {
   world_->step();
-  if (caster_) caster_->update();  // the robots where the sensors of this step see them
+  if (caster_)
+    caster_->update();  // the robots where the sensors of this step see them
   const std::uint64_t n = world_->stepCount();
-  for (auto& r : robots_) r->sample(n);
+  for (auto& r : robots_)
+    r->sample(n);
   // lockstep_wait_subscribers: the sensors have sampled (the cameras rendered) while the subscribers were still
   // taking the last step's messages; nothing of this step goes out before they have taken them all. One step's
   // messages (one per stream at most) are then in flight at a time, so neither roscpp's queue on our side nor a
   // subscriber's own queue (rosbag record: 100 per topic, a user's node often 10) can overflow.
-  if (wait_subscribers_ && !realtime_) pacer_.waitDrained();
+  if (wait_subscribers_ && !realtime_)
+    pacer_.waitDrained();
   const ros::Time stamp(world_->time());
   recorder_->setTime(world_->time());
   // In real time the sim-time schedules are also wall-time rates. In lockstep, /clock and the
@@ -212,8 +216,7 @@ void SimulatorRos::stepOnce()
   }
 }
 
-void SimulatorRos::advance(std::uint64_t steps, bool hold)
-{
+void SimulatorRos::advance(std::uint64_t steps, bool hold) {
   for (std::uint64_t i = 0; i < steps && ros::ok(); ++i) {
     command_queue_.callAvailable();
     if (hold)
@@ -225,38 +228,34 @@ void SimulatorRos::advance(std::uint64_t steps, bool hold)
   publishNow();
 }
 
-bool SimulatorRos::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
-{
+bool SimulatorRos::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   paused_ = true;
   publishClock();
   return true;
 }
 
-bool SimulatorRos::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
-{
+bool SimulatorRos::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   paused_ = false;
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = world_->time();
   return true;
 }
 
-void SimulatorRos::resetWorld(std::uint64_t seed)
-{
+void SimulatorRos::resetWorld(std::uint64_t seed) {
   world_->reset(seed);
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = 0.0;
-  for (auto& r : robots_) r->restart();
+  for (auto& r : robots_)
+    r->restart();
   publishNow();
 }
 
-bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
-{
+bool SimulatorRos::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   resetWorld(world_->seed());
   return true;
 }
 
-bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Response& res)
-{
+bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Response& res) {
   if (req.seed < 0) {
     ROS_WARN_STREAM("/sim/reset_seed: rejected seed " << req.seed << ", expected >= 0");
     return false;
@@ -266,8 +265,7 @@ bool SimulatorRos::onResetSeed(unexmin::Reset::Request& req, unexmin::Reset::Res
   return true;
 }
 
-bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& res)
-{
+bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& res) {
   std::uint64_t steps = req.steps;
   // 1e6 s of sim time at most per call, as `duration` (a uint32 step count reaches 8.6e6 s at 500 Hz).
   const double max_steps = 1e6 * physics_rate_;
@@ -287,19 +285,19 @@ bool SimulatorRos::onStep(unexmin::Step::Request& req, unexmin::Step::Response& 
     while (received_[req.client] < req.commands && ros::WallTime::now() < deadline && ros::ok())
       command_queue_.callAvailable(ros::WallDuration(0.001));
     if (received_[req.client] < req.commands)
-      ROS_WARN_STREAM("/sim/step: only " << received_[req.client] << " of the " << req.commands
-                                         << " commands from " << req.client << " arrived within 5 s; stepping anyway");
+      ROS_WARN_STREAM("/sim/step: only " << received_[req.client] << " of the " << req.commands << " commands from "
+                                         << req.client << " arrived within 5 s; stepping anyway");
   }
   advance(steps, req.hold);
   res.time = world_->time();
   res.step = world_->stepCount();
   const ros::Time stamp(world_->time());
-  for (const auto& r : robots_) res.odometry.push_back(r->odometry(stamp));
+  for (const auto& r : robots_)
+    res.odometry.push_back(r->odometry(stamp));
   return true;
 }
 
-bool SimulatorRos::onRecord(unexmin::Record::Request& req, unexmin::Record::Response& res)
-{
+bool SimulatorRos::onRecord(unexmin::Record::Request& req, unexmin::Record::Response& res) {
   try {
     if (req.path.empty()) {
       if (!recorder_->active()) {
@@ -308,7 +306,8 @@ bool SimulatorRos::onRecord(unexmin::Record::Request& req, unexmin::Record::Resp
         return true;
       }
       std::uint64_t total = 0;
-      for (const auto& c : recorder_->counts()) total += c.second;
+      for (const auto& c : recorder_->counts())
+        total += c.second;
       const std::string path = recorder_->path();
       recorder_->stop();
       res.message = "closed " + path + ": " + std::to_string(total) + " messages";
@@ -326,8 +325,7 @@ bool SimulatorRos::onRecord(unexmin::Record::Request& req, unexmin::Record::Resp
   return true;
 }
 
-void SimulatorRos::spin()
-{
+void SimulatorRos::spin() {
   ros::CallbackQueue* services = ros::getGlobalCallbackQueue();
   publishClock();
   pace_wall_ = ros::WallTime::now();
@@ -342,14 +340,17 @@ void SimulatorRos::spin()
       continue;
     }
     services->callAvailable();
-    if (paused_) continue;
+    if (paused_)
+      continue;
     for (std::uint64_t i = 0; i < poll_every; ++i) {
       command_queue_.callAvailable();
       stepOnce();
     }
     if (realtime_) {
-      const double ahead = (world_->time() - pace_sim_) / realtime_factor_ - (ros::WallTime::now() - pace_wall_).toSec();
-      if (ahead > 0.0) ros::WallDuration(ahead).sleep();
+      const double ahead =
+          (world_->time() - pace_sim_) / realtime_factor_ - (ros::WallTime::now() - pace_wall_).toSec();
+      if (ahead > 0.0)
+        ros::WallDuration(ahead).sleep();
     }
   }
 }

@@ -24,8 +24,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SimulatorRos
-{
+class SimulatorRos {
 public:
   /// Loads parameters, the world and the robot descriptions; throws ConfigError with a message naming the
   /// file/parameter and the problem. `registry`: the sensor families it knows, `thrusters`: the thruster
@@ -72,10 +71,10 @@ private:
 
   SensorRegistry registry_;
   std::string sensors_param_ = "all";
-  sensors::SensorSelection selection_;     ///< from ~sensors
-  bool visual_ = false;                    ///< /sim/mode == visual: cameras render, lights and lasers on
-  std::string visibility_;                 ///< ~visibility: overrides the world file's level (empty: keep it)
-  int ray_caster_threads_ = 0;             ///< ~ray_caster_threads: threads that cast rays (0 = every hardware thread)
+  sensors::SensorSelection selection_;  ///< from ~sensors
+  bool visual_ = false;                 ///< /sim/mode == visual: cameras render, lights and lasers on
+  std::string visibility_;              ///< ~visibility: overrides the world file's level (empty: keep it)
+  int ray_caster_threads_ = 0;          ///< ~ray_caster_threads: threads that cast rays (0 = every hardware thread)
   std::unique_ptr<sim::World> world_;
   std::unique_ptr<raycast::RayCaster> caster_;  ///< every ray sensor's (null when no sensor runs)
   std::vector<std::unique_ptr<RobotRos>> robots_;

@@ -7,8 +7,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-SlsPublisher::SlsPublisher(const sensors::vision::SlsSensor& sensor, const PublisherContext& ctx) : sensor_(sensor)
-{
+SlsPublisher::SlsPublisher(const sensors::vision::SlsSensor& sensor, const PublisherContext& ctx) : sensor_(sensor) {
   const int queue = queueSize(sensor.rate());
   points_ = ctx.nh.advertise<sensor_msgs::PointCloud2>(
       resolve(ctx.ns, topicParam(sensor, "topic", sensor.name() + "/points")), queue);
@@ -16,8 +15,7 @@ SlsPublisher::SlsPublisher(const sensors::vision::SlsSensor& sensor, const Publi
       resolve(ctx.ns, topicParam(sensor, "scan_topic", sensor.name() + "/scan")), queue);
 }
 
-sensor_msgs::PointCloud2 SlsPublisher::cloud() const
-{
+sensor_msgs::PointCloud2 SlsPublisher::cloud() const {
   const auto& s = sensor_.last();
   sensor_msgs::PointCloud2 m;
   m.header.stamp.fromSec(s.time);
@@ -30,8 +28,7 @@ sensor_msgs::PointCloud2 SlsPublisher::cloud() const
   return m;
 }
 
-sensor_msgs::LaserScan SlsPublisher::scan() const
-{
+sensor_msgs::LaserScan SlsPublisher::scan() const {
   const auto& s = sensor_.last();
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
@@ -47,10 +44,11 @@ sensor_msgs::LaserScan SlsPublisher::scan() const
   return m;
 }
 
-void SlsPublisher::publish()
-{
-  if (wanted(points_)) emit(points_, cloud());
-  if (wanted(scan_)) emit(scan_, scan());
+void SlsPublisher::publish() {
+  if (wanted(points_))
+    emit(points_, cloud());
+  if (wanted(scan_))
+    emit(scan_, scan());
 }
 
 }  // namespace ros_layer

@@ -16,8 +16,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SlsPublisher : public SensorPublisher
-{
+class SlsPublisher : public SensorPublisher {
 public:
   SlsPublisher(const sensors::vision::SlsSensor& sensor, const PublisherContext& ctx);
   void publish() override;

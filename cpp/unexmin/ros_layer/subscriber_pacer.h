@@ -33,8 +33,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-class SubscriberPacer
-{
+class SubscriberPacer {
 public:
   SubscriberPacer() = default;
   SubscriberPacer(const SubscriberPacer&) = delete;
@@ -64,7 +63,7 @@ private:
   std::vector<ros::PublicationPtr> publications_;
   std::size_t calls_ = 0;
   boost::signals2::connection listener_;
-  std::uint16_t port_ = 0;  ///< this process's TCPROS port
+  std::uint16_t port_ = 0;        ///< this process's TCPROS port
   bool drained_ = false;          ///< the last wait found everything taken ...
   std::uint64_t drained_at_ = 0;  ///< ... when Stream::sent() was this
 
@@ -72,9 +71,9 @@ private:
   std::mutex mutex_;
   std::condition_variable done_;
   State state_ = State::kIdle;
-  int turn_ = 0;                  ///< turns of the poll thread since the wait began
-  TcpPortView before_;            ///< the kernel's view at the last turn
-  ros::WallTime progress_;        ///< when bytes last moved
+  int turn_ = 0;            ///< turns of the poll thread since the wait began
+  TcpPortView before_;      ///< the kernel's view at the last turn
+  ros::WallTime progress_;  ///< when bytes last moved
   bool kernel_ok_ = true;
   std::size_t waits_ = 0;
 };

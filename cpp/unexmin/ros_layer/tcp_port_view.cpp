@@ -22,15 +22,14 @@ constexpr unsigned kTcpEstablished = 1;  // the kernel's TCP_ESTABLISHED state (
 
 }  // namespace
 
-TcpPortView viewTcpPort(std::uint16_t port)
-{
+TcpPortView viewTcpPort(std::uint16_t port) {
   TcpPortView view;
   const int fd = ::socket(AF_NETLINK, SOCK_DGRAM | SOCK_CLOEXEC, NETLINK_SOCK_DIAG);
-  if (fd < 0) return view;
+  if (fd < 0)
+    return view;
   // The request, and a filter so that the kernel describes only the port's sockets (sport == port or dport ==
   // port; inet_diag's bytecode: each test jumps `yes` bytes on, or `no` bytes, past the end to reject).
-  struct
-  {
+  struct {
     nlmsghdr nlh;
     inet_diag_req_v2 req;
     rtattr filter;
@@ -47,7 +46,7 @@ TcpPortView viewTcpPort(std::uint16_t port)
   request.filter.rta_len = RTA_LENGTH(sizeof(request.ops));
   request.ops[0] = {INET_DIAG_BC_S_EQ, 8, 12};  // source port: accepted through the jump at 8, else on to 12
   request.ops[1] = {0, 0, port};
-  request.ops[2] = {INET_DIAG_BC_JMP, 4, 12};  // to the end (20): accepted
+  request.ops[2] = {INET_DIAG_BC_JMP, 4, 12};   // to the end (20): accepted
   request.ops[3] = {INET_DIAG_BC_D_EQ, 8, 12};  // destination port: to the end (20), or past it (24): rejected
   request.ops[4] = {0, 0, port};
   sockaddr_nl kernel{};
@@ -56,8 +55,7 @@ TcpPortView viewTcpPort(std::uint16_t port)
 
   // A subscriber's end of a connection is matched to ours by its address and port pair, read the other way round.
   using Key = std::tuple<std::uint16_t, std::uint16_t, std::uint32_t, std::uint32_t>;
-  struct PeerEnd
-  {
+  struct PeerEnd {
     Key ours;
     std::uint64_t unread = 0;  ///< [bytes] received, not read by the subscriber
     std::uint64_t read = 0;    ///< [bytes] read by the subscriber so far
@@ -80,12 +78,14 @@ TcpPortView viewTcpPort(std::uint16_t port)
       }
       const auto* m = static_cast<const inet_diag_msg*>(NLMSG_DATA(h));
       const std::uint16_t sport = ntohs(m->id.idiag_sport), dport = ntohs(m->id.idiag_dport);
-      if (sport != port && dport != port) continue;
+      if (sport != port && dport != port)
+        continue;
       tcp_info info{};
       bool has_info = false;
       int attr_left = static_cast<int>(h->nlmsg_len - NLMSG_LENGTH(sizeof(*m)));
       for (auto* a = reinterpret_cast<const rtattr*>(m + 1); RTA_OK(a, attr_left); a = RTA_NEXT(a, attr_left)) {
-        if (a->rta_type != INET_DIAG_INFO || RTA_PAYLOAD(a) < kCountersEnd) continue;
+        if (a->rta_type != INET_DIAG_INFO || RTA_PAYLOAD(a) < kCountersEnd)
+          continue;
         std::memcpy(&info, RTA_DATA(a), std::min<std::size_t>(RTA_PAYLOAD(a), sizeof(info)));
         has_info = true;
       }
@@ -94,7 +94,8 @@ TcpPortView viewTcpPort(std::uint16_t port)
         continue;
       }
       if (sport == port) {  // ours: written = acknowledged + in flight
-        view.written[Key{sport, dport, m->id.idiag_src[0], m->id.idiag_dst[0]}] = info.tcpi_bytes_acked + m->idiag_wqueue;
+        view.written[Key{sport, dport, m->id.idiag_src[0], m->id.idiag_dst[0]}] =
+            info.tcpi_bytes_acked + m->idiag_wqueue;
         view.unsettled += m->idiag_wqueue;
         view.moved += info.tcpi_bytes_acked + m->idiag_wqueue;
       } else {
@@ -105,7 +106,8 @@ TcpPortView viewTcpPort(std::uint16_t port)
   }
   ::close(fd);
   for (const auto& p : peers) {
-    if (!view.written.count(p.ours)) continue;  // another host's connection to a port of the same number
+    if (!view.written.count(p.ours))
+      continue;  // another host's connection to a port of the same number
     view.unsettled += p.unread;
     view.moved += p.read;
   }

@@ -11,8 +11,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-struct TcpPortView
-{
+struct TcpPortView {
   bool ok = false;            ///< the kernel answered, with the byte counters (Linux >= 4.1)
   std::size_t unsettled = 0;  ///< [bytes] written on the port's connections and not acknowledged, or received by a
                               ///< peer on this machine and not read by it

@@ -21,15 +21,13 @@ constexpr double kBeamFrameTolerance = 0.1 * M_PI / 180.0;
 
 }  // namespace
 
-double soundSpeedMedwin(double temperature, double salinity, double depth)
-{
+double soundSpeedMedwin(double temperature, double salinity, double depth) {
   const double t = temperature;
   return 1449.2 + 4.6 * t - 0.055 * t * t + 0.00029 * t * t * t + (1.34 - 0.010 * t) * (salinity - 35.0) +
          0.016 * depth;
 }
 
-DvlSensor::DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup)
-{
+DvlSensor::DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
   SensorParams p(spec, setup.robot);
   const std::string family = p.text("noise", "gaussian", noiseFamilies());
   beam_angle_ = p.number("beam_angle", 25.0 * M_PI / 180.0, 1e-6, M_PI / 2.0, "rad", true);
@@ -50,7 +48,8 @@ DvlSensor::DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   const std::vector<std::string> frames = p.words("beam_frames");
   p.finish();
 
-  for (NoiseParams* n : {&velocity, &range, &scale, &temperature, &pressure}) n->interval = interval();
+  for (NoiseParams* n : {&velocity, &range, &scale, &temperature, &pressure})
+    n->interval = interval();
   for (std::size_t i = 0; i < 4; ++i) {
     const double c = beamAzimuth(i);
     directions_[i] = Eigen::Vector3d(std::sin(beam_angle_) * std::cos(c), std::sin(beam_angle_) * std::sin(c),
@@ -84,10 +83,11 @@ DvlSensor::DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   rays_.resize(4);
 }
 
-double DvlSensor::beamAzimuth(std::size_t i) const { return beam_azimuth_0_ + static_cast<double>(i) * M_PI / 2.0; }
+double DvlSensor::beamAzimuth(std::size_t i) const {
+  return beam_azimuth_0_ + static_cast<double>(i) * M_PI / 2.0;
+}
 
-void DvlSensor::onReset()
-{
+void DvlSensor::onReset() {
   for (std::size_t i = 0; i < 4; ++i) {
     velocity_noise_[i]->reset(random());
     range_noise_[i]->reset(random());
@@ -98,8 +98,7 @@ void DvlSensor::onReset()
   last_ = DvlSample();
 }
 
-void DvlSensor::sample(const SensorContext& ctx)
-{
+void DvlSensor::sample(const SensorContext& ctx) {
   const sim::RobotState& s = ctx.state;
   const Eigen::Isometry3d dvl = s.pose * spec().pose;  // DVL frame in the world
   const Eigen::Matrix3d R = dvl.linear();
@@ -138,7 +137,8 @@ void DvlSensor::sample(const SensorContext& ctx)
     b.valid = hits_[i].hit() && along_z >= altitude_min_ && along_z <= altitude_max_;
     b.range = b.valid ? std::max(0.0, range) : kInf;
     b.velocity = b.valid ? velocity : kNaN;
-    if (b.surface) b.velocity_std = kInf;  // the figure of merit: no bottom velocity from this beam
+    if (b.surface)
+      b.velocity_std = kInf;  // the figure of merit: no bottom velocity from this beam
     n_valid += b.valid ? 1 : 0;
   }
 
@@ -149,7 +149,8 @@ void DvlSensor::sample(const SensorContext& ctx)
     Eigen::VectorXd u(n_valid);
     double altitude = 0.0, sigma2 = 0.0;
     for (std::size_t i = 0, k = 0; i < 4; ++i) {
-      if (!out.beams[i].valid) continue;
+      if (!out.beams[i].valid)
+        continue;
       B.row(k) = directions_[i].transpose();
       u[k] = out.beams[i].velocity;
       altitude += out.beams[i].range * cos_a;
@@ -160,7 +161,8 @@ void DvlSensor::sample(const SensorContext& ctx)
     out.velocity = BtB_inv * B.transpose() * u;
     out.covariance = sigma2 * BtB_inv;
     // The turn-on scale error (1 sigma), as a variance proportional to the squared speed.
-    for (int j = 0; j < 3; ++j) out.covariance(j, j) += std::pow(scale_sigma_ * out.velocity[j], 2);
+    for (int j = 0; j < 3; ++j)
+      out.covariance(j, j) += std::pow(scale_sigma_ * out.velocity[j], 2);
     out.altitude = altitude / static_cast<double>(n_valid);
     if (out.beams[0].valid && out.beams[2].valid)
       out.velocity_z1 = (out.beams[0].velocity + out.beams[2].velocity) / (2.0 * cos_a);

@@ -39,8 +39,7 @@ namespace sensors {
 /// Speed of sound in water [m/s] (Medwin 1975): temperature [degC], salinity [PSU], depth [m].
 double soundSpeedMedwin(double temperature, double salinity, double depth);
 
-struct DvlBeam
-{
+struct DvlBeam {
   Eigen::Vector3d direction{0, 0, 1};  ///< DVL frame, unit
   bool valid = false;                  ///< bottom detected within the altitude window
   double range = 0.0;                  ///< along the beam [m]; +inf when invalid
@@ -50,33 +49,31 @@ struct DvlBeam
   bool surface = false;                ///< the beam reached the free surface before any bottom: invalid
 };
 
-struct DvlSample
-{
-  double time = 0.0;                    ///< ping time [s]
-  bool bottom_lock = false;             ///< >= 3 valid beams
-  Eigen::Vector3d velocity{0, 0, 0};    ///< DVL over the bottom, DVL frame [m/s]; NaN without lock
+struct DvlSample {
+  double time = 0.0;                                     ///< ping time [s]
+  bool bottom_lock = false;                              ///< >= 3 valid beams
+  Eigen::Vector3d velocity{0, 0, 0};                     ///< DVL over the bottom, DVL frame [m/s]; NaN without lock
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< [m^2/s^2]; -1 without lock
-  double velocity_z1 = 0.0;             ///< [m/s] from beams 0, 2; NaN when one is invalid
-  double velocity_z2 = 0.0;             ///< [m/s] from beams 1, 3; NaN when one is invalid
-  double altitude = 0.0;                ///< mean distance along z of the valid beams [m]; NaN without lock
-  double sound_speed = 0.0;             ///< [m/s]
-  double temperature = 0.0;             ///< water [degC]
-  double pressure = 0.0;                ///< absolute [Pa]
+  double velocity_z1 = 0.0;                              ///< [m/s] from beams 0, 2; NaN when one is invalid
+  double velocity_z2 = 0.0;                              ///< [m/s] from beams 1, 3; NaN when one is invalid
+  double altitude = 0.0;     ///< mean distance along z of the valid beams [m]; NaN without lock
+  double sound_speed = 0.0;  ///< [m/s]
+  double temperature = 0.0;  ///< water [degC]
+  double pressure = 0.0;     ///< absolute [Pa]
   std::array<DvlBeam, 4> beams;
 };
 
-class DvlSensor : public Sensor
-{
+class DvlSensor : public Sensor {
 public:
   /// Throws ConfigError naming the sensor and the parameter.
   DvlSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
   const DvlSample& last() const { return last_; }
-  double beamAngle() const { return beam_angle_; }           ///< [rad]
-  double beamAzimuth(std::size_t i) const;                    ///< [rad]
-  double beamWidth() const { return beam_width_; }            ///< [rad]
-  double altitudeMin() const { return altitude_min_; }        ///< [m]
-  double altitudeMax() const { return altitude_max_; }        ///< [m]
+  double beamAngle() const { return beam_angle_; }      ///< [rad]
+  double beamAzimuth(std::size_t i) const;              ///< [rad]
+  double beamWidth() const { return beam_width_; }      ///< [rad]
+  double altitudeMin() const { return altitude_min_; }  ///< [m]
+  double altitudeMax() const { return altitude_max_; }  ///< [m]
   /// Along-beam range window of the Range messages [m].
   double rangeMin() const { return altitude_min_ / std::cos(beam_angle_); }
   double rangeMax() const { return altitude_max_ / std::cos(beam_angle_); }

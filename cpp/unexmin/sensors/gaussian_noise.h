@@ -10,8 +10,7 @@
 namespace unexmin {
 namespace sensors {
 
-class GaussianNoise : public NoiseModel
-{
+class GaussianNoise : public NoiseModel {
 public:
   /// Throws ParameterError when a figure is negative or not finite, or interval <= 0.
   explicit GaussianNoise(const NoiseParams& params);

@@ -10,8 +10,7 @@ namespace unexmin {
 namespace sensors {
 
 ImuSensor::Channel ImuSensor::makeChannel(SensorParams& p, const std::string& family, const std::string& prefix,
-                                          const std::string& unit, double rate)
-{
+                                          const std::string& unit, double rate) {
   NoiseParams n;
   n.white = p.number(prefix + "_noise_density", 0.0, 0.0, 1e6, unit + "/sqrt(Hz)") * std::sqrt(rate);
   n.bias_random_walk = p.number(prefix + "_bias_random_walk", 0.0, 0.0, 1e6, unit + "/sqrt(s)");
@@ -20,8 +19,7 @@ ImuSensor::Channel ImuSensor::makeChannel(SensorParams& p, const std::string& fa
   return {createNoise(family, n), createNoise(family, n), createNoise(family, n)};
 }
 
-ImuSensor::ImuSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup)
-{
+ImuSensor::ImuSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
   SensorParams p(spec, setup.robot);
   const std::string family = p.text("noise", "gaussian", noiseFamilies());
   gyro_ = makeChannel(p, family, "gyro", "rad/s", spec.rate);
@@ -45,10 +43,10 @@ ImuSensor::ImuSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   pressure_noise_ = createNoise(family, pr);
 }
 
-void ImuSensor::onReset()
-{
+void ImuSensor::onReset() {
   for (Channel* c : {&gyro_, &accel_, &mag_})
-    for (auto& axis : *c) axis->reset(random());
+    for (auto& axis : *c)
+      axis->reset(random());
   temperature_noise_->reset(random());
   pressure_noise_->reset(random());
   pressure_temperature_noise_->reset(random());
@@ -57,23 +55,21 @@ void ImuSensor::onReset()
   last_ = ImuSample();
 }
 
-void ImuSensor::track(const SensorContext& ctx)
-{
+void ImuSensor::track(const SensorContext& ctx) {
   const Eigen::Vector3d& w = ctx.state.angular_velocity;
   alpha_ = have_previous_ ? Eigen::Vector3d((w - previous_w_) / ctx.world.dt()) : Eigen::Vector3d::Zero();
   previous_w_ = w;
   have_previous_ = true;
 }
 
-Eigen::Vector3d ImuSensor::corrupt(Channel& channel, const Eigen::Vector3d& truth, double range)
-{
+Eigen::Vector3d ImuSensor::corrupt(Channel& channel, const Eigen::Vector3d& truth, double range) {
   Eigen::Vector3d out;
-  for (int i = 0; i < 3; ++i) out[i] = std::clamp(channel[i]->apply(truth[i], random()), -range, range);
+  for (int i = 0; i < 3; ++i)
+    out[i] = std::clamp(channel[i]->apply(truth[i], random()), -range, range);
   return out;
 }
 
-void ImuSensor::sample(const SensorContext& ctx)
-{
+void ImuSensor::sample(const SensorContext& ctx) {
   const sim::RobotState& s = ctx.state;
   const Eigen::Matrix3d R = s.pose.linear();
   const Eigen::Vector3d r = R * spec().pose.translation();  // IMU origin from the base origin, world axes

@@ -33,8 +33,7 @@ namespace sensors {
 
 class SensorParams;
 
-struct ImuSample
-{
+struct ImuSample {
   double time = 0.0;                          ///< [s]
   Eigen::Vector3d specific_force{0, 0, 0};    ///< IMU frame [m/s^2]
   Eigen::Vector3d angular_velocity{0, 0, 0};  ///< IMU frame [rad/s]
@@ -46,8 +45,7 @@ struct ImuSample
   double accel_variance = 0.0, gyro_variance = 0.0, mag_variance = 0.0, pressure_variance = 0.0;
 };
 
-class ImuSensor : public Sensor
-{
+class ImuSensor : public Sensor {
 public:
   /// Throws ConfigError naming the sensor and the parameter.
   ImuSensor(const sim::SensorSpec& spec, const SensorSetup& setup);

@@ -9,8 +9,7 @@ namespace sensors {
 namespace {
 
 /// The "none" family: the truth, no bias, no random draw.
-class NoNoise : public NoiseModel
-{
+class NoNoise : public NoiseModel {
 public:
   void reset(Random&) override {}
   double apply(double truth, Random&) override { return truth; }
@@ -20,18 +19,19 @@ public:
 
 }  // namespace
 
-const std::vector<std::string>& noiseFamilies()
-{
+const std::vector<std::string>& noiseFamilies() {
   static const std::vector<std::string> names{"gaussian", "none"};
   return names;
 }
 
-std::unique_ptr<NoiseModel> createNoise(const std::string& family, const NoiseParams& params)
-{
-  if (family == "gaussian") return std::make_unique<GaussianNoise>(params);
-  if (family == "none") return std::make_unique<NoNoise>();
+std::unique_ptr<NoiseModel> createNoise(const std::string& family, const NoiseParams& params) {
+  if (family == "gaussian")
+    return std::make_unique<GaussianNoise>(params);
+  if (family == "none")
+    return std::make_unique<NoNoise>();
   std::string list;
-  for (const auto& n : noiseFamilies()) list += (list.empty() ? "" : "|") + n;
+  for (const auto& n : noiseFamilies())
+    list += (list.empty() ? "" : "|") + n;
   throw ParameterError("unknown noise model '" + family + "', expected " + list);
 }
 

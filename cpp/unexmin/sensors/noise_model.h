@@ -16,16 +16,14 @@ namespace unexmin {
 namespace sensors {
 
 /// Noise of one channel, in the channel's unit u.
-struct NoiseParams
-{
+struct NoiseParams {
   double white = 0.0;             ///< white noise, one standard deviation per sample [u]
   double bias_random_walk = 0.0;  ///< bias random-walk density [u/sqrt(s)]: the bias's std grows as K sqrt(t)
   double turn_on_bias = 0.0;      ///< bias drawn at every reset (turn-on), one standard deviation [u]
   double interval = 0.0;          ///< time between two samples [s] > 0
 };
 
-class NoiseModel
-{
+class NoiseModel {
 public:
   virtual ~NoiseModel() = default;
   /// Turn-on: draws a new turn-on bias; the random walk restarts from it.

@@ -8,14 +8,12 @@
 namespace unexmin {
 namespace sensors {
 
-double hydrostaticPressure(const sim::World& world, double z)
-{
+double hydrostaticPressure(const sim::World& world, double z) {
   const sim::WaterState& w = world.water();
   return world.config().atmospheric_pressure + w.density * w.gravity * std::max(0.0, w.surface_z - z);
 }
 
-PressureSensor::PressureSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup)
-{
+PressureSensor::PressureSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
   SensorParams p(spec, setup.robot);
   const std::string family = p.text("noise", "gaussian", noiseFamilies());
   NoiseParams n;
@@ -27,14 +25,12 @@ PressureSensor::PressureSensor(const sim::SensorSpec& spec, const SensorSetup& s
   noise_ = createNoise(family, n);
 }
 
-void PressureSensor::onReset()
-{
+void PressureSensor::onReset() {
   noise_->reset(random());
   last_ = PressureSample();
 }
 
-void PressureSensor::sample(const SensorContext& ctx)
-{
+void PressureSensor::sample(const SensorContext& ctx) {
   const Eigen::Vector3d origin = ctx.state.pose * spec().pose.translation();
   const double truth = hydrostaticPressure(ctx.world, origin.z());
   last_.time = ctx.world.time();

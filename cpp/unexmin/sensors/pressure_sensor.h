@@ -19,15 +19,13 @@ namespace sensors {
 /// True absolute pressure at world height z [Pa]: p_atm + rho g max(0, surface_z - z).
 double hydrostaticPressure(const sim::World& world, double z);
 
-struct PressureSample
-{
-  double time = 0.0;       ///< [s]
-  double pressure = 0.0;   ///< absolute [Pa]
-  double variance = 0.0;   ///< of the white noise [Pa^2]
+struct PressureSample {
+  double time = 0.0;      ///< [s]
+  double pressure = 0.0;  ///< absolute [Pa]
+  double variance = 0.0;  ///< of the white noise [Pa^2]
 };
 
-class PressureSensor : public Sensor
-{
+class PressureSensor : public Sensor {
 public:
   /// Throws ConfigError naming the sensor and the parameter.
   PressureSensor(const sim::SensorSpec& spec, const SensorSetup& setup);

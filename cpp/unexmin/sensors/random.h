@@ -10,14 +10,12 @@
 namespace unexmin {
 namespace sensors {
 
-class Random
-{
+class Random {
 public:
   /// Seed of the stream of `sensor` on `robot` in a world seeded with `world_seed`
   /// (splitmix64 of the world seed mixed with the FNV-1a hash of "robot/sensor": stable across
   /// platforms and runs, unlike std::hash).
-  static std::uint64_t streamSeed(std::uint64_t world_seed, const std::string& robot, const std::string& sensor)
-  {
+  static std::uint64_t streamSeed(std::uint64_t world_seed, const std::string& robot, const std::string& sensor) {
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a offset basis
     for (char c : robot + "/" + sensor) {
       h ^= static_cast<unsigned char>(c);
@@ -29,8 +27,7 @@ public:
     return z ^ (z >> 31);
   }
 
-  void seed(std::uint64_t s)
-  {
+  void seed(std::uint64_t s) {
     engine_.seed(s);
     normal_.reset();
   }

@@ -6,19 +6,17 @@
 namespace unexmin {
 namespace sensors {
 
-Sensor::Sensor(const sim::SensorSpec& spec, const SensorSetup& setup) : spec_(spec), robot_(setup.robot)
-{
+Sensor::Sensor(const sim::SensorSpec& spec, const SensorSetup& setup) : spec_(spec), robot_(setup.robot) {
   const double physics_rate = 1.0 / setup.physics_dt;
   if (!(spec.rate > 0.0) || spec.rate > physics_rate * (1.0 + 1e-9)) {
-    throw ConfigError(setup.robot + ": sensor '" + spec.name + "' (type " + spec.type + "): rate = " +
-                      formatNumber(spec.rate) + " Hz: expected (0, " + formatNumber(physics_rate) +
+    throw ConfigError(setup.robot + ": sensor '" + spec.name + "' (type " + spec.type +
+                      "): rate = " + formatNumber(spec.rate) + " Hz: expected (0, " + formatNumber(physics_rate) +
                       "] Hz (at most the physics rate)");
   }
   tolerance_ = 1e-6 * setup.physics_dt;
 }
 
-void Sensor::reset(std::uint64_t world_seed)
-{
+void Sensor::reset(std::uint64_t world_seed) {
   random_.seed(Random::streamSeed(world_seed, robot_, spec_.name));
   next_ = 1;
   samples_ = 0;
@@ -26,11 +24,11 @@ void Sensor::reset(std::uint64_t world_seed)
   onReset();
 }
 
-bool Sensor::update(const SensorContext& ctx)
-{
+bool Sensor::update(const SensorContext& ctx) {
   track(ctx);
   const double t = ctx.world.time();
-  if (t + tolerance_ < static_cast<double>(next_) / spec_.rate) return false;
+  if (t + tolerance_ < static_cast<double>(next_) / spec_.rate)
+    return false;
   sample(ctx);
   sample_time_ = t;
   ++samples_;
@@ -40,10 +38,11 @@ bool Sensor::update(const SensorContext& ctx)
 }
 
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
-                      raycast::Incidence incidence)
-{
-  if (ctx.rays) ctx.rays->cast(rays, hits, ctx.robot_index, incidence);
-  else hits.assign(rays.size(), raycast::Hit());
+                      raycast::Incidence incidence) {
+  if (ctx.rays)
+    ctx.rays->cast(rays, hits, ctx.robot_index, incidence);
+  else
+    hits.assign(rays.size(), raycast::Hit());
 }
 
 }  // namespace sensors

@@ -17,35 +17,31 @@ namespace unexmin {
 namespace sensors {
 
 /// What a sensor may read at one physics step; everything is passed in, nothing is global.
-struct SensorContext
-{
+struct SensorContext {
   const sim::World& world;
   const sim::Robot& robot;
-  const sim::RobotState& state;     ///< robot.state() after this step
-  const raycast::RayCaster* rays;   ///< the world's caster, updated after this step (null: rays hit nothing)
-  int robot_index;                  ///< the robot's index in the world: its own hull is invisible to its rays
+  const sim::RobotState& state;    ///< robot.state() after this step
+  const raycast::RayCaster* rays;  ///< the world's caster, updated after this step (null: rays hit nothing)
+  int robot_index;                 ///< the robot's index in the world: its own hull is invisible to its rays
 };
 
 /// A joint a sensor moves (the MSIS head, an SLS motor), as joint_states reports it.
-struct MovedJoint
-{
+struct MovedJoint {
   std::string name;       ///< URDF joint name
   double position = 0.0;  ///< [rad] (or [m] for a prismatic joint)
   double velocity = 0.0;  ///< [rad/s] (or [m/s])
 };
 
 /// What a sensor's constructor may read: the robot description (link poses) and the step.
-struct SensorSetup
-{
-  std::string robot;                       ///< robot name (messages, random stream)
+struct SensorSetup {
+  std::string robot;  ///< robot name (messages, random stream)
   const sim::RobotDescription& description;
-  double physics_dt = 0.002;               ///< physics step [s] > 0
+  double physics_dt = 0.002;  ///< physics step [s] > 0
   /// Visual mode (/sim/mode): lights on, images rendered; false = operational (fastest).
   bool visual = false;
 };
 
-class Sensor
-{
+class Sensor {
 public:
   /// Throws ConfigError naming the sensor when its rate exceeds the physics rate.
   Sensor(const sim::SensorSpec& spec, const SensorSetup& setup);
@@ -83,8 +79,7 @@ protected:
   /// Casts `rays` through ctx.rays, the robot's own hull excluded; `hits` answers them one for one (all
   /// misses when the context has no caster). Incidence::skip: a model that needs the incidence of few hits
   /// asks raycast::RayCaster::incidence() for those.
-  static void castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays,
-                       std::vector<raycast::Hit>& hits,
+  static void castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
                        raycast::Incidence incidence = raycast::Incidence::compute);
   double interval() const { return 1.0 / spec_.rate; }  ///< [s]
 
@@ -92,10 +87,10 @@ private:
   sim::SensorSpec spec_;
   std::string robot_;
   Random random_;
-  std::uint64_t next_ = 1;       ///< index k of the next sample time k / rate
+  std::uint64_t next_ = 1;  ///< index k of the next sample time k / rate
   std::uint64_t samples_ = 0;
   double sample_time_ = -1.0;
-  double tolerance_ = 1e-9;      ///< [s] rounding slack of the schedule
+  double tolerance_ = 1e-9;  ///< [s] rounding slack of the schedule
 };
 
 }  // namespace sensors

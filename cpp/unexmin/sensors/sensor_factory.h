@@ -14,8 +14,7 @@
 namespace unexmin {
 namespace sensors {
 
-class SensorFactory
-{
+class SensorFactory {
 public:
   using Creator = std::function<std::unique_ptr<Sensor>(const sim::SensorSpec&, const SensorSetup&)>;
 
@@ -24,9 +23,9 @@ public:
   void add(const std::string& type, Creator creator);
   /// Registers `Model` (constructed from (const sim::SensorSpec&, const SensorSetup&)) as family `type`.
   template <class Model>
-  void add(const std::string& type)
-  {
-    add(type, [](const sim::SensorSpec& spec, const SensorSetup& setup) { return std::make_unique<Model>(spec, setup); });
+  void add(const std::string& type) {
+    add(type,
+        [](const sim::SensorSpec& spec, const SensorSetup& setup) { return std::make_unique<Model>(spec, setup); });
   }
 
   bool has(const std::string& type) const { return creators_.count(type) > 0; }

@@ -14,8 +14,7 @@
 namespace unexmin {
 namespace sensors {
 
-class SensorParams
-{
+class SensorParams {
 public:
   /// `robot`: robot name (or description source), used in messages only.
   SensorParams(const sim::SensorSpec& spec, std::string robot);

@@ -9,8 +9,7 @@
 namespace unexmin {
 namespace sensors {
 
-class SensorSelection
-{
+class SensorSelection {
 public:
   /// Every family.
   SensorSelection() = default;

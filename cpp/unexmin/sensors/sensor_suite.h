@@ -13,8 +13,7 @@
 namespace unexmin {
 namespace sensors {
 
-class SensorSuite
-{
+class SensorSuite {
 public:
   /// `world`, `robot` and `rays` (null: rays hit nothing) must outlive the suite. Throws ConfigError when the
   /// robot is not in the world, on a sensor of unknown type (naming the robot, the sensor and the known types;

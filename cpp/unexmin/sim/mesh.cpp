@@ -1,14 +1,13 @@
 #include <unexmin/sim/mesh.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 namespace unexmin {
 namespace sim {
 
-TriangleMesh loadMesh(const MeshEntry& entry)
-{
+TriangleMesh loadMesh(const MeshEntry& entry) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(
       entry.file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
@@ -26,11 +25,14 @@ TriangleMesh loadMesh(const MeshEntry& entry)
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines carry no surface
-      for (int k = 0; k < 3; ++k) out.indices.push_back(base + static_cast<int>(face.mIndices[k]));
+      if (face.mNumIndices != 3)
+        continue;  // points and lines carry no surface
+      for (int k = 0; k < 3; ++k)
+        out.indices.push_back(base + static_cast<int>(face.mIndices[k]));
     }
   }
-  if (out.indices.empty()) throw ConfigError(entry.file + ": mesh '" + entry.name + "' has no triangle");
+  if (out.indices.empty())
+    throw ConfigError(entry.file + ": mesh '" + entry.name + "' has no triangle");
   return out;
 }
 

@@ -10,8 +10,7 @@
 namespace unexmin {
 namespace sim {
 
-struct TriangleMesh
-{
+struct TriangleMesh {
   std::string name;
   std::vector<Eigen::Vector3f> vertices;  ///< World frame [m], scale and pose applied.
   std::vector<int> indices;               ///< Three per triangle.

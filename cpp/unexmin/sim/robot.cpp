@@ -8,11 +8,14 @@ namespace unexmin {
 namespace sim {
 namespace {
 
-btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
-Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+btVector3 toBt(const Eigen::Vector3d& v) {
+  return btVector3(v.x(), v.y(), v.z());
+}
+Eigen::Vector3d toEigen(const btVector3& v) {
+  return Eigen::Vector3d(v.x(), v.y(), v.z());
+}
 
-btTransform toBt(const Eigen::Isometry3d& pose)
-{
+btTransform toBt(const Eigen::Isometry3d& pose) {
   const Eigen::Quaterniond q(pose.linear());
   return btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), toBt(pose.translation()));
 }
@@ -23,19 +26,23 @@ constexpr double kPropellerRadPerSqrtNewton = 10.0;
 }  // namespace
 
 Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
-    : name_(spawn.name), description_(description), spawn_pose_(spawn.pose), model_(description.hydro),
-      vbs_(description.vbs)
-{
+    : name_(spawn.name),
+      description_(description),
+      spawn_pose_(spawn.pose),
+      model_(description.hydro),
+      vbs_(description.vbs) {
   for (const auto& tp : description.thrusters) {
     thrusters_.push_back(std::make_unique<hydro::Thruster>(tp, description.thruster_families));
     rotor_speed_state_.push_back(thrusters_.back()->stateIsRotorSpeed());
   }
   propeller_angle_.assign(thrusters_.size(), 0.0);
-  for (const auto& fp : description.fins) fins_.push_back(std::make_unique<hydro::Fin>(fp, description.fin_families));
-  if (!description.pendulum_joint.empty()) pendulum_ = std::make_unique<hydro::Pendulum>(description.pendulum);
+  for (const auto& fp : description.fins)
+    fins_.push_back(std::make_unique<hydro::Fin>(fp, description.fin_families));
+  if (!description.pendulum_joint.empty())
+    pendulum_ = std::make_unique<hydro::Pendulum>(description.pendulum);
 
   const double radius = description.hydro.radius > 0.0 ? description.hydro.radius
-                                                        : std::cbrt(3.0 * description.hydro.volume / (4.0 * M_PI));
+                                                       : std::cbrt(3.0 * description.hydro.volume / (4.0 * M_PI));
   shape_ = std::make_unique<btSphereShape>(radius);
   motion_state_ = std::make_unique<btDefaultMotionState>(toBt(spawn_pose_));
   btRigidBody::btRigidBodyConstructionInfo info(1.0, motion_state_.get(), shape_.get(), btVector3(1, 1, 1));
@@ -54,10 +61,11 @@ Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
 
 Robot::~Robot() = default;
 
-double Robot::totalMass() const { return description_.hydro.mass + vbs_.mass(); }
+double Robot::totalMass() const {
+  return description_.hydro.mass + vbs_.mass();
+}
 
-Eigen::Vector3d Robot::centerOfGravity() const
-{
+Eigen::Vector3d Robot::centerOfGravity() const {
   const auto& h = description_.hydro;
   double pend_mass = 0.0;
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -70,10 +78,11 @@ Eigen::Vector3d Robot::centerOfGravity() const
   return moment / totalMass();
 }
 
-double Robot::engineMass() const { return totalMass() + model_.foldedMass(); }
+double Robot::engineMass() const {
+  return totalMass() + model_.foldedMass();
+}
 
-void Robot::updateMassProperties()
-{
+void Robot::updateMassProperties() {
   engine_vbs_mass_ = vbs_.mass();
   const Eigen::Vector3d inertia = description_.hydro.inertia + model_.foldedInertia();
   body_->setMassProps(static_cast<btScalar>(engineMass()), toBt(inertia));
@@ -81,9 +90,9 @@ void Robot::updateMassProperties()
   body_->setGravity(btVector3(0, 0, 0));  // weight and buoyancy are ours (restoring forces)
 }
 
-void Robot::applyForces(double t, double dt, const WaterState& water)
-{
-  if (vbs_.mass() != engine_vbs_mass_) updateMassProperties();
+void Robot::applyForces(double t, double dt, const WaterState& water) {
+  if (vbs_.mass() != engine_vbs_mass_)
+    updateMassProperties();
 
   const btTransform& tf = body_->getCenterOfMassTransform();
   const btQuaternion bq = tf.getRotation();
@@ -95,17 +104,19 @@ void Robot::applyForces(double t, double dt, const WaterState& water)
 
   nu_r_.head<3>() = R.transpose() * (v_world - water.current);
   nu_r_.tail<3>() = R.transpose() * w_world;
-  if (have_prev_ && dt > 0.0) nu_r_dot_ = (nu_r_ - nu_r_prev_) / dt;
+  if (have_prev_ && dt > 0.0)
+    nu_r_dot_ = (nu_r_ - nu_r_prev_) / dt;
   nu_r_prev_ = nu_r_;
   have_prev_ = true;
 
   hydro_wrench_ = model_.wrench(nu_r_, nu_r_dot_, R.transpose() * water.current_accel);
 
-  if (pendulum_) pendulum_->update(dt);
+  if (pendulum_)
+    pendulum_->update(dt);
   const auto& h = description_.hydro;
   const double submerged = hydro::submergedFraction(position.z(), water.surface_z, h.radius);
   restoring_wrench_ = hydro::restoringWrench(q, totalMass(), centerOfGravity(), submerged * h.volume,
-                                              h.center_of_buoyancy, water.density, water.gravity);
+                                             h.center_of_buoyancy, water.density, water.gravity);
 
   thrust_wrench_.setZero();
   for (auto& th : thrusters_) {
@@ -127,9 +138,9 @@ void Robot::applyForces(double t, double dt, const WaterState& water)
   velocity_before_ = v_world;
 }
 
-void Robot::afterStep(double dt)
-{
-  if (dt > 0.0) acceleration_ = (toEigen(body_->getLinearVelocity()) - velocity_before_) / dt;
+void Robot::afterStep(double dt) {
+  if (dt > 0.0)
+    acceleration_ = (toEigen(body_->getLinearVelocity()) - velocity_before_) / dt;
   for (std::size_t i = 0; i < thrusters_.size(); ++i) {
     const auto& th = *thrusters_[i];
     const double rate = rotor_speed_state_[i]
@@ -139,8 +150,7 @@ void Robot::afterStep(double dt)
   }
 }
 
-RobotState Robot::state() const
-{
+RobotState Robot::state() const {
   RobotState s;
   const btTransform& tf = body_->getCenterOfMassTransform();
   const btQuaternion bq = tf.getRotation();
@@ -152,8 +162,7 @@ RobotState Robot::state() const
   return s;
 }
 
-void Robot::setPose(const Eigen::Isometry3d& pose)
-{
+void Robot::setPose(const Eigen::Isometry3d& pose) {
   const btTransform tf = toBt(pose);
   body_->setCenterOfMassTransform(tf);
   body_->setInterpolationWorldTransform(tf);
@@ -171,12 +180,14 @@ void Robot::setPose(const Eigen::Isometry3d& pose)
   velocity_before_.setZero();
 }
 
-void Robot::reset()
-{
-  for (auto& th : thrusters_) th->reset();
-  for (auto& fin : fins_) fin->reset();
+void Robot::reset() {
+  for (auto& th : thrusters_)
+    th->reset();
+  for (auto& fin : fins_)
+    fin->reset();
   propeller_angle_.assign(thrusters_.size(), 0.0);
-  if (pendulum_) pendulum_->reset();
+  if (pendulum_)
+    pendulum_->reset();
   vbs_.reset();
   updateMassProperties();
   setPose(spawn_pose_);

@@ -20,26 +20,23 @@ namespace unexmin {
 namespace sim {
 
 /// What the water is doing where the robot is.
-struct WaterState
-{
-  double density = 1000.0;                     ///< [kg/m^3]
-  double gravity = 9.81;                       ///< [m/s^2]
-  double surface_z = 0.0;                      ///< [m]
-  Eigen::Vector3d current{0, 0, 0};            ///< Water velocity, world frame [m/s].
-  Eigen::Vector3d current_accel{0, 0, 0};      ///< Its rate of change, world frame [m/s^2].
+struct WaterState {
+  double density = 1000.0;                 ///< [kg/m^3]
+  double gravity = 9.81;                   ///< [m/s^2]
+  double surface_z = 0.0;                  ///< [m]
+  Eigen::Vector3d current{0, 0, 0};        ///< Water velocity, world frame [m/s].
+  Eigen::Vector3d current_accel{0, 0, 0};  ///< Its rate of change, world frame [m/s^2].
 };
 
 /// Kinematic state of the base link in the world frame.
-struct RobotState
-{
+struct RobotState {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d linear_velocity{0, 0, 0};   ///< World frame [m/s].
-  Eigen::Vector3d angular_velocity{0, 0, 0};  ///< World frame [rad/s].
+  Eigen::Vector3d linear_velocity{0, 0, 0};      ///< World frame [m/s].
+  Eigen::Vector3d angular_velocity{0, 0, 0};     ///< World frame [rad/s].
   Eigen::Vector3d linear_acceleration{0, 0, 0};  ///< World frame, over the last step [m/s^2].
 };
 
-class Robot
-{
+class Robot {
 public:
   Robot(const RobotDescription& description, const RobotSpawn& spawn);
   ~Robot();

@@ -13,17 +13,16 @@ namespace unexmin {
 namespace sim {
 namespace {
 
-class Parser
-{
+class Parser {
 public:
   explicit Parser(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& what) const { throw ConfigError(source_ + ": " + what); }
 
-  std::vector<double> numbers(const char* text, const std::string& where) const
-  {
+  std::vector<double> numbers(const char* text, const std::string& where) const {
     std::vector<double> out;
-    if (!text) return out;
+    if (!text)
+      return out;
     std::istringstream in(text);
     std::string tok;
     while (in >> tok) {
@@ -37,47 +36,43 @@ public:
   }
 
   std::vector<double> attrNumbers(const tinyxml2::XMLElement* e, const char* attr, std::size_t count,
-                                  const std::string& where) const
-  {
+                                  const std::string& where) const {
     const char* text = e ? e->Attribute(attr) : nullptr;
-    if (!text) fail("missing " + where + " attribute '" + attr + "'");
+    if (!text)
+      fail("missing " + where + " attribute '" + attr + "'");
     auto v = numbers(text, where + "@" + attr);
     if (count && v.size() != count)
-      fail(where + "@" + attr + " has " + formatNumber(v.size()) + " numbers, expected " +
-           formatNumber(count));
+      fail(where + "@" + attr + " has " + formatNumber(v.size()) + " numbers, expected " + formatNumber(count));
     return v;
   }
 
-  double attr(const tinyxml2::XMLElement* e, const char* name, const std::string& where) const
-  {
+  double attr(const tinyxml2::XMLElement* e, const char* name, const std::string& where) const {
     return attrNumbers(e, name, 1, where)[0];
   }
 
-  double attrOr(const tinyxml2::XMLElement* e, const char* name, const std::string& where, double fallback) const
-  {
+  double attrOr(const tinyxml2::XMLElement* e, const char* name, const std::string& where, double fallback) const {
     return (e && e->Attribute(name)) ? attr(e, name, where) : fallback;
   }
 
-  const tinyxml2::XMLElement* child(const tinyxml2::XMLElement* e, const char* name, const std::string& where) const
-  {
+  const tinyxml2::XMLElement* child(const tinyxml2::XMLElement* e, const char* name, const std::string& where) const {
     const auto* c = e->FirstChildElement(name);
-    if (!c) fail("missing <" + std::string(name) + "> in " + where);
+    if (!c)
+      fail("missing <" + std::string(name) + "> in " + where);
     return c;
   }
 
   /// Value of <name value="..."/> under e, with `count` numbers.
   std::vector<double> valueOf(const tinyxml2::XMLElement* e, const char* name, std::size_t count,
-                              const std::string& where) const
-  {
+                              const std::string& where) const {
     return attrNumbers(child(e, name, where), "value", count, where + "/" + name);
   }
 
-  hydro::ParamMap params(const tinyxml2::XMLElement* e, const std::string& where) const
-  {
+  hydro::ParamMap params(const tinyxml2::XMLElement* e, const std::string& where) const {
     hydro::ParamMap out;
     for (const auto* p = e->FirstChildElement("param"); p; p = p->NextSiblingElement("param")) {
       const char* name = p->Attribute("name");
-      if (!name) fail(where + "/param has no 'name'");
+      if (!name)
+        fail(where + "/param has no 'name'");
       out[name] = attrNumbers(p, "value", 0, where + "/param[" + name + "]");
     }
     return out;
@@ -87,27 +82,28 @@ private:
   std::string source_;
 };
 
-Eigen::Vector3d vec(const std::vector<double>& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+Eigen::Vector3d vec(const std::vector<double>& v) {
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
 
-std::string xyz(const Eigen::Vector3d& v)
-{
+std::string xyz(const Eigen::Vector3d& v) {
   return "(" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")";
 }
 
 /// The id of an actuator element <tag id="...">: a non-negative integer.
-int actuatorId(const Parser& p, const tinyxml2::XMLElement* e, const std::string& tag)
-{
+int actuatorId(const Parser& p, const tinyxml2::XMLElement* e, const std::string& tag) {
   const double id = p.attr(e, "id", "<" + tag + ">");
-  if (id < 0 || id != std::floor(id)) p.fail("<" + tag + ">@id must be a non-negative integer");
+  if (id < 0 || id != std::floor(id))
+    p.fail("<" + tag + ">@id must be a non-negative integer");
   return static_cast<int>(id);
 }
 
 /// Sorts actuators (and their joints, same order) by id; the ids must be 0..n-1. `what` names them in the error.
 template <class Params>
-void sortById(const Parser& p, std::vector<Params>& items, std::vector<std::string>& joints, const std::string& what)
-{
+void sortById(const Parser& p, std::vector<Params>& items, std::vector<std::string>& joints, const std::string& what) {
   std::vector<std::size_t> order(items.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return items[a].id < items[b].id; });
   std::vector<Params> sorted;
   std::vector<std::string> sorted_joints;
@@ -122,26 +118,25 @@ void sortById(const Parser& p, std::vector<Params>& items, std::vector<std::stri
 }
 
 /// An actuator at `at` [m, body] must lie inside the hull: its box when the description gives one, else its sphere.
-void requireInsideHull(const Parser& p, const RobotDescription& d, const Eigen::Vector3d& at, const std::string& where)
-{
+void requireInsideHull(const Parser& p, const RobotDescription& d, const Eigen::Vector3d& at,
+                       const std::string& where) {
   constexpr double kSlack = 1e-6;  // [m] rounding of the expanded description
   if (d.hull_box.minCoeff() > 0.0) {
     const Eigen::Vector3d half = 0.5 * d.hull_box;
     if ((at.cwiseAbs() - half).maxCoeff() > kSlack)
-      p.fail(where + ": position " + xyz(at) + " [m] is outside the hull's bounding box (accepted: |x| <= " +
-             formatNumber(half.x()) + ", |y| <= " + formatNumber(half.y()) + ", |z| <= " + formatNumber(half.z()) +
-             " [m])");
+      p.fail(where + ": position " + xyz(at) +
+             " [m] is outside the hull's bounding box (accepted: |x| <= " + formatNumber(half.x()) +
+             ", |y| <= " + formatNumber(half.y()) + ", |z| <= " + formatNumber(half.z()) + " [m])");
   } else if (d.hydro.radius > 0.0 && at.norm() > d.hydro.radius + kSlack) {
-    p.fail(where + ": position " + xyz(at) + " [m] is outside the hull (accepted: distance from the centre <= " +
-           formatNumber(d.hydro.radius) + " [m])");
+    p.fail(where + ": position " + xyz(at) +
+           " [m] is outside the hull (accepted: distance from the centre <= " + formatNumber(d.hydro.radius) + " [m])");
   }
 }
 
 /// <fin> elements (docs/robot_description.md): pose from the joint, model by family name, limits required.
 template <class JointLookup, class InsideHull>
 void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescription& d, JointLookup joint,
-               InsideHull inside_hull)
-{
+               InsideHull inside_hull) {
   for (const auto* f = ext->FirstChildElement("fin"); f; f = f->NextSiblingElement("fin")) {
     const int id = actuatorId(p, f, "fin");
     const std::string fw = "<fin id=" + formatNumber(id) + ">";
@@ -155,11 +150,13 @@ void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescriptio
     fp.position = frame.translation();
     inside_hull(fp.position, fw);
     const auto* model = f->FirstChildElement("model");
-    if (!model) p.fail(fw + ": missing <model type=...> (a fin lift family, e.g. linear_lift)");
+    if (!model)
+      p.fail(fw + ": missing <model type=...> (a fin lift family, e.g. linear_lift)");
     fp.model = model->Attribute("type") ? model->Attribute("type") : "";
     fp.model_params = p.params(model, fw + "/model");
     const auto* area = f->FirstChildElement("area");
-    if (!area) p.fail(fw + ": missing <area value=...> (planform area > 0 [m^2])");
+    if (!area)
+      p.fail(fw + ": missing <area value=...> (planform area > 0 [m^2])");
     fp.area = p.attr(area, "value", fw + "/area");
     const auto* angle = f->FirstChildElement("angle");
     if (!angle || !angle->Attribute("min") || !angle->Attribute("max"))
@@ -167,9 +164,11 @@ void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescriptio
     fp.min_angle = p.attr(angle, "min", fw + "/angle");
     fp.max_angle = p.attr(angle, "max", fw + "/angle");
     const auto* rate = f->FirstChildElement("rate");
-    if (!rate) p.fail(fw + ": missing <rate value=...> (largest fin speed > 0 [rad/s])");
+    if (!rate)
+      p.fail(fw + ": missing <rate value=...> (largest fin speed > 0 [rad/s])");
     fp.rate = p.attr(rate, "value", fw + "/rate");
-    if (const auto* to = f->FirstChildElement("timeout")) fp.timeout = p.attr(to, "value", fw + "/timeout");
+    if (const auto* to = f->FirstChildElement("timeout"))
+      fp.timeout = p.attr(to, "value", fw + "/timeout");
     try {
       hydro::Fin check(fp, d.fin_families);
     } catch (const ParameterError& e) {
@@ -183,43 +182,42 @@ void parseFins(const Parser& p, const tinyxml2::XMLElement* ext, RobotDescriptio
 
 }  // namespace
 
-Eigen::Isometry3d RobotDescription::linkPose(const std::string& link) const
-{
+Eigen::Isometry3d RobotDescription::linkPose(const std::string& link) const {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   std::string current = link;
   for (std::size_t guard = 0; current != base_link && guard <= joints.size(); ++guard) {
-    const auto it = std::find_if(joints.begin(), joints.end(),
-                                 [&](const JointInfo& j) { return j.child == current; });
-    if (it == joints.end()) throw ConfigError(source + ": link '" + link + "' is not connected to '" + base_link + "'");
+    const auto it = std::find_if(joints.begin(), joints.end(), [&](const JointInfo& j) { return j.child == current; });
+    if (it == joints.end())
+      throw ConfigError(source + ": link '" + link + "' is not connected to '" + base_link + "'");
     pose = it->origin * pose;
     current = it->parent;
   }
-  if (current != base_link) throw ConfigError(source + ": joint loop above link '" + link + "'");
+  if (current != base_link)
+    throw ConfigError(source + ": joint loop above link '" + link + "'");
   return pose;
 }
 
-std::vector<std::string> RobotDescription::movableJoints() const
-{
+std::vector<std::string> RobotDescription::movableJoints() const {
   std::vector<std::string> out;
   for (const auto& j : joints)
-    if (j.type != "fixed") out.push_back(j.name);
+    if (j.type != "fixed")
+      out.push_back(j.name);
   return out;
 }
 
-RobotDescription parseRobotDescription(const std::string& xml, const std::string& source)
-{
+RobotDescription parseRobotDescription(const std::string& xml, const std::string& source) {
   return parseRobotDescription(xml, source, hydro::ThrusterFactory::builtin());
 }
 
 RobotDescription parseRobotDescription(const std::string& xml, const std::string& source,
-                                       const hydro::ThrusterFactory& thruster_families)
-{
+                                       const hydro::ThrusterFactory& thruster_families) {
   Parser p(source);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
     p.fail(std::string("not valid XML: ") + (doc.ErrorStr() ? doc.ErrorStr() : "?"));
   const auto* robot = doc.FirstChildElement("robot");
-  if (!robot) p.fail("no <robot> element");
+  if (!robot)
+    p.fail("no <robot> element");
 
   RobotDescription d;
   d.source = source;
@@ -228,7 +226,8 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
 
   std::map<std::string, bool> links;
   for (const auto* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link"))
-    if (l->Attribute("name")) links[l->Attribute("name")] = true;
+    if (l->Attribute("name"))
+      links[l->Attribute("name")] = true;
 
   for (const auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
     JointInfo info;
@@ -239,47 +238,58 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     const auto* childl = p.child(j, "child", where);
     info.parent = parent->Attribute("link") ? parent->Attribute("link") : "";
     info.child = childl->Attribute("link") ? childl->Attribute("link") : "";
-    if (!links.count(info.parent)) p.fail(where + ": parent link '" + info.parent + "' does not exist");
-    if (!links.count(info.child)) p.fail(where + ": child link '" + info.child + "' does not exist");
+    if (!links.count(info.parent))
+      p.fail(where + ": parent link '" + info.parent + "' does not exist");
+    if (!links.count(info.child))
+      p.fail(where + ": child link '" + info.child + "' does not exist");
     Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
     if (const auto* o = j->FirstChildElement("origin")) {
-      if (o->Attribute("xyz")) xyz = vec(p.attrNumbers(o, "xyz", 3, where + "/origin"));
-      if (o->Attribute("rpy")) rpy = vec(p.attrNumbers(o, "rpy", 3, where + "/origin"));
+      if (o->Attribute("xyz"))
+        xyz = vec(p.attrNumbers(o, "xyz", 3, where + "/origin"));
+      if (o->Attribute("rpy"))
+        rpy = vec(p.attrNumbers(o, "rpy", 3, where + "/origin"));
     }
     info.origin = poseFromXyzRpy(xyz, rpy);
     if (const auto* a = j->FirstChildElement("axis")) {
       info.axis = vec(p.attrNumbers(a, "xyz", 3, where + "/axis"));
-      if (info.axis.norm() < 1e-9) p.fail(where + "/axis has zero length");
+      if (info.axis.norm() < 1e-9)
+        p.fail(where + "/axis has zero length");
       info.axis.normalize();
     }
     d.joints.push_back(info);
   }
   auto joint = [&](const char* name, const std::string& where) -> const JointInfo& {
-    if (!name) p.fail(where + " has no 'joint' attribute");
+    if (!name)
+      p.fail(where + " has no 'joint' attribute");
     const auto it = std::find_if(d.joints.begin(), d.joints.end(), [&](const JointInfo& j) { return j.name == name; });
-    if (it == d.joints.end()) p.fail(where + ": joint '" + std::string(name) + "' does not exist");
+    if (it == d.joints.end())
+      p.fail(where + ": joint '" + std::string(name) + "' does not exist");
     return *it;
   };
 
   const auto* ext = robot->FirstChildElement("unexmin");
-  if (!ext) p.fail("no <unexmin> element (hydrodynamics, thrusters, pendulum, vbs)");
+  if (!ext)
+    p.fail("no <unexmin> element (hydrodynamics, thrusters, pendulum, vbs)");
 
   const auto* hyd = p.child(ext, "hydrodynamics", "<unexmin>");
   const std::string hw = "<hydrodynamics>";
   d.base_link = hyd->Attribute("link") ? hyd->Attribute("link") : "";
-  if (!links.count(d.base_link)) p.fail(hw + "@link '" + d.base_link + "' is not a link of the robot");
+  if (!links.count(d.base_link))
+    p.fail(hw + "@link '" + d.base_link + "' is not a link of the robot");
   auto& h = d.hydro;
   h.mass = p.valueOf(hyd, "mass", 1, hw)[0];
   h.volume = p.valueOf(hyd, "volume", 1, hw)[0];
   h.radius = p.valueOf(hyd, "radius", 1, hw)[0];
   h.center_of_gravity = vec(p.attrNumbers(p.child(hyd, "center_of_gravity", hw), "xyz", 3, hw + "/center_of_gravity"));
-  h.center_of_buoyancy = vec(p.attrNumbers(p.child(hyd, "center_of_buoyancy", hw), "xyz", 3, hw + "/center_of_buoyancy"));
+  h.center_of_buoyancy =
+      vec(p.attrNumbers(p.child(hyd, "center_of_buoyancy", hw), "xyz", 3, hw + "/center_of_buoyancy"));
   const auto* inertia = p.child(hyd, "inertia", hw);
   h.inertia = Eigen::Vector3d(p.attr(inertia, "ixx", hw + "/inertia"), p.attr(inertia, "iyy", hw + "/inertia"),
                               p.attr(inertia, "izz", hw + "/inertia"));
   const auto ma = p.valueOf(hyd, "added_mass", 36, hw);
   for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 6; ++c) h.added_mass(r, c) = ma[6 * r + c];
+    for (int c = 0; c < 6; ++c)
+      h.added_mass(r, c) = ma[6 * r + c];
   const auto dl = p.valueOf(hyd, "linear_damping", 6, hw);
   const auto dq = p.valueOf(hyd, "quadratic_damping", 6, hw);
   for (int i = 0; i < 6; ++i) {
@@ -319,7 +329,8 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     const auto* cmd = t->FirstChildElement("command");
     tp.min_command = p.attrOr(cmd, "min", tw + "/command", tp.min_thrust);
     tp.max_command = p.attrOr(cmd, "max", tw + "/command", tp.max_thrust);
-    if (const auto* to = t->FirstChildElement("timeout")) tp.timeout = p.attr(to, "value", tw + "/timeout");
+    if (const auto* to = t->FirstChildElement("timeout"))
+      tp.timeout = p.attr(to, "value", tw + "/timeout");
     try {
       hydro::Thruster check(tp, thruster_families);  // validates dynamics/conversion names and parameters
     } catch (const ParameterError& e) {
@@ -344,13 +355,15 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     } catch (const ParameterError& e) {
       p.fail(pw + ": " + e.what());
     }
-    if (d.pendulum.mass >= h.mass) p.fail(pw + "@mass must be less than the vehicle mass");
+    if (d.pendulum.mass >= h.mass)
+      p.fail(pw + "@mass must be less than the vehicle mass");
   }
   if (const auto* vbs = ext->FirstChildElement("vbs")) {
     const std::string vw = "<vbs>";
     d.vbs.min_mass = p.attr(vbs, "min", vw);
     d.vbs.max_mass = p.attr(vbs, "max", vw);
-    if (vbs->Attribute("xyz")) d.vbs.position = vec(p.attrNumbers(vbs, "xyz", 3, vw));
+    if (vbs->Attribute("xyz"))
+      d.vbs.position = vec(p.attrNumbers(vbs, "xyz", 3, vw));
     try {
       hydro::Vbs check(d.vbs);
     } catch (const ParameterError& e) {
@@ -364,21 +377,28 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
     SensorSpec sp;
     sp.name = e->Attribute("name") ? e->Attribute("name") : "";
     const std::string sw = "<sensor name='" + sp.name + "'>";
-    if (sp.name.empty()) p.fail("a <sensor> has no 'name'");
+    if (sp.name.empty())
+      p.fail("a <sensor> has no 'name'");
     for (const auto& other : d.sensors)
-      if (other.name == sp.name) p.fail(sw + ": the name is used twice");
+      if (other.name == sp.name)
+        p.fail(sw + ": the name is used twice");
     sp.type = e->Attribute("type") ? e->Attribute("type") : "";
-    if (sp.type.empty()) p.fail(sw + " has no 'type'");
+    if (sp.type.empty())
+      p.fail(sw + " has no 'type'");
     sp.link = e->Attribute("link") ? e->Attribute("link") : "";
-    if (!links.count(sp.link)) p.fail(sw + "@link '" + sp.link + "' is not a link of the robot");
+    if (!links.count(sp.link))
+      p.fail(sw + "@link '" + sp.link + "' is not a link of the robot");
     sp.pose = d.linkPose(sp.link);
     sp.rate = p.attr(e, "rate", sw);
-    if (!(sp.rate > 0.0)) p.fail(sw + "@rate = " + formatNumber(sp.rate) + " must be > 0 [Hz]");
+    if (!(sp.rate > 0.0))
+      p.fail(sw + "@rate = " + formatNumber(sp.rate) + " must be > 0 [Hz]");
     for (const auto* q = e->FirstChildElement("param"); q; q = q->NextSiblingElement("param")) {
       const char* key = q->Attribute("name");
       const char* value = q->Attribute("value");
-      if (!key) p.fail(sw + "/param has no 'name'");
-      if (!value) p.fail(sw + "/param[" + key + "] has no 'value'");
+      if (!key)
+        p.fail(sw + "/param has no 'name'");
+      if (!value)
+        p.fail(sw + "/param[" + key + "] has no 'value'");
       std::istringstream in(value);
       std::string tok;
       bool numeric = true;
@@ -386,12 +406,16 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
       while (in >> tok) {
         char* end = nullptr;
         const double v = std::strtod(tok.c_str(), &end);
-        if (end == tok.c_str() || *end != '\0') numeric = false;
-        else if (!std::isfinite(v)) p.fail(sw + "/param[" + key + "]: '" + tok + "' is not finite");
+        if (end == tok.c_str() || *end != '\0')
+          numeric = false;
+        else if (!std::isfinite(v))
+          p.fail(sw + "/param[" + key + "]: '" + tok + "' is not finite");
         numbers.push_back(v);
       }
-      if (numeric && !numbers.empty()) sp.params[key] = numbers;
-      else sp.text[key] = value;
+      if (numeric && !numbers.empty())
+        sp.params[key] = numbers;
+      else
+        sp.text[key] = value;
     }
     d.sensors.push_back(sp);
   }

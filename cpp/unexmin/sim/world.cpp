@@ -7,24 +7,23 @@
 namespace unexmin {
 namespace sim {
 
-struct World::StaticBody
-{
+struct World::StaticBody {
   std::unique_ptr<btTriangleIndexVertexArray> array;
   std::unique_ptr<btBvhTriangleMeshShape> shape;
   std::unique_ptr<btRigidBody> body;
 };
 
-World::World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions,
-             int robot_count, double dt, std::uint64_t seed)
-    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed)
-{
+World::World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions, int robot_count,
+             double dt, std::uint64_t seed)
+    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw ConfigError(config.file + ": physics step " + formatNumber(dt) + " s must be > 0");
   const int available = static_cast<int>(config.robots.size());
   if (robot_count > available)
     throw ConfigError(config.file + ": " + formatNumber(robot_count) + " robots asked for, the world spawns at most " +
                       formatNumber(available));
-  if (robot_count < 0) robot_count = available;
+  if (robot_count < 0)
+    robot_count = available;
 
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
@@ -36,12 +35,14 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
 
   for (const auto& entry : config.meshes) {
     meshes_.push_back(loadMesh(entry));
-    if (!entry.collision) continue;
+    if (!entry.collision)
+      continue;
     const TriangleMesh& mesh = meshes_.back();
     auto sb = std::make_unique<StaticBody>();
     sb->array = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()), 3 * static_cast<int>(sizeof(int)),
-        static_cast<int>(mesh.vertices.size()), const_cast<btScalar*>(reinterpret_cast<const btScalar*>(mesh.vertices.data())),
+        static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()),
+        3 * static_cast<int>(sizeof(int)), static_cast<int>(mesh.vertices.size()),
+        const_cast<btScalar*>(reinterpret_cast<const btScalar*>(mesh.vertices.data())),
         static_cast<int>(sizeof(Eigen::Vector3f)));
     static_assert(sizeof(btScalar) == sizeof(float), "Bullet must be built with float scalars");
     sb->shape = std::make_unique<btBvhTriangleMeshShape>(sb->array.get(), true);
@@ -56,7 +57,8 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
   for (int i = 0; i < robot_count; ++i) {
     const RobotSpawn& spawn = config.robots[i];
     const auto it = descriptions.find(spawn.name);
-    if (it == descriptions.end()) throw ConfigError(config.file + ": no robot description for '" + spawn.name + "'");
+    if (it == descriptions.end())
+      throw ConfigError(config.file + ": no robot description for '" + spawn.name + "'");
     robots_.push_back(std::make_unique<Robot>(it->second, spawn));
     dynamics_->addRigidBody(robots_.back()->body());
     robots_.back()->body()->setGravity(btVector3(0, 0, 0));
@@ -68,40 +70,43 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
   water_.current = current_.velocity();
 }
 
-World::~World()
-{
-  for (auto& r : robots_) dynamics_->removeRigidBody(r->body());
-  for (auto& sb : static_bodies_) dynamics_->removeRigidBody(sb->body.get());
+World::~World() {
+  for (auto& r : robots_)
+    dynamics_->removeRigidBody(r->body());
+  for (auto& sb : static_bodies_)
+    dynamics_->removeRigidBody(sb->body.get());
 }
 
-Robot* World::robot(const std::string& name)
-{
+Robot* World::robot(const std::string& name) {
   for (auto& r : robots_)
-    if (r->name() == name) return r.get();
+    if (r->name() == name)
+      return r.get();
   return nullptr;
 }
 
-void World::step()
-{
+void World::step() {
   current_.update(dt_);
   water_.current = current_.velocity();
   water_.current_accel = current_.acceleration();
-  for (auto& r : robots_) r->applyForces(time_, dt_, water_);
+  for (auto& r : robots_)
+    r->applyForces(time_, dt_, water_);
   dynamics_->stepSimulation(static_cast<btScalar>(dt_), 0);
-  for (auto& r : robots_) r->afterStep(dt_);
+  for (auto& r : robots_)
+    r->afterStep(dt_);
   ++steps_;
   time_ = static_cast<double>(steps_) * dt_;
 }
 
-void World::reset(std::uint64_t seed)
-{
+void World::reset(std::uint64_t seed) {
   seed_ = seed;
   current_.reset(seed);
   water_.current = current_.velocity();
   water_.current_accel.setZero();
   // Remove and re-add the bodies so cached contacts and solver state start afresh (determinism).
-  for (auto& r : robots_) dynamics_->removeRigidBody(r->body());
-  for (auto& r : robots_) r->reset();
+  for (auto& r : robots_)
+    dynamics_->removeRigidBody(r->body());
+  for (auto& r : robots_)
+    r->reset();
   solver_->reset();
   broadphase_->resetPool(dispatcher_.get());
   for (auto& r : robots_) {

@@ -24,14 +24,13 @@ struct btDefaultMotionState;
 namespace unexmin {
 namespace sim {
 
-class World
-{
+class World {
 public:
   /// `descriptions` maps robot name -> description for every robot to spawn; robots are spawned in
   /// the world file's order, the first `robot_count` of them (all when robot_count < 0).
   /// dt: physics step [s] > 0. Throws ConfigError on a bad mesh, a missing description or a bad step.
-  World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions,
-        int robot_count, double dt, std::uint64_t seed);
+  World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions, int robot_count,
+        double dt, std::uint64_t seed);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -39,7 +38,7 @@ public:
   /// Advance by one physics step.
   void step();
 
-  double time() const { return time_; }            ///< Simulation time [s].
+  double time() const { return time_; }  ///< Simulation time [s].
   std::uint64_t stepCount() const { return steps_; }
   double dt() const { return dt_; }
   std::uint64_t seed() const { return seed_; }

@@ -14,25 +14,23 @@ namespace unexmin {
 namespace sim {
 namespace {
 
-std::string dirOf(const std::string& path)
-{
+std::string dirOf(const std::string& path) {
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
 
-class Reader
-{
+class Reader {
 public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(const std::string& what) const { throw ConfigError(file_ + ": " + what); }
 
-  double number(const YAML::Node& node, const std::string& key, const std::string& where,
-                double fallback, bool required = false) const
-  {
+  double number(const YAML::Node& node, const std::string& key, const std::string& where, double fallback,
+                bool required = false) const {
     const YAML::Node v = node[key];
     if (!v) {
-      if (required) fail("missing '" + where + key + "' (a number)");
+      if (required)
+        fail("missing '" + where + key + "' (a number)");
       return fallback;
     }
     double x = 0.0;
@@ -41,16 +39,18 @@ public:
     } catch (const YAML::Exception&) {
       fail("'" + where + key + "' must be a number");
     }
-    if (!std::isfinite(x)) fail("'" + where + key + "' must be finite");
+    if (!std::isfinite(x))
+      fail("'" + where + key + "' must be finite");
     return x;
   }
 
   Eigen::Vector3d vec3(const YAML::Node& node, const std::string& key, const std::string& where,
-                       const Eigen::Vector3d& fallback) const
-  {
+                       const Eigen::Vector3d& fallback) const {
     const YAML::Node v = node[key];
-    if (!v) return fallback;
-    if (!v.IsSequence() || v.size() != 3) fail("'" + where + key + "' must be a list of 3 numbers");
+    if (!v)
+      return fallback;
+    if (!v.IsSequence() || v.size() != 3)
+      fail("'" + where + key + "' must be a list of 3 numbers");
     Eigen::Vector3d out;
     for (int i = 0; i < 3; ++i) {
       try {
@@ -58,27 +58,29 @@ public:
       } catch (const YAML::Exception&) {
         fail("'" + where + key + "' must be a list of 3 numbers");
       }
-      if (!std::isfinite(out[i])) fail("'" + where + key + "' must be finite");
+      if (!std::isfinite(out[i]))
+        fail("'" + where + key + "' must be finite");
     }
     return out;
   }
 
   std::string text(const YAML::Node& node, const std::string& key, const std::string& where,
-                   const std::string& fallback, bool required = false) const
-  {
+                   const std::string& fallback, bool required = false) const {
     const YAML::Node v = node[key];
     if (!v) {
-      if (required) fail("missing '" + where + key + "' (a string)");
+      if (required)
+        fail("missing '" + where + key + "' (a string)");
       return fallback;
     }
-    if (!v.IsScalar()) fail("'" + where + key + "' must be a string");
+    if (!v.IsScalar())
+      fail("'" + where + key + "' must be a string");
     return v.as<std::string>();
   }
 
-  bool flag(const YAML::Node& node, const std::string& key, const std::string& where, bool fallback) const
-  {
+  bool flag(const YAML::Node& node, const std::string& key, const std::string& where, bool fallback) const {
     const YAML::Node v = node[key];
-    if (!v) return fallback;
+    if (!v)
+      return fallback;
     try {
       return v.as<bool>();
     } catch (const YAML::Exception&) {
@@ -89,8 +91,7 @@ public:
   /// The mesh file `file` (key `key`) of a world file in folder `base`: a relative path that stays inside `base`
   /// once normalised (docs/worlds.md, "Paths"), returned resolved against it. A world file cannot make the
   /// simulator read anything else: absolute paths and paths climbing out with '..' are refused.
-  std::string insidePath(const std::string& base, const std::string& file, const std::string& key) const
-  {
+  std::string insidePath(const std::string& base, const std::string& file, const std::string& key) const {
     const std::filesystem::path rel(file);
     if (rel.is_absolute())
       fail("'" + key + "' " + file + " is an absolute path: expected a path relative to the world file's folder " +
@@ -103,11 +104,12 @@ public:
   }
 
   hydro::GaussMarkovParams channel(const YAML::Node& node, const std::string& key,
-                                   const hydro::GaussMarkovParams& fallback) const
-  {
+                                   const hydro::GaussMarkovParams& fallback) const {
     const YAML::Node c = node[key];
-    if (!c) return fallback;
-    if (!c.IsMap()) fail("'current." + key + "' must be a map of mean/min/max/noise/mu");
+    if (!c)
+      return fallback;
+    if (!c.IsMap())
+      fail("'current." + key + "' must be a map of mean/min/max/noise/mu");
     const std::string where = "current." + key + ".";
     hydro::GaussMarkovParams p;
     p.mean = number(c, "mean", where, fallback.mean);
@@ -120,9 +122,9 @@ public:
 
   /// A mesh's `material:` map (docs/worlds.md): the kind's defaults, then every key given; unknown keys and bad
   /// values stop with the key's name.
-  Material material(const YAML::Node& node, const std::string& where) const
-  {
-    if (!node.IsMap()) fail("'" + where.substr(0, where.size() - 1) + "' must be a map (kind, albedo, seed, ...)");
+  Material material(const YAML::Node& node, const std::string& where) const {
+    if (!node.IsMap())
+      fail("'" + where.substr(0, where.size() - 1) + "' must be a map (kind, albedo, seed, ...)");
     Material m;
     try {
       m = materialDefaults(text(node, "kind", where, "plain"), where);
@@ -134,7 +136,8 @@ public:
       const std::pair<const char*, double*> numbers[] = {
           {"contrast", &m.contrast}, {"relief", &m.relief}, {"grain", &m.grain},   {"cracks", &m.cracks},
           {"strata", &m.strata},     {"stains", &m.stains}, {"region", &m.region}, {"tint", &m.tint}};
-      for (const auto& kv : numbers) *kv.second = number(node, kv.first, where, *kv.second);
+      for (const auto& kv : numbers)
+        *kv.second = number(node, kv.first, where, *kv.second);
       checkMaterial(m, where);
     } catch (const ParameterError& e) {
       fail(e.what());
@@ -148,46 +151,51 @@ private:
 
 }  // namespace
 
-Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy)
-{
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-                      .toRotationMatrix();
+  pose.linear() =
+      (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   pose.translation() = xyz;
   return pose;
 }
 
-WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file)
-{
+WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file) {
   Reader r(path);
   std::ifstream in(path);
-  if (!in) r.fail("cannot open the world file");
+  if (!in)
+    r.fail("cannot open the world file");
   YAML::Node root;
   try {
     root = YAML::Load(in);
   } catch (const YAML::Exception& e) {
     r.fail(std::string("not valid YAML: ") + e.what());
   }
-  if (!root.IsMap()) r.fail("the world file must be a YAML map (name, gravity, water, meshes, robots, ...)");
+  if (!root.IsMap())
+    r.fail("the world file must be a YAML map (name, gravity, water, meshes, robots, ...)");
   checkWorldKeys(root, path, schema_file.empty() ? worldSchemaFile() : schema_file);
 
   WorldConfig w;
   w.file = path;
   w.name = r.text(root, "name", "", "world");
   w.gravity = r.number(root, "gravity", "", 9.81);
-  if (w.gravity <= 0.0) r.fail("'gravity' must be > 0 [m/s^2]");
+  if (w.gravity <= 0.0)
+    r.fail("'gravity' must be > 0 [m/s^2]");
   if (const YAML::Node water = root["water"]) {
-    if (!water.IsMap()) r.fail("'water' must be a map of density/surface_z");
+    if (!water.IsMap())
+      r.fail("'water' must be a map of density/surface_z");
     w.water_density = r.number(water, "density", "water.", 1000.0);
     w.surface_z = r.number(water, "surface_z", "water.", 0.0);
   }
-  if (w.water_density <= 0.0) r.fail("'water.density' must be > 0 [kg/m^3]");
+  if (w.water_density <= 0.0)
+    r.fail("'water.density' must be > 0 [kg/m^3]");
   w.atmospheric_pressure = r.number(root, "atmospheric_pressure", "", 101325.0);
-  if (w.atmospheric_pressure < 0.0) r.fail("'atmospheric_pressure' must be >= 0 [Pa]");
+  if (w.atmospheric_pressure < 0.0)
+    r.fail("'atmospheric_pressure' must be >= 0 [Pa]");
   w.ray_caster = r.text(root, "ray_caster", "", w.ray_caster);
-  if (w.ray_caster.empty()) r.fail("'ray_caster' is empty, expected the name of a ray-casting back end (embree|bullet)");
+  if (w.ray_caster.empty())
+    r.fail("'ray_caster' is empty, expected the name of a ray-casting back end (embree|bullet)");
   if (const YAML::Node vis = root["visibility"]) {
     w.visibility = r.text(vis, "level", "visibility.", "none");
     if (w.visibility != "none" && w.visibility != "low" && w.visibility != "medium" && w.visibility != "high")
@@ -207,7 +215,8 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
   w.current.horizontal_angle = h_angle;
   w.current.vertical_angle = zero;
   if (const YAML::Node cur = root["current"]) {
-    if (!cur.IsMap()) r.fail("'current' must be a map of speed/horizontal_angle/vertical_angle");
+    if (!cur.IsMap())
+      r.fail("'current' must be a map of speed/horizontal_angle/vertical_angle");
     w.current.speed = r.channel(cur, "speed", zero);
     w.current.horizontal_angle = r.channel(cur, "horizontal_angle", h_angle);
     w.current.vertical_angle = r.channel(cur, "vertical_angle", zero);
@@ -220,18 +229,22 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
 
   const std::string base = dirOf(path);
   if (const YAML::Node meshes = root["meshes"]) {
-    if (!meshes.IsSequence()) r.fail("'meshes' must be a list");
+    if (!meshes.IsSequence())
+      r.fail("'meshes' must be a list");
     for (std::size_t i = 0; i < meshes.size(); ++i) {
       const YAML::Node m = meshes[i];
       const std::string where = "meshes[" + formatNumber(i) + "].";
-      if (!m.IsMap()) r.fail("'" + where + "' must be a map");
+      if (!m.IsMap())
+        r.fail("'" + where + "' must be a map");
       MeshEntry e;
       e.name = r.text(m, "name", where, "mesh" + formatNumber(i));
       const std::string file = r.text(m, "file", where, "", true);
       e.file = r.insidePath(base, file, where + "file");
-      if (!std::ifstream(e.file)) r.fail("'" + where + "file' " + e.file + " does not exist");
+      if (!std::ifstream(e.file))
+        r.fail("'" + where + "file' " + e.file + " does not exist");
       e.scale = r.vec3(m, "scale", where, Eigen::Vector3d::Ones());
-      if ((e.scale.array() <= 0.0).any()) r.fail("'" + where + "scale' must be > 0 on every axis");
+      if ((e.scale.array() <= 0.0).any())
+        r.fail("'" + where + "scale' must be > 0 on every axis");
       e.pose = poseFromXyzRpy(r.vec3(m, "xyz", where, Eigen::Vector3d::Zero()),
                               r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
       e.collision = r.flag(m, "collision", where, true);
@@ -241,7 +254,8 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
         r.fail("'" + where + "albedo' must be three numbers in [0, 1]");
       e.material.albedo = e.albedo;
       if (const YAML::Node mat = m["material"]) {
-        if (m["albedo"]) r.fail("'" + where + "albedo' and '" + where + "material' both given: put the albedo in the material");
+        if (m["albedo"])
+          r.fail("'" + where + "albedo' and '" + where + "material' both given: put the albedo in the material");
         e.material = r.material(mat, where + "material.");
         e.albedo = e.material.albedo;
       }
@@ -255,27 +269,29 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const YAML::Node m = robots[i];
     const std::string where = "robots[" + formatNumber(i) + "].";
-    if (!m.IsMap()) r.fail("'" + where + "' must be a map");
+    if (!m.IsMap())
+      r.fail("'" + where + "' must be a map");
     RobotSpawn s;
     s.name = r.text(m, "name", where, "", true);
     s.description = r.text(m, "description", where, "ux1.urdf.xacro");
     s.pose = poseFromXyzRpy(r.vec3(m, "xyz", where, Eigen::Vector3d::Zero()),
                             r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
     for (const auto& other : w.robots)
-      if (other.name == s.name) r.fail("robot name '" + s.name + "' appears twice");
+      if (other.name == s.name)
+        r.fail("robot name '" + s.name + "' appears twice");
     w.robots.push_back(s);
   }
   return w;
 }
 
-void selectRobots(WorldConfig& config, const std::vector<std::string>& names)
-{
+void selectRobots(WorldConfig& config, const std::vector<std::string>& names) {
   std::vector<RobotSpawn> chosen;
   std::string known;
-  for (const auto& r : config.robots) known += (known.empty() ? "" : ", ") + r.name;
+  for (const auto& r : config.robots)
+    known += (known.empty() ? "" : ", ") + r.name;
   for (const auto& name : names) {
-    const auto it = std::find_if(config.robots.begin(), config.robots.end(),
-                                 [&](const RobotSpawn& r) { return r.name == name; });
+    const auto it =
+        std::find_if(config.robots.begin(), config.robots.end(), [&](const RobotSpawn& r) { return r.name == name; });
     if (it == config.robots.end())
       throw ConfigError(config.file + ": no robot '" + name + "' in 'robots' (expected one of: " + known + ")");
     if (std::any_of(chosen.begin(), chosen.end(), [&](const RobotSpawn& r) { return r.name == name; }))
@@ -283,7 +299,8 @@ void selectRobots(WorldConfig& config, const std::vector<std::string>& names)
     chosen.push_back(*it);
   }
   for (const auto& r : config.robots)
-    if (std::find(names.begin(), names.end(), r.name) == names.end()) chosen.push_back(r);
+    if (std::find(names.begin(), names.end(), r.name) == names.end())
+      chosen.push_back(r);
   config.robots = chosen;
 }
 

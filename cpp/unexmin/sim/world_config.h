@@ -15,8 +15,7 @@
 namespace unexmin {
 namespace sim {
 
-struct MeshEntry
-{
+struct MeshEntry {
   std::string name;
   /// Resolved against the world file's folder, inside it (docs/worlds.md, "Paths").
   std::string file;
@@ -31,22 +30,20 @@ struct MeshEntry
   Material material;
 };
 
-struct RobotSpawn
-{
+struct RobotSpawn {
   std::string name;         ///< Robot namespace, e.g. "UX_1".
   std::string description;  ///< Robot description file name in the package's urdf/ folder.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< base_link in the world frame.
 };
 
-struct WorldConfig
-{
-  std::string file;                       ///< Where it was loaded from.
+struct WorldConfig {
+  std::string file;  ///< Where it was loaded from.
   std::string name;
-  double gravity = 9.81;                  ///< [m/s^2], along world -z.
-  double water_density = 1000.0;          ///< [kg/m^3]
-  double surface_z = 0.0;                 ///< World z of the free surface [m].
-  double atmospheric_pressure = 101325.0; ///< [Pa]
-  std::string visibility = "none";        ///< none|low|medium|high
+  double gravity = 9.81;                              ///< [m/s^2], along world -z.
+  double water_density = 1000.0;                      ///< [kg/m^3]
+  double surface_z = 0.0;                             ///< World z of the free surface [m].
+  double atmospheric_pressure = 101325.0;             ///< [Pa]
+  std::string visibility = "none";                    ///< none|low|medium|high
   Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};  ///< RGB of the murk, each in (0, 1]
   /// Earth magnetic field, world frame (ENU) [mG]; default: about the UNEXMIN Kaatiala site
   /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.

@@ -30,8 +30,7 @@ namespace unexmin {
 namespace sensors {
 namespace sonar {
 
-struct EchoParams
-{
+struct EchoParams {
   double range_min = 0.3;               ///< start of the first bin [m] >= 0
   double range_max = 3.0;               ///< end of the last bin [m] > range_min
   int nbins = 400;                      ///< bins per line [-] >= 1
@@ -49,25 +48,23 @@ struct EchoParams
 };
 
 /// One ray's echo: where it hit and how.
-struct Echo
-{
+struct Echo {
   double range = 0.0;          ///< [m]
   double cos_incidence = 1.0;  ///< cos(theta), 0 (grazing) .. 1 (head-on) [-]
   double extra = 0.0;          ///< X: added to the echo level [dB]
 };
 
-class EchoModel
-{
+class EchoModel {
 public:
   /// Throws ParameterError naming the figure when a parameter is out of its range.
   explicit EchoModel(const EchoParams& params);
 
   const EchoParams& params() const { return p_; }
-  double binWidth() const { return width_; }                        ///< [m]
-  double binCenter(std::size_t i) const;                            ///< [m]
+  double binWidth() const { return width_; }  ///< [m]
+  double binCenter(std::size_t i) const;      ///< [m]
   /// Bin of range r [m]; -1 outside [range_min, range_max).
   int bin(double r) const;
-  double gainDb() const { return p_.gain * p_.gain_span; }          ///< G [dB]
+  double gainDb() const { return p_.gain * p_.gain_span; }  ///< G [dB]
   /// One-way transmission loss TL(r) = 20 log10(r) + alpha r [dB] (r >= 1 mm).
   double transmissionLoss(double r) const;
   /// Time-varied gain TVG(r) = k log10(r) + 2 alpha r [dB] (r >= 1 mm).
@@ -121,11 +118,11 @@ private:
 
   EchoParams p_;
   double width_ = 0.0;
-  double ray_factor_ = 0.0;           ///< 10^((SL + BS0) / 10) Omega [uPa^2 m^2 sr]
-  double gain_ = 1.0;                 ///< 10^(G / 10)
-  double least_absorption_ = 1.0;     ///< the two-way absorption factor at range_max
-  std::vector<double> bin_gain_;      ///< per bin: 10^((G + TVG(r_i)) / 10)
-  std::vector<double> thresholds_;    ///< code k >= 1 from 10^((display_min + (k - 1/2) step) / 10) on
+  double ray_factor_ = 0.0;         ///< 10^((SL + BS0) / 10) Omega [uPa^2 m^2 sr]
+  double gain_ = 1.0;               ///< 10^(G / 10)
+  double least_absorption_ = 1.0;   ///< the two-way absorption factor at range_max
+  std::vector<double> bin_gain_;    ///< per bin: 10^((G + TVG(r_i)) / 10)
+  std::vector<double> thresholds_;  ///< code k >= 1 from 10^((display_min + (k - 1/2) step) / 10) on
 };
 
 }  // namespace sonar

@@ -15,17 +15,16 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-int wholeNumber(sensors::SensorParams& p, const std::string& key, double fallback, double lo, double hi)
-{
+int wholeNumber(sensors::SensorParams& p, const std::string& key, double fallback, double lo, double hi) {
   const double v = p.number(key, fallback, lo, hi, "(whole number)");
-  if (v != std::floor(v)) p.fail(key, formatNumber(v), "a whole number");
+  if (v != std::floor(v))
+    p.fail(key, formatNumber(v), "a whole number");
   return static_cast<int>(v);
 }
 
 }  // namespace
 
-M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup)
-{
+M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup) {
   sensors::SensorParams p(spec, setup.robot);
   const bool noise = p.text("noise", "gaussian", {"gaussian", "none"}) == "gaussian";
   beams_ = wholeNumber(p, "beams", 256.0, 1.0, 4096.0);
@@ -34,10 +33,12 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   fov_v_ = p.number("fov_v", 3.0 * kDeg, 0.0, M_PI, "rad");
   range_min_ = p.number("range_min", 0.2, 0.0, 1000.0, "m");
   range_max_ = p.number("range_max", 150.0, 0.0, 1000.0, "m");
-  if (!(range_max_ > range_min_)) p.fail("range_max", formatNumber(range_max_), "more than range_min");
+  if (!(range_max_ > range_min_))
+    p.fail("range_max", formatNumber(range_max_), "more than range_min");
   resolution_ = p.number("range_resolution", 0.01, 1e-6, 10.0, "m");
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
-  if (!noise) range_noise_ = 0.0;
+  if (!noise)
+    range_noise_ = 0.0;
   EchoParams e;  // the sonar equation of the intensities (echo_model.h): one bin over the range window
   e.range_min = range_min_;
   e.range_max = range_max_;
@@ -54,26 +55,28 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   p.finish();
   // Solid angle of one beam: its share of the fan's azimuth x elevation rectangle.
   e.beam_solid_angle = fov_h_ / beams_ * 2.0 * std::sin(fov_v_ / 2.0);
-  if (!(e.beam_solid_angle > 0.0)) p.fail("fov_h", formatNumber(fov_h_), "a fan with a solid angle (fov_h, fov_v > 0)");
+  if (!(e.beam_solid_angle > 0.0))
+    p.fail("fov_h", formatNumber(fov_h_), "a fan with a solid angle (fov_h, fov_v > 0)");
   echo_ = EchoModel(e);
 
   for (int k = 0; k < beams_; ++k)
-    for (int j = 0; j < rays_per_beam_; ++j) dirs_.push_back(rayDirection(k, j));
+    for (int j = 0; j < rays_per_beam_; ++j)
+      dirs_.push_back(rayDirection(k, j));
   rays_.resize(dirs_.size());
   surface_.resize(dirs_.size());
 }
 
-Eigen::Vector3d M3Sensor::rayDirection(std::size_t k, int j) const
-{
+Eigen::Vector3d M3Sensor::rayDirection(std::size_t k, int j) const {
   const double a = beamAngle(k);
   const double e = -fov_v_ / 2.0 + (j + 0.5) * fov_v_ / rays_per_beam_;
   return Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
 }
 
-void M3Sensor::onReset() { last_ = M3Scan(); }
+void M3Sensor::onReset() {
+  last_ = M3Scan();
+}
 
-void M3Sensor::sample(const sensors::SensorContext& ctx)
-{
+void M3Sensor::sample(const sensors::SensorContext& ctx) {
   const Eigen::Isometry3d sonar = ctx.state.pose * spec().pose;
   const Eigen::Matrix3d R = sonar.linear();
   const Eigen::Vector3d origin = sonar.translation();
@@ -93,18 +96,22 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
   mirrored_.clear();
   mirror_of_.clear();
   first_.assign(beams_, Return());
-  for (int k = 0; k < beams_; ++k) directAndSurface(k, surface_z);
+  for (int k = 0; k < beams_; ++k)
+    directAndSurface(k, surface_z);
   if (!mirrored_.empty()) {
     castRays(ctx, mirrored_, mirror_hits_, raycast::Incidence::skip);
     for (std::size_t m = 0; m < mirrored_.size(); ++m) {
-      if (!mirror_hits_[m].hit()) continue;
+      if (!mirror_hits_[m].hit())
+        continue;
       const std::size_t i = mirror_of_[m];
       Return& best = first_[i / rays_per_beam_];
       const double range = surface_[i] + mirror_hits_[m].range;  // unfolded: out and back the same way
-      if (range >= best.range) continue;
+      if (range >= best.range)
+        continue;
       const double c = std::cos(static_cast<double>(raycast::RayCaster::incidence(mirrored_[m], mirror_hits_[m])));
       const Echo ghost{range, c, reflector_.ghost_extra};
-      if (detected(ghost)) best = Return{range, ghost};
+      if (detected(ghost))
+        best = Return{range, ghost};
     }
   }
 
@@ -116,9 +123,11 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
     // One draw per beam, return or not, so the stream does not depend on the geometry.
     const double n = range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0;
     const Return& first = first_[k];
-    if (!std::isfinite(first.range)) continue;
+    if (!std::isfinite(first.range))
+      continue;
     const double r = std::round((first.range + n) / resolution_) * resolution_;
-    if (r > range_max_) continue;  // +inf: no detection within range
+    if (r > range_max_)
+      continue;  // +inf: no detection within range
     if (r < range_min_) {
       out.ranges[k] = -kInf;  // detected, but nearer than the blanking range
       continue;
@@ -128,8 +137,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx)
   }
 }
 
-void M3Sensor::directAndSurface(int k, double surface_z)
-{
+void M3Sensor::directAndSurface(int k, double surface_z) {
   const std::size_t base = static_cast<std::size_t>(k) * rays_per_beam_;
   const std::size_t end = base + rays_per_beam_;
   Return& best = first_[k];
@@ -138,7 +146,8 @@ void M3Sensor::directAndSurface(int k, double surface_z)
   bool surface = false;  // some ray meets the surface first
   for (std::size_t i = base; i < end; ++i) {
     if (hits_[i].hit()) {
-      if (nearest == end || hits_[i].range < hits_[nearest].range) nearest = i;
+      if (nearest == end || hits_[i].range < hits_[nearest].range)
+        nearest = i;
     } else {
       surface = surface || surface_[i] >= 0.0;
     }
@@ -153,8 +162,10 @@ void M3Sensor::directAndSurface(int k, double surface_z)
     } else {  // the others by range: the first detected one
       order_.clear();
       for (std::size_t i = base; i < end; ++i)
-        if (hits_[i].hit() && i != nearest) order_.push_back(i);
-      std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return hits_[a].range < hits_[b].range; });
+        if (hits_[i].hit() && i != nearest)
+          order_.push_back(i);
+      std::sort(order_.begin(), order_.end(),
+                [&](std::size_t a, std::size_t b) { return hits_[a].range < hits_[b].range; });
       for (const std::size_t i : order_) {
         const Echo e = direct(i);
         if (detected(e)) {
@@ -164,20 +175,25 @@ void M3Sensor::directAndSurface(int k, double surface_z)
       }
     }
   }
-  if (!surface) return;
+  if (!surface)
+    return;
   // The surface's own echo where a ray meets it first (its normal is the vertical: cos(incidence) = d_z).
   for (std::size_t i = base; i < end; ++i) {
-    if (surface_[i] < 0.0 || hits_[i].hit() || surface_[i] >= best.range) continue;
+    if (surface_[i] < 0.0 || hits_[i].hit() || surface_[i] >= best.range)
+      continue;
     const Echo echo{surface_[i], static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra};
-    if (detected(echo)) best = Return{surface_[i], echo};
+    if (detected(echo))
+      best = Return{surface_[i], echo};
   }
   // The reflected rays, only where a ghost could still be the first detection: the ray's surface echo is not
   // one (else best.range <= its surface range) and nothing nearer is; cast no farther than the detection so far.
   for (std::size_t i = base; i < end; ++i) {
     const double s = surface_[i];
-    if (s < 0.0 || hits_[i].hit() || s >= best.range) continue;
+    if (s < 0.0 || hits_[i].hit() || s >= best.range)
+      continue;
     const double reach = std::min(range_max_, best.range) - s;
-    if (reach <= 1e-6) continue;
+    if (reach <= 1e-6)
+      continue;
     mirrored_.push_back(reflectedRay(rays_[i], rays_[i].origin.cast<double>(), s, surface_z, reach));
     mirror_of_.push_back(i);
   }

@@ -41,31 +41,29 @@ namespace unexmin {
 namespace sensors {
 namespace sonar {
 
-struct M3Scan
-{
+struct M3Scan {
   double time = -1.0;              ///< ping time [s]
   std::vector<float> ranges;       ///< per beam [m]; +inf no return, -inf nearer than range_min (REP-117)
   std::vector<float> intensities;  ///< per beam, 0..1 [-]
 };
 
-class M3Sensor : public sensors::Sensor
-{
+class M3Sensor : public sensors::Sensor {
 public:
   /// Throws ConfigError naming the robot, the sensor and the parameter.
   M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup);
 
   const M3Scan& last() const { return last_; }
   std::size_t beams() const { return static_cast<std::size_t>(beams_); }
-  double angleMin() const { return -fov_h_ / 2.0; }                  ///< [rad]
-  double angleMax() const { return fov_h_ / 2.0; }                   ///< [rad]
+  double angleMin() const { return -fov_h_ / 2.0; }                                   ///< [rad]
+  double angleMax() const { return fov_h_ / 2.0; }                                    ///< [rad]
   double angleIncrement() const { return beams_ > 1 ? fov_h_ / (beams_ - 1) : 0.0; }  ///< [rad]
   double beamAngle(std::size_t k) const  ///< [rad]; one beam points along +x
   {
     return beams_ > 1 ? angleMin() + static_cast<double>(k) * angleIncrement() : 0.0;
   }
-  double rangeMin() const { return range_min_; }                     ///< [m]
-  double rangeMax() const { return range_max_; }                     ///< [m]
-  double rangeResolution() const { return resolution_; }             ///< [m]
+  double rangeMin() const { return range_min_; }          ///< [m]
+  double rangeMax() const { return range_max_; }          ///< [m]
+  double rangeResolution() const { return resolution_; }  ///< [m]
   int raysPerBeam() const { return rays_per_beam_; }
   /// The sonar equation of the intensities (one bin over the range window).
   const EchoModel& echo() const { return echo_; }
@@ -83,8 +81,7 @@ private:
   double fov_h_ = 0.0, fov_v_ = 0.0, range_min_ = 0.0, range_max_ = 0.0, resolution_ = 0.0;
   double range_noise_ = 0.0;
   /// One echo that a beam may report: where from, and its echo for the level.
-  struct Return
-  {
+  struct Return {
     double range = std::numeric_limits<double>::infinity();  ///< [m]; inf: none
     Echo echo;
   };
@@ -101,12 +98,12 @@ private:
   std::vector<Eigen::Vector3d> dirs_;
   std::vector<raycast::Ray> rays_;
   std::vector<raycast::Hit> hits_;
-  std::vector<double> surface_;          ///< per ray: range to the free surface, -1 when not reached within range
-  std::vector<raycast::Ray> mirrored_;   ///< the reflected rays
+  std::vector<double> surface_;         ///< per ray: range to the free surface, -1 when not reached within range
+  std::vector<raycast::Ray> mirrored_;  ///< the reflected rays
   std::vector<raycast::Hit> mirror_hits_;
-  std::vector<std::size_t> mirror_of_;   ///< primary ray of each reflected ray
-  std::vector<Return> first_;            ///< per beam: its first detection
-  std::vector<std::size_t> order_;       ///< scratch: a beam's direct hits by range
+  std::vector<std::size_t> mirror_of_;  ///< primary ray of each reflected ray
+  std::vector<Return> first_;           ///< per beam: its first detection
+  std::vector<std::size_t> order_;      ///< scratch: a beam's direct hits by range
   M3Scan last_;
 };
 

@@ -4,8 +4,8 @@
 #include <unexmin/sensors/sonar/equation_params.h>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,41 +17,36 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 /// Defaults of the parameters a preset sets.
-struct Preset
-{
+struct Preset {
   double range_max, nbins, gain;
 };
 
-Preset preset(const std::string& name)
-{
-  if (name == "thesis_tank") return {3.0, 400.0, 0.2};  // thesis 6.1.1: 3 m, 400 bins, gain "Low"
-  return {20.0, 200.0, 0.5};                           // none: a medium range, medium gain
+Preset preset(const std::string& name) {
+  if (name == "thesis_tank")
+    return {3.0, 400.0, 0.2};  // thesis 6.1.1: 3 m, 400 bins, gain "Low"
+  return {20.0, 200.0, 0.5};   // none: a medium range, medium gain
 }
 
-double wrap(double a)
-{
+double wrap(double a) {
   a = std::remainder(a, 2.0 * M_PI);  // [-pi, pi]
   return a <= -M_PI ? a + 2.0 * M_PI : a;
 }
 
 }  // namespace
 
-const std::map<std::string, double>& MsisSensor::gainSettings()
-{
+const std::map<std::string, double>& MsisSensor::gainSettings() {
   // The Micron's low / medium / high gain as shares of gain_span: low = the thesis's 0.2 (6.1.1); medium and
   // high are assumed.
   static const std::map<std::string, double> settings = {{"low", 0.2}, {"medium", 0.5}, {"high", 0.8}};
   return settings;
 }
 
-const std::vector<double>& MsisSensor::mechanicalSteps()
-{
+const std::vector<double>& MsisSensor::mechanicalSteps() {
   static const std::vector<double> steps = {0.225, 0.45, 0.9, 1.8, 3.6};
   return steps;
 }
 
-MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup)
-{
+MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setup) : Sensor(spec, setup) {
   sensors::SensorParams p(spec, setup.robot);
   const std::string preset_name = p.text("preset", "none", {"none", "thesis_tank"});
   const Preset pre = preset(preset_name);
@@ -60,36 +55,43 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   EchoParams e;
   e.range_min = p.number("range_min", 0.3, 0.0, 1000.0, "m");
   e.range_max = p.number("range_max", pre.range_max, 0.0, 1000.0, "m");
-  if (!(e.range_max > e.range_min)) p.fail("range_max", formatNumber(e.range_max), "more than range_min");
+  if (!(e.range_max > e.range_min))
+    p.fail("range_max", formatNumber(e.range_max), "more than range_min");
   const double nbins = p.number("nbins", pre.nbins, 1.0, 10000.0, "bins");
-  if (nbins != std::floor(nbins)) p.fail("nbins", formatNumber(nbins), "a whole number of bins");
+  if (nbins != std::floor(nbins))
+    p.fail("nbins", formatNumber(nbins), "a whole number of bins");
   e.nbins = static_cast<int>(nbins);
   // The gain: a number in [0, 1] or the Micron's named settings.
   const std::string gain_word = p.text("gain", "");
   const auto named = gainSettings().find(gain_word);
-  e.gain = named != gainSettings().end() ? named->second : p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high, or low/medium/high)");
+  e.gain = named != gainSettings().end()
+               ? named->second
+               : p.number("gain", pre.gain, 0.0, 1.0, "(0 low .. 1 high, or low/medium/high)");
   readEquationParams(p, e, 200.0);
 
   const double step_deg = p.number("step", 0.9 * kDeg, 0.0, M_PI, "rad") / kDeg;
   const auto& steps = mechanicalSteps();
   const auto match = std::find_if(steps.begin(), steps.end(), [&](double s) { return std::abs(s - step_deg) < 1e-6; });
   if (match == steps.end()) {
-    p.fail("step", formatNumber(step_deg) + " deg", "one of the Micron DST's mechanical steps 0.225, 0.45, 0.9, 1.8, 3.6 deg (in rad)");
+    p.fail("step", formatNumber(step_deg) + " deg",
+           "one of the Micron DST's mechanical steps 0.225, 0.45, 0.9, 1.8, 3.6 deg (in rad)");
   }
   step_ = *match * kDeg;
   left_ = p.number("sector_left", -M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
   right_ = p.number("sector_right", M_PI, -2.0 * M_PI, 2.0 * M_PI, "rad");
   continuous_ = p.flag("continuous", true);
   if (!continuous_ && std::abs(right_ - left_) < step_ - 1e-9)
-    p.fail("sector_right", formatNumber(right_), "at least one step (" + formatNumber(step_) +
-                                                       " rad) away from sector_left for a sector scan");
+    p.fail("sector_right", formatNumber(right_),
+           "at least one step (" + formatNumber(step_) + " rad) away from sector_left for a sector scan");
 
   const double bw_h = p.number("beam_width_h", 3.0 * kDeg, 0.0, M_PI, "rad");
   const double bw_v = p.number("beam_width_v", 35.0 * kDeg, 0.0, M_PI, "rad");
   const double hpr = p.number("hpr", 5.0, 1.0, 1000.0, "rays");
   const double vpr = p.number("vpr", 70.0, 1.0, 1000.0, "rays");
-  if (hpr != std::floor(hpr)) p.fail("hpr", formatNumber(hpr), "a whole number of rays");
-  if (vpr != std::floor(vpr)) p.fail("vpr", formatNumber(vpr), "a whole number of rays");
+  if (hpr != std::floor(hpr))
+    p.fail("hpr", formatNumber(hpr), "a whole number of rays");
+  if (vpr != std::floor(vpr))
+    p.fail("vpr", formatNumber(vpr), "a whole number of rays");
   hpr_ = static_cast<int>(hpr);
   vpr_ = static_cast<int>(vpr);
   e.beam_solid_angle = bw_h * 2.0 * std::sin(bw_v / 2.0);  // the azimuth x elevation rectangle on the sphere
@@ -99,8 +101,9 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   // One ping at a time: the echo from range_max must be back before the next ping.
   const double max_rate = sound_speed / (2.0 * e.range_max);
   if (rate() > max_rate * (1.0 + 1e-9)) {
-    p.fail("rate", formatNumber(rate()), "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) +
-                                             " steps/s (the echo from range_max must return)");
+    p.fail("rate", formatNumber(rate()),
+           "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) +
+               " steps/s (the echo from range_max must return)");
   }
 
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
@@ -147,20 +150,17 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   column_.resize(vpr_);
 }
 
-Eigen::Isometry3d MsisSensor::headPose(double a) const
-{
+Eigen::Isometry3d MsisSensor::headPose(double a) const {
   return spec().pose * Eigen::AngleAxisd(a, axis_);
 }
 
-void MsisSensor::onReset()
-{
+void MsisSensor::onReset() {
   angle_ = left_;
   dir_ = right_ >= left_ ? 1 : -1;
   last_ = MsisLine();
 }
 
-void MsisSensor::advance()
-{
+void MsisSensor::advance() {
   if (continuous_) {
     angle_ = wrap(angle_ + dir_ * step_);
     return;
@@ -178,16 +178,17 @@ void MsisSensor::advance()
   angle_ = next;
 }
 
-EchoLevel MsisSensor::level(float i) const
-{
-  if (i >= threshold_high_) return EchoLevel::high;
-  if (i >= threshold_medium_) return EchoLevel::medium;
-  if (i >= threshold_low_) return EchoLevel::low;
+EchoLevel MsisSensor::level(float i) const {
+  if (i >= threshold_high_)
+    return EchoLevel::high;
+  if (i >= threshold_medium_)
+    return EchoLevel::medium;
+  if (i >= threshold_low_)
+    return EchoLevel::low;
   return EchoLevel::none;
 }
 
-void MsisSensor::sample(const sensors::SensorContext& ctx)
-{
+void MsisSensor::sample(const sensors::SensorContext& ctx) {
   const Eigen::Isometry3d head = ctx.state.pose * headPose(angle_);
   const Eigen::Matrix3d R = head.linear();
   const EchoParams& e = echo_.params();
@@ -215,17 +216,22 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   mirrored_.clear();
   mirror_of_.clear();
   for (std::size_t i = 0; i < rays_.size(); ++i) {
-    if (surface_[i] < 0.0 || hits_[i].hit()) continue;
+    if (surface_[i] < 0.0 || hits_[i].hit())
+      continue;
     mirrored_.push_back(reflectedRay(rays_[i], origin, surface_[i], surface_z, e.range_max - surface_[i]));
     mirror_of_.push_back(i);
   }
-  if (!mirrored_.empty()) castRays(ctx, mirrored_, mirror_hits_);
+  if (!mirrored_.empty())
+    castRays(ctx, mirrored_, mirror_hits_);
   ghost_.assign(rays_.size(), -1);
-  for (std::size_t k = 0; k < mirror_of_.size(); ++k) ghost_[mirror_of_[k]] = static_cast<long>(k);
+  for (std::size_t k = 0; k < mirror_of_.size(); ++k)
+    ghost_[mirror_of_[k]] = static_cast<long>(k);
 
   energy_.assign(e.nbins, 0.0);
   const std::size_t n = rays_.size();
-  const auto noisy = [&](double r) { return std::max(0.0, r + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0)); };
+  const auto noisy = [&](double r) {
+    return std::max(0.0, r + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0));
+  };
   for (int h = 0; h < hpr_; ++h) {
     for (int v = 0; v < vpr_; ++v) {
       const std::size_t i = static_cast<std::size_t>(h) * vpr_ + v;
@@ -235,20 +241,25 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
       if (hit.hit()) {
         echo.range = noisy(hit.range);
         echo.cos_incidence = std::cos(static_cast<double>(hit.incidence));
-        if (!artifacts_) echo_.deposit(echo, n, energy_);
+        if (!artifacts_)
+          echo_.deposit(echo, n, energy_);
         continue;
       }
-      if (surface_[i] < 0.0) continue;
+      if (surface_[i] < 0.0)
+        continue;
       // The surface's own backscatter at its incidence (the vertical is its normal)...
-      echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra}, n, energy_);
+      echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra}, n,
+                    energy_);
       // ...and the ghost: the echo of what the reflected ray meets, back the same way (two reflections).
       const long g = ghost_[i];
       if (g >= 0 && mirror_hits_[g].hit()) {
         const double cos_incidence = std::cos(static_cast<double>(mirror_hits_[g].incidence));
-        echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, reflector_.ghost_extra}, n, energy_);
+        echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, reflector_.ghost_extra}, n,
+                      energy_);
       }
     }
-    if (artifacts_) echo_.spread(column_, n, artifacts_gap_, energy_);
+    if (artifacts_)
+      echo_.spread(column_, n, artifacts_gap_, energy_);
   }
 
   MsisLine& out = last_;
@@ -258,7 +269,8 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   std::vector<char> shadowed(e.nbins, 0);
   if (shadow_) {  // no echo behind the first strong one (the noise stays)
     int b = 0;
-    while (b < e.nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b))) ++b;
+    while (b < e.nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b)))
+      ++b;
     for (++b; b < e.nbins; ++b) {
       energy_[b] = 0.0;
       shadowed[b] = 1;
@@ -271,11 +283,13 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
     double& p = energy_[b];
     if (speckle_) {
       const double u = random().uniform();
-      if (p > 0.0) p *= -std::log1p(-u);
+      if (p > 0.0)
+        p *= -std::log1p(-u);
     }
     if (noise_floor_) {
       const double u = random().uniform();
-      if (p > 0.0 || u >= noise_visible_[b]) p += noise_power_ * -std::log1p(-u);
+      if (p > 0.0 || u >= noise_visible_[b])
+        p += noise_power_ * -std::log1p(-u);
     }
     if (salt_pepper_ > 0.0 && random().uniform() < salt_pepper_)
       p = random().uniform() < 0.5 ? noise_power_ * std::pow(10.0, salt_level_ * random().uniform() / 10.0) : 0.0;
@@ -283,7 +297,8 @@ void MsisSensor::sample(const sensors::SensorContext& ctx)
   echo_.finish(energy_, out.intensity);
   for (int b = 0; b < e.nbins; ++b) {
     out.level[b] = level(out.intensity[b]);
-    if (shadowed[b] && out.level[b] == EchoLevel::none) out.level[b] = EchoLevel::shadow;
+    if (shadowed[b] && out.level[b] == EchoLevel::none)
+      out.level[b] = EchoLevel::shadow;
   }
   advance();
 }

@@ -45,26 +45,17 @@ namespace sensors {
 namespace sonar {
 
 /// Colour-map class of one bin.
-enum class EchoLevel : std::uint8_t
-{
-  none,
-  low,
-  medium,
-  high,
-  shadow
-};
+enum class EchoLevel : std::uint8_t { none, low, medium, high, shadow };
 
 /// One ping: the intensity line along the head's +x.
-struct MsisLine
-{
+struct MsisLine {
   double time = -1.0;            ///< ping time [s]
   double angle = 0.0;            ///< head joint position of the ping [rad]
   std::vector<float> intensity;  ///< per bin, 0..1 [-]
   std::vector<EchoLevel> level;  ///< per bin
 };
 
-class MsisSensor : public sensors::Sensor
-{
+class MsisSensor : public sensors::Sensor {
 public:
   /// The named gains (low, medium, high) as shares of gain_span [-].
   static const std::map<std::string, double>& gainSettings();
@@ -106,10 +97,10 @@ private:
   int hpr_ = 1, vpr_ = 1;
   double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
   bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false;
-  double salt_level_ = 10.0;      ///< [dB] above the noise level: the highest spike
-  double noise_power_ = 0.0;      ///< 10^(noise_level / 10) [uPa^2]
-  SurfaceParams reflector_;       ///< the free surface: multipath on/off, its echoes' extra levels
-  int shadow_code_ = 1;           ///< least code of a shadowing echo
+  double salt_level_ = 10.0;           ///< [dB] above the noise level: the highest spike
+  double noise_power_ = 0.0;           ///< 10^(noise_level / 10) [uPa^2]
+  SurfaceParams reflector_;            ///< the free surface: multipath on/off, its echoes' extra levels
+  int shadow_code_ = 1;                ///< least code of a shadowing echo
   std::vector<double> noise_visible_;  ///< per bin: uniform draw from which the noise floor alone shows
   double threshold_low_ = 0.05, threshold_medium_ = 0.25, threshold_high_ = 0.6;
   std::vector<Eigen::Vector3d> dirs_;
@@ -117,11 +108,11 @@ private:
   int dir_ = 1;         ///< +1 / -1: direction of the next step
   std::vector<raycast::Ray> rays_;
   std::vector<raycast::Hit> hits_;
-  std::vector<double> surface_;          ///< per ray: range to the free surface, -1 when not within range
-  std::vector<raycast::Ray> mirrored_;   ///< the reflected rays
+  std::vector<double> surface_;         ///< per ray: range to the free surface, -1 when not within range
+  std::vector<raycast::Ray> mirrored_;  ///< the reflected rays
   std::vector<raycast::Hit> mirror_hits_;
-  std::vector<std::size_t> mirror_of_;   ///< primary ray of each reflected ray
-  std::vector<long> ghost_;              ///< per ray: its reflected ray, -1 none
+  std::vector<std::size_t> mirror_of_;  ///< primary ray of each reflected ray
+  std::vector<long> ghost_;             ///< per ray: its reflected ray, -1 none
   std::vector<Echo> column_;
   std::vector<double> energy_;
   MsisLine last_;

@@ -21,8 +21,7 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-class CameraModel
-{
+class CameraModel {
 public:
   CameraModel() = default;
   /// width x height [px], focal lengths and principal point [px], plumb_bob D. Throws ParameterError on a

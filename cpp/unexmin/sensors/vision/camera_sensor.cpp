@@ -21,8 +21,7 @@ static_assert(static_cast<std::size_t>(kTile * kTile) == raycast::kBlock,
 constexpr int kEncodeEntries = 4096;
 
 /// splitmix64: a well-mixed 64-bit hash of z.
-inline std::uint64_t mix(std::uint64_t z)
-{
+inline std::uint64_t mix(std::uint64_t z) {
   z += 0x9e3779b97f4a7c15ull;
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
@@ -31,8 +30,7 @@ inline std::uint64_t mix(std::uint64_t z)
 
 /// 4096 standard normal quantiles at (i + 0.5) / 4096 (16 kB: stays in the L1 cache): a draw is a 12-bit index
 /// into them, so its distribution is the normal one quantised to 4096 equiprobable values (tails cut at 3.7 sigma).
-const std::vector<float>& normalTable()
-{
+const std::vector<float>& normalTable() {
   static const std::vector<float> table = [] {
     std::vector<float> t(4096);
     for (int i = 0; i < 4096; ++i) {
@@ -50,11 +48,12 @@ const std::vector<float>& normalTable()
   return table;
 }
 
-bool isLink(const sim::RobotDescription& d, const std::string& link)
-{
-  if (link == d.base_link) return true;
+bool isLink(const sim::RobotDescription& d, const std::string& link) {
+  if (link == d.base_link)
+    return true;
   for (const auto& j : d.joints)
-    if (j.child == link) return true;
+    if (j.child == link)
+      return true;
   return false;
 }
 
@@ -63,8 +62,7 @@ bool isLink(const sim::RobotDescription& d, const std::string& link)
 const Eigen::Vector3d CameraSensor::kHullAlbedo{0.95, 0.75, 0.10};
 
 CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup)
-    : Sensor(spec, setup), visual_(setup.visual)
-{
+    : Sensor(spec, setup), visual_(setup.visual) {
   SensorParams p(spec, setup.robot);
   model_ = CameraModel::fromParams(p);
   clip_far_ = p.number("clip_far", 20.0, 0.1, 10000.0, "m");
@@ -91,10 +89,12 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
       p.fail("laser_colour", formatNumber(laser_colour[k]), "three finite numbers >= 0");
   p.finish();
 
-  if (light_links.size() > 32) p.fail("lights", formatNumber(light_links.size()) + " links", "at most 32 lights");
+  if (light_links.size() > 32)
+    p.fail("lights", formatNumber(light_links.size()) + " links", "at most 32 lights");
   const Eigen::Isometry3d to_camera = spec.pose.inverse();
   for (const auto& link : light_links) {
-    if (!isLink(setup.description, link)) p.fail("lights", "'" + link + "'", "links of the robot (the LED lights)");
+    if (!isLink(setup.description, link))
+      p.fail("lights", "'" + link + "'", "links of the robot (the LED lights)");
     const Eigen::Isometry3d pose = to_camera * setup.description.linkPose(link);
     LedLight l;
     l.position = pose.translation();
@@ -109,7 +109,8 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   const sim::SensorSpec* sls = nullptr;
   for (const auto& s : setup.description.sensors) {
     const auto it = s.text.find("camera_frame");
-    if (s.type != "sls" || it == s.text.end() || it->second != spec.link) continue;
+    if (s.type != "sls" || it == s.text.end() || it->second != spec.link)
+      continue;
     if (sls)
       throw ConfigError(p.where() + ": SLS units '" + sls->name + "' and '" + s.name +
                         "' both name it as their camera (camera_frame " + spec.link + "); expected at most one");
@@ -122,26 +123,24 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
 
 CameraSensor::~CameraSensor() = default;
 
-void CameraSensor::onReset()
-{
+void CameraSensor::onReset() {
   frame_.time = -1.0;
   frame_.rendered = false;
 }
 
-void CameraSensor::sample(const SensorContext& ctx)
-{
+void CameraSensor::sample(const SensorContext& ctx) {
   frame_.time = ctx.world.time();
   frame_.rendered = false;
   // One draw per sample, rendered or not: the stream does not depend on who watches.
   const auto seed = static_cast<std::uint64_t>(random().uniform() * 9007199254740992.0);
-  if (!visual_ || (demand_ && !demand_())) return;
+  if (!visual_ || (demand_ && !demand_()))
+    return;
   prepare(ctx);
   render(ctx, seed);
   frame_.rendered = true;
 }
 
-void CameraSensor::prepare(const SensorContext& ctx)
-{
+void CameraSensor::prepare(const SensorContext& ctx) {
   const sim::WorldConfig& config = ctx.world.config();
   const std::string key = config.visibility + " " + formatNumber(config.visibility_colour.x()) + " " +
                           formatNumber(config.visibility_colour.y()) + " " + formatNumber(config.visibility_colour.z());
@@ -156,7 +155,8 @@ void CameraSensor::prepare(const SensorContext& ctx)
     dirs_.resize(n);
     parallelRows(h, [&](int v0, int v1) {
       for (int v = v0; v < v1; ++v)
-        for (int u = 0; u < w; ++u) dirs_[static_cast<std::size_t>(v) * w + u] = model_.ray(u, v).cast<float>();
+        for (int u = 0; u < w; ++u)
+          dirs_[static_cast<std::size_t>(v) * w + u] = model_.ray(u, v).cast<float>();
     });
     frame_.width = w;
     frame_.height = h;
@@ -177,8 +177,7 @@ void CameraSensor::prepare(const SensorContext& ctx)
   SurfaceMaterials::of(config, materials_);
 }
 
-void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd)
-{
+void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd) {
   alignas(32) std::int32_t noise[3][raycast::kBlock];
   alignas(32) std::int32_t code[3][raycast::kBlock];
   simd = simd && ImageFormation::simdAvailable();
@@ -199,23 +198,24 @@ void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance
     }
   }
   std::int32_t* const codes[3] = {code[0], code[1], code[2]};
-  if (simd) shading::sensorResponseAvx2(response_, padded, radiance, draws, codes);
-  else shading::sensorResponse<lanes::F1>(response_, n, radiance, draws, codes);
+  if (simd)
+    shading::sensorResponseAvx2(response_, padded, radiance, draws, codes);
+  else
+    shading::sensorResponse<lanes::F1>(response_, n, radiance, draws, codes);
   for (int i = 0; i < n; ++i) {
     std::uint8_t* px = &frame_.rgb[3 * pixel[i]];
-    for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>(code[c][i]);
+    for (int c = 0; c < 3; ++c)
+      px[c] = static_cast<std::uint8_t>(code[c][i]);
   }
 }
 
-void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed)
-{
+void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed) {
   float rad[3] = {frame_.radiance[3 * i], frame_.radiance[3 * i + 1], frame_.radiance[3 * i + 2]};
   float* const channels[3] = {&rad[0], &rad[1], &rad[2]};
   encode(1, &i, channels, seed, false);
 }
 
-void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
-{
+void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
   const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
@@ -225,21 +225,25 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed)
   // would share one at every row of every tile's edge).
   const auto strip = [&](std::size_t k) {
     const int v0 = static_cast<int>(k) * kTile, v1 = std::min(v0 + kTile, h);
-    for (int u0 = 0; u0 < w; u0 += kTile) renderTile(ctx, cam, u0, v0, std::min(u0 + kTile, w), v1, seed);
+    for (int u0 = 0; u0 < w; u0 += kTile)
+      renderTile(ctx, cam, u0, v0, std::min(u0 + kTile, w), v1, seed);
   };
-  if (ctx.rays) ctx.rays->parallelFor(strips, strip);
-  else for (std::size_t k = 0; k < strips; ++k) strip(k);
+  if (ctx.rays)
+    ctx.rays->parallelFor(strips, strip);
+  else
+    for (std::size_t k = 0; k < strips; ++k)
+      strip(k);
   if (laser_) {
     // The line adds light to a few pixels: encode those again (noise is a function of seed and pixel alone).
     touched_.clear();
     laser_->draw(ctx, formation_->water(), frame_.range, frame_.radiance, touched_);
-    for (std::size_t i : touched_) encodePixel(i, seed);
+    for (std::size_t i : touched_)
+      encodePixel(i, seed);
   }
 }
 
 void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
-                              std::uint64_t seed)
-{
+                              std::uint64_t seed) {
   const int w = model_.width();
   const Eigen::Matrix3f rot = cam.linear().cast<float>();
   const Eigen::Vector3f origin = cam.translation().cast<float>();
@@ -259,7 +263,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       rays[n].max_range = far;
     }
   // Shading uses the normal, not the angle.
-  if (ctx.rays) ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip);
+  if (ctx.rays)
+    ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip);
 
   unsigned lit[raycast::kBlock];
   std::fill(lit, lit + n, ~0u);
@@ -271,15 +276,18 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     shadow_rays.clear();
     pairs.clear();
     for (int i = 0; i < n; ++i) {
-      if (!hits[i].hit()) continue;
+      if (!hits[i].hit())
+        continue;
       const Eigen::Vector3f p = hits[i].range * dirs_[pixel[i]];
       const Eigen::Vector3f nrm = rot.transpose() * hits[i].normal;
       for (int k : formation_->activeLights()) {
-        if (!formation_->canLight(k, p, nrm)) continue;
+        if (!formation_->canLight(k, p, nrm))
+          continue;
         const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
         const Eigen::Vector3f to = hits[i].point(rays[i]) - from;
         const float len = to.norm();
-        if (!(len > 2e-3f)) continue;
+        if (!(len > 2e-3f))
+          continue;
         raycast::Ray r;
         r.origin = from;
         r.direction = to / len;
@@ -291,7 +299,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     if (ctx.rays && !shadow_rays.empty()) {
       ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip);
       for (std::size_t s = 0; s < pairs.size(); ++s)
-        if (shadow_hits[s].hit()) lit[pairs[s].first] &= ~(1u << pairs[s].second);
+        if (shadow_hits[s].hit())
+          lit[pairs[s].first] &= ~(1u << pairs[s].second);
     }
   }
 
@@ -315,7 +324,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
     int which[raycast::kBlock], count = 0;
     for (int i = first; i < n; ++i) {
-      if (material_of[i] != mesh) continue;
+      if (material_of[i] != mesh)
+        continue;
       const Eigen::Vector3f p = hits[i].point(rays[i]);
       for (int a = 0; a < 3; ++a) {
         x[a][count] = p[a];
@@ -354,7 +364,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   formation_->radiance(batch, simd);
   for (int i = 0; i < n; ++i) {
     float* out = &frame_.radiance[3 * pixel[i]];
-    for (int c = 0; c < 3; ++c) out[c] = batch.out[c][i];
+    for (int c = 0; c < 3; ++c)
+      out[c] = batch.out[c][i];
   }
   float* const radiance[3] = {batch.out[0], batch.out[1], batch.out[2]};
   encode(n, pixel, radiance, seed, simd);

@@ -10,9 +10,10 @@
 //
 // Per pixel: the ray of the pixel centre (CameraModel::ray, distortion undone exactly), cast up to clip_far; the
 // radiance at the lens L = direct + backscatter (ImageFormation; albedo and shading normal of the hit mesh from its
-// material in the world file (SurfaceMaterials), of a robot hull kHullAlbedo); the laser line added; then the sensor: signal s = min(1, exposure L) in fractions of
-// full well, shot noise sqrt(s / full_well) and read noise read_noise / full_well (Gaussian, seeded), times gain,
-// clamped to [0, 1], gamma-encoded v^(1/gamma) and rounded to 8 bits per channel.
+// material in the world file (SurfaceMaterials), of a robot hull kHullAlbedo); the laser line added; then the sensor:
+// signal s = min(1, exposure L) in fractions of full well, shot noise sqrt(s / full_well) and read noise read_noise /
+// full_well (Gaussian, seeded), times gain, clamped to [0, 1], gamma-encoded v^(1/gamma) and rounded to 8 bits per
+// channel.
 //
 // Parameters (units; default):
 //   width, height [px] (2054 x 1544), hfov [rad] (80 deg), distortion k1 k2 p1 p2 k3 (0), render_scale (1):
@@ -47,19 +48,17 @@ namespace sensors {
 namespace vision {
 
 /// One frame of a camera.
-struct CameraFrame
-{
-  double time = -1.0;            ///< sim time of the sample [s]
-  bool rendered = false;         ///< false: no image at this sample (operational mode, or not wanted)
-  int width = 0, height = 0;     ///< [px] of the published image
-  std::vector<std::uint8_t> rgb; ///< rgb8, row-major, 3 * width bytes per row
+struct CameraFrame {
+  double time = -1.0;             ///< sim time of the sample [s]
+  bool rendered = false;          ///< false: no image at this sample (operational mode, or not wanted)
+  int width = 0, height = 0;      ///< [px] of the published image
+  std::vector<std::uint8_t> rgb;  ///< rgb8, row-major, 3 * width bytes per row
   /// Linear radiance at the lens per pixel and channel, before the sensor [W m^-2 sr^-1] (3 per pixel).
   std::vector<float> radiance;
-  std::vector<float> range;      ///< distance from the lens to the surface per pixel [m]; +inf: none
+  std::vector<float> range;  ///< distance from the lens to the surface per pixel [m]; +inf: none
 };
 
-class CameraSensor : public Sensor
-{
+class CameraSensor : public Sensor {
 public:
   /// Albedo (R, G, B) of a robot hull seen by a camera [assumed: the UX-1's yellow paint, urdf hull_rgba].
   static const Eigen::Vector3d kHullAlbedo;
@@ -75,10 +74,10 @@ public:
   /// Renders only at samples where `wanted()` is true (e.g. the image topic has a subscriber); null: always.
   void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
 
-  double clipFar() const { return clip_far_; }      ///< [m]
-  double exposure() const { return exposure_; }     ///< [m^2 sr / W]
-  double gain() const { return gain_; }             ///< [-]
-  double gamma() const { return gamma_; }           ///< [-]
+  double clipFar() const { return clip_far_; }   ///< [m]
+  double exposure() const { return exposure_; }  ///< [m^2 sr / W]
+  double gain() const { return gain_; }          ///< [-]
+  double gamma() const { return gamma_; }        ///< [-]
   bool shadows() const { return shadows_; }
   /// The lights in this camera's optical frame.
   const std::vector<LedLight>& lights() const { return lights_; }
@@ -120,12 +119,12 @@ private:
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;
-  std::string water_key_;                 ///< visibility level and colour the formation was built for
-  std::vector<Eigen::Vector3f> dirs_;     ///< per pixel: unit ray direction in the optical frame
+  std::string water_key_;                        ///< visibility level and colour the formation was built for
+  std::vector<Eigen::Vector3f> dirs_;            ///< per pixel: unit ray direction in the optical frame
   std::unique_ptr<SurfaceMaterials> materials_;  ///< per world mesh: albedo, texture (docs/vision.md)
-  std::vector<std::int32_t> encode_;      ///< gamma table: signal in [0, 1] -> 8 bits
-  shading::SensorResponse response_;      ///< the sensor's constants as the kernel reads them
-  std::vector<std::size_t> touched_;      ///< pixels the laser line lit this frame
+  std::vector<std::int32_t> encode_;             ///< gamma table: signal in [0, 1] -> 8 bits
+  shading::SensorResponse response_;             ///< the sensor's constants as the kernel reads them
+  std::vector<std::size_t> touched_;             ///< pixels the laser line lit this frame
   CameraFrame frame_;
 };
 

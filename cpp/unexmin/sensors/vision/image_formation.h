@@ -38,14 +38,13 @@ namespace vision {
 
 /// An LED lamp: a cone of light of radiant intensity I0 cos^m(theta), its edge softened over the outer kEdge of the
 /// half angle (a smoothstep down to 0 at cone / 2, as a reflector's beam ends) [assumed].
-struct LedLight
-{
+struct LedLight {
   static constexpr double kEdge = 0.2;  ///< fraction of the half angle over which the beam fades out
-  Eigen::Vector3d position{0, 0, 0};   ///< camera optical frame [m]
-  Eigen::Vector3d axis{0, 0, 1};       ///< unit, camera optical frame (the light link's +x)
-  Eigen::Vector3d intensity{1, 1, 1};  ///< I0: on-axis radiant intensity per channel (R, G, B) [W/sr]
-  double cone = M_PI / 2.0;            ///< full cone angle [rad]: no light beyond cone / 2 off the axis
-  double exponent = 1.0;               ///< m of I0 cos^m(theta) [-]
+  Eigen::Vector3d position{0, 0, 0};    ///< camera optical frame [m]
+  Eigen::Vector3d axis{0, 0, 1};        ///< unit, camera optical frame (the light link's +x)
+  Eigen::Vector3d intensity{1, 1, 1};   ///< I0: on-axis radiant intensity per channel (R, G, B) [W/sr]
+  double cone = M_PI / 2.0;             ///< full cone angle [rad]: no light beyond cone / 2 off the axis
+  double exponent = 1.0;                ///< m of I0 cos^m(theta) [-]
 
   /// Radiant intensity per channel toward a direction with cos(theta) = cos_theta off the axis [W/sr].
   Eigen::Vector3d at(double cos_theta) const;
@@ -55,28 +54,32 @@ struct LedLight
 
 /// Up to raycast::kBlock pixels of one tile (shading::Pixels) as the camera fills them. A pixel that sees no surface
 /// has range = max_range, albedo 0 and normal 0 (backscatter only).
-struct PixelBatch : shading::Pixels
-{
+struct PixelBatch : shading::Pixels {
   /// Sets pixel i: (u, v), the surface at `range` (point p, normal n, albedo a), lit by the bits of `lit_mask`.
-  void set(int i, float pu, float pv, float r, const Eigen::Vector3f& p, const Eigen::Vector3f& normal,
-           const float* a, std::uint32_t lit_mask)
-  {
-    u[i] = pu; v[i] = pv; range[i] = r;
-    px[i] = p.x(); py[i] = p.y(); pz[i] = p.z();
-    nx[i] = normal.x(); ny[i] = normal.y(); nz[i] = normal.z();
-    albedo[0][i] = a[0]; albedo[1][i] = a[1]; albedo[2][i] = a[2];
+  void set(int i, float pu, float pv, float r, const Eigen::Vector3f& p, const Eigen::Vector3f& normal, const float* a,
+           std::uint32_t lit_mask) {
+    u[i] = pu;
+    v[i] = pv;
+    range[i] = r;
+    px[i] = p.x();
+    py[i] = p.y();
+    pz[i] = p.z();
+    nx[i] = normal.x();
+    ny[i] = normal.y();
+    nz[i] = normal.z();
+    albedo[0][i] = a[0];
+    albedo[1][i] = a[1];
+    albedo[2][i] = a[2];
     lit[i] = lit_mask;
   }
   /// Sets pixel i as open water up to `max_range` (no surface).
-  void setWater(int i, float pu, float pv, float max_range)
-  {
+  void setWater(int i, float pu, float pv, float max_range) {
     static const float zero[3] = {0.0f, 0.0f, 0.0f};
     set(i, pu, pv, max_range, Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), zero, 0u);
   }
 };
 
-class ImageFormation
-{
+class ImageFormation {
 public:
   static constexpr int kPowEntries = 1024;  ///< cos^m table over [cos_half, 1]
   static constexpr int kExpEntries = 8192;  ///< exp(-c x) table over [0, x_max]

@@ -32,8 +32,7 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-class LaserLine
-{
+class LaserLine {
 public:
   /// `sls`: the unit whose laser this camera sees; `camera_pose`: the camera's optical frame in the base frame;
   /// `camera`: the rendered image; `power` [W] > 0; `width` [px] > 0; `colour` >= 0 per channel; `clip_far` [m]:

@@ -14,12 +14,13 @@ namespace vision {
 /// Runs band(begin, end) over [0, n) on up to `threads` threads (0 = std::thread::hardware_concurrency()).
 /// Bands smaller than `min_rows` are not split further. Returns when every band is done.
 template <class Band>
-void parallelRows(int n, const Band& band, int threads = 0, int min_rows = 8)
-{
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+void parallelRows(int n, const Band& band, int threads = 0, int min_rows = 8) {
+  if (threads <= 0)
+    threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::max(1, std::min(threads, n / std::max(1, min_rows)));
   if (threads <= 1) {
-    if (n > 0) band(0, n);
+    if (n > 0)
+      band(0, n);
     return;
   }
   std::vector<std::thread> pool;
@@ -27,7 +28,8 @@ void parallelRows(int n, const Band& band, int threads = 0, int min_rows = 8)
   for (int t = 1; t < threads; ++t)
     pool.emplace_back([&band, n, t, threads] { band(n * t / threads, n * (t + 1) / threads); });
   band(0, n / threads);
-  for (auto& th : pool) th.join();
+  for (auto& th : pool)
+    th.join();
 }
 
 }  // namespace vision

@@ -16,17 +16,19 @@ using Lanes = lanes::F1;  // not an x86-64 build with AVX2: one lane, never call
 constexpr bool kBuilt = false;
 #endif
 
-void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t)
-{
+void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t) {
   direct<Lanes>(p, n, lights, count, t);
 }
-void backscatterAvx2(Pixels& p, int n, const Backscatter& b) { backscatter<Lanes>(p, n, b); }
-void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3],
-                        const std::int32_t* const noise[3], std::int32_t* const code[3])
-{
+void backscatterAvx2(Pixels& p, int n, const Backscatter& b) {
+  backscatter<Lanes>(p, n, b);
+}
+void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
+                        std::int32_t* const code[3]) {
   sensorResponse<Lanes>(s, n, radiance, noise, code);
 }
-bool avx2Built() { return kBuilt; }
+bool avx2Built() {
+  return kBuilt;
+}
 
 }  // namespace shading
 }  // namespace vision

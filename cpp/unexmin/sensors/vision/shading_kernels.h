@@ -16,35 +16,32 @@ namespace vision {
 namespace shading {
 
 /// One light of the direct term, camera frame, in the form the kernel reads.
-struct Light
-{
+struct Light {
   float position[3];      ///< [m]
   float axis[3];          ///< unit
   float intensity[3];     ///< I0 / pi per channel [W/sr]
   float cos_half = 0.0f;  ///< cos(cone / 2) >= 0
   float cos_half2 = 0.0f;
-  float pow_scale = 0.0f;  ///< table index per unit of cos(theta)
+  float pow_scale = 0.0f;        ///< table index per unit of cos(theta)
   const float* pow_m = nullptr;  ///< profile over cos in [cos_half, 1], pow_last + 2 entries
   std::uint32_t bit = 0;         ///< this light's bit in the pixels' lit masks
 };
 
 /// Up to raycast::kBlock pixels (a camera tile) as a structure of arrays (one array per quantity, so that lanes
 /// load side by side).
-struct Pixels
-{
-  int n = 0;                                                                       ///< pixels in use
-  alignas(32) float u[raycast::kBlock], v[raycast::kBlock];                        ///< pixel coordinates [px]
-  alignas(32) float range[raycast::kBlock];                                        ///< lens to the surface [m]
+struct Pixels {
+  int n = 0;                                                                        ///< pixels in use
+  alignas(32) float u[raycast::kBlock], v[raycast::kBlock];                         ///< pixel coordinates [px]
+  alignas(32) float range[raycast::kBlock];                                         ///< lens to the surface [m]
   alignas(32) float px[raycast::kBlock], py[raycast::kBlock], pz[raycast::kBlock];  ///< surface point, camera frame [m]
   alignas(32) float nx[raycast::kBlock], ny[raycast::kBlock], nz[raycast::kBlock];  ///< unit normal towards the lens
-  alignas(32) float albedo[3][raycast::kBlock];     ///< Lambertian albedo per channel (R, G, B) [-]
-  alignas(32) std::uint32_t lit[raycast::kBlock];   ///< bit k: light k reaches the point (no shadow)
-  alignas(32) float out[3][raycast::kBlock];        ///< radiance per channel [W m^-2 sr^-1]
+  alignas(32) float albedo[3][raycast::kBlock];    ///< Lambertian albedo per channel (R, G, B) [-]
+  alignas(32) std::uint32_t lit[raycast::kBlock];  ///< bit k: light k reaches the point (no shadow)
+  alignas(32) float out[3][raycast::kBlock];       ///< radiance per channel [W m^-2 sr^-1]
 };
 
 /// exp(-c x) per channel, 4 floats an entry (R, G, B, 0) over x in [0, last / scale]; pow tables' last index.
-struct Tables
-{
+struct Tables {
   const float* exp = nullptr;
   float exp_scale = 0.0f;  ///< entries per metre
   float exp_last = 0.0f;   ///< entries - 2 (the interpolation reads index + 1)
@@ -55,8 +52,7 @@ struct Tables
 /// (I0/pi) cos^m(theta) cos(phi) exp(-c (R_L + R_C)) / R_L^2 (see ImageFormation): the direct term, written (not
 /// added) to out.
 template <class F>
-void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
-{
+void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t) {
   using I = typename F::Int;
   const F zero(0.0f), one(1.0f), tiny(1e-12f), exp_scale(t.exp_scale), exp_last(t.exp_last), pow_last(t.pow_last);
   for (int i = 0; i < n; i += F::kWidth) {
@@ -68,12 +64,13 @@ void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
     for (int k = 0; k < count; ++k) {
       const Light& l = lights[k];
       const F vx = px - F(l.position[0]), vy = py - F(l.position[1]), vz = pz - F(l.position[2]);  // light -> surface
-      const F ca = F(l.axis[0]) * vx + F(l.axis[1]) * vy + F(l.axis[2]) * vz;                       // r cos(theta)
+      const F ca = F(l.axis[0]) * vx + F(l.axis[1]) * vy + F(l.axis[2]) * vz;                      // r cos(theta)
       const F r2 = max(vx * vx + vy * vy + vz * vz, tiny);
       const F cos_phi = zero - (nx * vx + ny * vy + nz * vz);  // r cos(incidence)
       // Inside the cone (ca > cos_half r with cos_half >= 0, tested without the square root), lit from the front.
       const auto on = (ca > zero) & (ca * ca > F(l.cos_half2) * r2) & (cos_phi > zero) & anyBit(lit, l.bit);
-      if (none(on)) continue;  // a light that reaches none of these pixels (most lights, in most tiles)
+      if (none(on))
+        continue;  // a light that reaches none of these pixels (most lights, in most tiles)
       const F inv_r = one / sqrt(r2);
       const F r = r2 * inv_r;
       const F fi = clamp((ca * inv_r - F(l.cos_half)) * F(l.pow_scale), zero, pow_last);
@@ -99,8 +96,7 @@ void direct(Pixels& p, int n, const Light* lights, int count, const Tables& t)
 
 /// The backscatter table: nu x nv pixel nodes, bins + 1 range edges s (bin j spans [s_j, s_j+1]), 4 floats per
 /// (node, edge) (R, G, B, 0).
-struct Backscatter
-{
+struct Backscatter {
   const float* table = nullptr;
   const float* edge = nullptr;     ///< s_j [m], bins + 1
   const float* inv_bin = nullptr;  ///< 1 / (s_j+1 - s_j), bins
@@ -114,8 +110,7 @@ struct Backscatter
 /// range (both edges, all channels: one load in AVX), weighted over the cell's four nodes, and the range's weight
 /// between the two edges.
 template <class F>
-void backscatter(Pixels& p, int n, const Backscatter& b)
-{
+void backscatter(Pixels& p, int n, const Backscatter& b) {
   using I = typename F::Int;
   alignas(32) std::int32_t cell[raycast::kBlock];
   alignas(32) float weight[5][raycast::kBlock];  // the four nodes' (00, 10, 01, 11), then range's
@@ -153,18 +148,18 @@ void backscatter(Pixels& p, int n, const Backscatter& b)
     const float w00 = weight[0][i], w10 = weight[1][i], w01 = weight[2][i], w11 = weight[3][i], wr = weight[4][i];
     float at[8];  // bin edge j (R, G, B, 0), then j + 1
     weigh8(n00, w00, n10, w10, n01, w01, n11, w11, at, zero);
-    for (int c = 0; c < 3; ++c) p.out[c][i] += at[c] + wr * (at[c + 4] - at[c]);
+    for (int c = 0; c < 3; ++c)
+      p.out[c][i] += at[c] + wr * (at[c + 4] - at[c]);
   }
 }
 
 /// The response of the camera's image sensor (CameraSensor has the model): radiance -> 8-bit code per channel.
-struct SensorResponse
-{
-  float exposure = 0.0f;        ///< fraction of full well per unit radiance
+struct SensorResponse {
+  float exposure = 0.0f;  ///< fraction of full well per unit radiance
   float gain = 1.0f;
-  float shot = 0.0f;            ///< 1 / full_well
-  float read2 = 0.0f;           ///< (read_noise / full_well)^2
-  const float* normal = nullptr;     ///< standard normal quantiles, indexed by Pixels' noise indices
+  float shot = 0.0f;                     ///< 1 / full_well
+  float read2 = 0.0f;                    ///< (read_noise / full_well)^2
+  const float* normal = nullptr;         ///< standard normal quantiles, indexed by Pixels' noise indices
   const std::int32_t* encode = nullptr;  ///< gamma table: code of signal i / encode_last, encode_last + 1 entries
   float encode_last = 0.0f;
 };
@@ -173,14 +168,14 @@ struct SensorResponse
 /// s = min(1, exposure radiance[c][i]) and N = normal[noise[c][i]] (noise null: no noise), for i in [0, n).
 template <class F>
 void sensorResponse(const SensorResponse& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
-                    std::int32_t* const code[3])
-{
+                    std::int32_t* const code[3]) {
   const F zero(0.0f), one(1.0f), half(0.5f), exposure(s.exposure), gain(s.gain), shot(s.shot), read2(s.read2);
   const F last(s.encode_last);
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < n; i += F::kWidth) {
       F signal = min(exposure * load(radiance[c] + i, zero), one);
-      if (noise[c]) signal = signal + sqrt(signal * shot + read2) * gather(s.normal, loadInt(noise[c] + i, zero));
+      if (noise[c])
+        signal = signal + sqrt(signal * shot + read2) * gather(s.normal, loadInt(noise[c] + i, zero));
       const F level = clamp(gain * signal, zero, one) * last + half;
       storeInt(code[c] + i, gatherInt(s.encode, truncate(level)));
     }
@@ -189,8 +184,8 @@ void sensorResponse(const SensorResponse& s, int n, float* const radiance[3], co
 /// The AVX2 + FMA builds of the three (shading_avx2.cpp); call only where avx2Built() and the CPU has both.
 void directAvx2(Pixels& p, int n, const Light* lights, int count, const Tables& t);
 void backscatterAvx2(Pixels& p, int n, const Backscatter& b);
-void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3],
-                        const std::int32_t* const noise[3], std::int32_t* const code[3]);
+void sensorResponseAvx2(const SensorResponse& s, int n, float* const radiance[3], const std::int32_t* const noise[3],
+                        std::int32_t* const code[3]);
 /// Whether the two above were built for AVX2 + FMA (x86-64 with GCC or Clang).
 bool avx2Built();
 

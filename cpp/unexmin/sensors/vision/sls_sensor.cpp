@@ -19,20 +19,23 @@ constexpr double kSightSlack = 0.005;
 
 }  // namespace
 
-SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup)
-{
+SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
   SensorParams p(spec, setup.robot);
   fan_ = p.number("fan", 100.0 * kDeg, 1e-3, M_PI, "rad", true);
   const double rays = p.number("rays", 200.0, 2.0, 100000.0, "rays");
-  if (rays != std::floor(rays)) p.fail("rays", formatNumber(rays), "a whole number of rays");
+  if (rays != std::floor(rays))
+    p.fail("rays", formatNumber(rays), "a whole number of rays");
   range_min_ = p.number("range_min", 0.1, 0.0, 1000.0, "m");
   range_max_ = p.number("range_max", 5.0, 0.01, 1000.0, "m");
-  if (!(range_max_ > range_min_)) p.fail("range_max", formatNumber(range_max_), "more than range_min");
+  if (!(range_max_ > range_min_))
+    p.fail("range_max", formatNumber(range_max_), "more than range_min");
   motor_min_ = p.number("motor_min", -45.0 * kDeg, -2.0 * M_PI, 2.0 * M_PI, "rad");
   motor_max_ = p.number("motor_max", 45.0 * kDeg, -2.0 * M_PI, 2.0 * M_PI, "rad");
-  if (motor_max_ < motor_min_) p.fail("motor_max", formatNumber(motor_max_), "at least motor_min");
+  if (motor_max_ < motor_min_)
+    p.fail("motor_max", formatNumber(motor_max_), "at least motor_min");
   motor_speed_ = p.number("motor_speed", 10.0 * kDeg, 0.0, 100.0, "rad/s");
-  motor_start_ = p.number("motor_start", std::min(std::max(0.0, motor_min_), motor_max_), motor_min_, motor_max_, "rad");
+  motor_start_ =
+      p.number("motor_start", std::min(std::max(0.0, motor_min_), motor_max_), motor_min_, motor_max_, "rad");
   subpixel_ = p.number("subpixel_noise", 0.2, 0.0, 100.0, "px");
   threshold_ = p.number("threshold", 1e-3, 0.0, 1e6, "(line strength)");
   backscatter_length_ = p.number("backscatter_length", 1.0, 0.0, 1000.0, "m");
@@ -43,7 +46,8 @@ SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   const sim::JointInfo& joint = p.movingJoint(setup.description);
   p.finish();
   bool known = false;
-  for (const auto& j : setup.description.joints) known = known || j.child == camera_frame_ || j.parent == camera_frame_;
+  for (const auto& j : setup.description.joints)
+    known = known || j.child == camera_frame_ || j.parent == camera_frame_;
   if (!known)
     p.fail("camera_frame", "'" + camera_frame_ + "'", "a link of the robot (the optical frame of the unit's camera)");
   camera_pose_ = setup.description.linkPose(camera_frame_);
@@ -60,39 +64,41 @@ SlsSensor::SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Se
   baseline_ = (camera_pose_.translation() - spec.pose.translation()).norm();
 }
 
-double SlsSensor::motorAngle(double t) const
-{
+double SlsSensor::motorAngle(double t) const {
   const double span = motor_max_ - motor_min_;
-  if (motor_speed_ <= 0.0 || span <= 0.0) return motor_start_;
+  if (motor_speed_ <= 0.0 || span <= 0.0)
+    return motor_start_;
   const double m = std::fmod(motor_start_ - motor_min_ + motor_speed_ * t, 2.0 * span);
   return motor_min_ + (m <= span ? m : 2.0 * span - m);
 }
 
-double SlsSensor::motorVelocity(double t) const
-{
+double SlsSensor::motorVelocity(double t) const {
   const double span = motor_max_ - motor_min_;
-  if (motor_speed_ <= 0.0 || span <= 0.0) return 0.0;
+  if (motor_speed_ <= 0.0 || span <= 0.0)
+    return 0.0;
   const double m = std::fmod(motor_start_ - motor_min_ + motor_speed_ * t, 2.0 * span);
   return m < span ? motor_speed_ : -motor_speed_;
 }
 
-Eigen::Isometry3d SlsSensor::headPose(double a) const { return spec().pose * Eigen::AngleAxisd(a, axis_); }
+Eigen::Isometry3d SlsSensor::headPose(double a) const {
+  return spec().pose * Eigen::AngleAxisd(a, axis_);
+}
 
-Eigen::Vector3d SlsSensor::rayDirection(int j) const { return dirs_.at(static_cast<std::size_t>(j)); }
+Eigen::Vector3d SlsSensor::rayDirection(int j) const {
+  return dirs_.at(static_cast<std::size_t>(j));
+}
 
-double SlsSensor::depthSigma(double z) const
-{
-  if (!noise_ || baseline_ <= 0.0) return 0.0;
+double SlsSensor::depthSigma(double z) const {
+  if (!noise_ || baseline_ <= 0.0)
+    return 0.0;
   return z * z * subpixel_ / (camera_.fx() * baseline_);
 }
 
-void SlsSensor::movedJoints(std::vector<MovedJoint>& out) const
-{
+void SlsSensor::movedJoints(std::vector<MovedJoint>& out) const {
   out.push_back({joint_, motorAngle(now_), motorVelocity(now_)});
 }
 
-void SlsSensor::sample(const SensorContext& ctx)
-{
+void SlsSensor::sample(const SensorContext& ctx) {
   const double t = ctx.world.time();
   SlsScan& out = last_;
   out.time = t;
@@ -120,7 +126,8 @@ void SlsSensor::sample(const SensorContext& ctx)
   sight_.clear();
   for (std::size_t j = 0; j < dirs_.size(); ++j) {
     const raycast::Hit& h = hits_[j];
-    if (!h.hit()) continue;
+    if (!h.hit())
+      continue;
     if (h.range < range_min_) {
       out.ranges[j] = static_cast<float>(-kInf);
       continue;
@@ -128,7 +135,8 @@ void SlsSensor::sample(const SensorContext& ctx)
     out.ranges[j] = h.range;
     const Eigen::Vector3d point = h.point(rays_[j]).cast<double>();
     Eigen::Vector2d uv;
-    if (!camera_.project(cam_inv * point, uv)) continue;
+    if (!camera_.project(cam_inv * point, uv))
+      continue;
     raycast::Ray sight;
     const Eigen::Vector3d to = point - cam.translation();
     const double rc = to.norm();
@@ -145,18 +153,21 @@ void SlsSensor::sample(const SensorContext& ctx)
   for (std::size_t k = 0; k < candidates_.size(); ++k) {
     // One noise draw per candidate, visible or not, so the stream does not depend on occluders.
     const double draw = noise_ ? random().gauss() : 0.0;
-    if (sight_hits_[k].hit()) continue;  // something between the point and the lens
+    if (sight_hits_[k].hit())
+      continue;  // something between the point and the lens
     const std::size_t j = static_cast<std::size_t>(candidates_[k]);
     const raycast::Hit& h = hits_[j];
     const double rl = h.range;
     const double rc = sight_[k].max_range + kSightSlack;
     double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh)
-      albedo = SurfaceMaterials::of(ctx.world.config(), materials_).albedo(static_cast<std::size_t>(h.index),
-                                                                          h.point(rays_[j])).y();
-    const double strength =
-        albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) * std::exp(-c * (rl + rc)) / rl;
-    if (!(strength >= level) || strength <= 0.0) continue;
+      albedo = SurfaceMaterials::of(ctx.world.config(), materials_)
+                   .albedo(static_cast<std::size_t>(h.index), h.point(rays_[j]))
+                   .y();
+    const double strength = albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) *
+                            std::exp(-c * (rl + rc)) / rl;
+    if (!(strength >= level) || strength <= 0.0)
+      continue;
     // Triangulated point in the camera frame, its depth off by sigma_Z along the camera ray.
     const Eigen::Vector3d p = cam_inv * h.point(rays_[j]).cast<double>();
     const double dz = depthSigma(p.z()) * draw;

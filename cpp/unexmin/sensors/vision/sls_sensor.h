@@ -4,7 +4,8 @@
 // Frame: the laser head link (spec.link, child of the motor joint, axis usually z). The fan lies in the head's
 // x-z plane, centred on +x: ray j at elevation e_j = -fan/2 + j fan/(rays - 1) has direction (cos e, 0, sin e).
 // The motor sweeps the head between motor_min and motor_max at motor_speed (a triangle wave starting at
-// motor_start, default 0 (facing the camera's side of the unit), moving up), reported in joint_states. Each sample (the camera's frame rate):
+// motor_start, default 0 (facing the camera's side of the unit), moving up), reported in joint_states. Each sample (the
+// camera's frame rate):
 //   1. every ray of the fan is cast against the world (own hull invisible): the raw fan (LaserScan ranges from
 //      the head origin; +inf beyond range_max, -inf nearer than range_min, REP-117);
 //   2. a laser point is kept when the unit's camera (optical frame `camera_frame`, a link of the robot; image
@@ -26,7 +27,8 @@
 // (80 deg), camera_distortion (0 0 0 0 0), fan [rad] (100 deg), rays (200), range_min [m] (0.1),
 // range_max [m] (5), motor_min/motor_max [rad] (-45/45 deg), motor_speed [rad/s] (10 deg/s; 0 = still),
 // motor_start [rad] (0 within the limits), subpixel_noise [px] (0.2), threshold [-] (1e-3), backscatter_length [m] (1),
-// noise gaussian|none (gaussian), scan_frame (head link), joint (default: the joint whose child is the link). Knows no ROS.
+// noise gaussian|none (gaussian), scan_frame (head link), joint (default: the joint whose child is the link). Knows no
+// ROS.
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
@@ -44,8 +46,7 @@ namespace sensors {
 namespace vision {
 
 /// One sample of an SLS unit.
-struct SlsScan
-{
+struct SlsScan {
   double time = -1.0;                   ///< sim time [s]
   double motor_angle = 0.0;             ///< head joint position [rad]
   std::vector<float> ranges;            ///< raw fan from the head origin [m] (REP-117 markers)
@@ -53,8 +54,7 @@ struct SlsScan
   std::vector<float> intensity;         ///< their line strength S / detection level [-] (>= 1)
 };
 
-class SlsSensor : public Sensor
-{
+class SlsSensor : public Sensor {
 public:
   SlsSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
@@ -105,7 +105,7 @@ private:
   CameraModel camera_;
   double baseline_ = 0.0;
   double now_ = 0.0;
-  WaterOptics water_;                        ///< the world's water, derived at the first sample in it
+  WaterOptics water_;  ///< the world's water, derived at the first sample in it
   const sim::World* water_world_ = nullptr;
   std::vector<Eigen::Vector3d> dirs_;
   std::vector<raycast::Ray> rays_, sight_;

@@ -8,32 +8,35 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-Eigen::Vector3d WaterOptics::transmission(double range) const
-{
+Eigen::Vector3d WaterOptics::transmission(double range) const {
   const Eigen::Vector3d cc = c();
   return Eigen::Vector3d(std::exp(-cc.x() * range), std::exp(-cc.y() * range), std::exp(-cc.z() * range));
 }
 
-double WaterOptics::phase(double cos_psi) const
-{
+double WaterOptics::phase(double cos_psi) const {
   const double d = 1.0 + g * g - 2.0 * g * cos_psi;
   return (1.0 - g * g) / (4.0 * M_PI * d * std::sqrt(d));
 }
 
-WaterOptics WaterOptics::fromVisibility(const std::string& level, const Eigen::Vector3d& colour)
-{
+WaterOptics WaterOptics::fromVisibility(const std::string& level, const Eigen::Vector3d& colour) {
   double a_green = 0.0, b = 0.0;
-  if (level == "none") a_green = 0.114, b = 0.037;
-  else if (level == "low") a_green = 0.179, b = 0.219;
-  else if (level == "medium") a_green = 0.300, b = 0.900;
-  else if (level == "high") a_green = 0.600, b = 3.400;
-  else throw ConfigError("visibility level '" + level + "': expected none|low|medium|high");
+  if (level == "none")
+    a_green = 0.114, b = 0.037;
+  else if (level == "low")
+    a_green = 0.179, b = 0.219;
+  else if (level == "medium")
+    a_green = 0.300, b = 0.900;
+  else if (level == "high")
+    a_green = 0.600, b = 3.400;
+  else
+    throw ConfigError("visibility level '" + level + "': expected none|low|medium|high");
   for (int k = 0; k < 3; ++k)
     if (!(colour[k] > 0.0 && colour[k] <= 1.0))
       throw ConfigError("visibility colour (" + formatNumber(colour.x()) + ", " + formatNumber(colour.y()) + ", " +
                         formatNumber(colour.z()) + "): expected three numbers in (0, 1]");
   WaterOptics w;
-  for (int k = 0; k < 3; ++k) w.a[k] = a_green * colour.y() / colour[k];
+  for (int k = 0; k < 3; ++k)
+    w.a[k] = a_green * colour.y() / colour[k];
   w.b = Eigen::Vector3d::Constant(b);
   return w;
 }

@@ -22,8 +22,7 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-struct WaterOptics
-{
+struct WaterOptics {
   Eigen::Vector3d a{0, 0, 0};  ///< absorption per channel (R, G, B) [1/m]
   Eigen::Vector3d b{0, 0, 0};  ///< scattering per channel [1/m]
   double g = 0.924;            ///< Henyey-Greenstein asymmetry of the scattering [-]
