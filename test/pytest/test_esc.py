@@ -213,7 +213,7 @@ def test_driver_round_trip_follows_the_table(master):
             env=master,
             capture_output=True,
             text=True,
-            timeout=60,
+            timeout=180,  # the client's own waits: 60 s for its connections, then 30 s per case
         )
         assert res.returncode == 0, res.stderr
         by_rpm, by_duty = json.loads(res.stdout.strip().splitlines()[-1])

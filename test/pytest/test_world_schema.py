@@ -201,7 +201,7 @@ def test_world_launch_stops_on_a_typo_with_one_line(tmp_path):
     file = tmp_path / "tank.world"
     text = (REPO / "worlds" / "tank.world").read_text()
     assert "anchor.stl" in text
-    file.write_text(re.sub(r"(anchor.stl[^}]*)\}", r"\1, albdo: [0.1, 0.1, 0.1]}", text, count=1))
+    file.write_text(text.replace("file: meshes/anchor.stl,", "file: meshes/anchor.stl, albdo: [0.1, 0.1, 0.1],", 1))
     port = free_port()
     proc = subprocess.Popen(
         ["roslaunch", "-p", str(port), "unexmin", "world.launch", f"world_file:={file}", "rviz:=false"],

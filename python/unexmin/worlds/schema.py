@@ -192,5 +192,14 @@ def read_world(file):
     return check_world(data, file)
 
 
-if __name__ == "__main__":
+def main(argv=None):
+    import argparse
+
+    argparse.ArgumentParser(
+        description="Print the world-file keys of config/world_schema.yaml as the Markdown table of docs/worlds.md."
+    ).parse_args(argv)
     print(markdown_table(), end="")
+
+
+if __name__ == "__main__":
+    main()
