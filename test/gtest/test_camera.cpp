@@ -2,7 +2,7 @@
 // albedo lit by one LED in the 4 m test box (direct + backscatter, every visibility level), a small bright target
 // found where CameraInfo's K and D put it (distortion on), the contrast of a bright and a dark patch falling with
 // turbidity, shadows, the SLS laser line on the wall (position and strength), sensor noise statistics, seeds,
-// modes, demand and parameter errors.
+// modes, demand, vignetting, auto-exposure and parameter errors.
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -551,6 +552,71 @@ std::string startUpError(const std::string& urdf) {
   return "";
 }
 
+TEST(Camera, VignettingDarkensEachPixelByItsCos4Falloff) {
+  // The 8-bit value of pixel i is round(255 e V_i L_i) (gain 1, gamma 1, no noise) with V = 1 - v + v cos^4 theta,
+  // cos theta = 1 / sqrt(1 + x^2 + y^2), (x, y) = ((u - cx) / f, (v - cy) / f): at the corner (0, 0) of the 101 x 81
+  // image of hfov 60 deg, cos^4 theta = 0.424. `radiance` stays the light at the lens (before vignetting).
+  const double f = 50.5 / std::tan(30 * kDeg), cx = 50.0, cy = 40.0;
+  CameraWorld probe(box("none", 0.5), cameraUrdf(cameraParams({{"exposure", "1"}})));
+  const auto radiance = probe.frame().radiance;
+  const double exposure = 0.9 / *std::max_element(radiance.begin(), radiance.end());
+  for (double v : {0.0, 0.5, 1.0}) {
+    SCOPED_TRACE("vignetting " + num(v));
+    CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({{"exposure", num(exposure)}, {"vignetting", num(v)}})));
+    const auto& frame = w.frame();
+    EXPECT_EQ(frame.radiance, radiance);
+    for (const Eigen::Vector2i uv :
+         {Eigen::Vector2i(0, 0), Eigen::Vector2i(100, 80), Eigen::Vector2i(50, 40), Eigen::Vector2i(80, 10)}) {
+      const double x = (uv.x() - cx) / f, y = (uv.y() - cy) / f, c2 = 1.0 / (1.0 + x * x + y * y);
+      const double falloff = 1.0 - v + v * c2 * c2;
+      if (uv == Eigen::Vector2i(0, 0))
+        EXPECT_NEAR(c2 * c2, 0.424, 0.001);
+      const std::size_t i = static_cast<std::size_t>(uv.y()) * 101 + uv.x();
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(frame.rgb[3 * i + k], 255.0 * exposure * falloff * radiance[3 * i + k], 0.5 + 1e-3)
+            << uv.transpose() << " channel " << k;
+    }
+  }
+}
+
+TEST(Camera, AutoExposureConvergesToItsTargetAsTheClosedFormSays) {
+  // A still scene without saturation: the mean signal is m = e M (M the mean radiance over pixels and channels, with
+  // no vignetting), and e' = e (T / m)^a gives log(e_N M / T) = (1 - a)^N log(e_0 M / T). Target T at a third of
+  // the level where the brightest pixel would saturate; start 50 times too dark.
+  CameraWorld probe(box("none", 0.5), cameraUrdf(cameraParams({{"exposure", "1"}})));
+  const auto radiance = probe.frame().radiance;
+  double mean = 0.0;
+  for (float r : radiance)
+    mean += r / radiance.size();
+  const double brightest = *std::max_element(radiance.begin(), radiance.end());
+  const double target = mean / brightest / 3.0, rate = 0.5, e0 = target / mean / 50.0;
+  CameraWorld w(box("none", 0.5), cameraUrdf(cameraParams({{"exposure", num(e0)},
+                                                           {"auto_exposure", "true"},
+                                                           {"auto_exposure_target", num(target)},
+                                                           {"auto_exposure_rate", num(rate)},
+                                                           {"auto_exposure_range", "1000"}})));
+  EXPECT_DOUBLE_EQ(w.camera().currentExposure(), e0);
+  const int frames = 12;
+  double level = 0.0;
+  for (int n = 1; n <= frames; ++n) {
+    const auto& frame = w.frame();
+    level = 0.0;  // this frame's mean 8-bit level, taken with e_{n-1}
+    for (std::uint8_t b : frame.rgb)
+      level += b / (255.0 * frame.rgb.size());
+    const double expected = target / mean * std::pow(e0 * mean / target, std::pow(1.0 - rate, n));
+    EXPECT_NEAR(w.camera().currentExposure(), expected, 1e-4 * expected) << "frame " << n;
+  }
+  // After 12 frames the error is 50^(1/4096): the image's mean level is the target (8-bit rounding aside).
+  EXPECT_NEAR(level, target, 0.01 * target + 0.5 / 255);
+  // And it stays within its range: a black scene drives it to exposure * range, no further.
+  CameraWorld dark(
+      box("none", 0.0),
+      cameraUrdf(cameraParams({{"exposure", "2"}, {"auto_exposure", "true"}, {"light_intensity", "0 0 0"}})));
+  dark.frame();
+  dark.frame();
+  EXPECT_DOUBLE_EQ(dark.camera().currentExposure(), 200.0);
+}
+
 TEST(Camera, BadParametersStopStartUpNamingThem) {
   EXPECT_EQ(
       startUpError(cameraUrdf(cameraParams({{"lights", "T/light T/lamp"}}))),
@@ -564,6 +630,10 @@ TEST(Camera, BadParametersStopStartUpNamingThem) {
                        "parameter 'light_intensity' = -2: expected three finite numbers >= 0 W/sr"));
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"exposure", "-1"}}))), "parameter 'exposure' = -1"));
   EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"gama", "2"}}))), "unknown parameter 'gama'"));
+  EXPECT_TRUE(
+      contains(startUpError(cameraUrdf(cameraParams({{"vignetting", "1.5"}}))), "parameter 'vignetting' = 1.5"));
+  EXPECT_TRUE(contains(startUpError(cameraUrdf(cameraParams({{"auto_exposure_target", "0"}}))),
+                       "parameter 'auto_exposure_target' = 0"));
   const std::string second =
       "<link name='T/sls2'/><joint name='T/sls2_motor' type='revolute'><parent link='T/base_link'/>"
       "<child link='T/sls2'/><origin xyz='0.3 -0.1 0' rpy='0 0 0'/><axis xyz='0 0 1'/>"

@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <random>
 #include <vector>
@@ -103,8 +105,11 @@ TEST(RockTexture, FieldHasZeroMeanUnitDeviationAndItsGradient) {
   }
   EXPECT_NEAR(s / pts.size(), 0.0, 0.03);
   EXPECT_NEAR(std::sqrt(s2 / pts.size()), 1.0, 0.08);
-  // The analytic gradients against central differences of the field and of the height.
+  // The analytic gradients against central differences of the field and of the height. A crack's centre line (where
+  // its noise crosses 0) is a kink, across which a central difference averages two slopes: of the 600 comparisons
+  // of each, at most 2 may miss (a point within a step of a crack's centre line; with this seed and sample, one).
   const float step = 2e-4f;
+  int field_misses = 0, height_misses = 0;
   for (const auto& p : points(200, 3.0f, Eigen::Vector3f(1, 2, 3))) {
     Eigen::Vector3f gf, gh;
     t.field(p, &gf);
@@ -114,10 +119,12 @@ TEST(RockTexture, FieldHasZeroMeanUnitDeviationAndItsGradient) {
       d[a] = step;
       const double df = (t.field(p + d) - t.field(p - d)) / (2.0 * step);
       const double dh = (t.height(p + d) - t.height(p - d)) / (2.0 * step);
-      EXPECT_NEAR(gf[a], df, 0.03 * gf.norm() + 0.05) << "axis " << a;
-      EXPECT_NEAR(gh[a], dh, 0.03 * gh.norm() + 0.002) << "axis " << a;
+      field_misses += std::abs(gf[a] - df) > 0.03 * gf.norm() + 0.05;
+      height_misses += std::abs(gh[a] - dh) > 0.03 * gh.norm() + 0.002;
     }
   }
+  EXPECT_LE(field_misses, 2);
+  EXPECT_LE(height_misses, 2);
 }
 
 TEST(RockTexture, ReliefTiltsTheNormalByTheHeightsSlope) {
@@ -320,4 +327,47 @@ TEST(RockTexture, EightLanesEqualOne) {
       EXPECT_EQ(one[0], a[0][0][i]);
     }
   }
+}
+
+TEST(RockTexture, SlowNoisesAreLinearOverASmallBatch) {
+  // shadeMany takes the regions' and the stains' noise as linear about the batch's first point when the batch's
+  // bounding box is within 0.02 of their scale on every axis (a tile of a frame: 8 x 8 pixels, 2-3 cm at 2 m). The rest
+  // of the field is exact, so against shade() the albedo differs by the second-order remainder of those two noises:
+  // with |d2n| <= 24 per lattice unit^2 (smoothstep's 6 times the corners' range of 4; rough bound), span 0.02 scales
+  // and the unit noise's 1 / value_sd ~ 3.5: < 0.5 * 24 * 3 * 0.02^2 * 3.5 = 0.05 in the noise, times (tint + contrast
+  // weight) in the albedo; seen 0.2 %. Normals: the stains have no relief, but they warp the strata, whose slope then
+  // takes the stains' slope as constant over the batch: off by relief * strata height * 2 pi value_sd/2 * (the stains'
+  // slope change over the batch) < 0.34 * 0.04 * 0.9 * 0.5 = 6e-3 rad; seen 2.7e-3. A batch spread wider is exact.
+  Material m = unexmin::sim::materialDefaults("rock");
+  m.seed = 5;
+  m.region = 20.0;
+  m.tint = 0.2;
+  const RockTexture t(m);
+  const float side = 0.02f * static_cast<float>(std::min(m.stains, m.region));  // 4 cm: within the guard
+  double worst_albedo = 0.0, worst_tilt = 0.0;
+  for (int batch = 0; batch < 50; ++batch) {
+    const auto pts = points(64, side, Eigen::Vector3f(3.0f * batch, -1.0f, 0.5f * batch), 100 + batch);
+    const int n = static_cast<int>(pts.size());
+    std::vector<float> x(n), y(n), z(n), nx(n, 0.0f), ny(n, 0.0f), nz(n, 1.0f), a[3];
+    for (auto& c : a)
+      c.resize(n);
+    for (int i = 0; i < n; ++i)
+      x[i] = pts[i].x(), y[i] = pts[i].y(), z[i] = pts[i].z();
+    float* const out[3] = {a[0].data(), a[1].data(), a[2].data()};
+    t.shadeMany(n, x.data(), y.data(), z.data(), nx.data(), ny.data(), nz.data(), out, batch % 2 == 0);
+    for (int i = 0; i < n; ++i) {
+      float exact[3];
+      Eigen::Vector3f s;
+      t.shade(pts[i], Eigen::Vector3f::UnitZ(), exact, s);
+      for (int c = 0; c < 3; ++c)
+        worst_albedo = std::max(worst_albedo, std::abs(a[c][i] - exact[c]) / m.albedo[c]);
+      worst_tilt = std::max(
+          worst_tilt, static_cast<double>(std::acos(std::min(1.0f, s.dot(Eigen::Vector3f(nx[i], ny[i], nz[i]))))));
+    }
+  }
+  EXPECT_GT(worst_albedo, 0.0);  // the linear path was taken
+  EXPECT_LT(worst_albedo, 0.005);
+  EXPECT_LT(worst_tilt, 0.006);
+  std::printf("slow noises linear over a batch of 4 cm: albedo off by <= %.2g (relative), normal by <= %.2g rad\n",
+              worst_albedo, worst_tilt);
 }

@@ -8,7 +8,7 @@ with its rock material, lights, water and seeded sensor noise, no ROS), written 
   camera 4 looking down at the first level's floor (2.5 m), the poses of docs/vision.md's pictures;
 - the count falls from `none` to `low` to `medium` to `high`, strictly until it reaches 0 (the wall lost in the
   murk, here from `medium` on). Nearer walls are not used: at 1.0-1.3 m in clear water the fixed exposure
-  saturates the LED's spot and `low` gives more keypoints than `none` (no auto-exposure, docs/vision.md "Limits");
+  saturates the LED's spot and `low` gives more keypoints than `none` (auto-exposure off, docs/vision.md "Limits");
 - the same views with the walls' material made plain (one albedo, as a mesh without `material:`) give fewer
   than 50: the texture, not the noise or the lights, is what ORB finds.
 

@@ -72,6 +72,12 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   noise_ = p.text("noise", "gaussian", {"gaussian", "none"}) == "gaussian";
   full_well_ = p.number("full_well", 10000.0, 1.0, 1e9, "e-");
   read_noise_ = p.number("read_noise", 10.0, 0.0, 1e9, "e-");
+  vignetting_ = p.number("vignetting", 0.0, 0.0, 1.0, "");
+  auto_exposure_ = p.flag("auto_exposure", false);
+  ae_target_ = p.number("auto_exposure_target", 0.4, 1e-6, 1.0 - 1e-6, "");
+  ae_rate_ = p.number("auto_exposure_rate", 0.5, 1e-6, 1.0, "");
+  ae_range_ = p.number("auto_exposure_range", 100.0, 1.0, 1e12, "");
+  exposure_now_ = exposure_;
   const std::vector<std::string> light_links = p.words("lights");
   const Eigen::Vector3d intensity = p.vec3("light_intensity", Eigen::Vector3d(1.5, 1.5, 1.5));
   for (int k = 0; k < 3; ++k)
@@ -124,6 +130,7 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
 CameraSensor::~CameraSensor() = default;
 
 void CameraSensor::onReset() {
+  exposure_now_ = exposure_;
   frame_.time = -1.0;
   frame_.rendered = false;
 }
@@ -158,6 +165,14 @@ void CameraSensor::prepare(const SensorContext& ctx) {
         for (int u = 0; u < w; ++u)
           dirs_[static_cast<std::size_t>(v) * w + u] = model_.ray(u, v).cast<float>();
     });
+    vignette_.clear();
+    if (vignetting_ > 0.0) {
+      vignette_.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double c = dirs_[i].z() / dirs_[i].norm();  // cos theta
+        vignette_[i] = static_cast<float>(1.0 - vignetting_ + vignetting_ * c * c * c * c);
+      }
+    }
     frame_.width = w;
     frame_.height = h;
     frame_.rgb.assign(3 * n, 0);
@@ -182,6 +197,10 @@ void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance
   alignas(32) std::int32_t code[3][raycast::kBlock];
   simd = simd && ImageFormation::simdAvailable();
   const int padded = simd ? (n + 7) / 8 * 8 : n;  // the padding's radiance is there (PixelBatch), its codes unused
+  if (!vignette_.empty())
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < n; ++i)
+        radiance[c][i] *= vignette_[pixel[i]];
   const std::int32_t* draws[3] = {nullptr, nullptr, nullptr};
   if (noise_) {
     // One hash per pixel: three 12-bit indices into the normal quantiles, a pure function of (seed, pixel), so
@@ -219,6 +238,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
   const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
+  sensor_.exposure = static_cast<float>(exposure_now_);
   // Every tile alone: its rays, their cast, its pixels' shading and sensor (the pixels do not depend on which thread
   // renders them, nor on the order). A thread takes a whole strip of kTile rows at a time: two threads never write
   // to the same cache line of the image but at a strip's first and last row (neighbouring tiles on two threads
@@ -240,6 +260,24 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
     for (std::size_t i : touched_)
       encodePixel(i, seed);
   }
+  if (auto_exposure_)
+    adjustExposure();
+}
+
+void CameraSensor::adjustExposure() {
+  // The frame's mean noise-free signal, then one step of the exposure towards the target (in log: the error shrinks
+  // by the factor 1 - rate per frame while nothing saturates).
+  const std::size_t n = frame_.range.size();
+  const float e = static_cast<float>(exposure_now_);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float v = vignette_.empty() ? 1.0f : vignette_[i];
+    for (int c = 0; c < 3; ++c)
+      sum += std::min(1.0f, e * v * frame_.radiance[3 * i + c]);
+  }
+  const double mean = n ? sum / (3.0 * static_cast<double>(n)) : 0.0;
+  const double next = mean > 0.0 ? exposure_now_ * std::pow(ae_target_ / mean, ae_rate_) : exposure_ * ae_range_;
+  exposure_now_ = std::min(exposure_ * ae_range_, std::max(exposure_ / ae_range_, next));
 }
 
 void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,

@@ -22,6 +22,12 @@
 //   exposure [m^2 sr / W] (20): fraction of full well per unit radiance at the lens
 //   gain [-] (1), gamma [-] (1: linear), noise gaussian|none (gaussian), full_well [e-] (10000),
 //   read_noise [e-] (10)
+//   vignetting v [-] in [0, 1] (0: none): the image plane receives L (1 - v + v cos^4 theta), theta the pixel ray's
+//       angle to the optical axis (v = 1: the cos^4 law of a thin lens; applied at the sensor, after `radiance`)
+//   auto_exposure true|false (false): after each rendered frame the exposure e is multiplied by
+//       (auto_exposure_target / m)^auto_exposure_rate, m the frame's mean noise-free signal min(1, e V L) over pixels
+//       and channels; auto_exposure_target [-] (0.4) in (0, 1), auto_exposure_rate [-] (0.5) in (0, 1], and the
+//       exposure kept within [exposure / auto_exposure_range, exposure * auto_exposure_range] (range [-] 100, >= 1)
 //   lights: links of the robot's LED lights (+x = beam axis; none by default); light_intensity I0 per channel
 //       [W/sr] (1.5 1.5 1.5), light_cone full angle [rad] (90 deg), light_exponent m [-] (1)
 //   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
@@ -75,9 +81,12 @@ public:
   void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
 
   double clipFar() const { return clip_far_; }   ///< [m]
-  double exposure() const { return exposure_; }  ///< [m^2 sr / W]
-  double gain() const { return gain_; }          ///< [-]
-  double gamma() const { return gamma_; }        ///< [-]
+  double exposure() const { return exposure_; }  ///< [m^2 sr / W] (the parameter; the start of auto-exposure)
+  /// The exposure the next frame is taken with [m^2 sr / W] (exposure() unless auto-exposure moved it).
+  double currentExposure() const { return exposure_now_; }
+  double vignetting() const { return vignetting_; }  ///< [-]
+  double gain() const { return gain_; }              ///< [-]
+  double gamma() const { return gamma_; }            ///< [-]
   bool shadows() const { return shadows_; }
   /// The lights in this camera's optical frame.
   const std::vector<LedLight>& lights() const { return lights_; }
@@ -105,6 +114,8 @@ private:
   /// gain, gamma, 8 bits per channel into the image. `simd`: in AVX2 lanes (then radiance[c] holds n rounded up to
   /// a multiple of 8 finite values).
   void encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd);
+  /// Auto-exposure: the next frame's exposure from this one's mean signal (see the parameters above).
+  void adjustExposure();
   /// The same for pixel i alone, from frame_.radiance.
   void encodePixel(std::size_t i, std::uint64_t seed);
 
@@ -113,6 +124,11 @@ private:
   double clip_far_ = 20.0, exposure_ = 20.0, gain_ = 1.0, gamma_ = 1.0;
   bool noise_ = true, shadows_ = false, simd_ = true;
   double full_well_ = 10000.0, read_noise_ = 10.0;
+  double vignetting_ = 0.0;
+  bool auto_exposure_ = false;
+  double ae_target_ = 0.4, ae_rate_ = 0.5, ae_range_ = 100.0;
+  double exposure_now_ = 20.0;   ///< the exposure of the next frame [m^2 sr / W]
+  std::vector<float> vignette_;  ///< per pixel: 1 - v + v cos^4 theta (empty: no vignetting)
   std::vector<LedLight> lights_;
   std::unique_ptr<LaserLine> laser_;
   std::function<bool()> demand_;

@@ -14,7 +14,9 @@ namespace {
 
 constexpr float kTwoPi = 6.28318530718f;
 constexpr float kCrackWidth = 0.12f;  ///< |n| below which a crack darkens (fraction of the noise's range)
-constexpr float kOctave = 2.03f;      ///< the grain's second octave: this much finer (not 2: no shared lattice)
+/// shadeMany takes a slow noise (regions, stains) as linear about a batch's first point when the batch's bounding box
+/// is within this fraction of its scale on every axis: the error is second order in it.
+constexpr float kLinearSpan = 0.02f;
 
 /// A lattice value in [-1, 1) from the integer cell corner (x, y, z) and a seed: per-axis multiplicative hashes,
 /// combined and finished with one multiply between xor-shifts (one round: enough for noise, cheap in lanes).
@@ -58,21 +60,6 @@ inline float noise(const Eigen::Vector3f& q, std::uint32_t seed, Eigen::Vector3f
   return a + k1 * ux + k2 * uy + k3 * uz + k4 * ux * uy + k5 * uy * uz + k6 * uz * ux + k7 * ux * uy * uz;
 }
 
-/// The rotation of the grain's second octave (hides the lattice's axes).
-const Eigen::Matrix3f& octaveRotation() {
-  static const Eigen::Matrix3f r =
-      (Eigen::AngleAxisf(0.7f, Eigen::Vector3f(1, 2, 3).normalized()) * Eigen::Matrix3f::Identity()).eval();
-  return r;
-}
-
-inline float grainNoise(const Eigen::Vector3f& q, const std::uint32_t* seed, Eigen::Vector3f& g) {
-  Eigen::Vector3f g1, g2;
-  const Eigen::Matrix3f& r = octaveRotation();
-  const float n = noise(q, seed[0], g1) + 0.5f * noise(kOctave * (r * q), seed[1], g2);
-  g = g1 + (0.5f * kOctave) * (r.transpose() * g2);
-  return n;
-}
-
 inline float crackOf(float n, float& slope)  // -max(0, 1 - |n| / w)^2 and its derivative in n
 {
   const float a = 1.0f - std::abs(n) / kCrackWidth;
@@ -111,7 +98,7 @@ const Moments& moments() {
                               static_cast<float>(1000.0 * uniform()));
       Eigen::Vector3f g[3];
       float slope;
-      const double v[3] = {noise(q, seeds[0], g[0]), grainNoise(q, seeds, g[1]),
+      const double v[3] = {noise(q, seeds[0], g[0]), noise(q, seeds[0], g[1]),
                            crackOf(noise(q, seeds[1], g[2]), slope)};
       g[2] *= slope;
       for (int k = 0; k < 3; ++k) {
@@ -147,19 +134,22 @@ RockTexture::RockTexture(const sim::Material& m, const std::string& prefix) : m_
   const double scales[5] = {m.grain, m.cracks, m.strata, m.stains, m.region};
   for (int i = 0; i < 5; ++i)
     inv_scale_[i] = scales[i] > 0.0 ? static_cast<float>(1.0 / scales[i]) : 0.0f;
-  double sum2 = 0.0;
+  double sum2 = 0.0, relief2 = 0.0;  // the relief: grain, cracks and strata (stains are colour, not shape)
   for (int i = 0; i < 4; ++i)
-    if (inv_scale_[i] > 0.0f)
+    if (inv_scale_[i] > 0.0f) {
       sum2 += m.weights[i] * m.weights[i];
+      relief2 += i < 3 ? m.weights[i] * m.weights[i] : 0.0;
+    }
   const double norm = sum2 > 0.0 ? 1.0 / std::sqrt(sum2) : 0.0;
+  const double relief_norm = relief2 > 0.0 ? 1.0 / std::sqrt(relief2) : 0.0;
   // Each component's height is its value times its scale over its RMS slope per unit scale, so that each has an
-  // RMS slope of 1 (the strata: 2 pi, their warp neglected).
+  // RMS slope of 1 (the strata: 2 pi, their warp neglected); the stains have none.
   const Moments& mo = moments();
   const float slope[4] = {mo.grain_slope, mo.crack_slope, kTwoPi, mo.value_slope};
   for (int i = 0; i < 4; ++i) {
     weight_[static_cast<std::size_t>(i)] = inv_scale_[i] > 0.0f ? static_cast<float>(m.weights[i] * norm) : 0.0f;
     height_[static_cast<std::size_t>(i)] =
-        static_cast<float>(weight_[static_cast<std::size_t>(i)] * scales[i] / slope[i]);
+        i < 3 && inv_scale_[i] > 0.0f ? static_cast<float>(m.weights[i] * relief_norm * scales[i] / slope[i]) : 0.0f;
   }
   albedo_ = m.albedo.cast<float>().array();
   contrast_ = m.textured() ? static_cast<float>(m.contrast) : 0.0f;
@@ -186,13 +176,8 @@ RockTexture::RockTexture(const sim::Material& m, const std::string& prefix) : m_
     k.albedo[c] = albedo_[c];
     k.tint[c] = tint_[c];
   }
-  const Eigen::Matrix3f& r = octaveRotation();
-  for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col)
-      k.rot[3 * row + col] = r(row, col);
   k.contrast = contrast_;
   k.relief = relief_;
-  k.octave = kOctave;
   k.crack_width = kCrackWidth;
   k.value_sd = mo.value_sd;
   k.grain_mean = mo.grain_mean;
@@ -200,10 +185,11 @@ RockTexture::RockTexture(const sim::Material& m, const std::string& prefix) : m_
   k.crack_mean = mo.crack_mean;
   k.crack_sd = mo.crack_sd;
   k.tinted = tint_.matrix().squaredNorm() > 0.0f;
+  k.region_linear = k.stain_linear = false;
 }
 
-float RockTexture::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f& gf, float& h, Eigen::Vector3f& gh,
-                            float& region) const {
+float RockTexture::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f& gf, float& h, Eigen::Vector3f& gh, float& region,
+                            const RockLanes* linear) const {
   const Moments& mo = moments();
   float f = 0.0f;
   h = 0.0f;
@@ -218,7 +204,7 @@ float RockTexture::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f& gf, float
     gh += height_[static_cast<std::size_t>(i)] * grad;
   };
   if (weight_[0] != 0.0f) {
-    const float n = grainNoise(p * inv_scale_[0], seed_, g);
+    const float n = noise(p * inv_scale_[0], seed_[0], g);
     add(0, (n - mo.grain_mean) / mo.grain_sd, g * (inv_scale_[0] / mo.grain_sd));
   }
   if (weight_[1] != 0.0f) {
@@ -228,7 +214,10 @@ float RockTexture::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f& gf, float
   }
   float stain = 0.0f;
   Eigen::Vector3f stain_g = Eigen::Vector3f::Zero();
-  if (inv_scale_[3] > 0.0f) {
+  if (linear && linear->stain_linear) {
+    stain_g = Eigen::Vector3f(linear->stain_grad[0], linear->stain_grad[1], linear->stain_grad[2]);
+    stain = linear->stain0 + stain_g.dot(p - Eigen::Vector3f(linear->origin[0], linear->origin[1], linear->origin[2]));
+  } else if (inv_scale_[3] > 0.0f) {
     stain = noise(p * inv_scale_[3], seed_[3], stain_g) / mo.value_sd;
     stain_g *= inv_scale_[3] / mo.value_sd;
   }
@@ -241,7 +230,11 @@ float RockTexture::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f& gf, float
   }
   if (weight_[3] != 0.0f)
     add(3, stain, stain_g);
-  if (tint_.matrix().squaredNorm() > 0.0f)
+  if (linear && linear->region_linear)
+    region = linear->region0 + linear->region_grad[0] * (p.x() - linear->origin[0]) +
+             linear->region_grad[1] * (p.y() - linear->origin[1]) +
+             linear->region_grad[2] * (p.z() - linear->origin[2]);
+  else if (tint_.matrix().squaredNorm() > 0.0f)
     region = noise(p * inv_scale_[4], seed_[4], g) / mo.value_sd;
   return f;
 }
@@ -286,11 +279,11 @@ Eigen::Vector3f RockTexture::normal(const Eigen::Vector3f& p, const Eigen::Vecto
   return out;
 }
 
-void RockTexture::shade(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
-                        Eigen::Vector3f& shading) const {
+void RockTexture::shade(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo, Eigen::Vector3f& shading,
+                        const RockLanes* linear) const {
   Eigen::Vector3f gf, gh;
   float h, region;
-  const float f = evaluate(p, gf, h, gh, region);
+  const float f = evaluate(p, gf, h, gh, region, linear);
   albedoOf(f, region, albedo);
   if (relief_ > 0.0f)
     shading = (n - relief_ * (gh - gh.dot(n) * n)).normalized();
@@ -300,15 +293,42 @@ void RockTexture::shade(const Eigen::Vector3f& p, const Eigen::Vector3f& n, floa
 
 void RockTexture::shadeMany(int n, const float* px, const float* py, const float* pz, float* nx, float* ny, float* nz,
                             float* const albedo[3], bool simd) const {
+  if (n <= 0)
+    return;
+  // The slow noises, linear over a batch small against their scales.
+  RockLanes k = lanes_;
+  // The batch's extent: its bounding box's largest side (six independent running bounds, no chain between axes).
+  float lo[3] = {px[0], py[0], pz[0]}, hi[3] = {px[0], py[0], pz[0]};
+  for (int i = 1; i < n; ++i) {
+    lo[0] = std::min(lo[0], px[i]), hi[0] = std::max(hi[0], px[i]);
+    lo[1] = std::min(lo[1], py[i]), hi[1] = std::max(hi[1], py[i]);
+    lo[2] = std::min(lo[2], pz[i]), hi[2] = std::max(hi[2], pz[i]);
+  }
+  const float span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const Eigen::Vector3f p0(px[0], py[0], pz[0]);
+  const float inv_sd = 1.0f / moments().value_sd;
+  auto linearise = [&](int scale, std::uint32_t seed, float& value, float* grad) {
+    Eigen::Vector3f g;
+    value = noise(p0 * inv_scale_[scale], seed, g) * inv_sd;
+    for (int a = 0; a < 3; ++a)
+      grad[a] = g[a] * inv_scale_[scale] * inv_sd;
+    return true;
+  };
+  for (int a = 0; a < 3; ++a)
+    k.origin[a] = p0[a];
+  if (n > 1 && k.tinted && span * inv_scale_[4] <= kLinearSpan)
+    k.region_linear = linearise(4, seed_[4], k.region0, k.region_grad);
+  if (n > 1 && inv_scale_[3] > 0.0f && span * inv_scale_[3] <= kLinearSpan)
+    k.stain_linear = linearise(3, seed_[3], k.stain0, k.stain_grad);
   int i = 0;
   if (simd && rockAvx2Built() && ImageFormation::simdAvailable()) {
     i = n / 8 * 8;
-    rockShadeAvx2(lanes_, i, px, py, pz, nx, ny, nz, albedo);
+    rockShadeAvx2(k, i, px, py, pz, nx, ny, nz, albedo);
   }
   for (; i < n; ++i) {
     float a[3];
     Eigen::Vector3f s;
-    shade(Eigen::Vector3f(px[i], py[i], pz[i]), Eigen::Vector3f(nx[i], ny[i], nz[i]), a, s);
+    shade(Eigen::Vector3f(px[i], py[i], pz[i]), Eigen::Vector3f(nx[i], ny[i], nz[i]), a, s, &k);
     for (int c = 0; c < 3; ++c)
       albedo[c][i] = a[c];
     nx[i] = s.x();

@@ -132,20 +132,9 @@ void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, 
     F f = zero;
     V gh{zero, zero, zero};
     V g;
-    if (k.weight[0] != 0.0f) {  // grain: two octaves, the second turned
-      const V q = scale(p, set(k.inv_scale[0]));
-      V g1, g2;
-      const F n1 = noise(q, k.seed[0], g1);
-      const F o = set(k.octave);
-      const V q2{mul(o, fma(set(k.rot[0]), q.x, fma(set(k.rot[1]), q.y, mul(set(k.rot[2]), q.z)))),
-                 mul(o, fma(set(k.rot[3]), q.x, fma(set(k.rot[4]), q.y, mul(set(k.rot[5]), q.z)))),
-                 mul(o, fma(set(k.rot[6]), q.x, fma(set(k.rot[7]), q.y, mul(set(k.rot[8]), q.z))))};
-      const F n2 = noise(q2, k.seed[1], g2);
-      const F half_o = set(0.5f * k.octave);
-      g = {fma(half_o, fma(set(k.rot[0]), g2.x, fma(set(k.rot[3]), g2.y, mul(set(k.rot[6]), g2.z))), g1.x),
-           fma(half_o, fma(set(k.rot[1]), g2.x, fma(set(k.rot[4]), g2.y, mul(set(k.rot[7]), g2.z))), g1.y),
-           fma(half_o, fma(set(k.rot[2]), g2.x, fma(set(k.rot[5]), g2.y, mul(set(k.rot[8]), g2.z))), g1.z)};
-      const F c = mul(sub(fma(set(0.5f), n2, n1), set(k.grain_mean)), set(1.0f / k.grain_sd));
+    if (k.weight[0] != 0.0f) {  // grain
+      const F n1 = noise(scale(p, set(k.inv_scale[0])), k.seed[0], g);
+      const F c = mul(sub(n1, set(k.grain_mean)), set(1.0f / k.grain_sd));
       f = fma(set(k.weight[0]), c, f);
       gh = madd(gh, set(k.height[0] * k.inv_scale[0] / k.grain_sd), g);
     }
@@ -161,7 +150,12 @@ void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, 
     }
     F stain = zero;
     V sg{zero, zero, zero};
-    if (k.inv_scale[3] > 0.0f) {
+    const V o{set(k.origin[0]), set(k.origin[1]), set(k.origin[2])};
+    const V d{sub(p.x, o.x), sub(p.y, o.y), sub(p.z, o.z)};
+    if (k.stain_linear) {  // stain0 + stain_grad . (p - origin)
+      sg = {set(k.stain_grad[0]), set(k.stain_grad[1]), set(k.stain_grad[2])};
+      stain = fma(sg.x, d.x, fma(sg.y, d.y, fma(sg.z, d.z, set(k.stain0))));
+    } else if (k.inv_scale[3] > 0.0f) {
       stain = mul(noise(scale(p, set(k.inv_scale[3])), k.seed[3], sg), set(1.0f / k.value_sd));
       sg = scale(sg, set(k.inv_scale[3] / k.value_sd));
     }
@@ -175,12 +169,13 @@ void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, 
       f = fma(set(k.weight[2]), mul(set(kRoot2), s), f);
       gh = madd(gh, mul(set(k.height[2] * kRoot2), c), dphase);
     }
-    if (k.weight[3] != 0.0f) {
+    if (k.weight[3] != 0.0f)  // stains: colour, no relief (height[3] = 0)
       f = fma(set(k.weight[3]), stain, f);
-      gh = madd(gh, set(k.height[3]), sg);
-    }
     F region = zero;
-    if (k.tinted)
+    if (k.region_linear)  // region0 + region_grad . (p - origin)
+      region = fma(set(k.region_grad[0]), d.x,
+                   fma(set(k.region_grad[1]), d.y, fma(set(k.region_grad[2]), d.z, set(k.region0))));
+    else if (k.tinted)
       region = mul(noise(scale(p, set(k.inv_scale[4])), k.seed[4], g), set(1.0f / k.value_sd));
     const F m = fma(set(k.contrast), f, one);
     for (int c = 0; c < 3; ++c) {

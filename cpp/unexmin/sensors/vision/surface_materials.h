@@ -48,6 +48,7 @@ private:
     std::unique_ptr<RockTexture> texture;
     Eigen::Matrix3f to_mesh;  ///< rotation world -> mesh frame
     Eigen::Vector3f origin;   ///< the mesh frame's origin in the world [m]
+    bool identity = false;    ///< the mesh frame is the world frame (no transform)
   };
   std::vector<Mesh> meshes_;
   const sim::WorldConfig* config_;  ///< the world configuration they were built from
