@@ -1,0 +1,178 @@
+"""The mine survey's plan and its tracking controller (docs/mapping.md, "The mission"). No ROS.
+
+The plan is read from the mine generator's layout (the report `<name>.json` beside the world's collision mesh
+gives the seed and the preset), so it follows any generated mine:
+1. the entry shaft: a helix around the shaft's axis, `standoff` from its nominal wall, from just under the water
+   surface down to `below` metres under the first level (the shaft goes on to the lower levels), the robot
+   turning with the helix and facing the axis (the M3 fan across the shaft, the SLS units on the near and
+   side walls, every unit's motor sweeping), `helix_pitch` metres down per turn;
+2. back up the axis to the first level;
+3. the first level's gallery, out and back over `gallery` metres: out off-centre to one side and low, back to
+   the other side and high (`standoff` from the nominal walls), the robot turning about its vertical axis all
+   the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it).
+A plan is a list of keyframes (x, y, z [m], yaw [rad], unwrapped) with the time [s] to reach each from the
+previous one; `Reference` interpolates it.
+"""
+
+import json
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+HULL_RADIUS = 0.3  # [m] the UX-1's spherical hull
+
+
+@dataclass
+class SurveyOptions:
+    gallery: float = 40.0  # [m] along the first level's gallery (out and back)
+    standoff: float = 1.4  # [m] from the nominal (noise-free) wall of the shaft
+    gallery_standoff: float = 1.3  # [m] from the nominal walls of the gallery (side, floor, roof)
+    helix_pitch: float = 2.2  # [m] down per turn in the shaft
+    shaft_speed: float = 0.3  # [m/s] along the helix
+    below: float = 6.0  # [m] under the first level in the shaft
+    surface_clearance: float = 1.2  # [m] the helix's top under the water surface
+    gallery_speed: float = 0.25  # [m/s] along the gallery
+    gallery_yaw_rate: float = 0.25  # [rad/s] the turn while flying the gallery
+    step_deg: float = 15.0  # [deg] of turn between keyframes
+
+    def check(self):
+        for name in ("gallery", "standoff", "gallery_standoff", "helix_pitch", "shaft_speed", "gallery_speed"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"survey option {name} = {getattr(self, name)}: expected > 0")
+        for name in ("below", "surface_clearance", "gallery_yaw_rate"):
+            if not getattr(self, name) >= 0:
+                raise ValueError(f"survey option {name} = {getattr(self, name)}: expected >= 0")
+
+
+def mine_layout(world_file):
+    """(layout, preset) of the generated mine of a world file: the generator report beside its collision mesh."""
+    from unexmin.mine_generator.generator import PRESETS, make_layout
+    from unexmin.worlds.files import load_world
+
+    world = load_world(world_file)
+    meshes = [m for m in world["meshes"] if m["collision"]]
+    if not meshes:
+        raise ValueError(f"{world_file}: no collision mesh, expected a generated mine")
+    mesh = os.path.join(os.path.dirname(os.path.abspath(world_file)), meshes[0]["file"])
+    if not mesh.endswith("_collision.ply"):
+        raise ValueError(f"{world_file}: collision mesh {mesh} is not a mine generator's <name>_collision.ply")
+    report = mesh[: -len("_collision.ply")] + ".json"
+    if not os.path.exists(report):
+        raise FileNotFoundError(f"{report}: the mine generator's report of {mesh} (python -m unexmin.mine_generator)")
+    with open(report) as f:
+        r = json.load(f)
+    preset = PRESETS[r["preset"]["name"]]
+    return make_layout(preset, int(r["seed"])), preset
+
+
+def _turns(yaw0, yaw1, step):
+    n = max(1, int(math.ceil(abs(yaw1 - yaw0) / step)))
+    return np.linspace(yaw0, yaw1, n + 1)[1:]
+
+
+def plan(layout, preset, start, options=None):
+    """Keyframes N x 4 (x, y, z, yaw) and durations N [s] (the first: 0, the start pose)."""
+    o = options or SurveyOptions()
+    o.check()
+    step = math.radians(o.step_deg)
+    shaft = next(t for t in layout.tunnels if t.kind == "shaft")
+    gallery = next(t for t in layout.tunnels if t.kind == "gallery")
+    sx, sy = layout.shaft_xy
+    poly = gallery.points
+    z_level = float(poly[0, 2])
+    r = shaft.a - o.standoff
+    if r < 0.2:
+        raise ValueError(f"survey standoff {o.standoff} m: the shaft's half width is {shaft.a} m")
+    z_top = min(preset.surface_z - o.surface_clearance, float(start[2]))
+    z_bottom = max(z_level - o.below, float(shaft.points[:, 2].min()) + shaft.c + 1.5)
+    frames = [tuple(float(v) for v in start)]
+    times = [0.0]
+
+    def go(x, y, z, yaw, speed, yaw_rate=0.2):
+        px, py, pz, pyaw = frames[-1]
+        d = math.dist((px, py, pz), (x, y, z))
+        frames.append((x, y, z, yaw))
+        times.append(max(d / speed, abs(yaw - pyaw) / yaw_rate if yaw_rate > 0 else 0.0, 0.1))
+
+    # 1. the helix, facing the axis: position angle theta, yaw theta + pi
+    theta0 = math.atan2(start[1] - sy, start[0] - sx)
+    yaw0 = start[3] + math.remainder(theta0 + math.pi - start[3], 2 * math.pi)
+    go(sx + r * math.cos(theta0), sy + r * math.sin(theta0), z_top, yaw0, o.shaft_speed)
+    turns = (z_top - z_bottom) / o.helix_pitch
+    omega = o.shaft_speed / math.hypot(r, o.helix_pitch / (2 * math.pi))
+    for yaw in _turns(yaw0, yaw0 + 2 * math.pi * turns, step):
+        theta = yaw - math.pi
+        z = z_top - (yaw - yaw0) / (2 * math.pi) * o.helix_pitch
+        go(sx + r * math.cos(theta), sy + r * math.sin(theta), z, yaw, o.shaft_speed, 1.05 * omega)
+    # 2. up the axis to the level, then facing along the gallery (+x)
+    yaw = frames[-1][3]
+    go(sx, sy, z_bottom, yaw, o.shaft_speed)
+    go(sx, sy, z_level, yaw, o.shaft_speed)
+    yaw = round(yaw / (2 * math.pi)) * 2 * math.pi
+    go(sx, sy, z_level, yaw, o.shaft_speed)
+
+    # 3. the gallery, out (one side, low) and back (other side, high), turning
+    def offset_point(x, side):
+        p = np.array([x, np.interp(x, poly[:, 0], poly[:, 1]), np.interp(x, poly[:, 0], poly[:, 2])])
+        t = np.array([1.0, np.interp(x + 0.5, poly[:, 0], poly[:, 1]) - np.interp(x - 0.5, poly[:, 0], poly[:, 1])])
+        n = np.array([-t[1], t[0]]) / np.linalg.norm(t)
+        dy = max(gallery.a - o.gallery_standoff, 0.0) * side
+        dz = max(gallery.b - o.gallery_standoff, 0.0) * -side
+        return p[0] + n[0] * dy, p[1] + n[1] * dy, p[2] + dz
+
+    x0 = sx + shaft.a + 0.5
+    x1 = min(sx + o.gallery, float(poly[-1, 0]) - 3.0)
+    if x1 <= x0:
+        raise ValueError(f"survey gallery {o.gallery} m: the first level's gallery is too short")
+    per_step = step / o.gallery_yaw_rate * o.gallery_speed if o.gallery_yaw_rate > 0 else 1.0
+    for side, (xa, xb) in ((1, (x0, x1)), (-1, (x1, x0))):
+        n = max(1, int(math.ceil(abs(xb - xa) / per_step)))
+        go(*offset_point(xa, side), yaw, o.gallery_speed)
+        for x in np.linspace(xa, xb, n + 1)[1:]:
+            yaw += step if o.gallery_yaw_rate > 0 else 0.0
+            go(*offset_point(float(x), side), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
+    go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed)
+    return np.array(frames), np.array(times)
+
+
+class Reference:
+    """The plan as a function of progress s [s]: pose (x, y, z, yaw) and its rate (per second of progress)."""
+
+    def __init__(self, frames, times):
+        self.frames = np.asarray(frames, dtype=float)
+        self.t = np.cumsum(times)
+        self.duration = float(self.t[-1])
+
+    def __call__(self, s):
+        s = min(max(s, 0.0), self.duration)
+        k = int(np.clip(np.searchsorted(self.t, s, side="right"), 1, len(self.t) - 1))
+        a, b = self.frames[k - 1], self.frames[k]
+        dt = self.t[k] - self.t[k - 1]
+        f = (s - self.t[k - 1]) / dt if dt > 0 else 1.0
+        rate = (b - a) / dt if dt > 0 and s < self.duration else np.zeros(4)
+        return a + f * (b - a), rate
+
+
+def track(pose, twist, ref, rate, speed_limit=0.45):
+    """Body wrench [X Y Z K M N] (allocation units) tracking a moving reference: the reference's velocity plus
+    a proportional pull to it (at most speed_limit), quadratic-drag feed-forward, a proportional velocity loop;
+    yaw: the reference yaw and yaw rate. Returns (wrench, position error [m], yaw error [rad])."""
+    from unexmin.geometry import yaw_of
+
+    p = np.array([pose.position.x, pose.position.y, pose.position.z])
+    yaw = yaw_of(pose.orientation)
+    c, s = math.cos(yaw), math.sin(yaw)
+    err = ref[:3] - p
+    v_des = rate[:3] + 0.8 * err
+    norm = float(np.linalg.norm(v_des))
+    if norm > speed_limit:
+        v_des *= speed_limit / norm
+    v_des_b = np.array([c * v_des[0] + s * v_des[1], -s * v_des[0] + c * v_des[1], v_des[2]])
+    v_b = np.array([twist.linear.x, twist.linear.y, twist.linear.z])
+    ff = 10.0 * (v_des_b / 0.4) * np.abs(v_des_b / 0.4)
+    force = np.clip(ff + 25.0 * (v_des_b - v_b), -15.0, 15.0)
+    yaw_err = math.remainder(ref[3] - yaw, 2 * math.pi)
+    n = float(np.clip(3.0 * yaw_err + 4.0 * (rate[3] - twist.angular.z) + 4.0 * rate[3], -3.0, 3.0))
+    return (float(force[0]), float(force[1]), float(force[2]), 0.0, 0.0, n), float(np.linalg.norm(err)), yaw_err
