@@ -8,4 +8,14 @@ from unexmin.map_quality.cli import main, run
 from unexmin.map_quality.io import read_bt, read_trajectory, write_trajectory
 from unexmin.map_quality.metrics import evaluate, expand, recall_of, seen_surface
 
-__all__ = ["evaluate", "expand", "main", "read_bt", "read_trajectory", "recall_of", "run", "seen_surface", "write_trajectory"]
+__all__ = [
+    "evaluate",
+    "expand",
+    "main",
+    "read_bt",
+    "read_trajectory",
+    "recall_of",
+    "run",
+    "seen_surface",
+    "write_trajectory",
+]

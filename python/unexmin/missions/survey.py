@@ -85,7 +85,7 @@ def plan(layout, preset, start, options=None):
     r = shaft.a - o.standoff
     if r < 0.2:
         raise ValueError(f"survey standoff {o.standoff} m: the shaft's half width is {shaft.a} m")
-    z_top = min(preset.surface_z - o.surface_clearance, float(start[2]))
+    z_top = preset.surface_z - o.surface_clearance
     z_bottom = max(z_level - o.below, float(shaft.points[:, 2].min()) + shaft.c + 1.5)
     frames = [tuple(float(v) for v in start)]
     times = [0.0]
@@ -174,5 +174,7 @@ def track(pose, twist, ref, rate, speed_limit=0.45):
     ff = 10.0 * (v_des_b / 0.4) * np.abs(v_des_b / 0.4)
     force = np.clip(ff + 25.0 * (v_des_b - v_b), -15.0, 15.0)
     yaw_err = math.remainder(ref[3] - yaw, 2 * math.pi)
-    n = float(np.clip(3.0 * yaw_err + 4.0 * (rate[3] - twist.angular.z) + 4.0 * rate[3], -3.0, 3.0))
+    # yaw: the rotational quadratic drag (0.767 N m s^2/rad^2, urdf/properties.xacro) as feed-forward
+    n = 3.0 * yaw_err + 4.0 * (rate[3] - twist.angular.z) + 0.767 * rate[3] * abs(rate[3])
+    n = float(np.clip(n, -3.0, 3.0))
     return (float(force[0]), float(force[1]), float(force[2]), 0.0, 0.0, n), float(np.linalg.norm(err)), yaw_err
