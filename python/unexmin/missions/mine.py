@@ -243,12 +243,15 @@ def run(
 
         sim_wall0 = time.monotonic()
         print(f"{'leg':<10}{'t [s]':>8}{'x [m]':>9}{'y [m]':>9}{'z [m]':>9}{'clouds':>9}{'occupied':>10}{'lag [s]':>9}")
-        progress, next_frame, next_snapshot, held = 0.0, 1, snapshot_every, 0.0
+        progress, next_frame, next_snapshot, held, pendulum = 0.0, 1, snapshot_every, 0.0, 0.0
         while progress < reference.duration and sim.time <= time_limit:
             odom = ux.odom()
             ref, rate = reference(progress)
             wrench, dist, yaw_err = track(odom.pose.pose, odom.twist.twist, ref, rate)
             ux.thrusts(allocator.allocate(wrench)[0])
+            if ref[4] != pendulum:
+                pendulum = float(ref[4])
+                ux.pendulum(pendulum)
             sim.step(steps)
             # the reference waits for the robot when it lags (a pull, not a chase)
             if dist < 0.6 and abs(yaw_err) < 0.6:
@@ -271,6 +274,7 @@ def run(
         if sim.time > time_limit:
             print(f"time limit {time_limit:.0f} s of sim time reached")
         ux.thrusts([0.0] * 8)
+        ux.pendulum(0.0)
         sim.run_for(1.0)  # the clouds of the last step find their tf
         sim_time, sim_wall = sim.time, time.monotonic() - sim_wall0
         # Every cloud the simulator published reached the map: M3 at 40 Hz, each SLS unit at 10 Hz.

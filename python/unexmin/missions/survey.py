@@ -9,9 +9,15 @@ gives the seed and the preset), so it follows any generated mine:
 2. back up the axis to the first level;
 3. the first level's gallery, out and back over `gallery` metres: out off-centre to one side and low, back to
    the other side and high (`standoff` from the nominal walls), the robot turning about its vertical axis all
-   the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it).
-A plan is a list of keyframes (x, y, z [m], yaw [rad], unwrapped) with the time [s] to reach each from the
-previous one; `Reference` interpolates it.
+   the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it); on the way out,
+   each side tunnel (crosscut, chamber) that opens on that stretch is flown along its axis to its far end
+   and back, still turning.
+The pendulum pitches the robot (a positive angle: nose down, about 10 degrees at its 30-degree limit;
+docs/hydrodynamics.md): nose up for the first turn of the helix (the shaft above), nose down under the first
+level (the shaft below), level otherwise (pitched in the gallery, the M3 fan grazes the floor far off and
+its wide beam puts points in the water).
+A plan is a list of keyframes (x, y, z [m], yaw [rad] unwrapped, pendulum [rad]) with the time [s] to reach
+each from the previous one; `Reference` interpolates it.
 """
 
 import json
@@ -36,12 +42,13 @@ class SurveyOptions:
     gallery_speed: float = 0.25  # [m/s] along the gallery
     gallery_yaw_rate: float = 0.25  # [rad/s] the turn while flying the gallery
     step_deg: float = 15.0  # [deg] of turn between keyframes
+    pendulum_deg: float = 30.0  # [deg] pendulum swing for the nose-up and nose-down parts (the model's limit)
 
     def check(self):
         for name in ("gallery", "standoff", "gallery_standoff", "helix_pitch", "shaft_speed", "gallery_speed"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"survey option {name} = {getattr(self, name)}: expected > 0")
-        for name in ("below", "surface_clearance", "gallery_yaw_rate"):
+        for name in ("below", "surface_clearance", "gallery_yaw_rate", "pendulum_deg"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"survey option {name} = {getattr(self, name)}: expected >= 0")
 
@@ -73,7 +80,7 @@ def _turns(yaw0, yaw1, step):
 
 
 def plan(layout, preset, start, options=None):
-    """Keyframes N x 4 (x, y, z, yaw) and durations N [s] (the first: 0, the start pose)."""
+    """Keyframes N x 5 (x, y, z, yaw, pendulum) and durations N [s] (the first: 0, the start pose)."""
     o = options or SurveyOptions()
     o.check()
     step = math.radians(o.step_deg)
@@ -87,28 +94,30 @@ def plan(layout, preset, start, options=None):
         raise ValueError(f"survey standoff {o.standoff} m: the shaft's half width is {shaft.a} m")
     z_top = preset.surface_z - o.surface_clearance
     z_bottom = max(z_level - o.below, float(shaft.points[:, 2].min()) + shaft.c + 1.5)
-    frames = [tuple(float(v) for v in start)]
+    up, down = -math.radians(o.pendulum_deg), math.radians(o.pendulum_deg)
+    frames = [tuple(float(v) for v in start[:4]) + (0.0,)]
     times = [0.0]
 
-    def go(x, y, z, yaw, speed, yaw_rate=0.2):
-        px, py, pz, pyaw = frames[-1]
+    def go(x, y, z, yaw, speed, yaw_rate=0.2, pendulum=None):
+        px, py, pz, pyaw, ppend = frames[-1]
         d = math.dist((px, py, pz), (x, y, z))
-        frames.append((x, y, z, yaw))
+        frames.append((x, y, z, yaw, ppend if pendulum is None else pendulum))
         times.append(max(d / speed, abs(yaw - pyaw) / yaw_rate if yaw_rate > 0 else 0.0, 0.1))
 
     # 1. the helix, facing the axis: position angle theta, yaw theta + pi
     theta0 = math.atan2(start[1] - sy, start[0] - sx)
     yaw0 = start[3] + math.remainder(theta0 + math.pi - start[3], 2 * math.pi)
-    go(sx + r * math.cos(theta0), sy + r * math.sin(theta0), z_top, yaw0, o.shaft_speed)
+    go(sx + r * math.cos(theta0), sy + r * math.sin(theta0), z_top, yaw0, o.shaft_speed, pendulum=up)
     turns = (z_top - z_bottom) / o.helix_pitch
     omega = o.shaft_speed / math.hypot(r, o.helix_pitch / (2 * math.pi))
     for yaw in _turns(yaw0, yaw0 + 2 * math.pi * turns, step):
         theta = yaw - math.pi
         z = z_top - (yaw - yaw0) / (2 * math.pi) * o.helix_pitch
-        go(sx + r * math.cos(theta), sy + r * math.sin(theta), z, yaw, o.shaft_speed, 1.05 * omega)
+        pendulum = up if yaw - yaw0 < 2 * math.pi else down if z < z_level else 0.0
+        go(sx + r * math.cos(theta), sy + r * math.sin(theta), z, yaw, o.shaft_speed, 1.05 * omega, pendulum)
     # 2. up the axis to the level, then facing along the gallery (+x)
     yaw = frames[-1][3]
-    go(sx, sy, z_bottom, yaw, o.shaft_speed)
+    go(sx, sy, z_bottom, yaw, o.shaft_speed, pendulum=0.0)
     go(sx, sy, z_level, yaw, o.shaft_speed)
     yaw = round(yaw / (2 * math.pi)) * 2 * math.pi
     go(sx, sy, z_level, yaw, o.shaft_speed)
@@ -127,18 +136,51 @@ def plan(layout, preset, start, options=None):
     if x1 <= x0:
         raise ValueError(f"survey gallery {o.gallery} m: the first level's gallery is too short")
     per_step = step / o.gallery_yaw_rate * o.gallery_speed if o.gallery_yaw_rate > 0 else 1.0
-    for side, (xa, xb) in ((1, (x0, x1)), (-1, (x1, x0))):
-        n = max(1, int(math.ceil(abs(xb - xa) / per_step)))
-        go(*offset_point(xa, side), yaw, o.gallery_speed)
-        for x in np.linspace(xa, xb, n + 1)[1:]:
+
+    def fly(p, q):
+        """Straight from p to q [m], turning."""
+        nonlocal yaw
+        n = max(1, int(math.ceil(math.dist(p, q) / per_step)))
+        for f in np.linspace(0.0, 1.0, n + 1)[1:]:
             yaw += step if o.gallery_yaw_rate > 0 else 0.0
-            go(*offset_point(float(x), side), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
-    go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed)
+            go(
+                *(np.asarray(p) + f * (np.asarray(q) - np.asarray(p))).tolist(),
+                yaw,
+                o.gallery_speed,
+                1.05 * o.gallery_yaw_rate,
+            )
+
+    # side tunnels opening on the stretch: (x of the junction on the gallery, near end, far end)
+    sides = []
+    for t in layout.tunnels:
+        if t.kind not in ("crosscut", "chamber") or len(t.points) != 2:
+            continue
+        gap = [abs(pt[1] - np.interp(pt[0], poly[:, 0], poly[:, 1])) + abs(pt[2] - z_level) for pt in t.points]
+        near, far = (t.points[0], t.points[1]) if gap[0] <= gap[1] else (t.points[1], t.points[0])
+        if x0 + 1.0 <= near[0] <= x1 - 1.0 and min(gap) < gallery.a + t.a:
+            sides.append((float(near[0]), near, far))
+    sides.sort(key=lambda v: v[0])
+    for side, (xa, xb) in ((1, (x0, x1)), (-1, (x1, x0))):
+        go(*offset_point(xa, side), yaw, o.gallery_speed, pendulum=0.0)
+        stops = [v for v in sides if side > 0] + [(xb, None, None)]
+        x = xa
+        for xs, near, far in stops:
+            n = max(1, int(math.ceil(abs(xs - x) / per_step)))
+            for xi in np.linspace(x, xs, n + 1)[1:]:
+                yaw += step if o.gallery_yaw_rate > 0 else 0.0
+                go(*offset_point(float(xi), side), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
+            x = xs
+            if near is not None:
+                fly(offset_point(xs, side), tuple(near))
+                fly(tuple(near), tuple(far))
+                fly(tuple(far), tuple(near))
+                fly(tuple(near), offset_point(xs, side))
+    go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed, pendulum=0.0)
     return np.array(frames), np.array(times)
 
 
 class Reference:
-    """The plan as a function of progress s [s]: pose (x, y, z, yaw) and its rate (per second of progress)."""
+    """The plan as a function of progress s [s]: (x, y, z, yaw, pendulum) and its rate (per second of progress)."""
 
     def __init__(self, frames, times):
         self.frames = np.asarray(frames, dtype=float)
@@ -151,7 +193,7 @@ class Reference:
         a, b = self.frames[k - 1], self.frames[k]
         dt = self.t[k] - self.t[k - 1]
         f = (s - self.t[k - 1]) / dt if dt > 0 else 1.0
-        rate = (b - a) / dt if dt > 0 and s < self.duration else np.zeros(4)
+        rate = (b - a) / dt if dt > 0 and s < self.duration else np.zeros(len(a))
         return a + f * (b - a), rate
 
 
