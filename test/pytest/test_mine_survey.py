@@ -27,9 +27,9 @@ REPO = Path(__file__).resolve().parents[2]
 SEED = 5
 GALLERY = 16.0  # [m]
 CLEARANCE = 0.2  # [m] of water between the planned hull and the rock
-# Measured on this mine (seed 5, small preset, gallery 16 m, visibility none): see docs/mapping.md.
+# Measured on this mine (seed 5, small preset, gallery 16 m, visibility none): precision 0.980, recall 0.640.
 MIN_RECALL = 0.55
-MIN_PRECISION = 0.97
+MIN_PRECISION = 0.96
 
 
 @pytest.fixture(scope="module")
