@@ -10,8 +10,8 @@ gives the seed and the preset), so it follows any generated mine:
 3. the first level's gallery, out and back over `gallery` metres: out off-centre to one side and low, back to
    the other side and high (`standoff` from the nominal walls), the robot turning about its vertical axis all
    the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it); on the way out,
-   each side tunnel (crosscut, chamber) that opens on that stretch is flown along its axis to its far end
-   and back, still turning.
+   each side tunnel (crosscut, chamber) that opens on that stretch is flown to its far end low and back high
+   (`gallery_standoff` from its nominal floor and roof), still turning.
 The pendulum pitches the robot (a positive angle: nose down, about 10 degrees at its 30-degree limit;
 docs/hydrodynamics.md): nose up for the first turn of the helix (the shaft above), nose down under the first
 level (the shaft below), level otherwise (pitched in the gallery, the M3 fan grazes the floor far off and
@@ -38,7 +38,7 @@ class SurveyOptions:
     helix_pitch: float = 2.2  # [m] down per turn in the shaft
     shaft_speed: float = 0.3  # [m/s] along the helix
     below: float = 6.0  # [m] under the first level in the shaft
-    surface_clearance: float = 1.2  # [m] the helix's top under the water surface
+    surface_clearance: float = 1.2  # [m] the helix's top under the water surface (nearer, the M3 echoes off it)
     gallery_speed: float = 0.25  # [m/s] along the gallery
     gallery_yaw_rate: float = 0.25  # [rad/s] the turn while flying the gallery
     step_deg: float = 15.0  # [deg] of turn between keyframes
@@ -158,23 +158,25 @@ def plan(layout, preset, start, options=None):
         gap = [abs(pt[1] - np.interp(pt[0], poly[:, 0], poly[:, 1])) + abs(pt[2] - z_level) for pt in t.points]
         near, far = (t.points[0], t.points[1]) if gap[0] <= gap[1] else (t.points[1], t.points[0])
         if x0 + 1.0 <= near[0] <= x1 - 1.0 and min(gap) < gallery.a + t.a:
-            sides.append((float(near[0]), near, far))
+            dz = np.array([0.0, 0.0, max(t.b - o.gallery_standoff, 0.0)])
+            sides.append((float(near[0]), near, far, dz))
     sides.sort(key=lambda v: v[0])
     for side, (xa, xb) in ((1, (x0, x1)), (-1, (x1, x0))):
         go(*offset_point(xa, side), yaw, o.gallery_speed, pendulum=0.0)
-        stops = [v for v in sides if side > 0] + [(xb, None, None)]
+        stops = [v for v in sides if side > 0] + [(xb, None, None, None)]
         x = xa
-        for xs, near, far in stops:
+        for xs, near, far, dz in stops:
             n = max(1, int(math.ceil(abs(xs - x) / per_step)))
             for xi in np.linspace(x, xs, n + 1)[1:]:
                 yaw += step if o.gallery_yaw_rate > 0 else 0.0
                 go(*offset_point(float(xi), side), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
             x = xs
             if near is not None:
-                fly(offset_point(xs, side), tuple(near))
-                fly(tuple(near), tuple(far))
-                fly(tuple(far), tuple(near))
-                fly(tuple(near), offset_point(xs, side))
+                fly(offset_point(xs, side), tuple(near - dz))
+                fly(tuple(near - dz), tuple(far - dz))
+                fly(tuple(far - dz), tuple(far + dz))
+                fly(tuple(far + dz), tuple(near + dz))
+                fly(tuple(near + dz), offset_point(xs, side))
     go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed, pendulum=0.0)
     return np.array(frames), np.array(times)
 
