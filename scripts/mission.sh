@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The main job: sets the machine up, then runs a headless lockstep mapping survey of the flooded mine
-# (UX_1 down the entry shaft and along the first level's gallery, the mapper on; docs/mapping.md) and
-# scores the map against the mine's mesh. Outputs in $UNEXMIN_OUT (default ./mission_output beside the
-# repository's README): mine_mission.bag, mine_map.bt, map_quality.json/.png, mission_map.png, summary.json.
+# (UX_1 spirals down the entry shaft, then flies the first level's gallery out and back and its side tunnels,
+# turning, the mapper on; docs/mapping.md) and scores the map against the mine's mesh. Outputs in
+# $UNEXMIN_OUT (default ./mission_output beside the repository's README): mine_mission.bag, mine_map.bt,
+# map_quality.json/.png, mission_map.png, coverage.png, summary.json, snapshots/.
 #
-#   bash scripts/mission.sh [--tank] [--replay] [-- mine mission options, e.g. --gallery 60]
+#   bash scripts/mission.sh [--tank] [--replay] [-- mine mission options, e.g. --visibility none --gallery 60]
 #     --tank    also run the tank mission (tank/: bag of odometry and thrusts, trajectory, summary)
 #     --replay  also replay the shipped "real robot" bag (replay/: error report and plots; docs/replay.md)
 set -euo pipefail

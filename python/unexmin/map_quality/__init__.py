@@ -6,6 +6,16 @@ CSV); plots.py: the picture; cli.py: run() and the command line. World files com
 
 from unexmin.map_quality.cli import main, run
 from unexmin.map_quality.io import read_bt, read_trajectory, write_trajectory
-from unexmin.map_quality.metrics import evaluate, expand
+from unexmin.map_quality.metrics import evaluate, expand, recall_of, seen_surface
 
-__all__ = ["evaluate", "expand", "main", "read_bt", "read_trajectory", "run", "write_trajectory"]
+__all__ = [
+    "evaluate",
+    "expand",
+    "main",
+    "read_bt",
+    "read_trajectory",
+    "recall_of",
+    "run",
+    "seen_surface",
+    "write_trajectory",
+]

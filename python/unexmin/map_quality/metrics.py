@@ -33,16 +33,12 @@ def near_path(tris, path, reach):
     return np.isfinite(d).reshape(len(tris), 4).any(axis=1)
 
 
-def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
-    """The quality figures (dict) of occupied voxel centres against the triangles, and the per-voxel distances."""
+def seen_surface(tris, tau, path=None, sensor_range=10.0, seed=0):
+    """The surface recall counts: (samples M x 3, their area [m2], their spacing [m]): the triangles within
+    sensor_range of the path (all of them without a path), area-sampled at tau/2 or coarser (at most about 4
+    million samples), less the samples farther than sensor_range from every path point."""
     from scipy.spatial import cKDTree
 
-    spacing = tau / 4.0
-    # Precision: each voxel centre against a dense sample of the triangles near the voxels.
-    wide_tris = tris[near_path(tris, centres, 2.0 * tau + 1.0)] if len(centres) else tris[:0]
-    wide, _ = sample_surface(wide_tris, spacing, seed)
-    # Recall: the surface within sensor range of the path (all of it without a path), sampled at tau/2 or
-    # coarser, at most about 4 million samples.
     seen_tris = tris if path is None else tris[near_path(tris, path, sensor_range + 1.0)]
     area = (
         0.5
@@ -54,6 +50,29 @@ def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
         d_path, _ = cKDTree(path).query(seen)
         seen_area *= float(np.mean(d_path <= sensor_range))
         seen = seen[d_path <= sensor_range]
+    return seen, seen_area, seen_spacing
+
+
+def recall_of(centres, seen, tau):
+    """Fraction of the surface samples `seen` within tau of an occupied voxel centre."""
+    from scipy.spatial import cKDTree
+
+    if not len(seen) or not len(centres):
+        return 0.0
+    d_seen, _ = cKDTree(centres).query(seen)
+    return float(np.mean(d_seen <= tau))
+
+
+def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
+    """The quality figures (dict) of occupied voxel centres against the triangles, and the per-voxel distances."""
+    from scipy.spatial import cKDTree
+
+    spacing = tau / 4.0
+    # Precision: each voxel centre against a dense sample of the triangles near the voxels.
+    wide_tris = tris[near_path(tris, centres, 2.0 * tau + 1.0)] if len(centres) else tris[:0]
+    wide, _ = sample_surface(wide_tris, spacing, seed)
+    # Recall: the surface within sensor range of the path.
+    seen, seen_area, seen_spacing = seen_surface(tris, tau, path, sensor_range, seed)
     result = {
         "tau_m": tau,
         "occupied_voxels": int(len(centres)),
@@ -67,10 +86,7 @@ def evaluate(centres, tris, tau, path=None, sensor_range=10.0, seed=0):
     if len(centres) and len(wide):
         dist, _ = cKDTree(wide).query(centres)
     precision = float(np.mean(dist <= tau)) if len(centres) else 0.0
-    recall = 0.0
-    if len(seen) and len(centres):
-        d_seen, _ = cKDTree(centres).query(seen)
-        recall = float(np.mean(d_seen <= tau))
+    recall = recall_of(centres, seen, tau)
     finite = dist[np.isfinite(dist)]
     result.update(
         {

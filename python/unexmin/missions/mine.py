@@ -1,13 +1,16 @@
 """The main job: a headless, lockstep mapping survey of the flooded mine (docs/mapping.md, "The mission").
 
     python -m unexmin.missions.mine --out DIR [--seed N] [--gallery M] [--resolution M]
+                                    [--visibility none|low|medium|high] [--world-file FILE] [--snapshot S]
 
 Launches the mine world (lockstep, paused) with the mapper on, records a bag (odometry, M3 scans, SLS
-clouds, the mapper's stats), and flies UX_1 with a waypoint controller on ground-truth odometry (thesis
-allocation, eq. 5.12): down the entry shaft to the first level, then along the level's gallery for
---gallery metres. Then it stops the world with SIGINT (the mapper saves its map at shutdown) and scores the
-map against the mine's collision mesh (unexmin.map_quality). Leaves in DIR: mine_mission.bag, mine_map.bt,
-trajectory.csv, map_quality.json, map_quality.png, mission_map.png, summary.json, logs/.
+clouds, the mapper's stats), and flies UX_1 along the survey plan of unexmin.missions.survey (read from the
+mine generator's layout: a helix down the entry shaft, then the first level's gallery out and back, turning)
+with a tracking controller on ground-truth odometry (thesis allocation, eq. 5.12). Every --snapshot seconds
+of sim time the mapper saves its map (snapshots/); at the end the world gets SIGINT (the mapper saves its map)
+and the map and the snapshots are scored against the mine's collision mesh (unexmin.map_quality). Leaves in
+DIR: mine_mission.bag, mine_map.bt, trajectory.csv, map_quality.json, map_quality.png, mission_map.png,
+coverage.png, summary.json, snapshots/, logs/.
 """
 
 import math
@@ -21,6 +24,7 @@ import numpy as np
 from unexmin.control.allocation import ThrusterAllocator
 from unexmin.geometry import yaw_of
 from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
+from unexmin.missions.survey import Reference, SurveyOptions, mine_layout, plan, track
 from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
 
 ROBOT = "UX_1"
@@ -31,8 +35,8 @@ SLS_UNITS = 4
 
 
 def waypoints(gallery_length):
-    """The survey path [m, world frame]: the shaft's axis from the spawn depth down to the first level's
-    gallery, then that gallery's centreline (from the mine generator's layout, seed 7)."""
+    """A straight path [m, world frame] (the batch missions'): the shaft's axis from the spawn depth down to the
+    first level's gallery, then that gallery's centreline (from the mine generator's layout, seed 7)."""
     from unexmin.mine_generator.generator import PRESETS, make_layout, point_on
 
     layout = make_layout(PRESETS["full"], 7)
@@ -99,39 +103,106 @@ def plot_map(map_path, traj, out_png):
     plt.close(fig)
 
 
-def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
+def plot_coverage(coverage, surface_area, out_png):
+    """Recall (the map's share of the surface within range of the whole path) against sim time."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = [c["t"] for c in coverage]
+    fig, ax = plt.subplots(figsize=(8, 4.5), layout="constrained")
+    ax.plot(t, [c["recall"] for c in coverage], "o-", label="recall")
+    ax.plot(t, [c["precision"] for c in coverage], "s--", label="precision")
+    ax.set(
+        xlabel="sim time [s]",
+        ylabel="fraction",
+        ylim=(0, 1.02),
+        title=f"survey coverage of the {surface_area:.0f} m² within the sensors' range of the path",
+    )
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right")
+    fig.savefig(out_png, dpi=110)
+    plt.close(fig)
+
+
+def score_snapshots(snapshots, world_file, traj, tau, sensor_range=10.0):
+    """[{t, recall, precision, occupied_voxels}] of each saved map against the surface within range of the
+    whole path (the final figure's denominator, so the curve ends at the final recall)."""
+    from unexmin.map_quality import expand, read_bt, recall_of, seen_surface
+    from unexmin.map_quality.metrics import near_path
+    from unexmin.worlds.files import world_triangles
+    from unexmin.worlds.meshes import sample_surface
+
+    tris = world_triangles(world_file)
+    seen, _, _ = seen_surface(tris, tau, traj, sensor_range, 0)
+    rows = []
+    for t, path in snapshots:
+        centres, _ = expand(*read_bt(path))
+        precision = 0.0
+        if len(centres):
+            from scipy.spatial import cKDTree
+
+            wide, _ = sample_surface(tris[near_path(tris, centres, 2.0 * tau + 1.0)], tau / 4.0, 0)
+            d, _ = cKDTree(wide).query(centres) if len(wide) else (np.full(len(centres), np.inf), None)
+            precision = float(np.mean(d <= tau))
+        rows.append(
+            {"t": t, "recall": recall_of(centres, seen, tau), "precision": precision, "occupied_voxels": len(centres)}
+        )
+    return rows
+
+
+def run(
+    out,
+    seed=0,
+    gallery=40.0,
+    resolution=0.1,
+    time_limit=1500.0,
+    visibility=None,
+    world_file=None,
+    snapshot_every=90.0,
+):
     from unexmin.scripting.simulation import Simulation
+    from unexmin.worlds.files import world_path
 
     out = os.path.abspath(out)
+    world_file = os.path.abspath(world_file) if world_file else world_path("mine")
     log_dir = os.path.join(out, "logs")
+    snap_dir = os.path.join(out, "snapshots")
     os.makedirs(log_dir, exist_ok=True)
+    os.makedirs(snap_dir, exist_ok=True)
     bag = os.path.join(out, "mine_mission.bag")
     map_path = os.path.join(out, "mine_map.bt")
-    for stale in (bag, map_path):
+    for stale in [bag, map_path] + [os.path.join(snap_dir, f) for f in os.listdir(snap_dir)]:
         if os.path.exists(stale):
             os.remove(stale)
+    layout, preset = mine_layout(world_file)
+    spawn = layout.spawns[0]
+    frames, durations = plan(layout, preset, (spawn[0], spawn[1], spawn[2], 0.0), SurveyOptions(gallery=gallery))
+    reference = Reference(frames, durations)
+    extra = ["mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}", f"world_file:={world_file}"]
+    if visibility:
+        extra.append(f"visibility:={visibility}")
     wall0 = time.monotonic()
     world = WorldProcess(
-        world="mine",
-        robots=1,
-        seed=seed,
-        realtime=False,
-        paused=True,
-        log_dir=log_dir,
-        extra_args=("mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}"),
+        world="mine", robots=1, seed=seed, realtime=False, paused=True, log_dir=log_dir, extra_args=extra
     )
     recorder = log = sim = stats_sub = None
     stats = {}
     legs = []
+    snapshots = []
     try:
         sim = Simulation(timeout=120.0, world=world, node_name="unexmin_mine_mission")
         import rosgraph
         import rospy
 
         from unexmin.msg import MapperStats
+        from unexmin.srv import SaveMap
 
         stats_sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
         wait_for(lambda: "last" in stats, 120.0, "the mapper's /mapper/stats")
+        rospy.wait_for_service("/mapper/save_map", 60.0)
+        save_map = rospy.ServiceProxy("/mapper/save_map", SaveMap)
         ux = sim.robot(ROBOT)
         log = open(os.path.join(log_dir, "rosbag_record.log"), "w")
         recorder = subprocess.Popen(
@@ -148,42 +219,69 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
         )
         allocator = ThrusterAllocator()
         sim.step(1)
-        path = waypoints(gallery)
         steps = max(1, round(CONTROL_DT * sim.physics_rate))
-        sim_wall0 = time.monotonic()
-        print(f"{'waypoint':<10}{'t [s]':>8}{'x [m]':>9}{'y [m]':>9}{'z [m]':>9}{'clouds':>9}{'occupied':>10}")
-        for k, target in enumerate(path):
-            while True:
-                odom = ux.odom()
-                wrench, dist = controller(odom.pose.pose, odom.twist.twist, target)
-                if dist < TOLERANCE or sim.time > time_limit:
-                    break
-                ux.thrusts(allocator.allocate(wrench)[0])
-                sim.step(steps)
-            p = ux.odom().pose.pose.position
-            m = stats["last"]
-            legs.append({"waypoint": list(target), "t": sim.time, "reached": dist < TOLERANCE})
-            print(
-                f"{k:<10}{sim.time:8.1f}{p.x:9.2f}{p.y:9.2f}{p.z:9.2f}{m.clouds_inserted:9d}{m.occupied_leaves:10d}",
-                flush=True,
-            )
-            if sim.time > time_limit:
-                print(f"time limit {time_limit:.0f} s of sim time reached")
-                break
-        ux.thrusts([0.0] * 8)
-        sim.run_for(1.0)  # the clouds of the last step find their tf
-        sim_time, sim_wall = sim.time, time.monotonic() - sim_wall0
-        # Every cloud the simulator published reached the map: M3 at 40 Hz, each SLS unit at 10 Hz.
-        expected = int(round(sim_time * 40.0)) + int(round(sim_time * 10.0)) * SLS_UNITS
-        try:
+
+        def mapper_caught_up(timeout):
+            expected = int(round(sim.time * 40.0)) + int(round(sim.time * 10.0)) * SLS_UNITS
             wait_for(
                 lambda: stats["last"].clouds_inserted + stats["last"].clouds_dropped >= stats["last"].clouds_received
                 and stats["last"].pending == 0
                 and stats["last"].clouds_received >= expected - 5 * (1 + SLS_UNITS),
-                60.0,
+                timeout,
                 "the mapper to insert every cloud",
             )
+            return expected
+
+        def snapshot():
+            try:
+                mapper_caught_up(60.0)
+            except TimeoutError as e:
+                print(f"warning: {e}")
+            path = os.path.join(snap_dir, f"map_{sim.time:07.1f}.bt")
+            if save_map(path=path, robot="").success:
+                snapshots.append((sim.time, path))
+
+        sim_wall0 = time.monotonic()
+        print(f"{'leg':<10}{'t [s]':>8}{'x [m]':>9}{'y [m]':>9}{'z [m]':>9}{'clouds':>9}{'occupied':>10}{'lag [s]':>9}")
+        progress, next_frame, next_snapshot, held, pendulum = 0.0, 1, snapshot_every, 0.0, 0.0
+        while progress < reference.duration and sim.time <= time_limit:
+            odom = ux.odom()
+            ref, rate = reference(progress)
+            wrench, dist, yaw_err = track(odom.pose.pose, odom.twist.twist, ref, rate)
+            ux.thrusts(allocator.allocate(wrench)[0])
+            if ref[4] != pendulum:
+                pendulum = float(ref[4])
+                ux.pendulum(pendulum)
+            sim.step(steps)
+            # the reference waits for the robot when it lags (a pull, not a chase)
+            if dist < 0.6 and abs(yaw_err) < 0.6:
+                progress += steps / sim.physics_rate
+            else:
+                held += steps / sim.physics_rate
+            if next_frame < len(reference.t) and progress >= reference.t[next_frame]:
+                next_frame = int(np.searchsorted(reference.t, progress, side="right"))
+                if next_frame % 40 == 0 or next_frame >= len(reference.t):
+                    p, m = ux.odom().pose.pose.position, stats["last"]
+                    legs.append({"frame": next_frame - 1, "t": sim.time, "held_s": round(held, 1)})
+                    print(
+                        f"{next_frame - 1:<10}{sim.time:8.1f}{p.x:9.2f}{p.y:9.2f}{p.z:9.2f}{m.clouds_inserted:9d}"
+                        f"{m.occupied_leaves:10d}{held:9.1f}",
+                        flush=True,
+                    )
+            if sim.time >= next_snapshot:
+                snapshot()
+                next_snapshot += snapshot_every
+        if sim.time > time_limit:
+            print(f"time limit {time_limit:.0f} s of sim time reached")
+        ux.thrusts([0.0] * 8)
+        ux.pendulum(0.0)
+        sim.run_for(1.0)  # the clouds of the last step find their tf
+        sim_time, sim_wall = sim.time, time.monotonic() - sim_wall0
+        # Every cloud the simulator published reached the map: M3 at 40 Hz, each SLS unit at 10 Hz.
+        try:
+            expected = mapper_caught_up(60.0)
         except TimeoutError as e:
+            expected = int(round(sim_time * 40.0)) + int(round(sim_time * 10.0)) * SLS_UNITS
             print(f"warning: {e}")
         final = stats["last"]
         wait_until_written(bag + ".active")
@@ -199,7 +297,7 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
             sim.close(30.0)
         else:
             world.close(30.0)
-    wall = time.monotonic() - wall0
+    stepping_done = time.monotonic() - wall0
     if not os.path.exists(map_path):
         raise RuntimeError(f"the mapper did not save {map_path}: see {log_dir}")
 
@@ -209,22 +307,33 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
     traj = read_trajectory(bag)
     write_trajectory(os.path.join(out, "trajectory.csv"), traj)
 
-    q = quality(map_path, "mine", out, trajectory=os.path.join(out, "trajectory.csv"))
+    q = quality(map_path, world_file, out, trajectory=os.path.join(out, "trajectory.csv"))
+    coverage = score_snapshots(snapshots, world_file, traj[:, 1:4], q["tau_m"])
+    coverage.append(
+        {"t": sim_time, "recall": q["recall"], "precision": q["precision"], "occupied_voxels": q["occupied_voxels"]}
+    )
+    plot_coverage(coverage, q["surface_area_m2"], os.path.join(out, "coverage.png"))
     plot_map(map_path, traj[:, 1:4], os.path.join(out, "mission_map.png"))
+    wall = time.monotonic() - wall0
     summary = {
-        "world": "mine",
+        "world": os.path.splitext(os.path.basename(world_file))[0],
+        "world_file": world_file,
         "robot": ROBOT,
         "seed": seed,
+        "visibility": visibility or "world file",
         "resolution_m": resolution,
         "sim_time_s": sim_time,
+        "plan_s": round(reference.duration, 1),
+        "held_s": round(held, 1),
         "wall_time_s": round(wall, 2),
+        "mission_wall_s": round(stepping_done, 2),
         "stepping_wall_s": round(sim_wall, 2),
         "rtf_while_stepping": round(sim_time / sim_wall, 2),
+        "load_average_1min": round(os.getloadavg()[0], 2),
         "path_length_m": float(np.linalg.norm(np.diff(traj[:, 1:4], axis=0), axis=1).sum()),
         "start": dict(zip("xyz", traj[0, 1:4].round(3).tolist())),
         "end": dict(zip("xyz", traj[-1, 1:4].round(3).tolist())),
-        "waypoints_reached": sum(leg["reached"] for leg in legs),
-        "waypoints": len(legs),
+        "plan_completed": bool(progress >= reference.duration),
         "clouds_expected": expected,
         "clouds_received": int(final.clouds_received),
         "clouds_inserted": int(final.clouds_inserted),
@@ -238,6 +347,12 @@ def run(out, seed=0, gallery=40.0, resolution=0.1, time_limit=600.0):
             k: q[k]
             for k in ("precision", "recall", "f_score", "mean_distance_m", "p95_distance_m", "tau_m", "surface_area_m2")
         },
+        "recall_definition": (
+            "share of the collision surface within sensor_range_m (the mapper's max range) of the recorded path "
+            "that lies within tau_m of an occupied voxel centre (unexmin.map_quality)"
+        ),
+        "sensor_range_m": q["sensor_range_m"],
+        "coverage": coverage,
         "legs": legs,
     }
     return write_summary(out, summary)
@@ -247,13 +362,31 @@ def main(argv=None):
     parser = mission_parser("python -m unexmin.missions.mine", __doc__.splitlines()[0])
     parser.add_argument("--gallery", type=float, default=40.0, help="metres flown along the gallery (default 40)")
     parser.add_argument("--resolution", type=float, default=0.1, help="map voxel edge [m] (default 0.1)")
+    parser.add_argument(
+        "--visibility", choices=("none", "low", "medium", "high"), help="water visibility (default: the world file's)"
+    )
+    parser.add_argument("--world-file", help="a generated mine's world file (default: the shipped mine)")
+    parser.add_argument(
+        "--snapshot", type=float, default=90.0, help="sim seconds between saved maps for the coverage curve"
+    )
     args = parser.parse_args(argv)
-    s = run(args.out, args.seed, args.gallery, args.resolution)
+    if not args.snapshot > 0:
+        parser.error(f"--snapshot {args.snapshot}: expected > 0 s")
+    s = run(
+        args.out,
+        args.seed,
+        args.gallery,
+        args.resolution,
+        visibility=args.visibility,
+        world_file=args.world_file,
+        snapshot_every=args.snapshot,
+    )
     q = s["quality"]
     print(
-        f"\nUX_1 surveyed {s['path_length_m']:.0f} m of the mine (shaft and gallery; {s['waypoints_reached']}/"
-        f"{s['waypoints']} waypoints) in {s['sim_time_s']:.0f} s of sim time, {s['wall_time_s']:.0f} s of wall "
-        f"time (RTF {s['rtf_while_stepping']:.1f} while stepping)."
+        f"\nUX_1 surveyed {s['path_length_m']:.0f} m of the mine (shaft helix and gallery; plan "
+        f"{'completed' if s['plan_completed'] else 'NOT completed'}, waited {s['held_s']:.0f} s for the robot) in "
+        f"{s['sim_time_s']:.0f} s of sim time, {s['wall_time_s']:.0f} s of wall time (RTF "
+        f"{s['rtf_while_stepping']:.1f} while stepping)."
     )
     print(
         f"map: {s['clouds_inserted']}/{s['clouds_received']} clouds inserted ({s['clouds_dropped']} dropped, "
@@ -267,7 +400,7 @@ def main(argv=None):
     )
     print(
         f"outputs: {os.path.abspath(args.out)} (mine_mission.bag, mine_map.bt, map_quality.json, "
-        f"map_quality.png, mission_map.png, trajectory.csv, summary.json)"
+        f"map_quality.png, mission_map.png, coverage.png, trajectory.csv, summary.json, snapshots/)"
     )
     return 0
 
