@@ -238,7 +238,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
   const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
-  sensor_.exposure = static_cast<float>(exposure_now_);
+  response_.exposure = static_cast<float>(exposure_now_);
   // Every tile alone: its rays, their cast, its pixels' shading and sensor (the pixels do not depend on which thread
   // renders them, nor on the order). A thread takes a whole strip of kTile rows at a time: two threads never write
   // to the same cache line of the image but at a strip's first and last row (neighbouring tiles on two threads
