@@ -4,7 +4,7 @@
     source scripts/env.sh
     python bench/identify_robots.py [--robots heavy_stiff,light_soft] [--out DIR]
 
-The robots are those of test/pytest/test_identify.py (ROBOTS: the corners of issue 14's ranges),
+The robots are those of test/pytest/test_identify.py (ROBOTS: the corners of the identified parameters' ranges),
 recorded the same way (worlds/tools/make_sample_bag.py --overrides ... --vbs-trim ... --level, in a
 subprocess with its own world). Prints per robot the wall time of the recording and of the
 identification, the largest error of each parameter group against the truth as a fraction of the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Soak (issue 11, docs/benchmarks.md "Soak"): hours of sim time in lockstep with every sensor, checking what
+"""Soak (docs/benchmarks.md): hours of sim time in lockstep with every sensor, checking what
 users rely on over a long run.
 
     source scripts/env.sh && python bench/soak.py [--sim-seconds 7200] [--world mine] [--robots 1] [--out DIR]

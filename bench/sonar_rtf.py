@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Real-time factor with the sonars (MSIS + M3) running, 1 and 3 robots (issue 4: targets >= 50 and >= 15).
+"""Real-time factor with the sonars (MSIS + M3) running, 1 and 3 robots (targets >= 50 and >= 15).
 
     source scripts/env.sh && python bench/sonar_rtf.py [--robots 1 3] [--window 10] [--sink counter|none]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Visual mode benchmark (issue 10): real-time factor of the mine with one robot, every sensor and all five
+"""Visual mode benchmark: real-time factor of the mine with one robot, every sensor and all five
 cameras rendering, their images subscribed and counted (docs/benchmarks.md, "Cameras").
 
     source scripts/env.sh && python bench/visual_rtf.py [--size 640x480] [--fps 10] [--sim-seconds 10]

@@ -1,4 +1,4 @@
-// The sonar pictures of docs/sonars.md (issue 13), in the thesis's layout (6.1.1-6.1.2): MSIS scans of the
+// The sonar pictures of docs/sonars.md, in the thesis's layout (6.1.1-6.1.2): MSIS scans of the
 // anchor in the shipped tank world from long, medium and close range (one full head turn each, the shipped
 // UX-1's MSIS with all its noise models), and an M3 scan of it. ROS-free: the world, the UX-1's sensor suite and
 // the world's ray caster as the simulator builds them; the robot is held at each place (teleported before every

@@ -1,4 +1,4 @@
-"""Faults (issue 11, docs/reliability.md): a killed allocator, translator or ESC driver is respawned by
+"""Faults (docs/reliability.md): a killed allocator, translator or ESC driver is respawned by
 roslaunch and its topic flows again; a killed simulator makes a Simulation script raise a clear error
 within its timeout; a dead master makes every node exit. Processes are found by the UNEXMIN_RUN marker
 every process of a run inherits; every wait is on a condition."""

@@ -1,4 +1,4 @@
-"""Fuzzing the inputs (issue 11, docs/reliability.md): for FUZZ s, in real time with UX_1 moving, every input
+"""Fuzzing the inputs (docs/reliability.md): for FUZZ s, in real time with UX_1 moving, every input
 (thrusters/<i>/input, pendulum, vbs, force_moments, /ux1/command/motors) gets NaN, +-inf, 1e300, -1e300,
 negative, empty and short messages at about 1 kHz in turn, and every /sim/* service absurd requests
 (clients/fuzz_run.py). The state stays finite, the robot keeps moving, nothing crashes or restarts, our

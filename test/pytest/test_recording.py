@@ -1,4 +1,4 @@
-"""Lossless recording in lockstep (docs/recording.md, issue 11).
+"""Lossless recording in lockstep (docs/recording.md).
 
 1. The simulator's own recorder (record:=<bag>): 60 s of sim time stepped at full lockstep speed; every topic
    of the default set holds rate x 60 messages (+-1) in the bag, the thruster commands the client sent are all

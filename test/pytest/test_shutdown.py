@@ -1,4 +1,4 @@
-"""Clean shutdown (issue 11, docs/reliability.md): SIGINT, as Ctrl-C sends it to the foreground process group,
+"""Clean shutdown (docs/reliability.md): SIGINT, as Ctrl-C sends it to the foreground process group,
 at different moments of a roslaunch with record:=, of the mission (python -m unexmin.missions.tank, what
 scripts/mission.sh runs after set-up), of the bag replay and of a Simulation script. Afterwards every process
 the run started (its whole process tree, collected from /proc just before the signal, including roslaunch's
