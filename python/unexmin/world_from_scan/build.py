@@ -1,37 +1,32 @@
 """A surveyed point cloud of a mine (laser, sonar, the robots' own maps) to a simulator world in one
 command (docs/world_from_scan.md): what the thesis did by hand for Kaatiala (5.2) with MeshLab.
 
-    python -m unexmin.world_from_scan SCAN --out DIR [--name NAME] [--resolution 0.1] [--water-level Z]
+    python -m unexmin.world_from_scan SCAN --out DIR [--resolution 0.1] [--memory-gb 8] [--scheduler ADDR]
 
-Stages: read (PLY, PCD, XYZ/TXT, LAS/LAZ), voxel down-sampling to the resolution, normals (estimated
-when the scan has none) turned to face the void, screened Poisson reconstruction (Open3D), trimming of
-the surface the scan does not support, hole closing (the water volume becomes a closed surface), a
-lighter visual mesh, spawn points in the water with clearance, the world file and a report.
-Units: [m]; frame: the scan's own, taken as the world frame (ENU, z up).
+Stages: survey (one streaming pass: bounds, extent of the surface), tiles (overlapping slabs sized by the
+memory budget; a second pass bins the points into tile files), each tile on Dask (down-sampling, normals
+turned to face the void, screened Poisson, trimming, decimation, clipping to its slab), stitching (the
+tiles' seams zipped, holes closed: one closed surface), spawn points, evaluation, the world files and a
+report. The whole cloud is never in memory. Units: [m]; frame: the scan's own, taken as the world frame.
 """
 
 import argparse
 import json
 import math
+import os
 import resource
+import shutil
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from unexmin.world_from_scan.scan import (
-    ScanError,
-    check_usable,
-    downsample,
-    estimate_normals,
-    orient_towards_void,
-    orientation_cell,
-    orientation_samples,
-    orientation_steps,
-    point_spacing,
-    read_scan,
-)
+from unexmin.world_from_scan.cluster import run_tiles
+from unexmin.world_from_scan.errors import ScanError
+from unexmin.world_from_scan.scan import MIN_POINTS
+from unexmin.world_from_scan.stitch import stitch
+from unexmin.world_from_scan.stream import scan_size
 from unexmin.world_from_scan.surface import (
     HULL_RADIUS,
     close_holes,
@@ -39,19 +34,18 @@ from unexmin.world_from_scan.surface import (
     distances,
     find_spawns,
     flooded_volume,
-    poisson_depth,
     raycasting_scene,
-    reconstruct,
-    scanned_area,
-    simplify,
-    trim_unsupported,
 )
+from unexmin.world_from_scan.tiles import bin_scan, plan, record_dtype, survey, tile_points_budget
 from unexmin.worlds.meshes import write_ply
 from unexmin.worlds.schema import read_world
 
+EVAL_POINTS = 1_000_000  # scan points measured against the collision mesh at most
+
 
 # ------------------------------------------------------------------------------------------ outputs
-def world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, source):
+def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, source):
+    """The world file's text; `meshes`: (entry name, file, collision, visual) per mesh."""
     lines = [
         f"# World made from the scan {source} by python -m unexmin.world_from_scan (docs/world_from_scan.md).",
         "# Schema: docs/worlds.md. Units: SI; world frame = the scan's frame (ENU, z up).",
@@ -66,19 +60,71 @@ def world_yaml(name, surface_z, visibility, current_speed, collision_file, visua
         f"{0.1 * current_speed:.4g}, mu: 0.02}}   # [m/s]",
         "  horizontal_angle: {mean: 0.0, min: -3.1416, max: 3.1416, noise: 0.0, mu: 0.01}   # [rad]",
         "  vertical_angle: {mean: 0.0, min: -0.15, max: 0.15, noise: 0.0, mu: 0.05}        # [rad]",
-        "meshes:                                       # closed surface, faces towards the water",
-        f"  - {{name: {name}, file: {collision_file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
-        "collision: true, visual: false}",
-        f"  - {{name: {name}_visual, file: {visual_file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
-        "collision: false, visual: true}",
-        "robots:                                       # checked: in the water, clearance [m] to the walls",
+        "meshes:                                       # together a closed surface, faces towards the water",
     ]
+    for entry, file, collision, visual in meshes:
+        lines.append(
+            f"  - {{name: {entry}, file: {file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
+            f"collision: {str(collision).lower()}, visual: {str(visual).lower()}}}"
+        )
+    lines.append("robots:                                       # checked: in the water, clearance [m] to the walls")
     for k, (xyz, room) in enumerate(spawns):
         lines.append(
             f"  - {{name: UX_{k + 1}, description: ux1.urdf.xacro, xyz: [{xyz[0]:.3f}, {xyz[1]:.3f}, "
             f"{xyz[2]:.3f}], rpy: [0, 0, 0]}}   # clearance {room:.2f} m"
         )
     return "\n".join(lines) + "\n"
+
+
+def split_parts(v, t, axis, seams):
+    """The surface's triangles by tile (the slab holding each centroid): a list of (v, t) compacted."""
+    k = np.searchsorted(np.asarray(seams, dtype=float), v[t].mean(axis=1)[:, axis], side="right")
+    parts = []
+    for i in range(len(seams) + 1):
+        tk = t[k == i]
+        used = np.unique(tk)
+        remap = np.full(len(v), -1, dtype=np.int64)
+        remap[used] = np.arange(len(used))
+        parts.append((v[used], remap[tk]))
+    return parts
+
+
+def evaluation_sample(layout, count, seed):
+    """Up to `count` scan points [m] drawn evenly from the tile files, each from its own tile's core."""
+    rng = np.random.default_rng(seed)
+    dtype = record_dtype(layout["normals"], layout["rgb"])
+    axis = layout["axis"]
+    total = sum(t.get("points", 0) for t in layout["tiles"])
+    out = []
+    for tile in layout["tiles"]:
+        n = tile.get("points", 0)
+        if n == 0 or not os.path.isfile(tile["file"]) or os.path.getsize(tile["file"]) < n * dtype.itemsize:
+            continue
+        rec = np.memmap(tile["file"], dtype=dtype, mode="r", shape=(n,))
+        take = np.sort(rng.choice(n, size=min(n, max(1, int(count * n / total))), replace=False))
+        p = np.asarray(rec["p"][take], dtype=np.float64)
+        del rec
+        lo, hi = tile["core"]
+        p = p[np.isfinite(p).all(axis=1) & (p[:, axis] >= lo) & (p[:, axis] < hi)]
+        out.append(p)
+    return np.concatenate(out) if out else np.zeros((0, 3))
+
+
+def _check_options(resolution, edge, visual_edge, max_gap, visibility, memory_gb, workers, retries):
+    if not resolution > 0:
+        raise ScanError(f"--resolution must be > 0 [m], got {resolution}")
+    if not (edge > 0 and visual_edge > 0):
+        raise ScanError(f"--edge and --visual-edge must be > 0 [m], got {edge} and {visual_edge}")
+    if not max_gap > resolution:
+        raise ScanError(f"--max-gap must exceed the resolution {resolution} m, got {max_gap}")
+    if visibility not in ("none", "low", "medium", "high"):
+        raise ScanError(f"--visibility must be none, low, medium or high, got {visibility!r}")
+    if not memory_gb > 0:
+        raise ScanError(f"--memory-gb must be > 0 [GB], got {memory_gb}")
+    if workers is not None and workers < 0:
+        raise ScanError(f"--workers must be >= 0, got {workers}")
+    if retries < 0:
+        raise ScanError(f"--retries must be >= 0, got {retries}")
 
 
 def build_world(
@@ -95,94 +141,132 @@ def build_world(
     current_speed=0.0,
     seed=0,
     quiet=False,
+    memory_gb=8.0,
+    workers=None,
+    scheduler=None,
+    retries=1,
+    keep_tiles=False,
 ):
-    """The whole pipeline; returns the report (dict), also written as <out>/<name>.json."""
+    """The whole pipeline; returns the report (dict), also written as <out>/<name>.json. Tiles that fail
+    are listed in the report's `failed_tiles` (the world is built from the others)."""
     from tqdm import tqdm
 
-    if not resolution > 0:
-        raise ScanError(f"--resolution must be > 0 [m], got {resolution}")
-    if not (edge > 0 and visual_edge > 0):
-        raise ScanError(f"--edge and --visual-edge must be > 0 [m], got {edge} and {visual_edge}")
-    if not max_gap > resolution:
-        raise ScanError(f"--max-gap must exceed the resolution {resolution} m, got {max_gap}")
-    if visibility not in ("none", "low", "medium", "high"):
-        raise ScanError(f"--visibility must be none, low, medium or high, got {visibility!r}")
+    _check_options(resolution, edge, visual_edge, max_gap, visibility, memory_gb, workers, retries)
     scan = Path(scan)
     name = name or scan.stem
     out = Path(out)
     times = {}
     t_all = time.monotonic()
+    workers = (os.cpu_count() or 1) if workers is None else workers
 
     def stage(label, total=1, unit="step"):
-        return tqdm(total=total, desc=f"{label:<12}", unit=unit, disable=quiet, file=sys.stderr, leave=True)
-
-    def timed(key, label, fn, *args, total=1, unit="step", **kw):
-        t0 = time.monotonic()
-        with stage(label, total, unit) as bar:
-            result = fn(*args, **kw, **({"progress": bar} if total > 1 else {}))
-            bar.update(bar.total - bar.n)
-        times[key] = round(time.monotonic() - t0, 2)
-        return result
-
-    raw, raw_normals = timed("read", "read", read_scan, scan)
-    points, normals = timed("downsample", "downsample", downsample, raw, raw_normals, resolution)
-    check_usable(points, resolution, scan)
-    if normals is None:
-        normals = timed("normals", "normals", estimate_normals, points, resolution)
-    extent = points.max(axis=0) - points.min(axis=0)
-    steps = 2 * len(orientation_steps(extent, orientation_cell(extent, resolution)))
-    spacing = point_spacing(points, seed)
-    normals, decided = timed(
-        "orient",
-        "orient",
-        orient_towards_void,
-        points,
-        normals,
-        resolution,
-        seed=seed,
-        samples=orientation_samples(len(points), spacing),
-        total=steps,
-        unit="ray step",
-    )
-    if spacing > resolution and not quiet:
-        print(
-            f"world_from_scan: note: the scan's points are {spacing:.3g} m apart, sparser than --resolution "
-            f"{resolution} m: the surface is reconstructed at {spacing:.3g} m",
+        return tqdm(
+            total=total,
+            desc=f"{label:<12}",
+            unit=unit,
+            unit_scale=unit in ("point", "B"),
+            disable=quiet,
             file=sys.stderr,
+            leave=True,
         )
-    depth = poisson_depth(points, max(resolution, spacing))
-    v, t = timed("poisson", "poisson", reconstruct, points, normals, depth)
-    v, t = timed("trim", "trim", trim_unsupported, v, t, points, max_gap)
-    if len(t) == 0:
+
+    def note(text):
+        if not quiet:
+            print(f"world_from_scan: note: {text}", file=sys.stderr)
+
+    # 1. survey: one streaming pass
+    total, unit = scan_size(scan)
+    t0 = time.monotonic()
+    with stage("survey", total, unit) as bar:
+        s = survey(scan, resolution, progress=bar)
+    times["survey"] = round(time.monotonic() - t0, 2)
+    if s["voxels"] < MIN_POINTS:
         raise ScanError(
-            f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap "
-            f"{max_gap} m of the scan"
+            f"{scan}: no usable surface: {s['voxels']} points after down-sampling to "
+            f"{resolution} m (expected at least {MIN_POINTS}: a denser scan or a finer --resolution)"
         )
-    v, t, holes, hole_area, cap = timed("holes", "close holes", close_holes, v, t)
+    spread = np.sqrt(np.maximum(np.linalg.eigvalsh(s["cov"]), 0.0))  # ascending [m]
+    if spread[1] < 5 * resolution:
+        raise ScanError(
+            f"{scan}: no usable surface: the points lie along a line (spread {spread[2]:.3g} x "
+            f"{spread[1]:.3g} x {spread[0]:.3g} m; expected walls around a void)"
+        )
+    # 2. tiles: planned from the memory budget, the points binned on disk (second pass)
+    local_workers = 0 if scheduler else workers
+    budget = tile_points_budget(memory_gb, max(1, local_workers))
+    layout = plan(s, resolution, max_gap, budget)
+    if not layout["fits"]:
+        note(
+            f"a slab of the least width holds more than the {budget:,} points a tile may hold in "
+            f"--memory-gb {memory_gb}: the run may take more memory"
+        )
+    work = out / f"{name}_tiles"
+    if work.exists():
+        shutil.rmtree(work)
+    t0 = time.monotonic()
+    with stage("tile files", total, unit) as bar:
+        layout = bin_scan(scan, s, layout, work, progress=bar)
+    times["bin"] = round(time.monotonic() - t0, 2)
+    # 3. each tile on Dask
+    options = {
+        "resolution": resolution,
+        "max_gap": max_gap,
+        "edge": edge,
+        "visual_edge": visual_edge,
+        "seed": seed,
+    }
+    per_worker = (memory_gb * 1e9 - 0.5e9) / max(1, local_workers)
+    t0 = time.monotonic()
+    with stage("tiles", len(layout["tiles"]), "tile") as bar:
+        results, failures = run_tiles(
+            layout, options, local_workers, per_worker, scheduler, retries, bar, None if quiet else note
+        )
+    times["tiles"] = round(time.monotonic() - t0, 2)
+    for f in failures:
+        print(f"world_from_scan: error: {f['tile']} failed after {retries + 1} attempts: {f['error']}", file=sys.stderr)
+    if not results:
+        first = failures[0]["error"] if failures else "no tile"
+        raise ScanError(f"{scan}: no usable surface: no tile could be built ({first})")
+    spacing = max(r["spacing"] for r in results.values())
+    if spacing > resolution:
+        note(
+            f"the scan's points are {spacing:.3g} m apart, sparser than --resolution {resolution} m: "
+            f"the surface is reconstructed at {spacing:.3g} m"
+        )
+    # 4. stitching: the seams zipped, the remaining holes closed, the surface turned to face the void
+    t0 = time.monotonic()
+    axis, seams = layout["axis"], layout["seams"]
+    order = [results.get(t["index"]) for t in layout["tiles"]]
+    with stage("stitch", 2) as bar:
+        v, t, zipped, left = stitch([r and r["collision"] for r in order], axis, seams, 2.0 * edge + resolution)
+        if len(t) == 0:
+            raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
+        v, t, holes, hole_area, _ = close_holes(v, t)
+        bar.update(1)
+        vv, vt, _, _ = stitch([r and r["visual"] for r in order], axis, seams, 2.0 * visual_edge + resolution)
+        vv, vt, _, _, _ = close_holes(vv, vt)
+        bar.update(1)
+    times["stitch"] = round(time.monotonic() - t0, 2)
     import trimesh
 
-    mesh = trimesh.Trimesh(v, t, process=False)
-    wall_area, bridged_area = scanned_area(mesh, cap, points, 3.0 * resolution)
-    fine_triangles = len(t)
     closed = closed_surface(v, t)
-    signed = float(mesh.volume) if closed else float("nan")
+    signed = float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
     if closed and signed > 0:  # faces must point into the void: the enclosed volume is then negative
-        t, signed = t[:, ::-1].copy(), -signed
-    cv, ct = timed("decimate", "decimate", simplify, v, t, edge)
-    if closed and not closed_surface(cv, ct):  # the decimation opened the surface: keep the fine one
-        cv, ct = v, t
-    v, t = cv, ct
-    volume = -float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
+        t, vt, signed = t[:, ::-1].copy(), vt[:, ::-1].copy(), -signed
+    volume = -signed if closed else float("nan")
     if closed and volume < (4 / 3) * math.pi * (HULL_RADIUS + clearance) ** 3:
         raise ScanError(
             f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
             f"room for one robot (expected walls around a void)"
         )
-    surface_z = float(points[:, 2].max()) if water_level is None else float(water_level)
+    # 5. spawns, evaluation
+    surface_z = float(s["hi"][2]) if water_level is None else float(water_level)
     scene = raycasting_scene(v, t)
     t0 = time.monotonic()
     with stage("spawns") as bar:
-        spawns = find_spawns(scene, points, normals, surface_z, clearance, seed=seed)
+        sp = np.concatenate([r["samples"][0] for r in results.values()])
+        sn = np.concatenate([r["samples"][1] for r in results.values()])
+        spawns = find_spawns(scene, sp, sn, surface_z, clearance, seed=seed)
         bar.update(1)
     times["spawns"] = round(time.monotonic() - t0, 2)
     if not spawns:
@@ -190,59 +274,96 @@ def build_world(
             f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
             "clearance to the walls: no room for a robot"
         )
-    vv, vt = timed("visual", "visual mesh", simplify, v, t, visual_edge)
     t0 = time.monotonic()
     with stage("evaluate") as bar:
-        rng = np.random.default_rng(seed)
-        probe = raw if len(raw) <= 1_000_000 else raw[rng.choice(len(raw), 1_000_000, replace=False)]
-        d = distances(scene, probe)
+        probe = evaluation_sample(layout, EVAL_POINTS, seed)
+        d = distances(scene, probe) if len(probe) else np.zeros(1)
         flooded = flooded_volume(v, t, surface_z) if closed else None
         bar.update(1)
     times["evaluate"] = round(time.monotonic() - t0, 2)
+    # 6. files: the whole meshes, the parts per tile, two world files
     out.mkdir(parents=True, exist_ok=True)
     collision_file, visual_file = f"{name}_collision.ply", f"{name}_visual.ply"
     comment = f"unexmin world_from_scan {scan.name} resolution {resolution}"
     write_ply(out / collision_file, v, t, comment + " collision", inward=False)
     write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
-    world_path = out / f"{name}.world"
-    world_path.write_text(
-        world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, scan.name)
-    )
-    read_world(world_path)  # what the simulator will read follows the schema
+    parts = []
+    for k, ((pv, pt), (qv, qt)) in enumerate(zip(split_parts(v, t, axis, seams), split_parts(vv, vt, axis, seams))):
+        files = (f"{name}_collision_{k:03d}.ply", f"{name}_visual_{k:03d}.ply")
+        write_ply(out / files[0], pv, pt, f"{comment} collision tile {k}", inward=False)
+        write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False)
+        parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
+    world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
+    whole = [(name, collision_file, True, False), (f"{name}_visual", visual_file, False, True)]
+    by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False) for p in parts]
+    by_part += [(f"{name}_visual_{p['index']:03d}", p["visual"], False, True) for p in parts]
+    for path, meshes in ((world_path, whole), (parts_path, by_part)):
+        path.write_text(world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, scan.name))
+        read_world(path)  # what the simulator will read follows the schema
+    if not keep_tiles:
+        shutil.rmtree(work, ignore_errors=True)
     rep = {
         "scan": str(scan),
-        "points_read": int(len(raw)),
-        "points_used": int(len(points)),
-        "normals": "read" if raw_normals is not None else "estimated",
-        "orientation_samples_decided": round(decided, 3),
+        "points_read": int(s["count"]),
+        "points_finite": int(s["finite"]),
+        "points_used": int(sum(r["points_used"] for r in results.values())),
+        "normals": "read" if s["normals"] else "estimated",
+        "orientation_samples_decided": round(float(np.mean([r["decided"] for r in results.values()])), 3),
         "resolution": resolution,
         "point_spacing": round(spacing, 4),
-        "poisson_depth": depth,
+        "poisson_depth": int(max(r["depth"] for r in results.values())),
         "max_gap": max_gap,
-        "poisson_triangles": int(fine_triangles),
+        "poisson_triangles": int(sum(r["poisson_triangles"] for r in results.values())),
         "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
         "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
         "world": world_path.name,
+        "parts_world": parts_path.name,
+        "tiles": {
+            "axis": "xyz"[axis],
+            "seams": [round(x, 3) for x in seams],
+            "overlap": round(layout["overlap"], 3),
+            "count": len(layout["tiles"]),
+            "budget_points": budget,
+            "zipped_loops": zipped,
+            "open_loops": left,
+            "parts": parts,
+            "built": [
+                {
+                    "index": r["index"],
+                    "points_read": r["points_read"],
+                    "points_used": r["points_used"],
+                    "estimate": layout["tiles"][r["index"]]["estimate"],
+                    "peak_rss_mb": r["peak_rss_mb"],
+                    "seconds": r["seconds"],
+                }
+                for r in sorted(results.values(), key=lambda r: r["index"])
+            ],
+        },
+        "failed_tiles": failures,
         "closed": closed,
         "volume": round(volume, 3) if closed else None,
         "flooded_volume": round(flooded, 3) if flooded is not None else None,
         "water_level": surface_z,
-        "wall_area": round(wall_area, 3),
-        "bridged_area": round(bridged_area, 3),
+        "wall_area": round(sum(r["wall_area"] for r in results.values()), 3),
+        "bridged_area": round(sum(r["bridged_area"] for r in results.values()), 3),
         "holes_closed": holes,
         "holes_area": round(hole_area, 3),
         "scan_to_mesh": {
             "mean": round(float(d.mean()), 4),
             "p95": round(float(np.percentile(d, 95)), 4),
             "max": round(float(d.max()), 4),
-            "points": int(len(d)),
+            "points": int(len(probe)),
         },
         "bbox_min": [round(x, 3) for x in v.min(axis=0)],
         "bbox_max": [round(x, 3) for x in v.max(axis=0)],
-        "spawns": [{"xyz": [round(float(x), 3) for x in s], "clearance": round(c, 3)} for s, c in spawns],
+        "spawns": [{"xyz": [round(float(x), 3) for x in p], "clearance": round(c, 3)} for p, c in spawns],
         "seconds": times,
         "total_seconds": round(time.monotonic() - t_all, 2),
         "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
+        "workers_peak_rss_mb": round(max(r["peak_rss_mb"] for r in results.values()), 1),
+        "memory_gb": memory_gb,
+        "workers": local_workers if not scheduler else None,
+        "scheduler": scheduler,
     }
     (out / f"{name}.json").write_text(json.dumps(rep, indent=1) + "\n")
     return rep
@@ -264,7 +385,9 @@ def report(rep):
             f"  closed: {rep['closed']}, void volume {vol} m^3, flooded (below z = {rep['water_level']:.2f}) "
             f"{flooded} m^3, "
             f"wall area {rep['wall_area']:,.1f} m^2 (and {rep['bridged_area']:,.1f} m^2 bridged over gaps)",
-            f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2)",
+            f"  holes closed: {rep['holes_closed']} ({rep['holes_area']:,.1f} m^2); tiles: {rep['tiles']['count']} "
+            f"along {rep['tiles']['axis']}, {rep['tiles']['zipped_loops']} seam loops zipped, "
+            f"{len(rep['failed_tiles'])} failed; parts in {rep['parts_world']}",
             f"  scan to mesh: mean {s['mean'] * 100:.1f} cm, 95th percentile {s['p95'] * 100:.1f} cm, "
             f"max {s['max']:.2f} m",
             "  spawns: " + ", ".join(f"{sp['xyz']} (clearance {sp['clearance']:.2f} m)" for sp in rep["spawns"]),
@@ -302,6 +425,21 @@ def main(argv=None):
     ap.add_argument("--visual-edge", type=float, default=1.0, help="[m] triangle edge of the visual mesh (default 1.0)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the samplings (default 0)")
     ap.add_argument("--quiet", action="store_true", help="no progress bars")
+    ap.add_argument(
+        "--memory-gb",
+        type=float,
+        default=8.0,
+        help="[GB] memory of the whole run: sizes the tiles (default 8)",
+    )
+    where = ap.add_mutually_exclusive_group()
+    where.add_argument(
+        "--workers",
+        type=int,
+        help="worker processes of the local Dask cluster (default: one per core; 0: no Dask, in this process)",
+    )
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    ap.add_argument("--retries", type=int, default=1, help="attempts after a tile's first failure (default 1)")
+    ap.add_argument("--keep-tiles", action="store_true", help="keep the tile files (DIR/NAME_tiles/)")
     args = ap.parse_args(argv)
     try:
         rep = build_world(
@@ -318,9 +456,14 @@ def main(argv=None):
             args.current_speed,
             args.seed,
             args.quiet,
+            args.memory_gb,
+            args.workers,
+            args.scheduler,
+            args.retries,
+            args.keep_tiles,
         )
     except ScanError as e:
         print(f"world_from_scan: error: {e}", file=sys.stderr)
         return 2
     print(report(rep))
-    return 0
+    return 3 if rep["failed_tiles"] else 0

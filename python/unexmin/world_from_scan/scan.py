@@ -2,10 +2,10 @@
 a mesh for tests, voxel down-sampling, normals and their orientation towards the void. Units: [m]."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 
+from unexmin.world_from_scan.errors import ScanError
 from unexmin.worlds.meshes import sample_surface
 
 MIN_POINTS = 200  # fewer points after down-sampling: no surface to speak of
@@ -20,51 +20,26 @@ SAMPLE_AREA = 1.0  # [m^2] of wall per orientation sample
 CONE = ((0.0, 1), (math.radians(30.0), 6), (math.radians(60.0), 6))  # orientation rays: (angle from n, count)
 
 
-class ScanError(ValueError):
-    """The scan cannot make a world; the message names the input and what was expected."""
-
-
 # ---------------------------------------------------------------------------------------------- read
 def read_scan(path):
-    """(points N x 3 [m] float64, normals N x 3 or None) of a PLY, PCD, XYZ/XYZN/PTS, TXT/CSV (x y z
-    [nx ny nz] columns) or LAS/LAZ file; rows with a non-finite coordinate are dropped."""
-    path = Path(path)
-    if not path.is_file():
-        raise ScanError(f"{path}: no such file (expected a point cloud: .ply .pcd .xyz .xyzn .pts .txt .csv .las .laz)")
-    ext = path.suffix.lower()
-    normals = None
-    if ext in (".ply", ".pcd", ".xyz", ".xyzn", ".pts"):
-        import open3d as o3d
+    """(points N x 3 [m] float64, normals N x 3 or None) of a whole cloud (stream.py's formats), for small
+    scans and tests: the tool itself streams (tiles.py). Rows with a non-finite coordinate are dropped."""
+    from unexmin.world_from_scan.stream import iter_chunks
 
-        cloud = o3d.io.read_point_cloud(str(path), format="auto")
-        points = np.asarray(cloud.points, dtype=np.float64)
-        if cloud.has_normals():
-            normals = np.asarray(cloud.normals, dtype=np.float64)
-    elif ext in (".txt", ".csv", ".asc"):
-        try:
-            table = np.loadtxt(path, delimiter="," if ext == ".csv" else None, ndmin=2, comments=("#", "//"))
-        except ValueError as e:
-            raise ScanError(f"{path}: expected rows of numbers x y z [nx ny nz] ({e})") from None
-        if table.shape[1] not in (3, 4, 6, 7) and table.size:
-            raise ScanError(f"{path}: expected 3 (x y z) or 6 (x y z nx ny nz) columns, got {table.shape[1]}")
-        points = table[:, :3]
-        normals = table[:, 3:6] if table.shape[1] >= 6 else None
-    elif ext in (".las", ".laz"):
-        import laspy
-
-        las = laspy.read(str(path))
-        points = np.column_stack([np.asarray(las.x), np.asarray(las.y), np.asarray(las.z)]).astype(np.float64)
-    else:
-        raise ScanError(
-            f"{path}: unknown point cloud extension '{ext}' (expected .ply .pcd .xyz .xyzn .pts .txt .csv .las .laz)"
-        )
-    ok = np.isfinite(points).all(axis=1)
+    points, normals, complete = [], [], True
+    for c in iter_chunks(path):
+        ok = np.isfinite(c.points).all(axis=1)
+        points.append(c.points[ok])
+        if c.normals is None:
+            complete = False
+        else:
+            normals.append(c.normals[ok])
+    points = np.concatenate(points) if points else np.zeros((0, 3))
+    normals = np.concatenate(normals) if complete and normals else None
     if normals is not None:
         lengths = np.linalg.norm(normals, axis=1)
-        if not (np.isfinite(lengths) & (lengths > 0.5))[ok].all():
+        if not (np.isfinite(lengths) & (lengths > 0.5)).all():
             normals = None  # partial or broken normals: estimate them all
-    points = points[ok]
-    normals = normals[ok] if normals is not None else None
     if len(points) == 0:
         raise ScanError(f"{path}: no finite point (expected a point cloud of the mine's walls)")
     return points, normals

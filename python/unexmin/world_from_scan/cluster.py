@@ -1,0 +1,102 @@
+"""Tiles built on Dask distributed (docs/world_from_scan.md#dask): a local cluster by default, any running
+scheduler with `--scheduler` (as unexmin.batch). A tile that raises is retried, then reported with its
+bounds; the others still build."""
+
+import os
+import time
+import traceback
+
+from unexmin.world_from_scan.tile import build_tile
+from unexmin.world_from_scan.tiles import describe
+
+
+def local_cluster(workers, memory_limit):
+    """A LocalCluster of `workers` single-threaded processes on the loopback, each held to `memory_limit`
+    bytes by its nanny (a tile past it is killed, retried, then reported); one tile per free worker."""
+    import dask
+    from dask.distributed import LocalCluster
+
+    with dask.config.set(
+        {
+            "distributed.scheduler.worker-saturation": 1.0,
+            "distributed.worker.memory.target": False,  # tiles hold arrays, not Dask data: nothing to spill
+            "distributed.worker.memory.spill": False,
+            "distributed.worker.memory.pause": False,
+            "distributed.worker.memory.terminate": 0.98,
+        }
+    ):
+        return LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+            scheduler_port=0,
+            memory_limit=int(memory_limit),
+        )
+
+
+def _failure(tile, layout, error):
+    return {"index": tile["index"], "tile": describe(tile, layout["axis"]), "error": error}
+
+
+def run_tiles(layout, options, workers, memory_limit, scheduler=None, retries=1, bar=None, log=None):
+    """Build every tile of `layout` (build_tile with `options`). Returns (results by tile index, failures:
+    dicts of index, tile (its bounds in words) and error). workers = 0: one after the other in this
+    process, without Dask. `bar`: a tqdm bar advanced per tile."""
+    results, failures = {}, []
+    tiles = layout["tiles"]
+    if workers == 0 and not scheduler:
+        for tile in tiles:
+            for attempt in range(retries + 1):
+                try:
+                    results[tile["index"]] = build_tile(tile, layout, **options)
+                    break
+                except Exception as e:  # reported with the tile's bounds below, never dropped
+                    if attempt == retries:
+                        failures.append(_failure(tile, layout, f"{type(e).__name__}: {e}"))
+            if bar is not None:
+                bar.update(1)
+        return results, failures
+    from dask.distributed import Client, as_completed
+
+    cluster = None
+    if scheduler:
+        client = Client(scheduler, timeout=30)
+    else:
+        cluster = local_cluster(workers, memory_limit)
+        client = Client(cluster)
+    try:
+        if log is not None:
+            where = scheduler or f"a local cluster of {workers} workers of {memory_limit / 1e9:.2f} GB"
+            log(f"{len(tiles)} tiles on {where}; Dask dashboard: {client.dashboard_link}")
+        stamp = f"{os.getpid()}-{time.monotonic_ns()}"
+        futures = {
+            client.submit(
+                build_tile,
+                tile,
+                layout,
+                **options,
+                key=f"unexmin-tile-{tile['index']:04d}-{stamp}",
+                retries=retries,
+                pure=False,
+            ): tile
+            for tile in tiles
+        }
+        for future in as_completed(futures):
+            tile = futures[future]
+            try:
+                results[tile["index"]] = future.result()
+            except Exception as e:  # the tile's own error after its retries, or its worker lost each time
+                failures.append(_failure(tile, layout, f"{type(e).__name__}: {e}".strip()))
+                if log is not None and not isinstance(e, ValueError):
+                    log("".join(traceback.format_exception_only(type(e), e)).strip())
+            if bar is not None:
+                bar.update(1)
+                bar.set_postfix(failed=len(failures))
+            future.release()
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return results, failures

@@ -1,0 +1,112 @@
+"""One tile's surface (docs/world_from_scan.md#how), the task each Dask worker runs: its points read back
+from the tile file, down-sampled, normals estimated and turned towards the void, screened Poisson,
+trimmed, decimated (collision and visual meshes), each clipped to the tile's core slab. Units: [m]."""
+
+import resource
+import time
+
+import numpy as np
+
+from unexmin.world_from_scan.errors import ScanError
+from unexmin.world_from_scan.scan import (
+    MIN_POINTS,
+    downsample,
+    estimate_normals,
+    orient_towards_void,
+    orientation_samples,
+    point_spacing,
+)
+from unexmin.world_from_scan.stitch import clip_slab
+from unexmin.world_from_scan.surface import poisson_depth, reconstruct, simplify, trim_unsupported
+from unexmin.world_from_scan.tiles import describe, load_tile
+
+SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
+
+
+def manifold_edges(t):
+    """True when no directed edge appears twice: every edge has at most two faces, wound consistently."""
+    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
+    key = e[:, 0] * (int(t.max()) + 1) + e[:, 1]
+    return len(np.unique(key)) == len(key)
+
+
+def decimated(v, t, edge):
+    """simplify() to `edge` [m], or the surface as it was when the decimation broke its manifold edges."""
+    dv, dt = simplify(v, t, edge)
+    return (dv, dt) if len(dt) and manifold_edges(dt) else (v, t)
+
+
+def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed):
+    """The tile's result (a dict): 'collision' and 'visual' (v, t) clipped to its core slab, facing out of
+    the void; poisson_triangles (the fine surface in the core), points read and used, spacing [m], depth,
+    decided (fraction of orientation samples that decided), a sample of oriented points (for spawns),
+    wall and bridged area [m^2], seconds per stage, peak_rss_mb of the worker. A ScanError names the tile
+    and its bounds when its points are not finite or too few."""
+    from scipy.spatial import cKDTree
+
+    name = describe(tile, layout["axis"])
+    times = {}
+    t0 = time.monotonic()
+    raw, normals, _rgb = load_tile(tile, layout["normals"], layout["rgb"])  # _rgb: per-point colours, if any
+    bad = int((~np.isfinite(raw).all(axis=1)).sum())
+    if bad:
+        raise ScanError(f"{name}: {bad} of {len(raw)} points are not finite (corrupted tile file {tile['file']})")
+    points, normals = downsample(raw, normals, resolution)
+    read = len(raw)
+    del raw
+    if len(points) < MIN_POINTS:
+        raise ScanError(
+            f"{name}: {len(points)} points after down-sampling to {resolution} m (expected at least {MIN_POINTS}; "
+            f"the tile file {tile['file']} holds {read})"
+        )
+    times["read"] = time.monotonic() - t0
+    t0 = time.monotonic()
+    if normals is None:
+        normals = estimate_normals(points, resolution)
+    spacing = point_spacing(points, seed)
+    normals, decided = orient_towards_void(
+        points, normals, resolution, seed=seed, samples=orientation_samples(len(points), spacing)
+    )
+    times["normals"] = time.monotonic() - t0
+    t0 = time.monotonic()
+    depth = poisson_depth(points, max(resolution, spacing))
+    v, t = reconstruct(points, normals, depth)
+    times["poisson"] = time.monotonic() - t0
+    t0 = time.monotonic()
+    v, t = trim_unsupported(v, t, points, max_gap)
+    if len(t) == 0:
+        raise ScanError(f"{name}: no usable surface: nothing of the reconstruction lies within --max-gap {max_gap} m")
+    times["trim"] = time.monotonic() - t0
+    t0 = time.monotonic()
+    axis, (lo, hi) = layout["axis"], tile["core"]
+    cv, ct = clip_slab(*decimated(v, t, edge), axis, lo, hi)
+    vv, vt = clip_slab(*decimated(v, t, visual_edge), axis, lo, hi)
+    fv, ft = clip_slab(v, t, axis, lo, hi)
+    del v, t
+    times["decimate"] = time.monotonic() - t0
+    # areas of the fine surface in the core: near a scan point (walls seen) or not (gaps bridged)
+    a, b, c = fv[ft[:, 0]], fv[ft[:, 1]], fv[ft[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    d, _ = cKDTree(points).query((a + b + c) / 3.0, distance_upper_bound=3.0 * resolution, workers=1)
+    seen = np.isfinite(d)
+    x = points[:, axis]
+    core = (x >= lo) & (x < hi)
+    rng = np.random.default_rng(seed + tile["index"])
+    idx = np.nonzero(core)[0]
+    pick = idx[rng.choice(len(idx), size=min(SPAWN_SAMPLES, len(idx)), replace=False)] if len(idx) else idx
+    return {
+        "index": tile["index"],
+        "collision": (cv, ct),
+        "visual": (vv, vt),
+        "poisson_triangles": int(len(ft)),
+        "points_read": read,
+        "points_used": int(core.sum()),
+        "spacing": spacing,
+        "depth": depth,
+        "decided": decided,
+        "samples": (points[pick], normals[pick]),
+        "wall_area": float(area[seen].sum()),
+        "bridged_area": float(area[~seen].sum()),
+        "seconds": {k: round(s, 2) for k, s in times.items()},
+        "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
+    }
