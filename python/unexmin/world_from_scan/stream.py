@@ -66,21 +66,20 @@ def _normals(table, names):
     return None
 
 
-def _rgb(table, names):
+def _rgb(table, names, divisor=None):
+    """Colours as uint8 RGB: 8-bit values as they are, 16-bit ones (LAS, PLY ushort) divided by 256."""
     for keys in (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffuse_green", "diffuse_blue")):
         if all(k in names for k in keys):
             c = np.column_stack([np.asarray(table[k], dtype=np.float64) for k in keys])
-            if c.size and np.nanmax(c) > 255.0:  # 16-bit colour (LAS): to 8 bits
-                c = c / 256.0
-            elif c.size and np.nanmax(c) <= 1.0 and np.asarray(table[keys[0]]).dtype.kind == "f":
-                c = c * 255.0  # colour in [0, 1]
-            return np.clip(np.nan_to_num(c), 0, 255).astype(np.uint8)
+            if divisor is None:  # by the column's type
+                divisor = 256.0 if np.asarray(table[keys[0]]).dtype.itemsize == 2 else 1.0
+            return np.clip(np.nan_to_num(c / divisor), 0, 255).astype(np.uint8)
     return None
 
 
-def _chunk(table, names, done):
+def _chunk(table, names, done, divisor=None):
     points = np.column_stack([np.asarray(table[n], dtype=np.float64) for n in ("x", "y", "z")])
-    return Chunk(points, _normals(table, names), _rgb(table, names), done)
+    return Chunk(points, _normals(table, names), _rgb(table, names, divisor), done)
 
 
 # -------------------------------------------------------------------------------------------- LAS
@@ -93,13 +92,17 @@ def _las_chunks(path, chunk):
         raise ScanError(f"{path}: not a readable LAS/LAZ file ({e})") from None
     with f:
         names = set(f.header.point_format.dimension_names)
-        done = 0
+        done, divisor = 0, None
+
         for pts in f.chunk_iterator(chunk):
             done += len(pts)
             table = {"x": pts.x, "y": pts.y, "z": pts.z}
             if {"red", "green", "blue"} <= names:
                 table.update(red=pts.red, green=pts.green, blue=pts.blue)
-            yield _chunk(table, set(table), done)
+                if divisor is None and len(pts):  # LAS colours are 16-bit; some writers put 8-bit values in them
+                    top = max(int(np.max(pts.red)), int(np.max(pts.green)), int(np.max(pts.blue)))
+                    divisor = 256.0 if top > 255 else 1.0
+            yield _chunk(table, set(table), done, divisor)
 
 
 # -------------------------------------------------------------------------------------------- PLY
@@ -176,13 +179,14 @@ def _ply_chunks(path, chunk):
     yield from _memmap_chunks(path, dtype, h["offset"], h["count"], names, chunk)
 
 
-def _memmap_chunks(path, dtype, offset, count, names, chunk):
+def _memmap_chunks(path, dtype, offset, count, names, chunk, colours=None):
     if os.path.getsize(path) < offset + count * dtype.itemsize:
         raise ScanError(f"{path}: the file is shorter than the {count} points its header announces (truncated?)")
     rows = np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=(count,))
     for i in range(0, count, chunk):
         part = np.array(rows[i : i + chunk])  # a copy: the map's pages are released as it goes
-        yield _chunk(part, names, min(i + chunk, count))
+        c = _chunk(part, names, min(i + chunk, count))
+        yield c if colours is None else c._replace(rgb=colours(part, names))
     del rows
 
 
@@ -225,7 +229,7 @@ def _pcd_rgb(part, names):
     key = "rgb" if "rgb" in names else "rgba" if "rgba" in names else None
     if key is None:
         return None
-    packed = np.ascontiguousarray(np.asarray(part[key])).view(np.uint32)
+    packed = np.ascontiguousarray(np.asarray(part[key], dtype=np.float32)).view(np.uint32)
     return np.column_stack([(packed >> 16) & 255, (packed >> 8) & 255, packed & 255]).astype(np.uint8)
 
 
@@ -236,8 +240,7 @@ def _pcd_chunks(path, chunk):
         cols = []
         for name, c in zip(h["fields"], h["counts"]):
             cols += [name] if c == 1 else [f"{name}_{k}" for k in range(c)]
-        for c in _table_chunks(path, cols, r"\s+", None, h["count"], chunk, h["count"], start=h["offset"]):
-            yield c
+        yield from _table_chunks(path, cols, r"\s+", None, h["count"], chunk, h["count"], h["offset"], _pcd_rgb)
         return
     if h["data"] != "binary":
         raise ScanError(
@@ -249,11 +252,10 @@ def _pcd_chunks(path, chunk):
         kind = {"F": "f", "I": "i", "U": "u"}[typ.upper()]
         fields.append((name, f"<{kind}{size}") if c == 1 else (name, f"<{kind}{size}", (c,)))
     dtype = np.dtype(fields)
-    for c in _memmap_chunks(path, dtype, h["offset"], h["count"], names, chunk):
-        yield c
+    yield from _memmap_chunks(path, dtype, h["offset"], h["count"], names, chunk, colours=_pcd_rgb)
 
 
-def _table_chunks(path, names, sep, skip, count, chunk, total, start=None):
+def _table_chunks(path, names, sep, skip, count, chunk, total, start=None, colours=None):
     """Rows of numbers with the columns `names`, `chunk` rows at a time (pandas' C reader). `done` counts
     rows when `total` is the row count, else bytes of the file."""
     import pandas as pd
@@ -278,7 +280,9 @@ def _table_chunks(path, names, sep, skip, count, chunk, total, start=None):
             done = 0
             for part in reader:
                 done = done + len(part) if count is not None else f.tell()
-                yield _chunk({n: part[n].to_numpy() for n in names}, set(names), done)
+                table = {n: part[n].to_numpy() for n in names}
+                c = _chunk(table, set(names), done)
+                yield c if colours is None else c._replace(rgb=colours(table, set(names)))
         except (ValueError, pd.errors.ParserError) as e:
             raise ScanError(f"{path}: expected rows of numbers ({' '.join(names)}) ({e})") from None
 

@@ -1,0 +1,227 @@
+"""Worlds from scans in tiles (python/unexmin/world_from_scan/, docs/world_from_scan.md#tiles).
+
+Known answers: a small generated mine (seed 3) scanned (one point per 0.2 m, noise sd 2 cm, missing
+patches) and built under a memory budget that cuts it into several tiles: the stitched surface against
+the true mesh (both ways, the bounds of the one-tile tests), its volume against the true void's, its
+topology (closed, one body, no face twice); the peak memory of the run's processes against the budget;
+tiles whose files are corrupted are reported with their bounds while the others build; the seam zipper
+on two different tessellations of one sphere; the streamed readers against the points written.
+
+Run: python -m pytest test/pytest/test_world_from_scan_tiles.py -q -p no:cacheprovider
+"""
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import trimesh
+import yaml
+
+from unexmin import mine_generator as mg
+from unexmin import world_from_scan as wfs
+from unexmin.world_from_scan.cluster import run_tiles
+from unexmin.world_from_scan.stitch import clip_slab, stitch
+from unexmin.world_from_scan.stream import iter_chunks
+from unexmin.world_from_scan.surface import close_holes
+from unexmin.world_from_scan.tiles import record_dtype
+from unexmin.worlds.meshes import read_mesh, sample_surface
+from unexmin.worlds.schema import read_world
+
+NOISE = 0.02  # [m] sd of the scan noise
+MEAN_TOL, P95_TOL = 0.05, 0.15  # [m] the bounds of the one-tile tests (test_world_from_scan.py)
+RESOLUTION = 0.25  # [m]
+MEMORY_GB = 1.7  # the budget of the tiled run: several tiles of the small mine
+
+
+def peak_rss_of(cmd):
+    """(return code, stderr, peak RSS [MB] of the largest process among `cmd` and its descendants): the
+    command runs under a Python child that reports its own RUSAGE_CHILDREN, so that nothing else this
+    test process ran is counted."""
+    wrapper = (
+        "import resource, subprocess, sys\n"
+        "r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)\n"
+        "sys.stderr.write(r.stderr)\n"
+        "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)\n"
+        "sys.exit(r.returncode)\n"
+    )
+    run = subprocess.run([sys.executable, "-c", wrapper, *cmd], capture_output=True, text=True, timeout=900)
+    return run.returncode, run.stderr, float(run.stdout.strip().splitlines()[-1])
+
+
+@pytest.fixture(scope="module")
+def tiled(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("tiled_scan")
+    mg.generate(tmp / "mine", seed=3, preset="small", quiet=True)
+    v, t = read_mesh(str(tmp / "mine" / "mine_collision.ply"))
+    points = wfs.sample_scan(v[t], 0.2, NOISE, holes=10, hole_radius=0.5, seed=2)
+    import open3d as o3d
+
+    scan = tmp / "mine_scan.ply"
+    assert o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
+    out = tmp / "world"
+    cmd = [sys.executable, "-m", "unexmin.world_from_scan", str(scan), "--out", str(out), "--quiet"]
+    cmd += ["--resolution", str(RESOLUTION), "--water-level", "0", "--memory-gb", str(MEMORY_GB)]
+    cmd += ["--workers", "2", "--keep-tiles"]
+    code, err, peak_mb = peak_rss_of(cmd)
+    assert code == 0, err
+    rep = json.loads((out / "mine_scan.json").read_text())
+    return out, rep, v[t], trimesh.Trimesh(v, t, process=False), peak_mb
+
+
+def test_the_scan_is_cut_into_several_tiles_and_every_seam_is_zipped(tiled):
+    _, rep, _, _, _ = tiled
+    tiles = rep["tiles"]
+    assert tiles["count"] >= 3 and len(tiles["seams"]) == tiles["count"] - 1 and not rep["failed_tiles"]
+    assert tiles["zipped_loops"] >= len(tiles["seams"])  # every seam crosses the mine at least once
+    for b in tiles["built"]:
+        assert b["points_used"] <= tiles["budget_points"]
+
+
+def test_the_stitched_surface_is_closed_one_body_and_no_face_twice(tiled):
+    out, rep, _, truth, _ = tiled
+    v, t = read_mesh(str(out / rep["collision"]["file"]))
+    mesh = trimesh.Trimesh(v, t, process=False)
+    assert rep["closed"] and mesh.is_watertight and mesh.is_winding_consistent and mesh.volume < 0
+    assert len(mesh.split(only_watertight=False)) == 1  # a double wall at a seam would make two bodies
+    by_index = np.sort(t, axis=1)
+    assert len(np.unique(by_index, axis=0)) == len(t)
+    by_place = np.sort(np.round(v[t], 5).reshape(len(t), 9), axis=1)
+    assert len(np.unique(by_place, axis=0)) == len(t)
+    assert -mesh.volume == pytest.approx(-truth.volume, rel=0.01)  # the true void, both faces inward
+
+
+def test_the_stitched_surface_lies_on_the_true_walls_as_one_tile_does(tiled):
+    out, rep, truth_tris, _, _ = tiled
+    v, t = read_mesh(str(out / rep["collision"]["file"]))
+    for src, dst in ((v[t], truth_tris), (truth_tris, v[t])):
+        pts, _ = sample_surface(src, 0.05, seed=5)
+        flat = dst.reshape(-1, 3)
+        d = wfs.distances(wfs.raycasting_scene(flat, np.arange(len(flat)).reshape(-1, 3)), pts)
+        assert d.mean() <= MEAN_TOL and np.percentile(d, 95) <= P95_TOL, (d.mean(), np.percentile(d, 95))
+    assert rep["scan_to_mesh"]["mean"] <= MEAN_TOL and rep["scan_to_mesh"]["p95"] <= P95_TOL
+
+
+def test_the_parts_make_the_whole_and_their_world_loads(tiled):
+    out, rep, _, _, _ = tiled
+    parts = rep["tiles"]["parts"]
+    assert len(parts) == rep["tiles"]["count"]
+    assert sum(p["triangles"] for p in parts) == rep["collision"]["triangles"]
+    axis, seams = "xyz".index(rep["tiles"]["axis"]), [-math.inf] + rep["tiles"]["seams"] + [math.inf]
+    for p in parts:
+        v, t = read_mesh(str(out / p["collision"]))
+        c = v[t].mean(axis=1)[:, axis]
+        assert len(t) and (c >= seams[p["index"]]).all() and (c <= seams[p["index"] + 1]).all()
+    world = read_world(out / rep["parts_world"])
+    assert world is not None
+    entries = yaml.safe_load((out / rep["parts_world"]).read_text())["meshes"]
+    assert sum(e["collision"] for e in entries) == len(parts) and sum(e["visual"] for e in entries) == len(parts)
+
+
+def test_the_run_stays_within_its_memory_budget(tiled):
+    _, rep, _, _, peak_mb = tiled
+    assert peak_mb <= MEMORY_GB * 1000  # the largest process of the run (RUSAGE_CHILDREN)
+    together = rep["peak_rss_mb"] + rep["workers"] * rep["workers_peak_rss_mb"]  # all at their peaks at once
+    assert together <= MEMORY_GB * 1000, together
+
+
+def test_corrupted_tiles_are_reported_with_their_bounds_and_the_others_build(tiled, tmp_path):
+    out, rep, _, _, _ = tiled
+    layout = json.loads((out / "mine_scan_tiles" / "tiles.json").read_text())
+    layout["tiles"] = layout["tiles"][:3]
+    dtype = record_dtype(layout["normals"], layout["rgb"])
+    nan_file, empty_file = tmp_path / "nan.bin", tmp_path / "empty.bin"
+    rec = np.fromfile(layout["tiles"][1]["file"], dtype=dtype)
+    rec["p"][::7] = np.nan
+    rec.tofile(nan_file)
+    empty_file.write_bytes(b"")
+    layout["tiles"][1]["file"], layout["tiles"][2]["file"] = str(nan_file), str(empty_file)
+    options = {"resolution": RESOLUTION, "max_gap": 1.0, "edge": 0.3, "visual_edge": 1.0, "seed": 0}
+    results, failures = run_tiles(layout, options, workers=1, memory_limit=1.5e9, retries=1)
+    assert sorted(results) == [0] and sorted(f["index"] for f in failures) == [1, 2]
+    for f in failures:
+        c0, c1 = layout["tiles"][f["index"]]["core"]
+        assert f["tile"].startswith(f"tile {f['index']} ({rep['tiles']['axis']} {c0:.1f}..{c1:.1f} m"), f
+    nan = next(f for f in failures if f["index"] == 1)
+    assert f"{int(np.ceil(len(rec) / 7))} of {len(rec)} points are not finite" in nan["error"]
+    empty = next(f for f in failures if f["index"] == 2)
+    assert "0 points after down-sampling" in empty["error"]
+    # the built tile still closes into a surface of its own (the missing neighbour's seam capped)
+    v, t, zipped, left = stitch([results[0]["collision"], None, None], layout["axis"], layout["seams"][:2], 0.85)
+    v, t, holes, _, _ = close_holes(v, t)
+    assert zipped == 0 and left >= 1 and holes >= left
+    assert trimesh.Trimesh(v, t, process=False).is_watertight
+
+
+def test_zipping_two_tessellations_of_one_sphere_closes_it():
+    coarse, fine = trimesh.creation.icosphere(3, 2.0), trimesh.creation.icosphere(4, 2.0)
+    left = clip_slab(coarse.vertices, coarse.faces, 0, -math.inf, 0.3)
+    right = clip_slab(fine.vertices, fine.faces, 0, 0.3, math.inf)
+    assert (left[0][:, 0] <= 0.3).all() and (right[0][:, 0] >= 0.3).all()
+    v, t, zipped, open_loops = stitch([left, right], 0, [0.3], 0.2)
+    assert zipped == 1 and open_loops == 0
+    mesh = trimesh.Trimesh(v, t, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent and len(mesh.split(only_watertight=False)) == 1
+    lo, hi = sorted([coarse.volume, fine.volume])
+    assert lo - 1e-6 <= mesh.volume <= hi + 1e-6  # each half from its own sphere, the strip flat in the plane
+
+
+def _colours(n, rng):
+    return rng.integers(0, 256, size=(n, 3)).astype(np.uint8)
+
+
+def test_streamed_readers_return_every_point_normal_and_colour(tmp_path):
+    import laspy
+
+    rng = np.random.default_rng(6)
+    n = 503
+    p = np.round(rng.uniform(-50, 50, size=(n, 3)), 3)
+    nrm = rng.normal(size=(n, 3))
+    nrm = np.round(nrm / np.linalg.norm(nrm, axis=1, keepdims=True), 5)
+    c = _colours(n, rng)
+    header = f"ply\nformat {{}} 1.0\nelement vertex {n}\nproperty double x\nproperty double y\nproperty double z\n"
+    header += "property float nx\nproperty float ny\nproperty float nz\n"
+    header += "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n"
+    rec = np.zeros(n, np.dtype([("p", "<f8", 3), ("n", "<f4", 3), ("c", "u1", 3)]))
+    rec["p"], rec["n"], rec["c"] = p, nrm, c
+    (tmp_path / "b.ply").write_bytes(header.format("binary_little_endian").encode() + rec.tobytes())
+    rows = "\n".join(" ".join(map(str, [*p[i], *nrm[i], *c[i]])) for i in range(n))
+    (tmp_path / "a.ply").write_text(header.format("ascii") + rows + "\n")
+    (tmp_path / "a.txt").write_text(rows + "\n")
+    (tmp_path / "a.csv").write_text("\n".join(",".join(map(str, p[i])) for i in range(n)) + "\n")
+    (tmp_path / "a.pts").write_text(f"{n}\n" + "\n".join(" ".join(map(str, [*p[i], 0, *c[i]])) for i in range(n)))
+    packed = ((c[:, 0].astype(np.uint32) << 16) | (c[:, 1].astype(np.uint32) << 8) | c[:, 2]).view(np.float32)
+    pcd = f"VERSION 0.7\nFIELDS x y z rgb\nSIZE 8 8 8 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH {n}\nHEIGHT 1\n"
+    pcd += f"VIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA binary\n"
+    prec = np.zeros(n, np.dtype([("x", "<f8"), ("y", "<f8"), ("z", "<f8"), ("rgb", "<f4")]))
+    prec["x"], prec["y"], prec["z"], prec["rgb"] = p[:, 0], p[:, 1], p[:, 2], packed
+    (tmp_path / "b.pcd").write_bytes(pcd.encode() + prec.tobytes())
+    las = laspy.LasData(laspy.LasHeader(point_format=3, version="1.2"))
+    las.header.scales, las.header.offsets = [0.001] * 3, [0.0] * 3
+    las.x, las.y, las.z = p.T
+    las.red, las.green, las.blue = (c.astype(np.uint16) * 256).T
+    las.write(str(tmp_path / "a.laz"))
+    expect = {  # file: (normals, colours)
+        "b.ply": (True, True),
+        "a.ply": (True, True),
+        "a.txt": (True, True),
+        "a.csv": (False, False),
+        "a.pts": (False, True),
+        "b.pcd": (False, True),
+        "a.laz": (False, True),
+    }
+    for name, (has_n, has_c) in expect.items():
+        chunks = list(iter_chunks(tmp_path / name, chunk=97))  # several chunks, the last one short
+        assert len(chunks) == math.ceil(n / 97), name
+        got = np.concatenate([k.points for k in chunks])
+        assert np.allclose(got, p, atol=1e-6), name
+        assert (chunks[0].normals is not None) == has_n and (chunks[0].rgb is not None) == has_c, name
+        if has_n:
+            assert np.allclose(np.concatenate([k.normals for k in chunks]), nrm, atol=1e-5), name
+        if has_c:
+            assert (np.concatenate([k.rgb for k in chunks]) == c).all(), name
+    with pytest.raises(wfs.ScanError, match=r"t\.ply: the file is shorter"):
+        (tmp_path / "t.ply").write_bytes((tmp_path / "b.ply").read_bytes()[:-100])
+        list(iter_chunks(tmp_path / "t.ply"))
