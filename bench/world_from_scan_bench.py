@@ -1,11 +1,15 @@
 """Throughput of python -m unexmin.world_from_scan on scans of the Kaatiala-size mine (docs/benchmarks.md).
 
-    python bench/world_from_scan_bench.py --points 1000000 4000000 --out /tmp/wfs_bench
+    python bench/world_from_scan_bench.py --points 4000000 --memory-gb 4 --out /tmp/wfs_bench
+    python bench/world_from_scan_bench.py --points 50000000 --resolution 0.1 --memory-gb 8 --workers 1 2
 
 For each size: a seeded scan of the generated mine's collision mesh (worlds/meshes/mine, made by
-scripts/setup.sh) with noise sd 2 cm and 40 missing patches of 0.5 m, written as binary PLY; then the
-tool runs in a child process. Prints points per second through the whole pipeline (read to report),
-the child's wall time and peak resident memory (wait4), and the tool's own stage times.
+scripts/setup.sh) with noise sd 2 cm and 40 missing patches of 0.5 m, written as binary PLY (kept and
+reused when it exists); then the tool runs in a child process once per --workers value. Prints points per
+second through the whole pipeline, the child's wall and CPU time, the peak resident memory of its
+largest process (wait4: the tool or one of its Dask workers) and the bound on all of them at once (the
+tool's peak plus each worker's), the tiles, the tool's stage times, the scan-to-mesh distances and the
+void volume against the generator's mesh, and the load average.
 """
 
 import argparse
@@ -36,6 +40,8 @@ def main():
     )
     ap.add_argument("--mesh", default=str(REPO / "worlds" / "meshes" / "mine" / "mine_collision.ply"))
     ap.add_argument("--out", default="/tmp/wfs_bench")
+    ap.add_argument("--memory-gb", type=float, default=4.0, help="[GB] passed to the tool (default 4)")
+    ap.add_argument("--workers", type=int, nargs="+", default=[2], help="local Dask workers, one run each (default 2)")
     args = ap.parse_args()
     import open3d as o3d
 
@@ -44,48 +50,76 @@ def main():
     area = 0.5 * float(np.linalg.norm(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]), axis=1).sum())
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    import trimesh
+
+    true_volume = -trimesh.Trimesh(v, t, process=False).volume  # faces into the void: negative
     for n in args.points:
         resolution = args.resolution or round(1.25 * math.sqrt(area / n), 2)
-        points = sample_scan(tris, math.sqrt(area / n), 0.02, holes=40, hole_radius=0.5, seed=n)
         scan = out / f"mine_{n}.ply"
-        o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
-        del points
-        t0 = time.monotonic()
-        child = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "unexmin.world_from_scan",
-                str(scan),
-                "--out",
-                str(out / f"world_{n}"),
-                "--resolution",
-                str(resolution),
-                "--water-level",
-                "0",
-                "--quiet",
-            ]
-        )
-        _, status, usage = os.wait4(child.pid, 0)
-        wall = time.monotonic() - t0
-        if status != 0:
-            print(f"{n} points: the tool failed (status {status})")
-            continue
-        rep = json.loads((out / f"world_{n}" / f"mine_{n}.json").read_text())
-        print(
-            f"{rep['points_read']:,} points ({rep['points_used']:,} at {resolution} m, Poisson depth "
-            f"{rep['poisson_depth']}): {wall:.1f} s wall, {rep['points_read'] / wall:,.0f} points/s, "
-            f"peak RSS {usage.ru_maxrss / 1024:,.0f} MB, cpu {usage.ru_utime + usage.ru_stime:.1f} s"
-        )
-        print(f"  stages [s]: {rep['seconds']}")
-        print(
-            f"  collision {rep['collision']['triangles']:,} triangles (Poisson {rep['poisson_triangles']:,}), "
-            f"visual {rep['visual']['triangles']:,}, closed {rep['closed']}, holes closed {rep['holes_closed']}, "
-            f"scan to mesh mean {rep['scan_to_mesh']['mean'] * 100:.1f} cm "
-            f"p95 {rep['scan_to_mesh']['p95'] * 100:.1f} cm, "
-            f"flooded volume {rep['flooded_volume']} m^3"
-        )
-        print(f"  load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
+        if not scan.exists():
+            points = sample_scan(tris, math.sqrt(area / n), 0.02, holes=40, hole_radius=0.5, seed=n)
+            o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
+            del points
+        walls = {}
+        for workers in args.workers:
+            world = out / f"world_{n}_w{workers}"
+            load = os.getloadavg()
+            t0 = time.monotonic()
+            child = subprocess.Popen(
+                [
+                    sys.executable,
+                    "-m",
+                    "unexmin.world_from_scan",
+                    str(scan),
+                    "--out",
+                    str(world),
+                    "--resolution",
+                    str(resolution),
+                    "--water-level",
+                    "0",
+                    "--memory-gb",
+                    str(args.memory_gb),
+                    "--workers",
+                    str(workers),
+                    "--quiet",
+                ]
+            )
+            _, status, usage = os.wait4(child.pid, 0)
+            wall = time.monotonic() - t0
+            if status != 0:
+                print(f"{n} points, {workers} workers: the tool failed (status {status})")
+                continue
+            walls[workers] = wall
+            rep = json.loads((world / f"mine_{n}.json").read_text())
+            print(
+                f"{rep['points_read']:,} points ({rep['points_used']:,} at {resolution} m), {workers} workers, "
+                f"--memory-gb {args.memory_gb}: {wall:.1f} s wall, {rep['points_read'] / wall:,.0f} points/s, "
+                f"cpu {usage.ru_utime + usage.ru_stime:.1f} s, largest process {usage.ru_maxrss / 1024:,.0f} MB, "
+                f"bound on all at once {rep['peak_rss_bound_mb']:,.0f} MB"
+            )
+            tiles = rep["tiles"]
+            print(
+                f"  tiles {tiles['count']} along {tiles['axis']} (budget {tiles['budget_points']:,} points each), "
+                f"seam loops zipped {tiles['zipped_loops']}, open {tiles['open_loops']}, "
+                f"failed {len(rep['failed_tiles'])}"
+            )
+            for b in tiles["built"]:
+                print(f"    tile {b['index']}: {b['points_used']:,} points, worker peak {b['peak_rss_mb']:,.0f} MB")
+            print(f"  stages [s]: {rep['seconds']}")
+            vol = rep["volume"]
+            err = f"{100 * (vol - true_volume) / true_volume:+.2f} %" if vol is not None else "n/a"
+            print(
+                f"  collision {rep['collision']['triangles']:,} triangles (Poisson {rep['poisson_triangles']:,}), "
+                f"visual {rep['visual']['triangles']:,}, closed {rep['closed']}, holes closed {rep['holes_closed']}, "
+                f"scan to mesh mean {rep['scan_to_mesh']['mean'] * 100:.1f} cm "
+                f"p95 {rep['scan_to_mesh']['p95'] * 100:.1f} cm; void volume {vol} m^3 against the generator's "
+                f"{true_volume:,.1f} ({err})"
+            )
+            after = os.getloadavg()
+            print(f"  load average before {load[0]:.2f}, after {after[0]:.2f}", flush=True)
+        if len(walls) == 2:
+            (w1, t1), (w2, t2) = sorted(walls.items())
+            print(f"  {w2} workers against {w1}: {t1 / t2:.2f}x faster (wall)")
 
 
 if __name__ == "__main__":

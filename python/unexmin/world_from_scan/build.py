@@ -36,7 +36,7 @@ from unexmin.world_from_scan.surface import (
     flooded_volume,
     raycasting_scene,
 )
-from unexmin.world_from_scan.tiles import bin_scan, plan, record_dtype, survey, tile_points_budget
+from unexmin.world_from_scan.tiles import DRIVER_BYTES, bin_scan, plan, record_dtype, survey, tile_points_budget
 from unexmin.worlds.meshes import write_ply
 from unexmin.worlds.schema import read_world
 
@@ -215,13 +215,14 @@ def build_world(
         "visual_edge": visual_edge,
         "seed": seed,
     }
-    per_worker = (memory_gb * 1e9 - 0.5e9) / max(1, local_workers)
+    per_worker = (memory_gb * 1e9 - DRIVER_BYTES) / max(1, local_workers)  # [B] each worker's limit
     t0 = time.monotonic()
     with stage("tiles", len(layout["tiles"]), "tile") as bar:
         results, failures = run_tiles(
             layout, options, local_workers, per_worker, scheduler, retries, bar, None if quiet else note
         )
     times["tiles"] = round(time.monotonic() - t0, 2)
+    driver_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # this process, up to the tiles' end
     for f in failures:
         print(f"world_from_scan: error: {f['tile']} failed after {retries + 1} attempts: {f['error']}", file=sys.stderr)
     if not results:
@@ -361,6 +362,13 @@ def build_world(
         "total_seconds": round(time.monotonic() - t_all, 2),
         "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
         "workers_peak_rss_mb": round(max(r["peak_rss_mb"] for r in results.values()), 1),
+        "peak_rss_bound_mb": round(
+            max(
+                driver_mb + max(1, local_workers) * max(r["peak_rss_mb"] for r in results.values()),
+                resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+            ),
+            1,
+        ),
         "memory_gb": memory_gb,
         "workers": local_workers if not scheduler else None,
         "scheduler": scheduler,

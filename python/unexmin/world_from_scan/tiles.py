@@ -23,9 +23,9 @@ from unexmin.world_from_scan.stream import iter_chunks
 
 CELL_RES = 4.0  # survey cells: this many resolutions (at least 0.5 m)
 BITS = 21  # per axis in a packed cell key: +-2^20 cells around the scan's first point
-PER_POINT_BYTES = 3000.0  # a tile's peak memory per down-sampled point (measured: docs/world_from_scan.md)
+PER_POINT_BYTES = 5000.0  # a tile's peak memory per down-sampled point (docs/world_from_scan.md#memory)
 TILE_BASE_BYTES = 0.45e9  # a tile worker's memory before its points (Python, NumPy, Open3D, Dask)
-DRIVER_BYTES = 0.6e9  # the driving process: the stitched meshes, spawns, the evaluation
+DRIVER_BYTES = 0.6e9  # the driving process while the tiles build (Dask's scheduler and nannies, the survey)
 
 
 def survey_cell(resolution):
