@@ -187,3 +187,22 @@ def test_node_publishes_the_markers_latched(tmp_path):
         ]
         for k in expected.markers
     ]
+
+
+def test_a_large_visual_mesh_is_shown_decimated_near_its_surface(tmp_path):
+    sphere = trimesh.creation.icosphere(6, 2.0)  # 81 920 triangles on a sphere of 2 m
+    v, t, cell = mm.cluster_decimate(sphere.vertices, sphere.faces, 5000)
+    assert 1000 <= len(t) <= 5000 and cell > 0
+    assert np.abs(np.linalg.norm(v, axis=1) - 2.0).max() <= cell  # each vertex a mean of its cell's
+    assert len(np.unique(np.sort(t, axis=1), axis=0)) == len(t)
+    same = mm.cluster_decimate(sphere.vertices, sphere.faces, len(sphere.faces))
+    assert same[2] == 0.0 and same[1] is sphere.faces
+    from unexmin.worlds.meshes import write_ply
+
+    write_ply(tmp_path / "ball.ply", sphere.vertices, sphere.faces, "ball", inward=False)
+    world = {"meshes": [{"name": "ball", "file": str(tmp_path / "ball.ply"), "visual": True}]}
+    shown = mm.display_files(world, 5000, str(tmp_path / "cache"))
+    dv, dt = read_mesh(shown[str(tmp_path / "ball.ply")])
+    assert len(dt) <= 5000 and np.allclose(dv, v, atol=1e-5)  # float32 in the file
+    assert mm.display_files(world, 5000, str(tmp_path / "cache")) == shown  # reused, not rewritten
+    assert mm.display_files(world, 100_000, str(tmp_path / "cache")) == {}  # small enough as it is

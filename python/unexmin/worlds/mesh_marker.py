@@ -16,7 +16,7 @@ import numpy as np
 
 from unexmin.geometry import rpy_quaternion
 from unexmin.worlds.files import load_world, placed_mesh
-from unexmin.worlds.meshes import MeshFormatError
+from unexmin.worlds.meshes import MeshFormatError, read_mesh, write_ply
 
 ROCK = (0.42, 0.47, 0.55, 1.0)  # slate grey-blue: apart from the hull's yellow and rviz's grey
 WATER = (0.10, 0.45, 0.95, 0.45)
@@ -121,8 +121,64 @@ def water_surface(world):
     return np.concatenate(out) if out else np.zeros((0, 3, 3))
 
 
-def build_markers(world, frame_id="world", color=ROCK, water_color=WATER, mesh_colors=None, water=True):
-    """visualization_msgs/MarkerArray for a loaded world (see load_world)."""
+def cluster_decimate(v, t, max_triangles):
+    """At most `max_triangles` triangles of (v, t) by vertex clustering (numpy only): the vertices in each
+    cubic cell merged into their mean, the triangles that collapse or repeat dropped; the cell [mesh
+    units] grows by 25 % until the count fits, from the edge of equilateral triangles of that count
+    over the surface's area. Returns (v, t, cell); cell 0 when the mesh already fits."""
+    if len(t) <= max_triangles:
+        return v, t, 0.0
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+    cell = math.sqrt(area / (max(1, max_triangles) * math.sqrt(3) / 4))
+    lo = v.min(axis=0)
+    while True:
+        keys, inverse = np.unique(np.floor((v - lo) / cell).astype(np.int64), axis=0, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        counts = np.bincount(inverse, minlength=len(keys)).astype(float)
+        cv = np.column_stack([np.bincount(inverse, weights=v[:, k], minlength=len(keys)) for k in range(3)])
+        cv /= counts[:, None]
+        ct = inverse[t]
+        ct = ct[(ct[:, 0] != ct[:, 1]) & (ct[:, 1] != ct[:, 2]) & (ct[:, 2] != ct[:, 0])]
+        _, first = np.unique(np.sort(ct, axis=1), axis=0, return_index=True)
+        ct = ct[np.sort(first)]
+        if len(ct) <= max_triangles:
+            return cv, ct, cell
+        cell *= 1.25
+
+
+def display_files(world, max_triangles, cache_dir):
+    """{mesh file: the file rviz should load}: the visual meshes with more than `max_triangles` triangles
+    decimated (cluster_decimate) into `cache_dir`, reused while the source's size and time are unchanged;
+    the others as they are. Meshes this module cannot read are shown as they are."""
+    shown = {}
+    for entry in world["meshes"]:
+        if not entry["visual"]:
+            continue
+        path = entry["file"]
+        st = os.stat(path)
+        base = os.path.splitext(os.path.basename(path))[0]
+        target = os.path.join(cache_dir, f"{base}_{max_triangles}_{st.st_size}_{st.st_mtime_ns}.ply")
+        if os.path.isfile(target):
+            shown[path] = target
+            continue
+        try:
+            v, t = read_mesh(path)
+        except MeshFormatError:
+            continue
+        if len(t) <= max_triangles:
+            continue
+        dv, dt, _ = cluster_decimate(v, t, max_triangles)
+        os.makedirs(cache_dir, exist_ok=True)
+        write_ply(target + ".part", dv, dt, f"{base} decimated to {len(dt)} triangles for rviz", inward=False)
+        os.replace(target + ".part", target)
+        shown[path] = target
+    return shown
+
+
+def build_markers(world, frame_id="world", color=ROCK, water_color=WATER, mesh_colors=None, water=True, shown=None):
+    """visualization_msgs/MarkerArray for a loaded world (see load_world); `shown`: {mesh file: the file
+    the marker names instead} (display_files)."""
     from geometry_msgs.msg import Point
     from std_msgs.msg import ColorRGBA
     from visualization_msgs.msg import Marker, MarkerArray
@@ -137,7 +193,7 @@ def build_markers(world, frame_id="world", color=ROCK, water_color=WATER, mesh_c
         mk.pose.orientation.x, mk.pose.orientation.y, mk.pose.orientation.z, mk.pose.orientation.w = q
         mk.scale.x, mk.scale.y, mk.scale.z = entry["scale"]
         mk.color = ColorRGBA(*((mesh_colors or {}).get(entry["name"], color)))
-        mk.mesh_resource = "file://" + entry["file"]
+        mk.mesh_resource = "file://" + (shown or {}).get(entry["file"], entry["file"])
         mk.mesh_use_embedded_materials = False
         array.markers.append(mk)
     if water:
@@ -181,14 +237,22 @@ def main():
     mesh_colors = {k: _rgba(f"mesh_colors/{k}", v) for k, v in rospy.get_param("~mesh_colors", {}).items()}
     water = bool(rospy.get_param("~water_surface", True))
     frame_id = rospy.get_param("~frame_id", "world")
+    max_triangles = int(rospy.get_param("~max_triangles", 1_000_000))
+    if max_triangles < 1000:
+        raise SystemExit(f"mesh_marker: parameter ~max_triangles = {max_triangles}: expected at least 1000")
+    ros_home = os.environ.get("ROS_HOME", os.path.join(os.path.expanduser("~"), ".ros"))
+    cache_dir = rospy.get_param("~cache_dir", os.path.join(ros_home, "mesh_marker"))
     for entry in world["meshes"]:
         if entry["visual"] and not os.path.isfile(entry["file"]):
             raise SystemExit(f"mesh_marker: {world_file}: mesh '{entry['name']}' file {entry['file']} does not exist")
+    shown = display_files(world, max_triangles, cache_dir)
+    for source, target in shown.items():
+        rospy.loginfo("mesh_marker: %s shown decimated: %s", source, target)
     try:
-        array = build_markers(world, frame_id, color, water_color, mesh_colors, water)
+        array = build_markers(world, frame_id, color, water_color, mesh_colors, water, shown)
     except MeshFormatError as e:
         rospy.logwarn("mesh_marker: no water surface marker: %s", e)
-        array = build_markers(world, frame_id, color, water_color, mesh_colors, water=False)
+        array = build_markers(world, frame_id, color, water_color, mesh_colors, False, shown)
     pub = rospy.Publisher("world_meshes", MarkerArray, queue_size=1, latch=True)
     pub.publish(array)
     rospy.loginfo(
