@@ -2,6 +2,7 @@
 scheduler with `--scheduler` (as unexmin.batch). A tile that raises is retried, then reported with its
 bounds; the others still build."""
 
+import logging
 import os
 import time
 import traceback
@@ -33,6 +34,7 @@ def local_cluster(workers, memory_limit):
             dashboard_address="127.0.0.1:0",
             scheduler_port=0,
             memory_limit=int(memory_limit),
+            silence_logs=logging.CRITICAL,  # a tile's failure is reported by run_tiles, once, with its bounds
         )
 
 
