@@ -201,180 +201,190 @@ def build_world(
             f"--memory-gb {memory_gb}: the run may take more memory"
         )
     work = out / f"{name}_tiles"
+    created = not out.exists()
     if work.exists():
         shutil.rmtree(work)
-    t0 = time.monotonic()
-    with stage("tile files", total, unit) as bar:
-        layout = bin_scan(scan, s, layout, work, progress=bar)
-    times["bin"] = round(time.monotonic() - t0, 2)
-    # 3. each tile on Dask
-    options = {
-        "resolution": resolution,
-        "max_gap": max_gap,
-        "edge": edge,
-        "visual_edge": visual_edge,
-        "seed": seed,
-    }
-    per_worker = (memory_gb * 1e9 - DRIVER_BYTES) / max(1, local_workers)  # [B] each worker's limit
-    t0 = time.monotonic()
-    with stage("tiles", len(layout["tiles"]), "tile") as bar:
-        results, failures = run_tiles(
-            layout, options, local_workers, per_worker, scheduler, retries, bar, None if quiet else note
-        )
-    times["tiles"] = round(time.monotonic() - t0, 2)
-    driver_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # this process, up to the tiles' end
-    for f in failures:
-        print(f"world_from_scan: error: {f['tile']} failed after {retries + 1} attempts: {f['error']}", file=sys.stderr)
-    if not results:
-        first = failures[0]["error"] if failures else "no tile"
-        raise ScanError(f"{scan}: no usable surface: no tile could be built ({first})")
-    spacing = max(r["spacing"] for r in results.values())
-    if spacing > resolution:
-        note(
-            f"the scan's points are {spacing:.3g} m apart, sparser than --resolution {resolution} m: "
-            f"the surface is reconstructed at {spacing:.3g} m"
-        )
-    # 4. stitching: the seams zipped, the remaining holes closed, the surface turned to face the void
-    t0 = time.monotonic()
-    axis, seams = layout["axis"], layout["seams"]
-    order = [results.get(t["index"]) for t in layout["tiles"]]
-    with stage("stitch", 2) as bar:
-        v, t, zipped, left = stitch([r and r["collision"] for r in order], axis, seams, 2.0 * edge + resolution)
-        if len(t) == 0:
-            raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
-        v, t, holes, hole_area, _ = close_holes(v, t)
-        bar.update(1)
-        vv, vt, _, _ = stitch([r and r["visual"] for r in order], axis, seams, 2.0 * visual_edge + resolution)
-        vv, vt, _, _, _ = close_holes(vv, vt)
-        bar.update(1)
-    times["stitch"] = round(time.monotonic() - t0, 2)
-    import trimesh
+    try:
+        t0 = time.monotonic()
+        with stage("tile files", total, unit) as bar:
+            layout = bin_scan(scan, s, layout, work, progress=bar)
+        times["bin"] = round(time.monotonic() - t0, 2)
+        # 3. each tile on Dask
+        options = {
+            "resolution": resolution,
+            "max_gap": max_gap,
+            "edge": edge,
+            "visual_edge": visual_edge,
+            "seed": seed,
+        }
+        per_worker = (memory_gb * 1e9 - DRIVER_BYTES) / max(1, local_workers)  # [B] each worker's limit
+        t0 = time.monotonic()
+        with stage("tiles", len(layout["tiles"]), "tile") as bar:
+            results, failures = run_tiles(
+                layout, options, local_workers, per_worker, scheduler, retries, bar, None if quiet else note
+            )
+        times["tiles"] = round(time.monotonic() - t0, 2)
+        driver_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # this process, up to the tiles' end
+        for f in failures:
+            print(
+                f"world_from_scan: error: {f['tile']} failed after {retries + 1} attempts: {f['error']}",
+                file=sys.stderr,
+            )
+        if not results:
+            first = failures[0]["error"] if failures else "no tile"
+            raise ScanError(f"{scan}: no usable surface: no tile could be built ({first})")
+        spacing = max(r["spacing"] for r in results.values())
+        if spacing > resolution:
+            note(
+                f"the scan's points are {spacing:.3g} m apart, sparser than --resolution {resolution} m: "
+                f"the surface is reconstructed at {spacing:.3g} m"
+            )
+        # 4. stitching: the seams zipped, the remaining holes closed, the surface turned to face the void
+        t0 = time.monotonic()
+        axis, seams = layout["axis"], layout["seams"]
+        order = [results.get(t["index"]) for t in layout["tiles"]]
+        with stage("stitch", 2) as bar:
+            v, t, zipped, left = stitch([r and r["collision"] for r in order], axis, seams, 2.0 * edge + resolution)
+            if len(t) == 0:
+                raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
+            v, t, holes, hole_area, _ = close_holes(v, t)
+            bar.update(1)
+            vv, vt, _, _ = stitch([r and r["visual"] for r in order], axis, seams, 2.0 * visual_edge + resolution)
+            vv, vt, _, _, _ = close_holes(vv, vt)
+            bar.update(1)
+        times["stitch"] = round(time.monotonic() - t0, 2)
+        import trimesh
 
-    closed = closed_surface(v, t)
-    signed = float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
-    if closed and signed > 0:  # faces must point into the void: the enclosed volume is then negative
-        t, vt, signed = t[:, ::-1].copy(), vt[:, ::-1].copy(), -signed
-    volume = -signed if closed else float("nan")
-    if closed and volume < (4 / 3) * math.pi * (HULL_RADIUS + clearance) ** 3:
-        raise ScanError(
-            f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
-            f"room for one robot (expected walls around a void)"
-        )
-    # 5. spawns, evaluation
-    surface_z = float(s["hi"][2]) if water_level is None else float(water_level)
-    scene = raycasting_scene(v, t)
-    t0 = time.monotonic()
-    with stage("spawns") as bar:
-        sp = np.concatenate([r["samples"][0] for r in results.values()])
-        sn = np.concatenate([r["samples"][1] for r in results.values()])
-        spawns = find_spawns(scene, sp, sn, surface_z, clearance, seed=seed)
-        bar.update(1)
-    times["spawns"] = round(time.monotonic() - t0, 2)
-    if not spawns:
-        raise ScanError(
-            f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
-            "clearance to the walls: no room for a robot"
-        )
-    t0 = time.monotonic()
-    with stage("evaluate") as bar:
-        probe = evaluation_sample(layout, EVAL_POINTS, seed)
-        d = distances(scene, probe) if len(probe) else np.zeros(1)
-        flooded = flooded_volume(v, t, surface_z) if closed else None
-        bar.update(1)
-    times["evaluate"] = round(time.monotonic() - t0, 2)
-    # 6. files: the whole meshes, the parts per tile, two world files
-    out.mkdir(parents=True, exist_ok=True)
-    collision_file, visual_file = f"{name}_collision.ply", f"{name}_visual.ply"
-    comment = f"unexmin world_from_scan {scan.name} resolution {resolution}"
-    write_ply(out / collision_file, v, t, comment + " collision", inward=False)
-    write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
-    parts = []
-    for k, ((pv, pt), (qv, qt)) in enumerate(zip(split_parts(v, t, axis, seams), split_parts(vv, vt, axis, seams))):
-        files = (f"{name}_collision_{k:03d}.ply", f"{name}_visual_{k:03d}.ply")
-        write_ply(out / files[0], pv, pt, f"{comment} collision tile {k}", inward=False)
-        write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False)
-        parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
-    world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
-    whole = [(name, collision_file, True, False), (f"{name}_visual", visual_file, False, True)]
-    by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False) for p in parts]
-    by_part += [(f"{name}_visual_{p['index']:03d}", p["visual"], False, True) for p in parts]
-    for path, meshes in ((world_path, whole), (parts_path, by_part)):
-        path.write_text(world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, scan.name))
-        read_world(path)  # what the simulator will read follows the schema
-    if not keep_tiles:
-        shutil.rmtree(work, ignore_errors=True)
-    rep = {
-        "scan": str(scan),
-        "points_read": int(s["count"]),
-        "points_finite": int(s["finite"]),
-        "points_used": int(sum(r["points_used"] for r in results.values())),
-        "normals": "read" if s["normals"] else "estimated",
-        "orientation_samples_decided": round(float(np.mean([r["decided"] for r in results.values()])), 3),
-        "resolution": resolution,
-        "point_spacing": round(spacing, 4),
-        "poisson_depth": int(max(r["depth"] for r in results.values())),
-        "max_gap": max_gap,
-        "poisson_triangles": int(sum(r["poisson_triangles"] for r in results.values())),
-        "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
-        "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
-        "world": world_path.name,
-        "parts_world": parts_path.name,
-        "tiles": {
-            "axis": "xyz"[axis],
-            "seams": [round(x, 3) for x in seams],
-            "overlap": round(layout["overlap"], 3),
-            "count": len(layout["tiles"]),
-            "budget_points": budget,
-            "zipped_loops": zipped,
-            "open_loops": left,
-            "parts": parts,
-            "built": [
-                {
-                    "index": r["index"],
-                    "points_read": r["points_read"],
-                    "points_used": r["points_used"],
-                    "estimate": layout["tiles"][r["index"]]["estimate"],
-                    "peak_rss_mb": r["peak_rss_mb"],
-                    "seconds": r["seconds"],
-                }
-                for r in sorted(results.values(), key=lambda r: r["index"])
-            ],
-        },
-        "failed_tiles": failures,
-        "closed": closed,
-        "volume": round(volume, 3) if closed else None,
-        "flooded_volume": round(flooded, 3) if flooded is not None else None,
-        "water_level": surface_z,
-        "wall_area": round(sum(r["wall_area"] for r in results.values()), 3),
-        "bridged_area": round(sum(r["bridged_area"] for r in results.values()), 3),
-        "holes_closed": holes,
-        "holes_area": round(hole_area, 3),
-        "scan_to_mesh": {
-            "mean": round(float(d.mean()), 4),
-            "p95": round(float(np.percentile(d, 95)), 4),
-            "max": round(float(d.max()), 4),
-            "points": int(len(probe)),
-        },
-        "bbox_min": [round(x, 3) for x in v.min(axis=0)],
-        "bbox_max": [round(x, 3) for x in v.max(axis=0)],
-        "spawns": [{"xyz": [round(float(x), 3) for x in p], "clearance": round(c, 3)} for p, c in spawns],
-        "seconds": times,
-        "total_seconds": round(time.monotonic() - t_all, 2),
-        "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
-        "workers_peak_rss_mb": round(max(r["peak_rss_mb"] for r in results.values()), 1),
-        "peak_rss_bound_mb": round(
-            max(
-                driver_mb + max(1, local_workers) * max(r["peak_rss_mb"] for r in results.values()),
-                resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        closed = closed_surface(v, t)
+        signed = float(trimesh.Trimesh(v, t, process=False).volume) if closed else float("nan")
+        if closed and signed > 0:  # faces must point into the void: the enclosed volume is then negative
+            t, vt, signed = t[:, ::-1].copy(), vt[:, ::-1].copy(), -signed
+        volume = -signed if closed else float("nan")
+        if closed and volume < (4 / 3) * math.pi * (HULL_RADIUS + clearance) ** 3:
+            raise ScanError(
+                f"{scan}: no usable surface: the closed surface holds {volume:.3g} m^3 of water, not "
+                f"room for one robot (expected walls around a void)"
+            )
+        # 5. spawns, evaluation
+        surface_z = float(s["hi"][2]) if water_level is None else float(water_level)
+        scene = raycasting_scene(v, t)
+        t0 = time.monotonic()
+        with stage("spawns") as bar:
+            sp = np.concatenate([r["samples"][0] for r in results.values()])
+            sn = np.concatenate([r["samples"][1] for r in results.values()])
+            spawns = find_spawns(scene, sp, sn, surface_z, clearance, seed=seed)
+            bar.update(1)
+        times["spawns"] = round(time.monotonic() - t0, 2)
+        if not spawns:
+            raise ScanError(
+                f"{scan}: no point of the water (below z = {surface_z:.2f} m) has {clearance} m of "
+                "clearance to the walls: no room for a robot"
+            )
+        t0 = time.monotonic()
+        with stage("evaluate") as bar:
+            probe = evaluation_sample(layout, EVAL_POINTS, seed)
+            d = distances(scene, probe) if len(probe) else np.zeros(1)
+            flooded = flooded_volume(v, t, surface_z) if closed else None
+            bar.update(1)
+        times["evaluate"] = round(time.monotonic() - t0, 2)
+        # 6. files: the whole meshes, the parts per tile, two world files
+        out.mkdir(parents=True, exist_ok=True)
+        collision_file, visual_file = f"{name}_collision.ply", f"{name}_visual.ply"
+        comment = f"unexmin world_from_scan {scan.name} resolution {resolution}"
+        write_ply(out / collision_file, v, t, comment + " collision", inward=False)
+        write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
+        parts = []
+        for k, ((pv, pt), (qv, qt)) in enumerate(zip(split_parts(v, t, axis, seams), split_parts(vv, vt, axis, seams))):
+            files = (f"{name}_collision_{k:03d}.ply", f"{name}_visual_{k:03d}.ply")
+            write_ply(out / files[0], pv, pt, f"{comment} collision tile {k}", inward=False)
+            write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False)
+            parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
+        world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
+        whole = [(name, collision_file, True, False), (f"{name}_visual", visual_file, False, True)]
+        by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False) for p in parts]
+        by_part += [(f"{name}_visual_{p['index']:03d}", p["visual"], False, True) for p in parts]
+        for path, meshes in ((world_path, whole), (parts_path, by_part)):
+            path.write_text(world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, scan.name))
+            read_world(path)  # what the simulator will read follows the schema
+        if not keep_tiles:
+            shutil.rmtree(work, ignore_errors=True)
+        rep = {
+            "scan": str(scan),
+            "points_read": int(s["count"]),
+            "points_finite": int(s["finite"]),
+            "points_used": int(sum(r["points_used"] for r in results.values())),
+            "normals": "read" if s["normals"] else "estimated",
+            "orientation_samples_decided": round(float(np.mean([r["decided"] for r in results.values()])), 3),
+            "resolution": resolution,
+            "point_spacing": round(spacing, 4),
+            "poisson_depth": int(max(r["depth"] for r in results.values())),
+            "max_gap": max_gap,
+            "poisson_triangles": int(sum(r["poisson_triangles"] for r in results.values())),
+            "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
+            "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
+            "world": world_path.name,
+            "parts_world": parts_path.name,
+            "tiles": {
+                "axis": "xyz"[axis],
+                "seams": [round(x, 3) for x in seams],
+                "overlap": round(layout["overlap"], 3),
+                "count": len(layout["tiles"]),
+                "budget_points": budget,
+                "zipped_loops": zipped,
+                "open_loops": left,
+                "parts": parts,
+                "built": [
+                    {
+                        "index": r["index"],
+                        "points_read": r["points_read"],
+                        "points_used": r["points_used"],
+                        "estimate": layout["tiles"][r["index"]]["estimate"],
+                        "peak_rss_mb": r["peak_rss_mb"],
+                        "seconds": r["seconds"],
+                    }
+                    for r in sorted(results.values(), key=lambda r: r["index"])
+                ],
+            },
+            "failed_tiles": failures,
+            "closed": closed,
+            "volume": round(volume, 3) if closed else None,
+            "flooded_volume": round(flooded, 3) if flooded is not None else None,
+            "water_level": surface_z,
+            "wall_area": round(sum(r["wall_area"] for r in results.values()), 3),
+            "bridged_area": round(sum(r["bridged_area"] for r in results.values()), 3),
+            "holes_closed": holes,
+            "holes_area": round(hole_area, 3),
+            "scan_to_mesh": {
+                "mean": round(float(d.mean()), 4),
+                "p95": round(float(np.percentile(d, 95)), 4),
+                "max": round(float(d.max()), 4),
+                "points": int(len(probe)),
+            },
+            "bbox_min": [round(x, 3) for x in v.min(axis=0)],
+            "bbox_max": [round(x, 3) for x in v.max(axis=0)],
+            "spawns": [{"xyz": [round(float(x), 3) for x in p], "clearance": round(c, 3)} for p, c in spawns],
+            "seconds": times,
+            "total_seconds": round(time.monotonic() - t_all, 2),
+            "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
+            "workers_peak_rss_mb": round(max(r["peak_rss_mb"] for r in results.values()), 1),
+            "peak_rss_bound_mb": round(
+                max(
+                    driver_mb + max(1, local_workers) * max(r["peak_rss_mb"] for r in results.values()),
+                    resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+                ),
+                1,
             ),
-            1,
-        ),
-        "memory_gb": memory_gb,
-        "workers": local_workers if not scheduler else None,
-        "scheduler": scheduler,
-    }
-    (out / f"{name}.json").write_text(json.dumps(rep, indent=1) + "\n")
-    return rep
+            "memory_gb": memory_gb,
+            "workers": local_workers if not scheduler else None,
+            "scheduler": scheduler,
+        }
+        (out / f"{name}.json").write_text(json.dumps(rep, indent=1) + "\n")
+        return rep
+    except BaseException:  # nothing left behind by a run that stops: no tile files, no empty folder
+        shutil.rmtree(work, ignore_errors=True)
+        if created and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()
+        raise
 
 
 def report(rep):
