@@ -195,6 +195,8 @@ def build_world(
     local_workers = 0 if scheduler else workers
     budget = tile_points_budget(memory_gb, max(1, local_workers))
     layout = plan(s, resolution, max_gap, budget)
+    if len(layout["tiles"]) == 1 and not scheduler:
+        local_workers = 0  # one tile: built in this process, no cluster to start (its budget holds all the more)
     if not layout["fits"]:
         note(
             f"a slab of the least width holds more than the {budget:,} points a tile may hold in "
@@ -369,7 +371,7 @@ def build_world(
             "workers_peak_rss_mb": round(max(r["peak_rss_mb"] for r in results.values()), 1),
             "peak_rss_bound_mb": round(
                 max(
-                    driver_mb + max(1, local_workers) * max(r["peak_rss_mb"] for r in results.values()),
+                    driver_mb + local_workers * max(r["peak_rss_mb"] for r in results.values()),
                     resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
                 ),
                 1,
