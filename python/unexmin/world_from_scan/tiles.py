@@ -4,8 +4,8 @@
    colour, and the set of occupied cells of CELL_RES resolutions (the surface's extent, whatever the
    scan's density).
 2. plan(): slabs across the scan's longest axis, each holding (with its overlap on both sides) at most
-   the points a tile's memory allows; seams where the fewest cells are occupied within two layers (the
-   surface crosses them, it does not run along them).
+   the points a tile's memory allows; each seam where the occupied cells per layer vary least within
+   two layers (the surface crosses it, no wall runs along it).
 3. bin_scan(): a second pass appends every point to the file of each tile whose overlapped slab holds it.
    load_tile() reads one back. Records: position [m] float64, normal float32 (when the scan has them),
    colour uint8 RGB (when it has them: the visual mesh's colours travel with the points).
@@ -25,7 +25,7 @@ CELL_RES = 4.0  # survey cells: this many resolutions (at least 0.5 m)
 BITS = 21  # per axis in a packed cell key: +-2^20 cells around the scan's first point
 PER_POINT_BYTES = 5000.0  # a tile's peak memory per down-sampled point (docs/world_from_scan.md#memory)
 TILE_BASE_BYTES = 0.45e9  # a tile worker's memory before its points (Python, NumPy, Open3D, Dask)
-SEAM_LAYERS = 2  # survey layers on each side of a seam that should hold the least surface
+SEAM_LAYERS = 2  # survey layers on each side of a seam in which no wall should run along it
 DRIVER_BYTES = 0.6e9  # the driving process while the tiles build (Dask's scheduler and nannies, the survey)
 
 
@@ -148,11 +148,12 @@ def plan(s, resolution, max_gap, max_points):
         if b >= n:
             seams.append(n)
             break
-        lo_b = max(a + min_width, a + int(0.4 * (b - a)))
+        lo_b = max(a + min_width, a + int(0.25 * (b - a)))
         cand = np.arange(lo_b, b + 1)
-        # the surface within SEAM_LAYERS cells of each candidate: a wall running along the plane (a shaft's
-        # side) fills a whole layer, a gallery crossing it only its perimeter
-        near = np.array([per_layer[max(0, c - SEAM_LAYERS) : c + SEAM_LAYERS].sum() for c in cand])
+        # a wall running along the plane (a shaft's side, a gallery's end) fills one layer: a jump in the
+        # cells per layer within SEAM_LAYERS of the seam; galleries crossing it keep the count even
+        near = [per_layer[max(0, c - SEAM_LAYERS) : c + SEAM_LAYERS] for c in cand]
+        near = np.array([w.max() - w.min() + 0.05 * w.sum() for w in near])
         b = int(cand[np.argmin(near)])  # the seam where the least surface runs
         seams.append(b)
         a = b
