@@ -23,14 +23,15 @@ from unexmin.batch.spec import SpecError, expand, load_spec
 TAIL = ("status", "error", "log", "attempts", "wall_time_s")
 
 
-def local_cluster(workers):
+def local_cluster(workers, config=None, **options):
     """A Dask LocalCluster of `workers` single-threaded worker processes on the loopback. Its scheduler
     (in this process) hands a worker a mission only when the worker is free (worker-saturation 1.0): a
-    mission lasts seconds to minutes, so none waits behind another on a busy worker while one is idle."""
+    mission lasts seconds to minutes, so none waits behind another on a busy worker while one is idle.
+    `config`: more Dask settings; `options`: more LocalCluster arguments (world_from_scan's memory limit)."""
     import dask
     from dask.distributed import LocalCluster
 
-    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
+    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0, **(config or {})}):
         return LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
@@ -38,6 +39,7 @@ def local_cluster(workers):
             host="127.0.0.1",
             dashboard_address="127.0.0.1:0",
             scheduler_port=0,
+            **options,
         )
 
 

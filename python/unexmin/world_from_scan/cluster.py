@@ -12,30 +12,18 @@ from unexmin.world_from_scan.tiles import describe
 
 
 def local_cluster(workers, memory_limit):
-    """A LocalCluster of `workers` single-threaded processes on the loopback, each held to `memory_limit`
-    bytes by its nanny (a tile past it is killed, retried, then reported); one tile per free worker."""
-    import dask
-    from dask.distributed import LocalCluster
+    """unexmin.batch's LocalCluster (single-threaded processes on the loopback, one task per free worker),
+    each worker held to `memory_limit` bytes by its nanny: a tile past it is killed, retried, reported."""
+    from unexmin.batch.run import local_cluster as batch_cluster
 
-    with dask.config.set(
-        {
-            "distributed.scheduler.worker-saturation": 1.0,
-            "distributed.worker.memory.target": False,  # tiles hold arrays, not Dask data: nothing to spill
-            "distributed.worker.memory.spill": False,
-            "distributed.worker.memory.pause": False,
-            "distributed.worker.memory.terminate": 0.98,
-        }
-    ):
-        return LocalCluster(
-            n_workers=workers,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            dashboard_address="127.0.0.1:0",
-            scheduler_port=0,
-            memory_limit=int(memory_limit),
-            silence_logs=logging.CRITICAL,  # a tile's failure is reported by run_tiles, once, with its bounds
-        )
+    no_spill = {  # tiles hold arrays, not Dask data: nothing to spill
+        "distributed.worker.memory.target": False,
+        "distributed.worker.memory.spill": False,
+        "distributed.worker.memory.pause": False,
+        "distributed.worker.memory.terminate": 0.98,
+    }
+    # a tile's failure is reported by run_tiles, once, with its bounds: Dask's own log lines silenced
+    return batch_cluster(workers, no_spill, memory_limit=int(memory_limit), silence_logs=logging.CRITICAL)
 
 
 def _failure(tile, layout, error):
