@@ -10,6 +10,8 @@ import traceback
 from unexmin.world_from_scan.tile import build_tile
 from unexmin.world_from_scan.tiles import describe
 
+CLOSE_TIMEOUT = 60  # [s] for the client and the local cluster to close
+
 
 def local_cluster(workers, memory_limit):
     """unexmin.batch's LocalCluster (single-threaded processes on the loopback, one task per free worker),
@@ -86,7 +88,17 @@ def run_tiles(layout, options, workers, memory_limit, scheduler=None, retries=1,
                 bar.set_postfix(failed=len(failures))
             future.release()
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        _close(client, cluster)
     return results, failures
+
+
+def _close(client, cluster):
+    """Close the client and the local cluster; on a loaded machine a worker may take longer to stop than
+    Dask waits (a TimeoutError after every tile was built): the nanny has been told to kill it by then."""
+    for thing in (client, cluster):
+        if thing is None:
+            continue
+        try:
+            thing.close(timeout=CLOSE_TIMEOUT)
+        except (TimeoutError, OSError) as e:  # the results are in; the worker is being killed
+            logging.getLogger(__name__).debug("closing %s: %s", type(thing).__name__, e)
