@@ -33,7 +33,7 @@ from unexmin.worlds.schema import read_world
 NOISE = 0.02  # [m] sd of the scan noise
 MEAN_TOL, P95_TOL = 0.05, 0.15  # [m] the bounds of the one-tile tests (test_world_from_scan.py)
 RESOLUTION = 0.25  # [m]
-MEMORY_GB = 1.7  # the budget of the tiled run: several tiles of the small mine
+MEMORY_GB = 2.0  # [GB] the budget of the tiled run: 4 tiles of the small mine
 
 
 def peak_rss_of(cmd):

@@ -16,6 +16,7 @@ import math
 import os
 import resource
 import shutil
+import signal
 import sys
 import time
 from pathlib import Path
@@ -417,7 +418,7 @@ def report(rep):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m unexmin.world_from_scan", description=__doc__.split("\n\n")[0])
-    ap.add_argument("scan", help="point cloud: .ply .pcd .xyz .xyzn .pts .txt .csv .las .laz [m]")
+    ap.add_argument("scan", help="point cloud: .ply .pcd .xyz .xyzn .xyzrgb .pts .txt .asc .csv .las .laz [m]")
     ap.add_argument("--out", required=True, help="output folder (created)")
     ap.add_argument("--name", help="world and file name prefix (default: the scan's file name)")
     ap.add_argument("--resolution", type=float, default=0.1, help="[m] voxel size and Poisson cell (default 0.1)")
@@ -461,6 +462,8 @@ def main(argv=None):
     ap.add_argument("--retries", type=int, default=1, help="attempts after a tile's first failure (default 1)")
     ap.add_argument("--keep-tiles", action="store_true", help="keep the tile files (DIR/NAME_tiles/)")
     args = ap.parse_args(argv)
+    # a SIGTERM unwinds like an exception: the local cluster's workers are stopped, the tile files removed
+    signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(128 + signum))
     try:
         rep = build_world(
             args.scan,
