@@ -83,8 +83,8 @@ void holdPitch(const World& world, std::vector<double>& thrusts) {
   thrusts[6] = thrusts[7] = pulse(-u);
 }
 
-/// Run for `seconds`, re-sending thruster and fin commands (a pulse width offset [us] or rpm, an angle [rad]) every step;
-/// with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
+/// Run for `seconds`, re-sending thruster and fin commands (a pulse width offset [us] or rpm, an angle [rad]) every
+/// step; with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
 void run(World& world, double seconds, std::vector<double> thrusts, const std::vector<double>& fins = {},
          bool pitch_hold = false) {
   auto& robot = world.robot(0);
