@@ -4,6 +4,7 @@ time from launch to the first odometry message (docs/benchmarks.md, "Mine world"
 
     source scripts/env.sh && python bench/mine_rtf.py [--sim-seconds 120] [--seed 0] [--repeat 3] [--world mine|tank]
                                                       [--sensors all|none|imu,dvl,...]
+    python bench/mine_rtf.py --vehicles ux1,bluerov2_heavy,remus100 [--repeat 3] [--sim-seconds 60]   # a mixed team
 
 For each robot count, --repeat times (the summary gives medians), in a fresh process with its own
 ROS master:
@@ -18,6 +19,9 @@ ROS master:
   * RTF: --sim-seconds of sim time divided by the wall time it took;
   * the simulator's CPU use over that span and its resident memory (VmRSS now, VmHWM peak);
   * the topics the simulator publishes under /UX_1 (which sensors existed when the figure was taken).
+With --vehicles, one team instead of the 1, 2, 3 UX-1s (mine_world.launch vehicles:=; each vehicle holds a thrust
+pattern of its own: the ROV surges, the AUV runs its propeller at 1000 rpm), and the RTF in the simulator's CPU time
+(sim seconds over the simulator's CPU seconds) beside the wall-time one.
 With --translations, a C++ sink (bench/topic_counter.cpp, built with g++) subscribes to every robot's
 m3/points and dvl_water_track from the start, so the simulator builds its M3 and DVL translations and sends
 them; the sink's CPU is reported apart, and the share of the translated messages stamped inside the stepped
@@ -40,10 +44,14 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sensors_rtf import run_child  # noqa: E402
 
+from unexmin.vehicles import team_names  # noqa: E402
+
 PATTERNS = {  # thrust per thruster [N], thesis allocation columns (eq. 5.12) scaled
     "UX_1": [10.0, 0.0, -10.0, 0.0, 10.0, 0.0, -10.0, 0.0],  # surge
     "UX_2": [0.0, 10.0, 0.0, 10.0, 0.0, -10.0, 0.0, 10.0],  # heave down (-Z column)
     "UX_3": [-5.0, 0.0, 5.0, 0.0, 5.0, 0.0, -5.0, 0.0],  # yaw
+    "ROV_1": [200.0] * 4 + [0.0] * 4,  # surge: T200 pulse offsets [us] on the horizontal thrusters
+    "AUV_1": [1000.0],  # propeller [rpm]
 }
 
 
@@ -66,14 +74,20 @@ def cpu_seconds(pid):
 TRANSLATIONS = {"m3/points": 40.0, "dvl_water_track": 8.0}  # [Hz of sim time]: the C++ translations
 
 
-def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False):
+def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False, vehicles=""):
     t_launch = time.monotonic()
     from unexmin.scripting.launcher import WorldProcess, wait_for
 
     # Lockstep (realtime:=false), running: the first message comes with the first physics step, as in
     # real time, and the lockstep wall-rate caps on /clock and joint_states apply while stepping.
+    team = (f"vehicles:={vehicles}",) if vehicles else ()
     world = WorldProcess(
-        world=world_name, robots=robots, seed=seed, realtime=False, paused=False, extra_args=(f"sensors:={sensors}",)
+        world=world_name,
+        robots=robots,
+        seed=seed,
+        realtime=False,
+        paused=False,
+        extra_args=(f"sensors:={sensors}", *team),
     )
     workdir = tempfile.TemporaryDirectory(prefix="mine_rtf_")
     sink = None
@@ -89,7 +103,7 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
 
         rospy.init_node("mine_bench", anonymous=True, disable_signals=True)
         t_master = time.monotonic()
-        names = [f"UX_{i + 1}" for i in range(robots)]
+        names = team_names(vehicles) if vehicles else [f"UX_{i + 1}" for i in range(robots)]
         window = Path(workdir.name) / "window"
         sink_topics = [f"/{n}/{t}" for n in names for t in TRANSLATIONS] if translations else []
         if sink_topics:
@@ -114,12 +128,14 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         ]
         rospy.wait_for_service("/sim/step", timeout)
         t_ready = time.monotonic()
-        wait_for(lambda: len(first) == robots, timeout, "the first odometry of every robot")
+        wait_for(lambda: len(first) == len(names), timeout, "the first odometry of every robot")
         t_odom = max(first.values())
         for sub in subs:  # the benchmark is no odometry client: it would load the two cores
             sub.unregister()
         rospy.ServiceProxy("/sim/pause", Empty)()
-        pubs = {n: [sync_publisher(f"/{n}/thrusters/{i}/input", Float64) for i in range(8)] for n in names}
+        pubs = {
+            n: [sync_publisher(f"/{n}/thrusters/{i}/input", Float64) for i in range(len(PATTERNS[n]))] for n in names
+        }
         wait_for(
             lambda: all(p.get_num_connections() > 0 for ps in pubs.values() for p in ps),
             timeout,
@@ -149,7 +165,7 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         wall1, cpu1 = time.monotonic(), cpu_seconds(pid)
         mem = proc_status(pid)
         publishers = master.getSystemState()[0]
-        topics = sorted(t for t, nodes in publishers if t.startswith("/UX_1/") and "/simulator" in nodes)
+        topics = sorted(t for t, nodes in publishers if t.startswith(f"/{names[0]}/") and "/simulator" in nodes)
         result = {
             "robots": robots,
             "master_s": t_master - t_launch,
@@ -157,6 +173,7 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
             "first_odom_s": t_odom - t_launch,
             "rtf": (sim1 - sim0) / (wall1 - wall0),
             "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0),
+            "cpu_rtf": (sim1 - sim0) / (cpu1 - cpu0),
             "rss_mb": mem["VmRSS"],
             "peak_rss_mb": mem["VmHWM"],
             "sim_seconds": sim1 - sim0,
@@ -195,6 +212,9 @@ def main():
     ap.add_argument("--world", choices=("mine", "tank"), default="mine", help="tank: the same, for comparison")
     ap.add_argument("--sensors", default="all", help="sensor families that run (the sensors:= launch argument)")
     ap.add_argument(
+        "--vehicles", default="", help="a mixed team instead of 1, 2, 3 UX-1s, e.g. ux1,bluerov2_heavy,remus100"
+    )
+    ap.add_argument(
         "--translations",
         action="store_true",
         help="a C++ sink subscribes to every robot's m3/points and dvl_water_track (the C++ translations)",
@@ -204,13 +224,21 @@ def main():
         print(
             json.dumps(
                 measure(
-                    args.robots, args.sim_seconds, args.seed, args.timeout, args.world, args.sensors, args.translations
+                    args.robots,
+                    args.sim_seconds,
+                    args.seed,
+                    args.timeout,
+                    args.world,
+                    args.sensors,
+                    args.translations,
+                    args.vehicles,
                 )
             )
         )
         return 0
     print(
-        f"{args.world} world, sensors {args.sensors}, physics 500 Hz, stepped as fast as it goes, "
+        f"{args.world} world{', team ' + args.vehicles if args.vehicles else ''}, sensors {args.sensors}, "
+        "physics 500 Hz, stepped as fast as it goes, "
         f"{args.sim_seconds:.0f} s of sim time per run, {args.repeat} runs per count; {machine()}"
     )
     header = (
@@ -219,7 +247,7 @@ def main():
     )
     print(header)
     topics, summary = None, []
-    for robots in (1, 2, 3):
+    for robots in (1,) if args.vehicles else (1, 2, 3):
         runs = []
         for _ in range(args.repeat):
             r = run_child(
@@ -236,10 +264,11 @@ def main():
                     "--sensors",
                     args.sensors,
                     *(["--translations"] if args.translations else []),
+                    *(["--vehicles", args.vehicles] if args.vehicles else []),
                     "--timeout",
                     str(args.timeout),
                 ],
-                f"{robots} robots",
+                args.vehicles or f"{robots} robots",
             )
             if r is None:
                 return 1
@@ -249,7 +278,7 @@ def main():
         summary.append(row(robots, {k: float(np.median([r[k] for r in runs])) for k in runs[0] if k != "topics"}))
     print(f"median of {args.repeat} runs (load average after: {os.getloadavg()[0]:.2f})\n{header}")
     print("\n".join(summary))
-    print("simulator topics under /UX_1: " + " ".join(t[len("/UX_1/") :] for t in topics))
+    print("simulator topics under the first robot: " + " ".join(t.split("/", 2)[2] for t in topics))
     return 0
 
 
@@ -258,6 +287,7 @@ def row(robots, r):
         f"{robots:>6} {r['rtf']:>7.1f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f} "
         f"{r['master_s']:>9.2f} {r['ready_s']:>8.2f} {r['first_odom_s']:>11.2f}"
         + (f"  delivered {r['delivered']:.2f}, sink CPU {r['sink_cpu_percent']:.0f} %" if "delivered" in r else "")
+        + f"  RTF in the simulator's CPU time {r['cpu_rtf']:.1f}"
     )
 
 

@@ -66,9 +66,10 @@ std::pair<double, double> pitchAndRate(const World& world) {
   return {std::atan2(-x.z(), std::hypot(x.x(), x.y())), (s.pose.linear().transpose() * s.angular_velocity).y()};
 }
 
-/// T200 pulse width [us] for a signed offset from the dead band (1476..1524 us), clamped to 1100..1900.
+/// T200 command: pulse width offset from neutral [us] (1500 us is 0) for a signed offset from the dead band
+/// (-24..24 us), clamped to -400..400 (1100..1900 us).
 double pulse(double offset) {
-  return std::clamp(offset >= 0.0 ? 1524.0 + offset : 1476.0 + offset, 1100.0, 1900.0);
+  return std::clamp(offset >= 0.0 ? 24.0 + offset : -24.0 + offset, -400.0, 400.0);
 }
 
 /// The ROV's four vertical thrusters (4, 5 front at x = +0.12 m; 6, 7 rear) holding the pitch at 0 by a PD law: the
@@ -82,8 +83,8 @@ void holdPitch(const World& world, std::vector<double>& thrusts) {
   thrusts[6] = thrusts[7] = pulse(-u);
 }
 
-/// Run for `seconds`, re-sending thruster and fin commands (a pulse width [us] or rpm, an angle [rad]) every step;
-/// with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
+/// Run for `seconds`, re-sending thruster and fin commands (a pulse width offset [us] or rpm, an angle [rad]) every
+/// step; with `pitch_hold` the ROV's vertical thrusters hold its pitch (holdPitch).
 void run(World& world, double seconds, std::vector<double> thrusts, const std::vector<double>& fins = {},
          bool pitch_hold = false) {
   auto& robot = world.robot(0);
@@ -113,13 +114,13 @@ double terminal(double f, double dl, double dq) {
 // von Benzon et al. 2022, parameter table.
 constexpr double kRovMass = 13.5, kRovVolume = 0.0134, kRovIz = 0.37, kRovAddedR = 0.2215;
 constexpr double kXu = 13.7, kXuu = 141.0, kZw = 33.0, kZww = 190.0, kNrr = 1.5;
-// T200 at 16 V, full forward (1900 us) [N]; thruster placement x = 0.156, y = 0.111 m at 45 deg.
+// T200 at 16 V, full forward (1900 us, command +400) [N]; thruster placement x = 0.156, y = 0.111 m at 45 deg.
 constexpr double kT200Max = 51.5;
 const double kYawArm = (0.156 + 0.111) * std::sqrt(0.5);
 
 TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust) {
   auto world = openWater(expand("bluerov2_heavy.urdf.xacro", "name:=R"), "R", 1000.0);
-  run(*world, 20.0, {1900, 1900, 1900, 1900, 1500, 1500, 1500, 1500}, {}, true);
+  run(*world, 20.0, {400, 400, 400, 400, 0, 0, 0, 0}, {}, true);
   EXPECT_NEAR(pitchAndRate(*world).first, 0.0, 0.02) << "the pitch hold should keep the ROV level";
   const double force = 4.0 * kT200Max * std::sqrt(0.5);
   const double expected = terminal(force, kXu, kXuu);  // 0.969 m/s
@@ -131,7 +132,7 @@ TEST(BlueRov2Heavy, SteadySurgeAtFullForwardThrust) {
 
 TEST(BlueRov2Heavy, SteadyHeaveAtFullUpwardThrust) {
   auto world = openWater(expand("bluerov2_heavy.urdf.xacro", "name:=R"), "R", 1000.0);
-  run(*world, 20.0, {1500, 1500, 1500, 1500, 1900, 1900, 1900, 1900});
+  run(*world, 20.0, {0, 0, 0, 0, 400, 400, 400, 400});
   const double net = 4.0 * kT200Max + (1000.0 * kRovVolume - kRovMass) * kG;  // thrust + buoyancy - weight
   const double expected = terminal(net, kZw, kZww);                           // 0.955 m/s
   const double w = bodyVelocity(*world).z();
@@ -148,15 +149,16 @@ TEST(BlueRov2Heavy, YawStepFollowsTheQuadraticDampingTimeConstant) {
     xml.replace(at, xml.find("</dynamics>", at) + 11 - at, "<dynamics type=\"zero_order\"/>");
   ASSERT_EQ(lags, 8);
   auto world = openWater(xml, "R", 1000.0, 0.001);
-  // Thrusters 1, 3 at +7.5 N (1600 us), 0, 2 at -7.5 N: 1379 us interpolates -5.4 N (1400) and -15.4 N (1300).
-  const double pulse_back = 1400.0 - 100.0 * (7.5 - 5.4) / (15.4 - 5.4);
+  // Thrusters 1, 3 at +7.5 N (1600 us: +100), 0, 2 at -7.5 N: 1379 us (-121) interpolates -5.4 N (1400 us) and
+  // -15.4 N (1300 us).
+  const double pulse_back = -100.0 - 100.0 * (7.5 - 5.4) / (15.4 - 5.4);
   const double moment = 4.0 * 7.5 * kYawArm;
   // (I_z + N_rdot) r' = N - N_rr r^2  ->  r = r_ss tanh(t / T), r_ss = sqrt(N / N_rr), T = (I_z + N_rdot) / sqrt(N
   // N_rr)
   const double r_ss = std::sqrt(moment / kNrr);
   const double time_constant = (kRovIz + kRovAddedR) / std::sqrt(moment * kNrr);  // 0.21 s
   double reached = -1.0;
-  const std::vector<double> cmd = {pulse_back, 1600, pulse_back, 1600, 1500, 1500, 1500, 1500};
+  const std::vector<double> cmd = {pulse_back, 100, pulse_back, 100, 0, 0, 0, 0};
   for (int i = 0; i < 3000 && reached < 0.0; ++i) {
     run(*world, world->dt(), cmd);
     if (world->robot(0).state().angular_velocity.z() >= std::tanh(1.0) * r_ss)

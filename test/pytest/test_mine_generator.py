@@ -65,7 +65,12 @@ def as_solid(path):
 
 
 def world_robots():
-    return yaml.safe_load(MINE_WORLD.read_text())["robots"]
+    """The UX-1s of worlds/mine.world (the generator's spawns); the other vehicles: other_vehicles()."""
+    return [r for r in yaml.safe_load(MINE_WORLD.read_text())["robots"] if r["description"] == "ux1.urdf.xacro"]
+
+
+def other_vehicles():
+    return [r for r in yaml.safe_load(MINE_WORLD.read_text())["robots"] if r["description"] != "ux1.urdf.xacro"]
 
 
 # ------------------------------------------------------------------------------------------------
@@ -305,3 +310,16 @@ def test_shipped_mine_spawn_points_are_in_water_with_clearance(shipped):
     inside, distance = spawn_clearances(as_solid(SHIPPED / shipped["collision"]["file"]), points)
     assert inside.all()
     assert (distance >= R_HULL + CLEARANCE).all(), distance
+
+
+# [m] the half-length of each other vehicle's hull (docs/adding_a_vehicle.md): the BlueROV2 Heavy's half diagonal of
+# 0.457 x 0.575 x 0.254 m, the REMUS 100's half length 1.33 / 2
+HALF_SIZE = {"bluerov2_heavy.urdf.xacro": 0.5 * math.sqrt(0.457**2 + 0.575**2 + 0.254**2), "remus100.urdf.xacro": 0.665}
+
+
+def test_shipped_mine_other_vehicles_are_in_water_with_clearance(shipped):
+    others = other_vehicles()
+    assert [r["name"] for r in others] == ["ROV_1", "AUV_1"]
+    inside, distance = spawn_clearances(as_solid(SHIPPED / shipped["collision"]["file"]), [r["xyz"] for r in others])
+    assert inside.all()
+    assert (distance >= [HALF_SIZE[r["description"]] + CLEARANCE for r in others]).all(), distance

@@ -52,10 +52,10 @@ def display_names(config):
     return names
 
 
-def launched_config(robots):
-    """The configuration file `tank_world.launch rviz:=true robots:=<robots>` passes to rviz (roslaunch --args)."""
+def launched_config(robots, launch="tank_world.launch", arg="robots"):
+    """The configuration file `<launch> rviz:=true <arg>:=<robots>` passes to rviz (roslaunch --args)."""
     out = subprocess.run(
-        ["roslaunch", "--args", "rviz", "unexmin", "tank_world.launch", "rviz:=true", f"robots:={robots}"],
+        ["roslaunch", "--args", "rviz", "unexmin", launch, "rviz:=true", f"{arg}:={robots}"],
         capture_output=True,
         text=True,
         timeout=60,
@@ -96,3 +96,18 @@ def test_config_for_refuses_a_robot_count_it_has_no_robots_for():
     for bad in (0, 4):
         with pytest.raises(ValueError, match=f"robots = {bad}: expected 1 to 3"):
             rviz_configs.config_for(text, bad)
+
+
+def test_team_config_shows_every_vehicle_and_the_mine_team_opens_it():
+    config = yaml.safe_load(rviz_configs.TEAM_PATH.read_text())
+    assert robots_named(config) == {1}
+    names = display_names(config)
+    for robot in ("UX_1", "ROV_1", "AUV_1"):
+        assert f"{robot} model" in names and f"{robot} odom" in names
+    displays = {d["Name"]: d for d in config["Visualization Manager"]["Displays"]}
+    assert displays["ROV_1 model"]["Robot Description"] == "/ROV_1/robot_description"
+    assert displays["AUV_1 odom"]["Topic"] == "/AUV_1/odom"
+    assert displays["ROV_1 imaging sonar"]["Image Topic"] == "/ROV_1/imaging_sonar/fan"
+    assert displays["AUV_1 side scan"]["Image Topic"] == "/AUV_1/side_scan/waterfall"
+    opened = launched_config("ux1,remus100", "mine_world.launch", "vehicles")
+    assert opened.resolve() == rviz_configs.TEAM_PATH.resolve()

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""rostest: the BlueROV2 Heavy and the REMUS 100 move under commands on their own topics; a bad command is
-rejected and leaves the vehicle where the good ones put it."""
+"""rostest: the BlueROV2 Heavy and the REMUS 100 move under commands on their own topics, and under a body wrench
+through their own allocators (force_moments); a bad command is rejected and leaves the vehicle where the good ones
+put it."""
 
 import math
 import time
@@ -8,6 +9,7 @@ import unittest
 
 import rospy
 import rostest
+from geometry_msgs.msg import Wrench
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Float64
 
@@ -24,6 +26,7 @@ class Vehicle:
             rospy.Publisher("/%s/thrusters/%d/input" % (name, i), Float64, queue_size=1) for i in range(thrusters)
         ]
         self.fins = [rospy.Publisher("/%s/fins/%d/input" % (name, i), Float64, queue_size=1) for i in range(fins)]
+        self.wrench = rospy.Publisher("/%s/force_moments" % name, Wrench, queue_size=1)
 
     def _on_odom(self, msg):
         self.odom = msg
@@ -36,14 +39,19 @@ class Vehicle:
         q = self.odom.pose.pose.orientation
         return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
-    def drive_until(self, thrusts, fins, done, timeout=TIMEOUT):
-        """Publish the commands every 0.05 s of wall time until done() holds or `timeout` passes; returns done()."""
+    def drive_until(self, thrusts, fins, done, timeout=TIMEOUT, wrench=None):
+        """Publish the commands (or the body wrench [X Y Z K M N] to the allocator) every 0.05 s of wall time until
+        done() holds or `timeout` passes; returns done()."""
         end = time.monotonic() + timeout
         while not rospy.is_shutdown() and time.monotonic() < end:
             for pub, value in zip(self.thrusters, thrusts):
                 pub.publish(Float64(value))
             for pub, value in zip(self.fins, fins):
                 pub.publish(Float64(value))
+            if wrench is not None:
+                msg = Wrench()
+                msg.force.x, msg.force.y, msg.force.z, msg.torque.x, msg.torque.y, msg.torque.z = wrench
+                self.wrench.publish(msg)
             if done():
                 return True
             time.sleep(0.05)
@@ -70,9 +78,30 @@ class VehiclesTank(unittest.TestCase):
 
     def test_rov_surges_forward_on_its_horizontal_thrusters(self):
         x0, y0, _ = self.rov.position()
-        moved = self.rov.drive_until([1700] * 4 + [1500] * 4, [], lambda: self.rov.position()[0] - x0 > 0.3)
+        moved = self.rov.drive_until([200] * 4 + [0] * 4, [], lambda: self.rov.position()[0] - x0 > 0.3)
         self.assertTrue(moved, "ROV_1 did not move 0.3 m forward: %s" % (self.rov.position(),))
         self.assertLess(abs(self.rov.position()[1] - y0), 0.1, "a pure surge command drifted sideways")
+
+    def test_rov_rises_on_a_heave_wrench_through_its_allocator(self):
+        x0, y0, z0 = self.rov.position()
+        rose = self.rov.drive_until([], [], lambda: self.rov.position()[2] - z0 > 0.2, wrench=[0, 0, 40, 0, 0, 0])
+        x, y, z = self.rov.position()
+        self.assertTrue(rose, "ROV_1 did not rise 0.2 m on Z = 40 N: z %.3f -> %.3f" % (z0, z))
+        self.assertLess(math.hypot(x - x0, y - y0), 0.05, "a pure heave wrench moved the ROV sideways")
+
+    def test_auv_speeds_up_and_turns_to_port_on_a_wrench_through_its_allocator(self):
+        x0, yaw0 = self.auv.position()[0], self.auv.yaw()
+        turned = self.auv.drive_until(
+            [],
+            [],
+            lambda: self.auv.position()[0] - x0 > 0.3 and self.auv.yaw() - yaw0 > 0.05,
+            wrench=[3, 0, 0, 0, 0, 1],
+        )
+        self.assertTrue(
+            turned,
+            "AUV_1 did not move forward and turn to port on X = 3 N, N = 1 N m: x %.3f -> %.3f, yaw %.3f -> %.3f"
+            % (x0, self.auv.position()[0], yaw0, self.auv.yaw()),
+        )
 
     def test_auv_turns_on_its_rudder_and_refuses_a_nan_fin_command(self):
         x0 = self.auv.position()[0]

@@ -16,6 +16,7 @@ from xml.etree import ElementTree
 import numpy as np
 import yaml
 
+from unexmin.vehicles import parse_vehicles
 from unexmin.worlds.files import PACKAGE_DIR, link_meshes, world_path
 from unexmin.worlds.schema import WorldFileError, read_world
 
@@ -47,6 +48,7 @@ KEYS = {
     "ray_caster_threads",
     "python_path",
     "control",
+    "vehicles",
 }
 VISIBILITY = ("none", "low", "medium", "high")
 
@@ -171,6 +173,10 @@ def check_spec(raw, path="<spec>"):
         raise SpecError(f"{path}: world: {e}") from None
     spec["world"] = world
     spec["robots"] = _number(f"{path}: robots", raw.get("robots", 1), 1, 3, integer=True)
+    try:  # a mixed team instead of `robots` UX-1s (docs/batch.md)
+        spec["vehicles"] = parse_vehicles(raw["vehicles"], f"{path}: vehicles") if raw.get("vehicles") else []
+    except ValueError as e:
+        raise SpecError(str(e)) from None
     spec["duration"] = _number(f"{path}: duration [s of sim time]", raw.get("duration", 30.0), 1e-3)
     spec["timeout"] = _number(
         f"{path}: timeout [s of wall time per attempt]", raw.get("timeout", 120.0 + 10.0 * spec["duration"]), 1.0
@@ -352,6 +358,8 @@ def write_launch(spec, mission, folder):
         "control": str(spec["control"]).lower(),
         "mesh_marker": "false",
     }  # no rviz in a batch
+    if spec.get("vehicles"):
+        args["vehicles"] = ",".join(spec["vehicles"])
     for k in range(1, spec["robots"] + 1):
         args[f"UX_{k}_overrides"] = overrides
     body = "\n".join(f'    <arg name="{k}" value="{v}"/>' for k, v in args.items())

@@ -26,6 +26,7 @@ from unexmin.scripting.rospy_node import master_online, node_master_uri, registe
 from unexmin.scripting.streams import StreamSet, header_stamp
 from unexmin.srv import Reset, Step
 from unexmin.topics import sync_publisher
+from unexmin.vehicles import parse_vehicles
 
 #: Longest burst of one /sim/step call [s of sim time] while sensor streams are subscribed: half of
 #: the 20 s of sim time the simulator's outgoing queue holds per topic (SensorPublisher::queueSize),
@@ -311,14 +312,18 @@ class Simulation:
         self._clock = rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=1)
 
     @classmethod
-    def launch(cls, world="tank", robots=1, seed=0, log_dir=None, timeout=60.0, launch_file=None, **kwargs):
+    def launch(
+        cls, world="tank", robots=1, seed=0, log_dir=None, timeout=60.0, launch_file=None, vehicles=None, **kwargs
+    ):
         """Start a headless lockstep world, paused, on a private master and connect to it.
 
         world: `<world>_world.launch` of the package (tank, mine, test_box); robots: how many of the
         world's robots to spawn; seed: the simulator's seed; log_dir: folder for roslaunch.log and the
         nodes' logs; timeout [s] of wall time for the world to offer its services; launch_file: a
         launch file to run instead of `<world>_world.launch` (it must start the simulator paused in
-        lockstep). kwargs go to Simulation() (node_name).
+        lockstep); vehicles: a mixed team instead of `robots` UX-1s, vehicle types in order (e.g.
+        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles). kwargs go to
+        Simulation() (node_name).
         The first launch of a process picks a free port; later ones (after close()) reuse it, because
         rospy stays bound to the master it first registered with.
         """
@@ -345,6 +350,7 @@ class Simulation:
             log_dir=log_dir,
             port=port,
             launch_file=launch_file,
+            extra_args=(f"vehicles:={','.join(parse_vehicles(vehicles))}",) if vehicles else (),
         )
         try:
             return cls(timeout=timeout, world=proc, **kwargs)
