@@ -40,6 +40,8 @@ def test_depth_first_order_and_child_keys():
     }
     assert {(*k, s, o) for k, s, o in zip(keys.tolist(), sizes.tolist(), occupied.tolist())} == expected
     with pytest.raises(ValueError, match="ends inside a node"):
+        leaves(data[:-2])
+    with pytest.raises(ValueError, match="two bytes per node"):
         leaves(data[:-1])
     with pytest.raises(ValueError, match="bytes left"):
         leaves(data + b"\0\0")
@@ -133,21 +135,24 @@ def test_no_frontier_no_goal():
     assert choose_goals(graph, g, frontiers(g, 10.0, po), gain_map(g, po), {"UX_1": search}, [], po) == {}
 
 
-def test_dead_reckoning_of_a_circle():
-    """Body velocity 0.3 m/s forward, yaw rate 0.1 rad/s: a circle of radius 3 m, exact in closed form."""
-    v, w, dt = 0.3, 0.1, 0.002
+def test_dead_reckoning_of_a_straight_line_flown_turning():
+    """The explorer's motion: 0.3 m/s along +x in the world while the heading turns at 0.2 rad/s. The DVL (8 Hz)
+    measures the velocity in its own frame, turning; held in the world frame between pings the estimate is exact:
+    x = v t, y = 0, the yaw w t."""
+    v, w, dt = 0.3, 0.2, 0.002
     dvl_R = rotation(math.pi, 0.0, 0.0)  # the UX-1's DVL: x forward, y starboard, z down
     nav = DeadReckoning((0, 0, -5.0), np.eye(3), 0.0, dvl_R, (0, 0, -0.3), 1000.0, 9.81)
     nav.pressure(2e5)
     t = 0.0
     for k in range(int(20.0 / dt)):
-        if k % 62 == 0:  # the DVL's pings (about 8 Hz): the velocity in its own frame
-            nav.dvl(True, dvl_R.T @ np.array([v, 0.0, 0.0]))
+        if k % 62 == 0:  # a ping: the world velocity in the DVL frame at this heading
+            body = rotation(0.0, 0.0, w * t).T @ np.array([v, 0.0, 0.0])
+            nav.dvl(True, dvl_R.T @ body)
         t += dt
         nav.rates([(t, (0.0, 0.0, w))])
-    r = v / w
-    np.testing.assert_allclose(nav.p[:2], [r * math.sin(w * t), r * (1 - math.cos(w * t))], atol=2e-3)
-    assert nav.yaw == pytest.approx(w * t)
+    np.testing.assert_allclose(nav.p[:2], [v * t, 0.0], atol=1e-6)
+    assert math.remainder(nav.yaw - w * t, 2 * math.pi) == pytest.approx(0.0, abs=1e-9)
+    np.testing.assert_allclose(nav.R @ nav.v_body, [v, 0.0, 0.0], atol=1e-9)
     nav.pressure(2e5 + 1000.0 * 9.81 * 2.0)  # 2 m deeper
     assert nav.p[2] == pytest.approx(-7.0)
     nav.dvl(False, (math.nan,) * 3)  # no bottom: the velocity decays with coast_tau

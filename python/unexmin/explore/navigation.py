@@ -3,9 +3,11 @@ velocity for the horizontal position, the pressure for the depth.
 
 - Attitude: the body rates (IMU frame = body frame on the UX-1) integrated as a rotation vector per sample
   (exact for a rate constant over the sample's interval), from the known start attitude.
-- Velocity: the DVL's velocity (its own frame) turned into the body frame, less the lever arm's ω × r; without
-  bottom lock (no bottom within 75 m, as in a deep shaft) the last locked velocity decays with the drag's time
-  constant (`coast_tau`) and the estimate is flagged.
+- Velocity: the DVL's velocity (its own frame) turned into the body frame, less the lever arm's ω × r, and into
+  the world frame with the attitude at the ping; held in the world frame until the next ping (held in the body
+  frame, a robot that turns all the time would see its velocity turn with it between pings: a drift sideways
+  growing with the distance); without bottom lock (no bottom within 75 m, as in a deep shaft) the last locked
+  velocity decays with the drag's time constant (`coast_tau`) and the estimate is flagged.
 - Position: x, y integrate the world-frame velocity; z = start z - (p - p_start) / (ρ g) (the pressure sensor's
   offset on the hull cancels with the start reading at the start attitude).
 """
@@ -48,12 +50,17 @@ class DeadReckoning:
         self.dvl_r = np.asarray(dvl_offset, float)
         self.rho_g = density * gravity
         self.coast_tau = coast_tau
-        self.v_body = np.zeros(3)
+        self.v_world = np.zeros(3)  # [m/s] the last ping's velocity in the world frame
         self.omega = np.zeros(3)
         self.z0 = float(position[2])
         self.p0 = None  # [Pa] pressure at the start
         self.locked = True
         self.lock_lost_s = 0.0  # [s] of sim time without bottom lock
+
+    @property
+    def v_body(self):
+        """[m/s] the estimated velocity in the body frame now."""
+        return self.R.T @ self.v_world
 
     @property
     def yaw(self):
@@ -72,16 +79,15 @@ class DeadReckoning:
 
     def _advance(self, dt):
         if not self.locked:
-            self.v_body *= math.exp(-dt / self.coast_tau)
+            self.v_world *= math.exp(-dt / self.coast_tau)
             self.lock_lost_s += dt
-        v = self.R @ self.v_body
-        self.p[:2] += v[:2] * dt
+        self.p[:2] += self.v_world[:2] * dt
 
     def dvl(self, lock, velocity):
         """A DVL ping: bottom lock and the velocity [m/s] in the DVL frame."""
         self.locked = bool(lock) and all(math.isfinite(v) for v in velocity)
         if self.locked:
-            self.v_body = self.dvl_R @ np.asarray(velocity, float) - np.cross(self.omega, self.dvl_r)
+            self.v_world = self.R @ (self.dvl_R @ np.asarray(velocity, float) - np.cross(self.omega, self.dvl_r))
 
     def pressure(self, pa):
         """A pressure reading [Pa]: the depth."""

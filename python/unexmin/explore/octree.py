@@ -12,9 +12,11 @@ import numpy as np
 TREE_DEPTH = 16
 KEY_OFFSET = 1 << (TREE_DEPTH - 1)  # 32768: key of the voxel whose lower corner is the origin
 
-# For each byte value, the (child index within the byte's four, 2-bit code) of its existing children.
-_CHILDREN = [[(i, (b >> (2 * i)) & 3) for i in range(4) if (b >> (2 * i)) & 3] for b in range(256)]
+# For each 16-bit node word (first byte low), the children that are inner nodes (code 3), last first: the order in
+# which they go on the decoder's stack.
+_INNER = [tuple(c for c in range(7, -1, -1) if (w >> (2 * c)) & 3 == 3) for w in range(1 << 16)]
 FREE, OCCUPIED = 1, 2  # 2-bit codes of a leaf; 3: inner node
+_BITS = np.array([[(c >> a) & 1 for a in range(3)] for c in range(8)], np.int64)  # child index -> (x, y, z) side
 
 
 def read_bt(path):
@@ -43,34 +45,36 @@ def read_bt(path):
 
 
 def leaves(data):
-    """Every leaf of a binary tree stream: (lower-corner keys N x 3 int64, edge in keys N, occupied N bool)."""
-    keys, sizes, occupied = [], [], []
-    if not data:
+    """Every leaf of a binary tree stream: (lower-corner keys N x 3 int64, edge in keys N, occupied N bool).
+
+    Every node is two bytes in the stream, depth first: only the inner nodes' corners are found in a Python loop,
+    the leaves are then read from the node words with numpy."""
+    if len(data) % 2:
+        raise ValueError(f"OctoMap data of {len(data)} bytes: expected two bytes per node")
+    words = np.frombuffer(data, "<u2")
+    n = len(words)
+    if not n:
         return np.zeros((0, 3), np.int64), np.zeros(0, np.int64), np.zeros(0, bool)
-    buf = memoryview(data)
-    pos = 0
-    stack = [(0, 0, 0, 1 << TREE_DEPTH)]  # inner nodes to read: lower-corner key, edge in keys
-    while stack:
-        x, y, z, size = stack.pop()
-        if pos + 2 > len(buf):
-            raise ValueError(f"OctoMap data ends inside a node at byte {pos}")
+    corners = np.empty((n, 4), np.int64)  # x, y, z, edge [keys] of each inner node in stream order
+    stack = [(0, 0, 0, 1 << TREE_DEPTH)]
+    inner = _INNER
+    i = 0
+    for i, w in enumerate(words.tolist()):
+        if not stack:
+            raise ValueError(f"OctoMap data: {2 * (n - i)} bytes left after the tree")
+        node = stack.pop()
+        corners[i] = node
+        x, y, z, size = node
         half = size >> 1
-        inner = []
-        for byte, base in ((buf[pos], 0), (buf[pos + 1], 4)):
-            for i, code in _CHILDREN[byte]:
-                c = base + i
-                cx, cy, cz = x + (half if c & 1 else 0), y + (half if c & 2 else 0), z + (half if c & 4 else 0)
-                if code == 3:
-                    inner.append((cx, cy, cz, half))
-                else:
-                    keys.append((cx, cy, cz))
-                    sizes.append(half)
-                    occupied.append(code == OCCUPIED)
-        pos += 2
-        stack.extend(reversed(inner))  # depth first, children in order: the stream's order
-    if pos != len(buf):
-        raise ValueError(f"OctoMap data: {len(buf) - pos} bytes left after the tree")
-    return np.array(keys, np.int64).reshape(-1, 3), np.array(sizes, np.int64), np.array(occupied, bool)
+        for c in inner[w]:
+            stack.append((x + (half if c & 1 else 0), y + (half if c & 2 else 0), z + (half if c & 4 else 0), half))
+    if stack:
+        raise ValueError(f"OctoMap data ends inside a node at byte {2 * n}")
+    codes = (words[:, None].astype(np.int64) >> (2 * np.arange(8))) & 3  # n x 8 child codes
+    node, child = np.nonzero((codes == FREE) | (codes == OCCUPIED))
+    half = corners[node, 3] >> 1
+    keys = corners[node, :3] + _BITS[child] * half[:, None]
+    return keys, half, codes[node, child] == OCCUPIED
 
 
 def read_leaves(path):

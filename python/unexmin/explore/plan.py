@@ -8,8 +8,8 @@
 - Paths: Dijkstra over the traversable cells, 26-connected, edge cost the centre-to-centre distance [m]; the path
   is then shortened by straight segments that stay on traversable cells.
 - Goals: traversable cells within `goal_reach` [m] of a frontier, scored gain x exp(-distance / `distance_scale`),
-  gain = unknown cells within `gain_radius` [m] (a box filter); goals of other robots push a goal away by
-  `separation` [m].
+  gain = unknown cells with a free face neighbour within `gain_radius` [m] (a box filter), at least `min_gain`;
+  goals of other robots push a goal away by `separation` [m].
 """
 
 from dataclasses import dataclass
@@ -27,11 +27,11 @@ _OFFSETS = np.array([(i, j, k) for i in (-1, 0, 1) for j in (-1, 0, 1) for k in 
 class PlanOptions:
     hull_radius: float = 0.3  # [m]
     margin: float = 0.3  # [m] more water kept between the hull and a mapped wall
-    clear_unknown: float = 0.4  # [m] from a cell centre to the nearest unknown cell centre
+    clear_unknown: float = 0.7  # [m] from a cell centre to the nearest unknown cell centre (unknown may be rock)
     surface_margin: float = 0.8  # [m] the hull's centre stays this far under the water surface
     goal_reach: float = 1.6  # [m] a goal lies within this of a frontier cell
     gain_radius: float = 2.0  # [m] half edge of the box whose unknown cells count as a goal's gain
-    min_gain: float = 0.05  # share of that box unknown for a goal to count
+    min_gain: float = 6.0  # unknown cells on the edge of the free space in that box for a goal to count
     distance_scale: float = 20.0  # [m] utility falls by e per this much path
     separation: float = 6.0  # [m] a goal this near another robot's goal loses its gain
 
@@ -45,8 +45,8 @@ class PlanOptions:
         for name in ("margin", "clear_unknown", "surface_margin", "separation"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"explore option {name} = {getattr(self, name)}: expected >= 0")
-        if not 0 <= self.min_gain < 1:
-            raise ValueError(f"explore option min_gain = {self.min_gain}: expected in [0, 1)")
+        if not self.min_gain >= 1:
+            raise ValueError(f"explore option min_gain = {self.min_gain}: expected >= 1 cell")
 
 
 def traversable(grid, options, surface_z, free_spheres=()):
@@ -85,9 +85,13 @@ def frontiers(grid, surface_z, options):
 
 
 def gain_map(grid, options):
-    """Share of unknown cells in the box of half edge gain_radius around each cell."""
+    """Number of unknown cells with a free face neighbour (the edge of what the sensors have seen through; unknown
+    rock behind a mapped wall does not count) in the box of half edge gain_radius around each cell."""
     n = 2 * max(1, int(round(options.gain_radius / grid.cell))) + 1
-    return ndimage.uniform_filter((grid.states == UNKNOWN).astype(np.float32), size=n, mode="constant")
+    edge = (grid.states == UNKNOWN) & ndimage.binary_dilation(
+        grid.states == FREE, ndimage.generate_binary_structure(3, 1)
+    )
+    return ndimage.uniform_filter(edge.astype(np.float32), size=n, mode="constant") * n**3
 
 
 class Graph:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from unexmin.explore.budget import Budget, power
-from unexmin.explore.grid import OCCUPIED, empty_grid, grid_from_leaves
+from unexmin.explore.grid import FREE, OCCUPIED, empty_grid, grid_from_leaves
 from unexmin.explore.navigation import DeadReckoning, rotation
 from unexmin.explore.octree import read_leaves
 from unexmin.explore.plan import (
@@ -38,14 +38,14 @@ class ExploreOptions:
     robots: int = 1  # how many of the world's robots explore (1..3)
     speed: float = 0.3  # [m/s] along the path
     yaw_rate: float = 0.2  # [rad/s] the robot turns all the time (its sensors sweep the walls, floor and roof)
-    control_dt: float = 0.1  # [s] of sim time between controller updates
+    control_dt: float = 0.2  # [s] of sim time between controller updates
     map_period: float = 5.0  # [s] of sim time between map reads (and replanning)
     cell_voxels: int = 4  # grid cell edge in map voxels (0.4 m at the default resolution)
     resolution: float = 0.1  # [m] the mapper's voxel edge
     bounds: tuple = None  # ((x, y, z), (x, y, z)) [m] the box explored; None: around the start (default_bounds)
     goal_tolerance: float = 0.8  # [m] a goal is reached within this
     home_tolerance: float = 0.5  # [m] the start is reached within this (estimated position)
-    hold_distance: float = 0.6  # [m] the reference waits while the robot is farther than this from it
+    hold_distance: float = 0.4  # [m] the reference waits while the robot is farther than this from it
     stuck_s: float = 20.0  # [s] a robot that has not advanced stuck_m along its path in this time is stuck
     stuck_m: float = 0.3  # [m]
     sonar_guard: float = 0.45  # [m] an M3 echo this near the hull ahead of the motion stops the robot
@@ -103,6 +103,7 @@ class Agent:
     path: np.ndarray = None  # [m] points of the path followed
     s: float = 0.0  # [m] the reference's arc length along the path
     goal: np.ndarray = None
+    hold: np.ndarray = None  # [m] where the robot waits without a path
     yaw_ref: float = 0.0
     energy: float = 0.0  # [J]
     flown: float = 0.0  # [m] true distance flown
@@ -116,6 +117,7 @@ class Agent:
     rows: list = field(default_factory=list)
 
     def set_path(self, points, t):
+        self.hold = None
         pts = np.vstack([self.nav.p[None], np.asarray(points, float)])
         keep = np.concatenate([[True], np.linalg.norm(np.diff(pts, axis=0), axis=1) > 1e-6])
         self.path = pts[keep]
@@ -196,11 +198,12 @@ class Explorer:
     def run(self):
         from unexmin.scripting.launcher import WorldProcess
         from unexmin.scripting.simulation import Simulation
-        from unexmin.worlds.files import load_world
+        from unexmin.worlds.schema import read_world
 
-        world_cfg = load_world(self.world_file)
-        self.surface_z = float(world_cfg["water"]["surface_z"])
-        density, gravity = float(world_cfg["water"]["density"]), float(world_cfg.get("gravity", 9.81))
+        world_cfg = read_world(self.world_file)
+        water = world_cfg.get("water") or {}
+        self.surface_z = float(water.get("surface_z", 0.0))
+        density, gravity = float(water.get("density", 1000.0)), float(world_cfg.get("gravity", 9.81))
         log_dir = os.path.join(self.out, "logs")
         os.makedirs(log_dir, exist_ok=True)
         os.makedirs(os.path.join(self.out, "snapshots"), exist_ok=True)
@@ -348,6 +351,9 @@ class Explorer:
         if abs(res - self.o.resolution) > 1e-9:
             raise RuntimeError(f"the mapper's resolution is {res} m, expected {self.o.resolution} m")
         grid_from_leaves(self.grid, res, keys, sizes, occupied, self.o.cell_voxels)
+        for a in self.agents:  # where a robot is, is water (its own cell is not mapped at the start)
+            near = ball_mask(self.grid, a.nav.p, 0.7) & (self.grid.states == 0)
+            self.grid.states[near] = FREE
         if self.sonar_points:
             idx = self.grid.index(np.array(self.sonar_points))
             idx = idx[self.grid.inside(idx)]
@@ -357,7 +363,7 @@ class Explorer:
     def _loop(self, sim):
         o = self.o
         steps = max(1, round(o.control_dt * sim.physics_rate))
-        next_map, next_snap, next_row = 0.0, o.snapshot if o.snapshot > 0 else math.inf, 0.0
+        next_map, next_snap, next_row = o.map_period, o.snapshot if o.snapshot > 0 else math.inf, 0.0
         hard_stop = self.budget.time_s + o.grace_s
         while True:
             t = sim.time
@@ -365,6 +371,7 @@ class Explorer:
                 self._read_map()
                 self._replan(t)
                 self._record(t)
+                self._progress(t)
                 next_map += o.map_period
             if t >= next_snap:
                 path = os.path.join(self.out, "snapshots", f"map_{t:07.1f}.bt")
@@ -414,7 +421,9 @@ class Explorer:
     def _control(self, a, t, dt):
         o = self.o
         if a.mode == "home" or a.path is None:
-            ref, vel = (a.home if a.mode == "home" else a.nav.p.copy()), np.zeros(3)
+            if a.hold is None:
+                a.hold = a.nav.p.copy()
+            ref, vel = (a.home if a.mode == "home" else a.hold), np.zeros(3)
         else:
             ref, vel = a.reference(o.speed)
         a.yaw_ref += o.yaw_rate * dt if a.mode != "home" else 0.0
@@ -436,8 +445,8 @@ class Explorer:
             self.event(t, a.name, "sonar_stop", f"echo {np.linalg.norm(echo):.2f} m ahead at {point.round(2).tolist()}")
             if a.goal is not None:
                 self.avoid.append(a.goal)
-            a.path, a.goal = None, None
-            ref, vel = a.nav.p.copy(), np.zeros(3)
+            a.path, a.goal, a.hold = None, None, a.nav.p.copy()
+            ref, vel = a.hold, np.zeros(3)
         from unexmin.missions.survey import track
 
         pose, twist = _pose_msgs(a, v_body, a.nav.omega[2])
@@ -454,11 +463,11 @@ class Explorer:
                 self.event(t, a.name, "stuck", f"{dist:.2f} m from its reference for {o.stuck_s:.0f} s")
                 if a.goal is not None:
                     self.avoid.append(a.goal)
-                a.path, a.goal = None, None
+                a.path, a.goal, a.hold = None, None, a.nav.p.copy()
             elif a.s >= a.path_length() and dist < o.goal_tolerance:
                 if a.mode == "explore":
                     self.avoid.append(a.goal)
-                    a.path, a.goal = None, None
+                    a.path, a.goal, a.hold = None, None, a.nav.p.copy()
                 elif a.mode == "return" and np.linalg.norm(a.nav.p - a.home) < max(o.home_tolerance, 0.3):
                     a.mode = "home"
                     self.event(t, a.name, "home", f"{a.why}; estimated {np.linalg.norm(a.nav.p - a.home):.2f} m off")
@@ -490,6 +499,18 @@ class Explorer:
                         "dvl_lock": a.nav.locked,
                     }
                 )
+
+    def _progress(self, t):
+        r = self.timeline[-1]
+        robots = "  ".join(
+            f"{a.name} {a.mode} at {np.round(a.nav.p, 1).tolist()}"
+            + (f" -> {np.round(a.goal, 1).tolist()}" if a.goal is not None else "")
+            for a in self.agents
+        )
+        print(
+            f"[{t:7.1f} s] explored {r['explored_reachable_m3']:.0f} m3 ({100 * r['coverage']:.0f} %)  {robots}",
+            flush=True,
+        )
 
     def _record(self, t):
         known = self.grid.states != 0

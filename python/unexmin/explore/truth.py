@@ -33,25 +33,31 @@ class Truth:
         self.tree = cKDTree(self.points)
         self.spacing = spacing
 
-    def clearance(self, points):
-        """Signed distance [m] from points to the rock, positive in the water (nearest sample: overestimates
-        the true distance by at most about the spacing)."""
+    def clearance(self, points, reach=2.0):
+        """Signed distance [m] from points to the rock, positive in the water (nearest sample: overestimates the
+        true distance by at most about the spacing); +inf for points farther than `reach` [m] from every sample."""
         points = np.atleast_2d(np.asarray(points, float))
-        d, i = self.tree.query(points)
-        side = np.einsum("ij,ij->i", points - self.points[i], self.normals[i])
+        d, i = self.tree.query(points, distance_upper_bound=reach)
+        near = np.isfinite(d)
+        side = np.ones(len(points))
+        side[near] = np.einsum("ij,ij->i", points[near] - self.points[i[near]], self.normals[i[near]])
         return np.where(side >= 0, d, -d)
 
     def reachable(self, grid, start, min_clearance, surface_z, surface_margin):
         """Boolean mask of the grid's cells where the hull's centre can be: at least min_clearance [m] from the
-        rock, under the surface less surface_margin, connected to the start [m] (26-neighbours)."""
+        rock, under the surface less surface_margin, connected to the start [m] (26-neighbours). Cells farther than
+        2 m from the rock count as water here: one in the rock is walled off from the start by cells within 2 m of
+        the rock on its side."""
         idx = np.stack(np.meshgrid(*[np.arange(n) for n in grid.shape], indexing="ij"), -1).reshape(-1, 3)
         centres = grid.centre(idx)
         ok = (self.clearance(centres) >= min_clearance) & (centres[:, 2] <= surface_z - surface_margin)
         ok = ok.reshape(grid.shape)
         labels, _ = ndimage.label(ok, ndimage.generate_binary_structure(3, 3))
-        s = tuple(grid.index(np.asarray(start, float)[None])[0])
-        if not grid.inside(np.array(s)) or labels[s] == 0:
-            d = np.where(ok, 0, 1)
-            near = ndimage.distance_transform_edt(d, return_indices=True)[1]
-            s = tuple(near[:, s[0], s[1], s[2]]) if grid.inside(np.array(s)) else s
-        return labels == labels[s] if grid.inside(np.array(s)) and labels[s] > 0 else np.zeros(grid.shape, bool)
+        s = grid.index(np.asarray(start, float)[None])[0]
+        if not grid.inside(s):
+            raise ValueError(f"start {start} is outside the explored box")
+        label = labels[tuple(s)]
+        if label == 0:  # the start's own cell too near the rock: the nearest reachable cell's component
+            near = ndimage.distance_transform_edt(labels == 0, return_indices=True)[1]
+            label = labels[tuple(near[:, s[0], s[1], s[2]])]
+        return labels == label
