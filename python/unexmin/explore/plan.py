@@ -27,7 +27,7 @@ _OFFSETS = np.array([(i, j, k) for i in (-1, 0, 1) for j in (-1, 0, 1) for k in 
 class PlanOptions:
     hull_radius: float = 0.3  # [m]
     margin: float = 0.3  # [m] more water kept between the hull and a mapped wall
-    clear_unknown: float = 0.7  # [m] from a cell centre to the nearest unknown cell centre (unknown may be rock)
+    clear_unknown: float = 0.5  # [m] from a cell centre to the nearest unknown cell centre (unknown may be rock)
     surface_margin: float = 0.8  # [m] the hull's centre stays this far under the water surface
     goal_reach: float = 1.6  # [m] a goal lies within this of a frontier cell
     gain_radius: float = 2.0  # [m] half edge of the box whose unknown cells count as a goal's gain

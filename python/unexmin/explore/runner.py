@@ -51,6 +51,7 @@ class ExploreOptions:
     sonar_guard: float = 0.45  # [m] an M3 echo this near the hull ahead of the motion stops the robot
     robot_clearance: float = 1.2  # [m] between robots' centres in their plans
     snapshot: float = 0.0  # [s] of sim time between saved maps (snapshots/, scored at the end); 0: none
+    idle_replans: int = 3  # replans in a row without a goal before the robot calls the box explored
     grace_s: float = 120.0  # [s] past the time budget before the run is stopped (a robot not home is reported)
 
     def check(self):
@@ -104,6 +105,7 @@ class Agent:
     s: float = 0.0  # [m] the reference's arc length along the path
     goal: np.ndarray = None
     hold: np.ndarray = None  # [m] where the robot waits without a path
+    idle: int = 0  # replans in a row without a goal
     yaw_ref: float = 0.0
     energy: float = 0.0  # [J]
     flown: float = 0.0  # [m] true distance flown
@@ -565,8 +567,11 @@ class Explorer:
             a = self._agent(name)
             if name in chosen:
                 goal, path, _ = chosen[name]
-                a.goal = goal
+                a.goal, a.idle = goal, 0
                 a.set_path(path, t)
+            elif a.idle + 1 < o.idle_replans:  # turning where it is, its sensors may yet open a way on
+                a.idle += 1
+                a.path, a.goal = None, None
             else:
                 home = path_to(graphs[name], searches[name], a.home)
                 self._go_home(a, t, home, "explored: no frontier left within reach")
