@@ -12,9 +12,10 @@ import pytest
 
 from unexmin.explore.budget import Budget, power
 from unexmin.explore.grid import FREE, OCCUPIED, UNKNOWN, Grid, empty_grid, grid_from_leaves
-from unexmin.explore.navigation import DeadReckoning, rotation
+from unexmin.explore.navigation import DeadReckoning
 from unexmin.explore.octree import KEY_OFFSET, leaf_centres, leaves, read_bt
 from unexmin.explore.plan import Graph, PlanOptions, choose_goals, frontiers, gain_map, path_to, traversable
+from unexmin.geometry import rpy_matrix
 
 HALF = 1 << 15  # a child of the root spans 32768 keys
 
@@ -140,13 +141,13 @@ def test_dead_reckoning_of_a_straight_line_flown_turning():
     measures the velocity in its own frame, turning; held in the world frame between pings the estimate is exact:
     x = v t, y = 0, the yaw w t."""
     v, w, dt = 0.3, 0.2, 0.002
-    dvl_R = rotation(math.pi, 0.0, 0.0)  # the UX-1's DVL: x forward, y starboard, z down
+    dvl_R = rpy_matrix((math.pi, 0.0, 0.0))  # the UX-1's DVL: x forward, y starboard, z down
     nav = DeadReckoning((0, 0, -5.0), np.eye(3), 0.0, dvl_R, (0, 0, -0.3), 1000.0, 9.81)
     nav.pressure(2e5)
     t = 0.0
     for k in range(int(20.0 / dt)):
         if k % 62 == 0:  # a ping: the world velocity in the DVL frame at this heading
-            body = rotation(0.0, 0.0, w * t).T @ np.array([v, 0.0, 0.0])
+            body = rpy_matrix((0.0, 0.0, w * t)).T @ np.array([v, 0.0, 0.0])
             nav.dvl(True, dvl_R.T @ body)
         t += dt
         nav.rates([(t, (0.0, 0.0, w))])

@@ -68,19 +68,22 @@ def main(argv=None):
     e = Explorer(args.out, world_file, options, budget, plan_options, args.seed, args.visibility).run()
     s = write(e)
     q = s["quality"]
-    print(
+    lines = [
         f"\n{s['robots']} robot(s) explored {s['explored_reachable_m3']:.0f} of {s['reachable_m3']:.0f} m3 reachable "
         f"({100 * s['coverage']:.0f} %) in {s['sim_time_s']:.0f} s of sim time ({s['mission_wall_s']:.0f} s wall, RTF "
         f"{s['rtf_while_stepping']}); all home: {s['all_home']}; contacts {s['contacts']}, stuck {s['stuck']}, "
         f"sonar stops {s['sonar_stops']}"
+    ]
+    lines += [
+        f"  {name}: {r['flown_m']:.0f} m flown, {r['energy_j']:.0f} J, drift {r['drift_m']} m (max "
+        f"{r['max_drift_m']}), {r['home_error_m']} m from its start, min clearance {r['min_clearance_m']} m"
+        for name, r in s["robot"].items()
+    ]
+    lines.append(
+        f"map: precision {q['precision']:.3f}, recall {q['recall']:.3f}, F-score {q['f_score']:.3f} -> {args.out}"
     )
-    for name, r in s["robot"].items():
-        print(
-            f"  {name}: {r['flown_m']:.0f} m flown, {r['energy_j']:.0f} J, drift {r['drift_m']} m (max "
-            f"{r['max_drift_m']}), {r['home_error_m']} m from its start, min clearance {r['min_clearance_m']} m"
-        )
-    print(f"map: precision {q['precision']:.3f}, recall {q['recall']:.3f}, F-score {q['f_score']:.3f} -> {args.out}")
-    return 0
+    print("\n".join(lines))
+    return 0 if s["contacts"] == 0 and s["all_home"] else 3
 
 
 if __name__ == "__main__":

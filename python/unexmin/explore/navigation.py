@@ -17,18 +17,6 @@ import math
 import numpy as np
 
 
-def rotation(rx, ry, rz):
-    """Rotation matrix of a roll-pitch-yaw (x, y, z fixed axes) [rad]."""
-    cx, sx, cy, sy, cz, sz = math.cos(rx), math.sin(rx), math.cos(ry), math.sin(ry), math.cos(rz), math.sin(rz)
-    return np.array(
-        [
-            [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
-            [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
-            [-sy, cy * sx, cy * cx],
-        ]
-    )
-
-
 def exp_so3(w):
     """Rotation matrix of a rotation vector w [rad] (Rodrigues)."""
     a = float(np.linalg.norm(w))

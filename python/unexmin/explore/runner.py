@@ -15,7 +15,7 @@ import numpy as np
 
 from unexmin.explore.budget import Budget, power
 from unexmin.explore.grid import FREE, OCCUPIED, empty_grid, grid_from_leaves
-from unexmin.explore.navigation import DeadReckoning, rotation
+from unexmin.explore.navigation import DeadReckoning
 from unexmin.explore.octree import read_leaves
 from unexmin.explore.plan import (
     Graph,
@@ -27,6 +27,7 @@ from unexmin.explore.plan import (
     path_to,
     traversable,
 )
+from unexmin.geometry import rpy_matrix
 
 SLS_UNITS = 4
 CLOUDS_PER_S = 40 + 10 * SLS_UNITS  # per robot: the M3 at 40 Hz, each SLS unit at 10 Hz
@@ -86,7 +87,7 @@ def sensor_joint(description, child):
             o = joint.find("origin")
             xyz = [float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()]
             rpy = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
-            return rotation(*rpy), np.array(xyz)
+            return rpy_matrix(rpy), np.array(xyz)
     raise LookupError(f"the robot description has no joint whose child is {child}")
 
 
@@ -260,10 +261,7 @@ class Explorer:
         finally:
             if stats_sub is not None:
                 stats_sub.unregister()
-            if sim is not None:
-                sim.close(30.0)
-            else:
-                world.close(30.0)
+            (world if sim is None else sim).close(30.0)  # the Simulation closes the world it owns
         self.mission_wall = time.monotonic() - wall0
         return self
 
