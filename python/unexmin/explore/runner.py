@@ -567,8 +567,9 @@ class Explorer:
                 goal, path, _ = chosen[name]
                 a.goal, a.idle = goal, 0
                 a.set_path(path, t)
-            elif a.idle + 1 < o.idle_replans:  # turning where it is, its sensors may yet open a way on
-                a.idle += 1
+            elif a.idle + 1 < o.idle_replans or self._crowded(a):
+                # turning where it is, its sensors may yet open a way on; a teammate near it may be in its way
+                a.idle += 0 if self._crowded(a) else 1
                 a.path, a.goal = None, None
             else:
                 home = path_to(graphs[name], searches[name], a.home)
@@ -578,6 +579,10 @@ class Explorer:
                 home = path_to(graphs[a.name], searches[a.name], a.home)
                 if home is not None:
                     a.set_path(home[0], t)
+
+    def _crowded(self, a):
+        """True when another robot still out is within 3 m of `a` (it may block a's way, not the frontiers')."""
+        return any(b is not a and b.mode != "home" and np.linalg.norm(b.nav.p - a.nav.p) < 3.0 for b in self.agents)
 
     def _go_home(self, a, t, home, why):
         a.mode, a.why, a.goal = "return", why, None
