@@ -351,9 +351,11 @@ class Explorer:
         if abs(res - self.o.resolution) > 1e-9:
             raise RuntimeError(f"the mapper's resolution is {res} m, expected {self.o.resolution} m")
         grid_from_leaves(self.grid, res, keys, sizes, occupied, self.o.cell_voxels)
-        for a in self.agents:  # where a robot is, is water (its own cell is not mapped at the start)
-            near = ball_mask(self.grid, a.nav.p, 0.7) & (self.grid.states == 0)
-            self.grid.states[near] = FREE
+        for a in self.agents:
+            # where a robot is, is water: its own cell is not mapped at the start, and its teammates' sensors map
+            # its hull as occupied
+            near = ball_mask(self.grid, a.nav.p, 0.7)
+            self.grid.states[near & (self.grid.states != FREE)] = FREE
         if self.sonar_points:
             idx = self.grid.index(np.array(self.sonar_points))
             idx = idx[self.grid.inside(idx)]
