@@ -3,15 +3,15 @@
 (docs/benchmarks.md, docs/explore.md).
 
     source scripts/env.sh && python bench/explore_bench.py [--out DIR] [--time S] [--snapshot S] [--reuse]
-                                                         [--visibility none|medium] [--skip-survey]
+                   [--visibility none|medium] [--skip-survey] [--world-file FILE --bounds X0 Y0 Z0 X1 Y1 Z1]
 
-Runs, one after the other, in the shipped mine: the main job's survey (python -m unexmin.missions.mine), the
-explorer with UX_1 alone and with UX_1..UX_3 (python -m unexmin.explore, same budget and box, maps saved every
---snapshot s and scored). Prints per run the F-score (precision and recall of unexmin.map_quality against that
-run's own path) at each snapshot, the final coverage of the reachable volume, the RTF while stepping and the load,
-and the three-robot speed-up: the one robot's sim time to reach the explored volume three robots reached at half
-their run, over theirs. Writes DIR/explore_bench.png and DIR/explore_bench.json. --reuse reads runs already in
-DIR instead of running them.
+Runs, one after the other: the main job's survey in the shipped mine (python -m unexmin.missions.mine), then the
+explorer (python -m unexmin.explore) with UX_1 alone and with UX_1..UX_3, in the shipped mine or --world-file,
+same budget and box, maps saved every --snapshot s and scored. Prints per run the F-score (precision and recall
+of unexmin.map_quality against that run's own path) at each snapshot, the final coverage of the reachable
+volume, the RTF while stepping and the load, and the three-robot speed-up: the one robot's sim time to reach the
+explored volume three robots reached at half their run, over theirs. Writes DIR/explore_bench.png and
+DIR/explore_bench.json. --reuse reads runs already in DIR instead of running them.
 """
 
 import argparse
@@ -48,6 +48,8 @@ def main(argv=None):
     p.add_argument("--visibility", default="none", choices=("none", "low", "medium", "high"))
     p.add_argument("--reuse", action="store_true", help="read the runs already in --out")
     p.add_argument("--skip-survey", action="store_true")
+    p.add_argument("--world-file", help="the explorers' world (default: the shipped mine; the survey always flies it)")
+    p.add_argument("--bounds", nargs=6, help="the explorers' box [m] (python -m unexmin.explore --bounds)")
     a = p.parse_args(argv)
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
@@ -59,6 +61,9 @@ def main(argv=None):
     for n in (1, 3):
         runs[f"explore_{n}"] = [py, "-m", "unexmin.explore", "--out", f"{out}/explore_{n}", "--robots", str(n)]
         runs[f"explore_{n}"] += ["--time", str(a.time), "--visibility", a.visibility, "--snapshot", str(a.snapshot)]
+        runs[f"explore_{n}"] += (["--world-file", a.world_file] if a.world_file else []) + (
+            ["--bounds", *a.bounds] if a.bounds else []
+        )
     load0 = os.getloadavg()[0]
     for name, args in runs.items():
         if not a.reuse:
