@@ -4,13 +4,14 @@ Twelve views of the tank's checkerboard target (worlds/tank_target.world's: 9 x 
 corners, kind `checkerboard`, docs/worlds.md) are rendered by the simulator's own camera model in-process
 (unexmin.core, visual mode, clear water, seeded sensor noise; camera 0 at 640 x 480, the SLS laser off as during a
 calibration, the LEDs' beams broad and the exposure lower as in a lit calibration tank: camera_views.camera_0).
-Measured: the board found in 12 of 12 views; fx, fy +0.2 %, cx -0.3 %, cy -0.2 %, k1 -0.1005. UX_1 holds still in the tank; the target is placed at seeded random poses in
-front of the lens (0.6-1.2 m away, tilted up to 30 deg, turned up to 17 deg, anywhere in the image: poses whose
-squares would leave the image are redrawn). The frames go, as grey images, to the calibrator of Debian's
-ros-camera-calibration 1.17 (`camera_calibration.calibrator.MonoCalibrator`, the class `cameracalibrator.py`
-runs, with its default model: k1, k2, p1, p2 free, k3 fixed at 0 (`--k-coefficients 2`)). Expected, from the
-camera's CameraInfo (`K` and `D` of the unexmin.core sample: the numbers camera_publisher sends): fx, fy, cx and
-cy within 1 % and k1 within 0.02 (the UX-1's camera: k1 = -0.1, k2 = 0.02).
+UX_1 holds still in the tank; the target is placed at seeded random poses in front of the lens (0.6-1.2 m away,
+tilted up to 30 deg, turned up to 17 deg, anywhere in the image: poses whose squares would leave the image are
+redrawn). The frames go, as grey images, to the calibrator of Debian's ros-camera-calibration 1.17
+(`camera_calibration.calibrator.MonoCalibrator`, the class `cameracalibrator.py` runs, with its default model: k1,
+k2, p1, p2 free, k3 fixed at 0 (`--k-coefficients 2`)). Expected, from the camera's CameraInfo (`K` and `D` of the
+unexmin.core sample: the numbers camera_publisher sends): fx, fy, cx and cy within 1 % and k1 within 0.02 (the
+UX-1's camera: k1 = -0.1, k2 = 0.02). Measured: the board found in 12 of 12 views; fx and fy +0.2 %, cx -0.3 %,
+cy -0.2 %, k1 -0.1005.
 
 Needs the built workspace (unexmin.core), xacro on PATH and Debian's ros-camera-calibration (scripts/setup.sh).
 Run: source scripts/env.sh; python -m pytest test/pytest/test_camera_calibration.py -q
