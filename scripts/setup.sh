@@ -31,6 +31,9 @@ apt_packages=(
   xterm
   # unexmin.core, the engine in-process from Python (docs/python_api.md)
   pybind11-dev
+  # ROS's camera calibrator and rectification judge the cameras (test/pytest/test_camera_calibration.py,
+  # test/pytest/test_camera_rectify.py; docs/vision.md "Tests")
+  ros-camera-calibration python3-camera-calibration python3-cv-bridge ros-image-proc python3-image-geometry
 )
 pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 numpy==1.26.4 matplotlib==3.9.2
   trimesh==4.5.3 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3

@@ -20,6 +20,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -338,6 +339,14 @@ py::dict sample(CoreWorld& w, const std::string& robot, const std::string& name,
   } else if (auto* cam = dynamic_cast<sensors::vision::CameraSensor*>(&s)) {
     const auto& f = cam->last();
     d["rendered"] = f.rendered;
+    // The camera's CameraInfo numbers (the model the publisher reads): K (3 x 3, row-major as CameraInfo's) and D
+    // (plumb_bob k1 k2 p1 p2 k3) of the published image.
+    const auto k = cam->model().K();
+    py::array_t<double> K({py::ssize_t(3), py::ssize_t(3)});
+    std::copy(k.begin(), k.end(), K.mutable_data());
+    d["K"] = K;
+    const auto& dist = cam->model().distortion();
+    d["D"] = py::array_t<double>(py::ssize_t(dist.size()), dist.data());
     if (f.rendered) {
       // A view of the frame the camera keeps (no copy): valid until the next step() or reset().
       d["image"] =

@@ -5,7 +5,7 @@ with its rock material, lights, water and seeded sensor noise, no ROS), written 
 
 - in clear water (`none`), ORB (cv2.ORB_create(nfeatures=5000), default parameters otherwise) finds at least
   500 keypoints in each 640 x 480 frame of a wall at 1-3 m: camera 0 facing the entry shaft's wall (1.8 m) and
-  camera 4 looking down at the first level's floor (2.5 m), the poses of docs/vision.md's pictures;
+  camera 4 looking down at the first level's floor (2.5 m);
 - the count falls from `none` to `low` to `medium` to `high`, strictly until it reaches 0 (the wall lost in the
   murk, here from `medium` on). Nearer walls are not used: at 1.0-1.3 m in clear water the fixed exposure
   saturates the LED's spot and `low` gives more keypoints than `none` (auto-exposure off, docs/vision.md "Limits");
@@ -30,7 +30,7 @@ from unexmin.worlds.files import link_meshes
 REPO = Path(__file__).resolve().parents[2]
 MINE = REPO / "worlds" / "mine.world"
 LEVELS = ["none", "low", "medium", "high"]
-# camera, robot pose x y z [m] yaw [rad] (docs/vision.md, the pictures of cameras 0 and 4)
+# camera, robot pose x y z [m] yaw [rad]
 VIEWS = {"shaft_1.8m": ("camera_0", (4.6, 0.0, -5.0, -0.35)), "floor_2.5m": ("camera_4", (11.5, -0.07, -21.4, 0.0))}
 
 

@@ -660,7 +660,7 @@ def test_meshes_are_binary_stl_and_reproducible(tmp_path):
         check=True,
         capture_output=True,
     )
-    for file_name in ("tank.stl", "anchor.stl", "test_box.stl"):
+    for file_name in ("tank.stl", "anchor.stl", "test_box.stl", "target.stl"):
         committed = (WORLDS_DIR / "meshes" / file_name).read_bytes()
         count = int.from_bytes(committed[80:84], "little")
         assert len(committed) == 84 + 50 * count, file_name + " is not a binary STL"

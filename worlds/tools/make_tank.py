@@ -8,6 +8,8 @@ Writes, into worlds/meshes/ (or --out):
   anchor.stl    a simple admiralty-style metal anchor about 0.6 m tall, in its own frame: top of the
                 ring at z = 0, hanging down along -z (tank.world places it at z = -1.8 m).
   test_box.stl  closed 4 m cube shell centred on the origin, inner faces pointing inwards.
+  target.stl    a thin plate for the checkerboard calibration target, centred on its frame's origin, faces along
+                +-z (tank_target.world gives it the checkerboard material).
 
 All dimensions are [m]. Deterministic: no randomness, so re-running reproduces the same files.
 Usage: python3 worlds/tools/make_tank.py [--out DIR]
@@ -28,6 +30,9 @@ WALL = 0.05  # [m] wall and floor thickness (tank and test box)
 
 # ---- test box ----
 BOX_SIZE = 4.0  # [m] interior edge of the closed cube, centred on the origin
+
+# ---- calibration target plate: 9 x 7 squares of 0.08 m and a 0.06 m margin (docs/worlds.md, checkerboard) ----
+TARGET_SIZE = (0.84, 0.68, 0.01)  # [m] along x, y, z
 
 # ---- anchor (admiralty pattern, made of boxes and cylinders) ----
 RING_RADIUS = 0.04  # [m] ring: major radius
@@ -138,7 +143,7 @@ def main():
     for name, mesh in (("tank", tank), ("test_box", box)):
         if not (mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0):
             raise RuntimeError("%s mesh is not a closed, consistently wound solid" % name)
-    meshes = {"tank": tank, "anchor": anchor(), "test_box": box}
+    meshes = {"tank": tank, "anchor": anchor(), "test_box": box, "target": trimesh.creation.box(extents=TARGET_SIZE)}
     for name, mesh in meshes.items():
         path = os.path.normpath(os.path.join(args.out, name + ".stl"))
         with open(path, "wb") as f:

@@ -2,6 +2,7 @@
 
 #include <unexmin/core/error.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace unexmin {
@@ -22,7 +23,7 @@ void checkRange(const std::string& prefix, const std::string& key, double x, dou
 }  // namespace
 
 const std::vector<std::string>& materialKinds() {
-  static const std::vector<std::string> kinds{"plain", "rock", "painted", "rusty"};
+  static const std::vector<std::string> kinds{"plain", "rock", "painted", "rusty", "checkerboard"};
   return kinds;
 }
 
@@ -45,6 +46,17 @@ Material materialDefaults(const std::string& kind, const std::string& prefix) {
   m.kind = kind;
   if (kind == "plain")
     return m;
+  if (kind == "checkerboard") {
+    // Assumed: a printed target of 9 x 7 squares of 8 cm (8 x 6 inner corners) with a 6 cm white margin, matt
+    // white paper (0.85) and black ink (0.04).
+    m.albedo = Eigen::Vector3d::Constant(0.85);
+    m.dark = Eigen::Vector3d::Constant(0.04);
+    m.square = 0.08;
+    m.rows = 7;
+    m.columns = 9;
+    m.border = 0.06;
+    return m;
+  }
   for (const Row& r : rows) {
     if (kind != r.kind)
       continue;
@@ -58,7 +70,7 @@ Material materialDefaults(const std::string& kind, const std::string& prefix) {
     m.weights = Eigen::Vector4d(r.weight[0], r.weight[1], r.weight[2], r.weight[3]);
     return m;
   }
-  fail(prefix, "kind", "'" + kind + "'", "plain|rock|painted|rusty");
+  fail(prefix, "kind", "'" + kind + "'", "plain|rock|painted|rusty|checkerboard");
 }
 
 void checkMaterial(const Material& m, const std::string& prefix) {
@@ -74,6 +86,33 @@ void checkMaterial(const Material& m, const std::string& prefix) {
     checkRange(prefix, s.first, s.second, 0.0, 1e6, "a scale in [0, 1e6] m (0: off)");
   if (!m.textured() && (m.contrast > 0.0 || m.relief > 0.0 || m.tint > 0.0))
     fail(prefix, "kind", "'plain'", "rock|painted|rusty for a texture (contrast, relief or tint > 0)");
+  if (!m.checkerboard())
+    return;
+  checkRange(prefix, "square", m.square, 1e-4, 100.0, "a side in [1e-4, 100] m");
+  checkRange(prefix, "rows", m.rows, 2, 1000, "an integer in [2, 1000]");
+  checkRange(prefix, "columns", m.columns, 2, 1000, "an integer in [2, 1000]");
+  checkRange(prefix, "border", m.border, 0.0, 100.0, "a width in [0, 100] m");
+  for (int k = 0; k < 3; ++k)
+    checkRange(prefix, "dark", m.dark[k], 0.0, 1.0, "three numbers in [0, 1]");
+  for (const auto& s : scales)
+    checkRange(prefix, s.first, s.second, 0.0, 0.0, "0 on a checkerboard (no rock texture)");
+  checkRange(prefix, "contrast", m.contrast, 0.0, 0.0, "0 on a checkerboard (no rock texture)");
+  checkRange(prefix, "relief", m.relief, 0.0, 0.0, "0 on a checkerboard (no rock texture)");
+  checkRange(prefix, "tint", m.tint, 0.0, 0.0, "0 on a checkerboard (no rock texture)");
+}
+
+Eigen::Vector3f checkerboardAlbedo(const Material& m, const Eigen::Vector3f& p) {
+  const double half_x = 0.5 * m.columns * m.square, half_y = 0.5 * m.rows * m.square;
+  const double x = p.x() + half_x, y = p.y() + half_y;  // from the squares' corner at the most negative x and y
+  bool dark;
+  if (x >= 0.0 && x < 2.0 * half_x && y >= 0.0 && y < 2.0 * half_y) {
+    const int i = std::min(static_cast<int>(x / m.square), m.columns - 1);
+    const int j = std::min(static_cast<int>(y / m.square), m.rows - 1);
+    dark = (i + j) % 2 == 0;
+  } else {
+    dark = std::abs(p.x()) >= half_x + m.border || std::abs(p.y()) >= half_y + m.border;
+  }
+  return (dark ? m.dark : m.albedo).cast<float>();
 }
 
 }  // namespace sim

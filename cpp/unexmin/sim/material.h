@@ -14,7 +14,7 @@ namespace sim {
 
 struct Material {
   /// plain (one albedo, no texture) | rock | painted | rusty (materialKinds()): a kind is a set of defaults and of
-  /// weights of the texture's components.
+  /// weights of the texture's components; checkerboard: a calibration target (square, rows, columns, dark, border).
   std::string kind = "plain";
   /// Mean diffuse (Lambertian) reflectance per RGB channel, in [0, 1]: the texture modulates around it.
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};
@@ -29,21 +29,33 @@ struct Material {
   double tint = 0.0;       ///< [-] in [0, 1]: relative change of a channel's albedo between regions (its std)
   /// Weights of grain, cracks, strata and stains in the texture [-], set by the kind (not a world-file key).
   Eigen::Vector4d weights{0, 0, 0, 0};
+  // Checkerboard (kind checkerboard): rows x columns squares in the mesh frame's x-y plane, centred on its origin;
+  // the square at the most negative x and y is dark. `albedo` is the light squares' and the border's.
+  double square = 0.0;            ///< [m] > 0: side of a square
+  int rows = 0;                   ///< squares along the mesh frame's y (inner corners: rows - 1)
+  int columns = 0;                ///< squares along the mesh frame's x (inner corners: columns - 1)
+  Eigen::Vector3d dark{0, 0, 0};  ///< albedo of the dark squares and of the plate beyond the border, in [0, 1]
+  double border = 0.0;            ///< [m] >= 0: width of the light margin around the squares
 
   bool textured() const { return kind != "plain"; }
+  bool checkerboard() const { return kind == "checkerboard"; }
 };
 
 /// The material kinds a world file can name.
 const std::vector<std::string>& materialKinds();
 
-/// The defaults of material kind `kind` (albedo, contrast, relief, scales) [docs/worlds.md]; throws ParameterError
-/// "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty" for any other name.
+/// The defaults of material kind `kind` (albedo, contrast, relief, scales; a checkerboard's squares) [docs/worlds.md];
+/// throws ParameterError "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty|checkerboard" for any other
+/// name.
 Material materialDefaults(const std::string& kind, const std::string& prefix = "");
 
 /// Checks every value of `m`; throws ParameterError "'<prefix><key>' = <value>: expected <range>" naming the first
 /// bad key (unknown kind, albedo outside [0, 1], negative or non-finite scale, contrast or tint outside [0, 1],
-/// negative relief).
+/// negative relief; a checkerboard's square, rows, columns, dark or border out of range, or a rock key on it).
 void checkMaterial(const Material& m, const std::string& prefix = "");
+
+/// Albedo (R, G, B) of checkerboard `m` at point `p` of the mesh frame [m].
+Eigen::Vector3f checkerboardAlbedo(const Material& m, const Eigen::Vector3f& p);
 
 }  // namespace sim
 }  // namespace unexmin

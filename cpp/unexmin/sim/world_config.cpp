@@ -138,11 +138,33 @@ public:
           {"strata", &m.strata},     {"stains", &m.stains}, {"region", &m.region}, {"tint", &m.tint}};
       for (const auto& kv : numbers)
         *kv.second = number(node, kv.first, where, *kv.second);
+      checkerboard(node, where, m);
       checkMaterial(m, where);
     } catch (const ParameterError& e) {
       fail(e.what());
     }
     return m;
+  }
+
+  /// A checkerboard's keys (square, rows, columns, dark, border) into `m`; on another kind they stop start-up.
+  void checkerboard(const YAML::Node& node, const std::string& where, Material& m) const {
+    const char* keys[] = {"square", "rows", "columns", "dark", "border"};
+    if (!m.checkerboard()) {
+      for (const char* key : keys)
+        if (node[key])
+          fail("'" + where + key + "' is a key of kind checkerboard, not of '" + m.kind + "'");
+      return;
+    }
+    m.square = number(node, "square", where, m.square);
+    m.border = number(node, "border", where, m.border);
+    m.dark = vec3(node, "dark", where, m.dark);
+    for (int* n : {&m.rows, &m.columns}) {
+      const char* key = n == &m.rows ? "rows" : "columns";
+      const double x = number(node, key, where, *n);
+      if (!(x >= 2.0 && x <= 1000.0 && x == std::floor(x)))
+        fail("'" + where + key + "' = " + formatNumber(x) + ": expected an integer in [2, 1000]");
+      *n = static_cast<int>(x);
+    }
   }
 
 private:

@@ -11,7 +11,10 @@ SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&co
     Mesh& m = meshes_[i];
     m.albedo << static_cast<float>(e.albedo.x()), static_cast<float>(e.albedo.y()), static_cast<float>(e.albedo.z()),
         0.0f;
-    if (e.material.textured()) {
+    if (e.material.checkerboard()) {
+      m.board = std::make_unique<sim::Material>(e.material);
+      m.board->albedo = e.albedo;
+    } else if (e.material.textured()) {
       sim::Material material = e.material;
       material.albedo = e.albedo;  // the mesh's albedo is its material's mean
       m.texture = std::make_unique<RockTexture>(material, "meshes[" + formatNumber(i) + "].material.");
@@ -30,6 +33,8 @@ const SurfaceMaterials& SurfaceMaterials::of(const sim::WorldConfig& config, std
 
 Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f& p) const {
   const Mesh& m = meshes_.at(mesh);
+  if (m.board)
+    return sim::checkerboardAlbedo(*m.board, m.to_mesh * (p - m.origin)).array();
   if (!m.texture)
     return m.albedo.head<3>();
   return m.texture->albedo(m.to_mesh * (p - m.origin));
@@ -38,6 +43,12 @@ Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f&
 void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
                              Eigen::Vector3f& shading) const {
   const Mesh& m = meshes_[mesh];
+  if (m.board) {
+    Eigen::Map<Eigen::Vector3f> out(albedo);
+    out = sim::checkerboardAlbedo(*m.board, m.to_mesh * (p - m.origin));
+    shading = n;
+    return;
+  }
   if (!m.texture) {
     albedo[0] = m.albedo[0];
     albedo[1] = m.albedo[1];
@@ -53,6 +64,15 @@ void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const E
 void SurfaceMaterials::shadeMany(std::size_t mesh, int n, float* x, float* y, float* z, float* nx, float* ny, float* nz,
                                  float* const albedo[3], bool simd) const {
   const Mesh& m = meshes_.at(mesh);
+  if (m.board) {  // the normals stay the faces'
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3f a =
+          sim::checkerboardAlbedo(*m.board, m.to_mesh * (Eigen::Vector3f(x[i], y[i], z[i]) - m.origin));
+      for (int k = 0; k < 3; ++k)
+        albedo[k][i] = a[k];
+    }
+    return;
+  }
   if (m.identity) {  // the same numbers without the two transforms
     m.texture->shadeMany(n, x, y, z, nx, ny, nz, albedo, simd);
     return;

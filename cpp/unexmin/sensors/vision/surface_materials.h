@@ -1,6 +1,7 @@
 // The materials of a world's meshes as the cameras and the SLS lasers see them: per mesh of the world file, its
 // RockTexture (textured kinds) and the mesh frame, so that a hit point in the world frame gives the albedo and the
-// shading normal there (docs/vision.md "Materials"). A plain mesh gives its one albedo and the face's normal.
+// shading normal there (docs/vision.md "Materials"). A plain mesh gives its one albedo and the face's normal, a
+// checkerboard its square's albedo and the face's normal.
 // Knows no ROS.
 #pragma once
 
@@ -25,8 +26,11 @@ public:
   static const SurfaceMaterials& of(const sim::WorldConfig& config, std::unique_ptr<SurfaceMaterials>& cache);
 
   std::size_t size() const { return meshes_.size(); }
-  /// Whether mesh `mesh` has a texture (else its albedo is one number per channel and its normal the face's).
-  bool textured(std::size_t mesh) const { return meshes_.at(mesh).texture != nullptr; }
+  /// Whether mesh `mesh` has a texture or a checkerboard (else its albedo is one number per channel and its normal
+  /// the face's).
+  bool textured(std::size_t mesh) const {
+    return meshes_.at(mesh).texture != nullptr || meshes_[mesh].board != nullptr;
+  }
   /// The mesh's mean albedo (R, G, B, 0) [-].
   const Eigen::Array4f& meanAlbedo(std::size_t mesh) const { return meshes_[mesh].albedo; }
   /// Albedo (R, G, B) of mesh `mesh` at world point `p` [m].
@@ -46,9 +50,10 @@ private:
   struct Mesh {
     Eigen::Array4f albedo;
     std::unique_ptr<RockTexture> texture;
-    Eigen::Matrix3f to_mesh;  ///< rotation world -> mesh frame
-    Eigen::Vector3f origin;   ///< the mesh frame's origin in the world [m]
-    bool identity = false;    ///< the mesh frame is the world frame (no transform)
+    std::unique_ptr<sim::Material> board;  ///< a checkerboard (sim::checkerboardAlbedo; no relief)
+    Eigen::Matrix3f to_mesh;               ///< rotation world -> mesh frame
+    Eigen::Vector3f origin;                ///< the mesh frame's origin in the world [m]
+    bool identity = false;                 ///< the mesh frame is the world frame (no transform)
   };
   std::vector<Mesh> meshes_;
   const sim::WorldConfig* config_;  ///< the world configuration they were built from
