@@ -10,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 using unexmin::sim::Material;
 using unexmin::test::contains;
@@ -31,17 +33,20 @@ Material board(int rows, int columns, double square, double border) {
   return m;
 }
 
-std::string worldWith(const std::string& name, const std::string& mesh_keys) {
-  const std::string dir = unexmin::test::testTempDir();
-  std::ofstream(dir + "tri.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
-  const std::string path = dir + name;
-  std::ofstream(path) << "name: w\nmeshes:\n  - {name: plate, file: tri.stl" << mesh_keys
-                      << "}\nrobots:\n  - {name: UX_1}\n";
-  return path;
+/// A world file (in the test's folder) holding the target plate (worlds/meshes/target.stl) with `keys` after its file.
+std::string plateWorld(const std::string& name, const std::string& keys) {
+  const std::filesystem::path dir = unexmin::test::testTempDir();
+  const std::filesystem::path plate = dir / "target.stl";
+  if (!std::filesystem::exists(plate))
+    std::filesystem::copy_file(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/meshes/target.stl", plate);
+  const std::filesystem::path world = dir / name;
+  std::ofstream out(world);
+  out << "name: target\nrobots: [{name: UX_1}]\nmeshes:\n  - {name: plate, file: target.stl" << keys << "}\n";
+  return world.string();
 }
 
-std::string configError(const std::string& path) {
+/// The ConfigError message of loading world file `path`.
+std::string loadError(const std::string& path) {
   return thrownMessage<unexmin::ConfigError>([&] { unexmin::sim::loadWorldConfig(path); });
 }
 
@@ -74,16 +79,14 @@ TEST(Checkerboard, SquaresMarginAndPlate) {
 
 TEST(Checkerboard, InAWorldFileItIsInTheMeshFrameWithTheFacesNormal) {
   const auto w = unexmin::sim::loadWorldConfig(
-      worldWith("b.world",
-                ", xyz: [1, -2, -3], rpy: [1.5708, 0, 0.4], material: {kind: checkerboard, square: 0.05, rows: 4, "
-                "columns: 6, dark: [0.1, 0.2, 0.3], albedo: [0.9, 0.8, 0.7], border: 0.02}"));
-  const Material& m = w.meshes.at(0).material;
-  EXPECT_EQ(m.kind, "checkerboard");
-  EXPECT_EQ(m.rows, 4);
-  EXPECT_EQ(m.columns, 6);
-  EXPECT_DOUBLE_EQ(m.square, 0.05);
-  EXPECT_DOUBLE_EQ(m.border, 0.02);
+      plateWorld("b.world",
+                 ", xyz: [1, -2, -3], rpy: [1.5708, 0, 0.4], material: {kind: checkerboard, square: 0.05, rows: 4, "
+                 "columns: 6, dark: [0.1, 0.2, 0.3], albedo: [0.9, 0.8, 0.7], border: 0.02}"));
   const unexmin::sensors::vision::SurfaceMaterials sm(w);
+  const Material& m = w.meshes.at(0).material;
+  ASSERT_TRUE(m.checkerboard()) << m.kind;
+  EXPECT_EQ(std::make_pair(m.rows, m.columns), std::make_pair(4, 6));
+  EXPECT_EQ(std::make_pair(m.square, m.border), std::make_pair(0.05, 0.02));  // as parsed from the same text
   ASSERT_TRUE(sm.textured(0));  // the cameras ask for its albedo at each hit
   const Eigen::Isometry3f pose = w.meshes[0].pose.cast<float>();
   // The first square (dark) and its neighbour along x (light), seen at their world points.
@@ -129,8 +132,8 @@ TEST(Checkerboard, BadKeysNameTheFileAndTheKey) {
   };
   int k = 0;
   for (const auto& [material, message] : cases) {
-    const std::string path = worldWith("bad" + std::to_string(k++) + ".world", ", material: " + std::string(material));
-    const std::string what = configError(path);
+    const std::string path = plateWorld("bad" + std::to_string(k++) + ".world", ", material: " + std::string(material));
+    const std::string what = loadError(path);
     EXPECT_TRUE(contains(what, path + ": " + message)) << material << " -> " << what;
   }
 }

@@ -43,7 +43,7 @@ robots:
 }  // namespace
 
 TEST(WorldFile, ShippedWorldsLoad) {
-  for (const char* name : {"tank.world", "test_box.world"}) {
+  for (const char* name : {"tank.world", "tank_target.world", "test_box.world"}) {
     const auto w = unexmin::sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/" + name);
     EXPECT_FALSE(w.robots.empty()) << name;
     EXPECT_FALSE(w.meshes.empty()) << name;

@@ -116,6 +116,8 @@ def render(world, urdf, camera="camera_0", seed=1, visibility=""):
 # corners; camera 0 at 640 x 480 for the judges.
 SQUARE, ROWS, COLUMNS = 0.08, 7, 9
 SIZE = (640, 480)  # [px]
+# [m, rad] UX_1 in the tank for the checkerboard views: camera 0 (20 deg left of the bow) looks along +x, 5 m of water
+TANK_POSE = (-2.0, -1.0, -1.5, 0.0, 0.0, -0.349)
 
 
 def camera_0(folder, broad_lights=False):
@@ -176,6 +178,7 @@ def board_in_world(urdf, robot_pose, centre, R_cb):
 
 
 __all__ = [
+    "TANK_POSE",
     "COLUMNS",
     "ROWS",
     "SIZE",

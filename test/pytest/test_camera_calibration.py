@@ -25,6 +25,7 @@ from camera_views import (
     ROWS,
     SIZE,
     SQUARE,
+    TANK_POSE,
     axis_rotation,
     board_in_world,
     board_mesh,
@@ -34,7 +35,6 @@ from camera_views import (
     world_file,
 )
 
-ROBOT = (-2.0, -1.0, -1.5, 0.0, 0.0, -0.349)  # [m, rad] camera 0 (20 deg left of the bow) then looks along +x
 VIEWS = 12
 
 
@@ -50,17 +50,19 @@ def board_poses(urdf, K, D, rng):
         R_cb = axis_rotation(0, rng.uniform(-0.5, 0.5)) @ axis_rotation(1, rng.uniform(-0.5, 0.5))
         R_cb = R_cb @ axis_rotation(2, rng.uniform(-0.3, 0.3))
         if in_view(centre, R_cb, K, D, margin=12):
-            poses.append(board_in_world(urdf, ROBOT, centre, R_cb))
+            poses.append(board_in_world(urdf, TANK_POSE, centre, R_cb))
     return poses
 
 
 def views(folder):
     """(grey images of the board, K, D) of camera 0."""
     urdf = camera_0(folder, broad_lights=True)
-    _, K, D = render(world_file(folder, "tank", ROBOT, name="empty"), urdf, seed=1)
+    _, K, D = render(world_file(folder, "tank", TANK_POSE, name="empty"), urdf, seed=1)
     images = []
     for i, (t, R) in enumerate(board_poses(urdf, K, D, np.random.default_rng(5))):
-        image, K_i, D_i = render(world_file(folder, "tank", ROBOT, [board_mesh(t, R)], name=f"view{i}"), urdf, seed=i)
+        image, K_i, D_i = render(
+            world_file(folder, "tank", TANK_POSE, [board_mesh(t, R)], name=f"view{i}"), urdf, seed=i
+        )
         assert np.array_equal(K_i, K) and np.array_equal(D_i, D)
         images.append(cv2.cvtColor(image, cv2.COLOR_RGB2GRAY))
     return images, K, D

@@ -20,24 +20,12 @@ Needs the built workspace (unexmin.core), xacro on PATH and Debian's python3-ima
 Run: source scripts/env.sh; python -m pytest test/pytest/test_camera_rectify.py -q
 """
 
+import camera_views as views
 import cv2
 import numpy as np
-from camera_views import (
-    COLUMNS,
-    ROWS,
-    SIZE,
-    axis_rotation,
-    board_in_world,
-    board_mesh,
-    camera_0,
-    in_view,
-    render,
-    world_file,
-)
 from image_geometry import PinholeCameraModel
 from sensor_msgs.msg import CameraInfo
 
-ROBOT = (-2.0, -1.0, -1.5, 0.0, 0.0, -0.349)  # [m, rad] camera 0 (20 deg left of the bow) then looks along +x
 # The board's views (found by searching poses for the largest bend of a row in the raw image with every square
 # 15 px inside it): distance [m], pixel (u, v) where its centre is seen, tilt about the image's x axis and turn about
 # the optical axis [rad]. Nearer than 0.55 m or farther out in the image, a square leaves it.
@@ -51,7 +39,7 @@ VIEWS = [
 
 def camera_info(K, D):
     msg = CameraInfo()
-    msg.width, msg.height = SIZE
+    msg.width, msg.height = views.SIZE
     msg.distortion_model = "plumb_bob"
     msg.D = [float(v) for v in D]
     msg.K = [float(v) for v in K.ravel()]
@@ -62,11 +50,11 @@ def camera_info(K, D):
 
 def corners(image):
     """The board's 8 x 6 inner corners [px] (rows of 8), sub-pixel, or None."""
-    ok, c = cv2.findChessboardCorners(image, (COLUMNS - 1, ROWS - 1), flags=cv2.CALIB_CB_ADAPTIVE_THRESH)
+    ok, c = cv2.findChessboardCorners(image, (views.COLUMNS - 1, views.ROWS - 1), flags=cv2.CALIB_CB_ADAPTIVE_THRESH)
     if not ok:
         return None
     c = cv2.cornerSubPix(image, c, (5, 5), (-1, -1), (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 50, 0.01))
-    return c.reshape(ROWS - 1, COLUMNS - 1, 2)
+    return c.reshape(views.ROWS - 1, views.COLUMNS - 1, 2)
 
 
 def straightness(points):
@@ -82,18 +70,22 @@ def worst_line(grid):
 
 
 def test_rectified_rows_of_corners_are_straight(tmp_path):
-    urdf = camera_0(tmp_path, broad_lights=True)
-    _, K, D = render(world_file(tmp_path, "tank", ROBOT, name="empty"), urdf, seed=1)
+    urdf = views.camera_0(tmp_path, broad_lights=True)
+    _, K, D = views.render(views.world_file(tmp_path, "tank", views.TANK_POSE, name="empty"), urdf, seed=1)
     model = PinholeCameraModel()
     model.fromCameraInfo(camera_info(K, D))
     raw_worst, rectified_worst = [], []
     for i, (distance, u, v, tilt, turn) in enumerate(VIEWS):
         centre = np.array([(u - K[0, 2]) / K[0, 0], (v - K[1, 2]) / K[1, 1], 1.0]) * distance
-        R_cb = axis_rotation(0, tilt) @ axis_rotation(2, turn)
-        assert in_view(centre, R_cb, K, D, margin=10), f"view {i}: the board leaves the image"
-        t, R = board_in_world(urdf, ROBOT, centre, R_cb)
+        R_cb = views.axis_rotation(0, tilt) @ views.axis_rotation(2, turn)
+        assert views.in_view(centre, R_cb, K, D, margin=10), f"view {i}: the board leaves the image"
+        t, R = views.board_in_world(urdf, views.TANK_POSE, centre, R_cb)
         image = cv2.cvtColor(
-            render(world_file(tmp_path, "tank", ROBOT, [board_mesh(t, R)], name=f"q{i}"), urdf, seed=10 + i)[0],
+            views.render(
+                views.world_file(tmp_path, "tank", views.TANK_POSE, [views.board_mesh(t, R)], name=f"q{i}"),
+                urdf,
+                seed=10 + i,
+            )[0],
             cv2.COLOR_RGB2GRAY,
         )
         rectified = np.zeros_like(image)

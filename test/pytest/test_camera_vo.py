@@ -28,25 +28,14 @@ import math
 
 import cv2
 import numpy as np
-from camera_views import REPO, angle_of, camera_pose, description, world_file
+from camera_views import REPO, SIZE, angle_of, camera_0, camera_pose, world_file
 
 from unexmin.control.allocation import ThrusterAllocator
+from unexmin.geometry import quaternion_to_rpy, rpy_matrix
 
 GALLERY = (11.5, -0.07, -21.4, 0.0, 0.0, 0.0)  # [m, rad] UX_1's spawn pose: the first level's gallery
 YAW_MOMENT = 1.0  # [N m] about the body's z: the turn grows from 0 to 29 deg/s over the 10 s
 SECONDS = 10.0
-SIZE = (640, 480)
-
-
-def quaternion_matrix(q):
-    x, y, z, w = q
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
 
 
 def turning_sequence(folder, visibility):
@@ -54,14 +43,7 @@ def turning_sequence(folder, visibility):
     from unexmin.core import World
 
     assert (REPO / "worlds" / "meshes" / "mine" / "mine_collision.ply").exists(), "run scripts/setup.sh (the mine)"
-    urdf = description(
-        folder,
-        camera_width=SIZE[0],
-        camera_height=SIZE[1],
-        camera_render_scale=0.05,
-        camera_0_render_scale=1.0,
-        sls_laser_power=0.0,
-    )
+    urdf = camera_0(folder)
     _, R_bc = camera_pose(urdf, "camera_0")
     w = World(
         str(world_file(folder, "mine", GALLERY, name=f"gallery_{visibility}")),
@@ -83,7 +65,7 @@ def turning_sequence(folder, visibility):
         count = s["count"]
         assert s["rendered"]
         frames.append(cv2.cvtColor(s["image"], cv2.COLOR_RGB2GRAY))
-        rotations.append(quaternion_matrix(ux.state()["orientation"]) @ R_bc)
+        rotations.append(rpy_matrix(quaternion_to_rpy(*ux.state()["orientation"])) @ R_bc)
         K, D = s["K"].copy(), s["D"].copy()
     return frames, rotations, K, D
 

@@ -26,7 +26,7 @@ REPO = Path(__file__).resolve().parents[2]
 URDF_DIR = REPO / "urdf"
 ROBOT_FILE = URDF_DIR / "ux1.urdf.xacro"
 WORLDS_DIR = REPO / "worlds"
-SHIPPED_WORLDS = ["tank.world", "test_box.world"]
+SHIPPED_WORLDS = ["tank.world", "tank_target.world", "test_box.world"]
 
 RHO = 1000.0  # [kg/m^3] fresh water (thesis 5.3)
 R_HULL = 0.3  # [m] 0.6 m diameter sphere (thesis 2.3)
@@ -626,6 +626,19 @@ def test_tank_scene():
         for j in range(i + 1, len(robots)):
             gap = np.linalg.norm(np.subtract(robots[i]["xyz"], robots[j]["xyz"])) - 2 * R_HULL
             assert gap >= clearance, "%s and %s are %.2f m apart" % (robots[i]["name"], robots[j]["name"], gap)
+
+
+def test_tank_target_scene():
+    """tank_target.world is tank.world and the checkerboard plate, its 9 x 7 squares of 8 cm and 6 cm margin filling
+    the plate (docs/worlds.md)."""
+    tank, target = load_world("tank.world"), load_world("tank_target.world")
+    assert target["robots"] == tank["robots"] and target["meshes"][:2] == tank["meshes"]
+    plate = target["meshes"][2]
+    material = plate["material"]
+    assert material["kind"] == "checkerboard" and plate["collision"]
+    extents = placed_mesh("tank.world", dict(plate, xyz=[0, 0, 0], rpy=[0, 0, 0])).extents
+    squares = np.array([material["columns"], material["rows"]]) * material["square"]
+    assert np.allclose(extents[:2], squares + 2 * material["border"], atol=1e-6) and extents[2] == pytest.approx(0.01)
 
 
 def test_test_box_scene():
