@@ -51,20 +51,14 @@ def rates():
     return {s.get("name"): float(s.get("rate")) for s in ET.fromstring(urdf).iter("sensor")}
 
 
-def test_same_script_same_odometry_on_both_back_ends(tmp_path):
+def test_same_script_same_odometry_on_both_back_ends(tmp_path, monkeypatch):
     from unexmin import Simulation
 
-    saved = {k: os.environ.get(k) for k in ENV_KEYS}
-    try:
-        with Simulation.launch("tank", seed=SEED, log_dir=str(tmp_path), sensors="imu,dvl") as sim:
-            assert sim.backend == "ros"
-            ros = script(sim)
-    finally:
-        for k, v in saved.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
+    for k in ENV_KEYS:  # the launch sets them in this process: restored at the end
+        monkeypatch.setenv(k, os.environ[k]) if k in os.environ else monkeypatch.delenv(k, raising=False)
+    with Simulation.launch("tank", seed=SEED, log_dir=str(tmp_path), sensors="imu,dvl") as sim:
+        assert sim.backend == "ros"
+        ros = script(sim)
     with Simulation.launch("tank", seed=SEED, sensors="imu,dvl", backend="core") as sim:
         assert sim.backend == "core"
         core = script(sim)

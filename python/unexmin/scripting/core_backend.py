@@ -210,34 +210,12 @@ class CoreSimulation(SimulationApi):
         "node_name": "the core runs no ROS node",
     }
 
-    def __init__(
-        self,
-        world="tank",
-        robots=1,
-        seed=0,
-        mode="operational",
-        visibility="",
-        sensors="all",
-        overrides=None,
-        descriptions=None,
-        physics_rate=500.0,
-        ray_caster_threads=0,
-        timeout=60.0,
-    ):
+    def __init__(self, world="tank", timeout=60.0, **world_arguments):
+        """world_arguments: those of unexmin.core.World (robots, seed, sensors, visibility, mode, overrides,
+        descriptions, physics_rate, ray_caster_threads); timeout [s] is kept for the ROS back end's sake."""
         from unexmin.core import World
 
-        self.world = World(
-            world,
-            robots=robots,
-            seed=seed,
-            sensors=sensors,
-            visibility=visibility,
-            mode=mode,
-            physics_rate=physics_rate,
-            overrides=overrides,
-            descriptions=descriptions,
-            ray_caster_threads=ray_caster_threads,
-        )
+        self.world = World(world, **world_arguments)
         self.timeout = timeout
         self.physics_rate = 1.0 / self.world.dt
         self.robots = tuple(self.world.robots)
@@ -261,7 +239,7 @@ class CoreSimulation(SimulationApi):
                     f"{name} = {value!r}: the core back end cannot honour it ({cls.UNSUPPORTED[name]}): "
                     'use backend="ros"'
                 )
-        return cls(world, robots, seed, mode, visibility, sensors, **kwargs)
+        return cls(world, robots=robots, seed=seed, mode=mode, visibility=visibility, sensors=sensors, **kwargs)
 
     @property
     def time(self):

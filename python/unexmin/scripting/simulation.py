@@ -21,7 +21,7 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
-from unexmin.scripting.api import BACKENDS, RobotApi, SimulationApi, check_launch_arguments, finite
+from unexmin.scripting.api import BACKENDS, LAUNCH_ARGUMENTS, RobotApi, SimulationApi, check_launch_arguments, finite
 from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.scripting.rospy_node import master_online, node_master_uri, register_again
 from unexmin.scripting.streams import StreamSet, header_stamp
@@ -341,15 +341,7 @@ class Simulation(SimulationApi):
         """
         if backend not in BACKENDS:
             raise ValueError(f"backend = {backend!r}: expected one of {', '.join(BACKENDS)}")
-        arguments = dict(
-            mode=mode,
-            visibility=visibility,
-            sensors=sensors,
-            mapping=mapping,
-            map_file=map_file,
-            overrides=overrides,
-            record=record,
-        )
+        arguments = {k: v for k, v in locals().items() if k in LAUNCH_ARGUMENTS}
         if backend == "core":
             from unexmin.scripting.core_backend import CoreSimulation
 
