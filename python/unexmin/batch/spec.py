@@ -47,6 +47,7 @@ KEYS = {
     "ray_caster_threads",
     "python_path",
     "control",
+    "backend",
 }
 VISIBILITY = ("none", "low", "medium", "high")
 
@@ -188,6 +189,9 @@ def check_spec(raw, path="<spec>"):
     spec["control"] = raw.get("control", True)
     if not isinstance(spec["control"], bool):
         raise SpecError(f"{path}: control: expected true or false, got {spec['control']!r}")
+    spec["backend"] = raw.get("backend", "core")
+    if spec["backend"] not in ("core", "ros"):
+        raise SpecError(f"{path}: backend: expected core or ros, got {spec['backend']!r}")
     spec["seeds"] = _seeds(f"{path}: seeds", raw.get("seeds", 1))
     python_path = raw.get("python_path", [])
     if not isinstance(python_path, list) or not all(isinstance(p, str) for p in python_path):
