@@ -193,3 +193,23 @@ def test_bad_action_is_named(station):
         station.step([float("nan")] * 4)
     with pytest.raises(ValueError):
         station.step([0.0] * 3)
+
+
+def test_privileged_images_and_thrust_actions():
+    from gymnasium.utils.env_checker import check_env
+
+    env = StationKeepingEnv(observation="privileged", images=True, image_size=(32, 24), action="thrusts")
+    check_env(env, skip_render_check=True)
+    obs, _ = env.reset(seed=0)
+    assert obs["image"].shape == (24, 32, 3) and obs["image"].dtype == np.uint8
+    for _ in range(10):  # 1 s: the thrusters settle on their commands (first order, tau << 1 s)
+        obs, *_ = env.step(np.full(8, 0.25))
+    assert obs["image"].any(), "the camera rendered a black image: its lights and the tank are in view"
+    s = env.robot.state()
+    privileged = obs["vector"][-16:]
+    np.testing.assert_allclose(privileged[:3], s["position"], atol=1e-6)
+    np.testing.assert_allclose(privileged[3:7], s["orientation"], atol=1e-6)
+    np.testing.assert_allclose(privileged[7:10], s["linear_velocity"], atol=1e-6)
+    np.testing.assert_allclose(privileged[13:16], [0.2, 0.0, 0.0], atol=1e-6)
+    np.testing.assert_allclose(env.robot.achieved_thrusts(), np.full(8, 0.25 * 40.0), rtol=1e-3)
+    env.close()
