@@ -4,6 +4,7 @@
 
     source scripts/env.sh && python bench/batch_throughput.py [--spec examples/batch/tank_currents.yaml]
                                                               [--missions 8] [--workers 1 2 2 1] [--out DIR]
+                                                              [--backend core|ros] [--seeds N]
 
 For each worker count, a fresh local cluster runs the first --missions missions of the spec (by default the
 shipped tank Monte-Carlo: the main job's tank mission, 30 s of sim time, every sensor, one ray-casting thread
@@ -38,14 +39,21 @@ def main(argv=None):
         default=[1, 2, 2, 1],
         help="worker counts, one batch each, in this order (default 1 2 2 1)",
     )
+    parser.add_argument("--backend", choices=("core", "ros"), help="the spec's backend replaced by this one")
+    parser.add_argument("--seeds", type=int, help="the spec's seeds replaced by 0..N-1 (one mission each)")
     parser.add_argument("--out", default=None, help="folder for the runs' outputs (default: a temporary one)")
     args = parser.parse_args(argv)
     spec = load_spec(args.spec)
+    if args.backend:
+        spec["backend"] = args.backend
+    if args.seeds:
+        spec["seeds"] = list(range(args.seeds))
     out = args.out or tempfile.mkdtemp(prefix="batch_bench_")
     results, tables = [], []
     print(
         f"spec {os.path.abspath(args.spec)}: {args.missions} missions of {spec['mission']}, {spec['duration']:g} s "
-        f"of sim time each, sensors {spec['sensors']}, ray_caster_threads {spec['ray_caster_threads']}; "
+        f"of sim time each, sensors {spec['sensors']}, ray_caster_threads {spec['ray_caster_threads']}, backend "
+        f"{spec['backend']}; "
         f"{os.cpu_count()} hardware threads"
     )
     for workers in args.workers:

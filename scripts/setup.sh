@@ -46,6 +46,8 @@ pip_packages+=("dask[distributed]==2025.1.0" distributed==2025.1.0 pandas==2.2.3
 pip_packages+=(clang-format==19.1.7)
 # Python lint and format (ruff.toml; test/pytest/test_style.py)
 pip_packages+=(ruff==0.8.6)
+# Gymnasium environments of the UX-1's jobs (python/unexmin/gym, docs/gym.md)
+pip_packages+=(gymnasium==1.2.0)
 
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -223,6 +223,25 @@ void setThrusts(CoreWorld& w, const std::string& robot, const py::array_t<double
     r.thruster(i).setCommand(v(i), w.world().time());
 }
 
+/// Replaces the means of the world's current channels (speed [m/s], horizontal and vertical angle [rad]) and
+/// restarts the current at them with the world's seed; each channel's bounds widen to hold its new mean, its noise
+/// and return rate stay the world file's. Kept across reset(); the world file is not changed.
+void setCurrent(CoreWorld& w, double speed, double horizontal_angle, double vertical_angle) {
+  hydro::CurrentParams p = w.world().current().params();
+  const std::pair<hydro::GaussMarkovParams*, double> channels[] = {
+      {&p.speed, finiteCommand("speed", speed)},
+      {&p.horizontal_angle, finiteCommand("horizontal_angle", horizontal_angle)},
+      {&p.vertical_angle, finiteCommand("vertical_angle", vertical_angle)}};
+  if (speed < 0.0)
+    badArgument("speed", formatNumber(speed), "a speed >= 0 m/s");
+  for (const auto& [channel, mean] : channels) {
+    channel->mean = mean;
+    channel->min = std::min(channel->min, mean);
+    channel->max = std::max(channel->max, mean);
+  }
+  w.world().current() = hydro::CurrentModel(p, w.world().seed());
+}
+
 /// Ground truth of the base link as the simulator's odometry: pose in world, twist in the body frame (REP-105),
 /// plus the body-frame linear acceleration over the last step.
 py::dict state(CoreWorld& w, const std::string& robot) {
@@ -383,6 +402,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("visibility", [](CoreWorld& w) { return w.world().config().visibility; })
       .def_property_readonly("sensors", &CoreWorld::selection)
       .def_property_readonly("current", [](CoreWorld& w) { return vector3(w.world().current().velocity()); })
+      .def("set_current", &setCurrent, py::arg("speed"), py::arg("horizontal_angle"), py::arg("vertical_angle"))
       .def_property_readonly("robots",
                              [](CoreWorld& w) {
                                std::vector<std::string> names;
@@ -430,6 +450,9 @@ PYBIND11_MODULE(_core, m) {
                out.emplace_back(s.sensor(i).name(), s.sensor(i).type());
              return out;
            })
+      .def("base_link", [](CoreWorld& w, const std::string& r) { return w.robot(r).description().base_link; })
+      .def("sample_count",
+           [](CoreWorld& w, const std::string& r, const std::string& name) { return w.sensor(r, name).sampleCount(); })
       .def("sample", [](py::object self, const std::string& r, const std::string& name) {
         return sample(self.cast<CoreWorld&>(), r, name, self);
       });

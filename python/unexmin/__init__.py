@@ -4,6 +4,11 @@
 Submodules that need no ROS (allocation maths, bag analysis) import without a running master.
 """
 
+from pkgutil import extend_path
+
+# Also the devel space's unexmin/ (the compiled _core, generated messages) when this source folder comes first on
+# sys.path, as in a process spawned by multiprocessing from one where catkin's package shim put it there.
+__path__ = extend_path(__path__, __name__)
 __all__ = ["Simulation"]
 
 

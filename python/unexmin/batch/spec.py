@@ -49,6 +49,7 @@ KEYS = {
     "python_path",
     "control",
     "vehicles",
+    "backend",
 }
 VISIBILITY = ("none", "low", "medium", "high")
 
@@ -194,6 +195,9 @@ def check_spec(raw, path="<spec>"):
     spec["control"] = raw.get("control", True)
     if not isinstance(spec["control"], bool):
         raise SpecError(f"{path}: control: expected true or false, got {spec['control']!r}")
+    spec["backend"] = raw.get("backend", "core")
+    if spec["backend"] not in ("core", "ros"):
+        raise SpecError(f"{path}: backend: expected core or ros, got {spec['backend']!r}")
     spec["seeds"] = _seeds(f"{path}: seeds", raw.get("seeds", 1))
     python_path = raw.get("python_path", [])
     if not isinstance(python_path, list) or not all(isinstance(p, str) for p in python_path):

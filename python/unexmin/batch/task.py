@@ -3,8 +3,9 @@
     python -m unexmin.batch.task TASK.json      # what run_mission() starts; writes result.json beside TASK.json
 
 run_mission(task) is the Dask task: it writes the mission's files, starts this module as a child process
-(its own rospy node, its own ROS master on a free loopback port, a lockstep world), waits for it with a
-wall-time limit, and returns one row of the results table. A crash, a timeout, a missing or non-finite
+(backend core: the engine in-process, with the robot descriptions the worker expanded once per overrides;
+backend ros: its own rospy node, its own ROS master on a free loopback port, a lockstep world), waits for it
+with a wall-time limit, and returns one row of the results table. A crash, a timeout, a missing or non-finite
 metric is a failed attempt: it is retried (spec `retries`, default once) and, failing again, recorded with
 its error and log path; run_mission itself never raises for a mission's failure.
 """
@@ -66,12 +67,29 @@ def _child(task_path):
             robots=spec["robots"],
         )
         os.environ.setdefault("ROS_HOME", os.path.join(folder, "ros_home"))
-        with Simulation.launch(
-            launch_file=task["launch_file"],
-            log_dir=os.path.join(folder, "logs"),
-            timeout=min(120.0, spec["timeout"]),
-            node_name="unexmin_batch",
-        ) as sim:
+        if spec.get("backend", "core") == "core":
+            descriptions = {}
+            for name, path in task["descriptions"].items():
+                with open(path) as f:
+                    descriptions[name] = f.read()
+            world = Simulation.launch(
+                task["world_file"],
+                robots=spec["robots"],
+                seed=mission["seed"],
+                backend="core",
+                mode=spec["mode"],
+                sensors=spec["sensors"],
+                descriptions=descriptions,
+                ray_caster_threads=spec["ray_caster_threads"],
+            )
+        else:
+            world = Simulation.launch(
+                launch_file=task["launch_file"],
+                log_dir=os.path.join(folder, "logs"),
+                timeout=min(120.0, spec["timeout"]),
+                node_name="unexmin_batch",
+            )
+        with world as sim:
             result["timings"]["launch_s"] = round(time.monotonic() - t0, 3)
             metrics = fn(sim, params)
             result["timings"]["mission_s"] = round(time.monotonic() - t0 - result["timings"]["launch_s"], 3)
@@ -142,6 +160,32 @@ def _attempt(task_path, folder, timeout, attempt):
     return result["status"], result["error"], result["metrics"]
 
 
+_descriptions = {}  # (description file, robot, overrides text) -> URDF text: xacro once per worker and overrides
+
+
+def mission_descriptions(spec, world_file, overrides, folder):
+    """{robot: URDF file in `folder`} of the mission's robots (each robot's description of the world file, with the
+    mission's overrides), expanded by xacro once per worker process for each distinct overrides text."""
+    from unexmin.identify.description import expand
+    from unexmin.worlds.files import PACKAGE_DIR
+    from unexmin.worlds.schema import read_world
+
+    text = ""
+    if overrides:
+        with open(overrides) as f:
+            text = f.read()
+    files = {}
+    for entry in read_world(world_file)["robots"][: spec["robots"]]:
+        name, source = entry["name"], PACKAGE_DIR / "urdf" / entry.get("description", "ux1.urdf.xacro")
+        key = (str(source), name, text)
+        if key not in _descriptions:
+            _descriptions[key] = expand(source, name, overrides or None)
+        files[name] = os.path.join(folder, f"{name}.urdf")
+        with open(files[name], "w") as f:
+            f.write(_descriptions[key])
+    return files
+
+
 def run_mission(spec, mission, out):
     """Run one mission (Dask task) and return its row: index, seed, parameters, metrics, status, error, log,
     wall_time_s, attempts."""
@@ -152,9 +196,15 @@ def run_mission(spec, mission, out):
     status, error, metrics = "failed", "", {}
     try:
         launch = write_launch(spec, mission, folder)
+        task = {"spec": spec, "mission": mission, "launch_file": launch}
+        if spec.get("backend", "core") == "core":
+            task["world_file"] = os.path.join(folder, "mission.world")  # written by write_launch, as the overrides
+            overrides = os.path.join(folder, "overrides.xacro")
+            overrides = overrides if os.path.exists(overrides) else ""
+            task["descriptions"] = mission_descriptions(spec, task["world_file"], overrides, folder)
         task_path = os.path.join(folder, "task.json")
         with open(task_path, "w") as f:
-            json.dump({"spec": spec, "mission": mission, "launch_file": launch}, f, indent=1)
+            json.dump(task, f, indent=1)
         attempts = 0
         for attempt in range(1, spec["retries"] + 2):
             attempts = attempt

@@ -76,6 +76,15 @@ class Robot:
         """{sensor name: family} of the sensors that run (the families World's ``sensors`` keeps)."""
         return dict(self.world._core.sensor_names(self.name))
 
+    @property
+    def base_link(self):
+        """The link of the robot's body frame (its odometry's child frame), from its description."""
+        return self.world._core.base_link(self.name)
+
+    def sample_count(self, sensor):
+        """How many samples sensor `sensor` has taken since t = 0 (cheaper than sample(sensor)["count"])."""
+        return self.world._core.sample_count(self.name, sensor)
+
     def sample(self, sensor):
         """The newest sample of sensor `sensor` (a name of ``sensors``; KeyError listing them otherwise) as a dict
         (docs/python_api.md lists the keys of each family); ``time`` < 0 before its first sample."""
@@ -169,6 +178,12 @@ class World:
         if isinstance(seed, bool) or int(seed) != seed or seed < 0:
             raise ValueError(f"seed = {seed!r}: expected a non-negative whole number")
         self._core.reset(int(seed))
+
+    def set_current(self, speed, horizontal_angle=0.0, vertical_angle=0.0):
+        """Replace the means of the world's current: speed [m/s] (>= 0), horizontal angle [rad, from +x towards +y],
+        vertical angle [rad, up positive]; each channel restarts at its new mean (bounds widened to hold it, noise
+        and return rate the world file's) and keeps it across reset(). ValueError naming a bad value."""
+        self._core.set_current(float(speed), float(horizontal_angle), float(vertical_angle))
 
     time = property(lambda self: self._core.time, doc="Simulation time [s].")
     step_count = property(lambda self: self._core.step_count, doc="Physics steps since t = 0.")

@@ -31,14 +31,22 @@ def replay(
     connect=False,
     timeout=60.0,
     overrides=None,
+    backend=None,
 ):
     """Run the replay of `mission` (from read_bag) and write the report, plots and CSV into out_dir;
     returns the report dict (fields: docs/replay.md). duration [s]: mission time to replay (default the
     bag's); sample_period [s]; pace [x real time], 0 = as fast as possible; timeout [s] of wall time;
     overrides: xacro overrides file of the replaying robot (e.g. from unexmin.identify); that robot is
-    then spawned at the bag's first roll and pitch (the real robot's trim), not level."""
-    from unexmin.replay.runner import LockstepRunner
+    then spawned at the bag's first roll and pitch (the real robot's trim), not level. backend: "core" (the
+    engine in-process, no ROS; the default without `connect`) or "ros" (a launched world; `connect` needs it)."""
+    from unexmin.replay.runner import CoreRunner, LockstepRunner
     from unexmin.scripting.simulation import Simulation
+
+    backend = backend or ("ros" if connect else "core")
+    if backend not in ("ros", "core"):
+        raise ReplayError(f"--backend {backend}: expected ros or core")
+    if connect and backend == "core":
+        raise ReplayError("--connect joins a running ROS simulator: not with --backend core")
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -59,18 +67,23 @@ def replay(
             launch_file = world_launch_file(out_dir, world, robot, roll_pitch, overrides=overrides, seed=seed)
         except (FileNotFoundError, ValueError) as e:
             raise ReplayError(str(e)) from None
-    sim = (
-        Simulation(timeout=timeout)
-        if connect
-        else Simulation.launch(
+    if connect:
+        sim = Simulation(timeout=timeout)
+    elif backend == "core":
+        world_file = world if launch_file is None else str(out_dir / f"{world}_spawn.world")
+        overrides_map = {robot: str(Path(overrides).resolve())} if overrides else None
+        sim = Simulation.launch(world_file, robots=1, seed=seed, backend="core", overrides=overrides_map)
+    else:
+        sim = Simulation.launch(
             world, robots=1, seed=seed, log_dir=str(out_dir / "ros_log"), timeout=timeout, launch_file=launch_file
         )
-    )
     bar = None
     with sim:
         if robot not in sim.robots:
             raise ReplayError(f"--robot {robot}: the simulator has no such robot (robots: {', '.join(sim.robots)})")
-        runner = LockstepRunner(sim, robot, mission.topics["motors"], sample_period, timeout=timeout)
+        runner = (CoreRunner if backend == "core" else LockstepRunner)(
+            sim, robot, mission.topics["motors"], sample_period, timeout=timeout
+        )
         if progress:
             from tqdm import tqdm
 
@@ -101,6 +114,7 @@ def replay(
         "world": "(running simulator)" if connect else world,
         "robot": robot,
         "seed": seed,
+        "backend": backend,
         "overrides": str(Path(overrides).resolve()) if overrides else None,
         "physics_rate_hz": sim.physics_rate,
         "sample_period_s": sample_period,
@@ -185,6 +199,11 @@ def main(argv=None):
         action="store_true",
         help="use the running simulator (ROS_MASTER_URI) instead of launching one; it is reset, and must be paused",
     )
+    ap.add_argument(
+        "--backend",
+        choices=("core", "ros"),
+        help="core: the engine in-process, no ROS (default); ros: a launched ROS world (default with --connect)",
+    )
     ap.add_argument("--robot", default="UX_1", help="simulated robot that replays the bag (default UX_1)")
     ap.add_argument("--seed", type=int, default=0, help="simulator seed (default 0)")
     ap.add_argument("--motors-topic", default=MOTORS_TOPIC, help=f"MotorCommand topic (default {MOTORS_TOPIC})")
@@ -219,6 +238,7 @@ def main(argv=None):
             "pace": args.pace,
             "progress": not args.quiet,
             "connect": args.connect,
+            "backend": args.backend,
         }
         before = replay(mission, Path(args.out) / "nominal", **options) if args.overrides else None
         report = replay(mission, args.out, overrides=args.overrides, **options)

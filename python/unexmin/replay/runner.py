@@ -33,15 +33,8 @@ class LockstepRunner:
         from unexmin.scripting.launcher import wait_for
         from unexmin.topics import sync_publisher
 
-        self.sim, self.timeout, self.MotorCommand = sim, timeout, MotorCommand
-        self.rate = sim.physics_rate
-        self.lead_steps = max(1, round(self.LEAD * self.rate))
-        self.sample_steps = round(sample_period * self.rate)
-        if self.sample_steps < 1 or abs(self.sample_steps - sample_period * self.rate) > 1e-6:
-            raise ReplayError(
-                f"--sample-period {sample_period} s must be a whole number of physics steps ({1.0 / self.rate} s)"
-            )
-        self.ux = sim.robot(robot, streams="none")
+        self.MotorCommand = MotorCommand
+        self._timing(sim, robot, sample_period, timeout)
         self.driver = EscDriverNode(robot=robot, motor_topic=motors_topic, announce=False)
         self.pub = sync_publisher(motors_topic, MotorCommand)
         wait_for(
@@ -51,6 +44,19 @@ class LockstepRunner:
             f"the ESC driver and the simulator to connect on {motors_topic} and /{robot}/thrusters",
         )
         self.sent = 0
+
+    def _timing(self, sim, robot, sample_period, timeout):
+        """The runner's simulation, robot handle (no streams) and step counts; ReplayError for a sample period that
+        is not a whole number of physics steps."""
+        self.sim, self.timeout = sim, timeout
+        self.rate = sim.physics_rate
+        self.lead_steps = max(1, round(self.LEAD * self.rate))
+        self.sample_steps = round(sample_period * self.rate)
+        if self.sample_steps < 1 or abs(self.sample_steps - sample_period * self.rate) > 1e-6:
+            raise ReplayError(
+                f"--sample-period {sample_period} s must be a whole number of physics steps ({1.0 / self.rate} s)"
+            )
+        self.ux = sim.robot(robot, streams="none")
 
     def close(self):
         """Unregister the runner's publisher and its ESC driver (the Simulation closes the rest)."""
@@ -118,3 +124,34 @@ class LockstepRunner:
             else:
                 self._apply(kind, payload, step / self.rate)
         return np.array(traj, dtype=float).reshape(-1, len(TRAJ_COLUMNS))
+
+
+class CoreRunner(LockstepRunner):
+    """LockstepRunner on the core back end (Simulation.launch(..., backend="core")): the motor commands are
+    converted to thrusts in this process by the ESC driver's converter (unexmin.control.esc, its default tables, as
+    the replay's in-process driver node has no parameters of its own) and applied from the next physics step, as
+    the ROS runner's driver does; no ROS node runs."""
+
+    def __init__(self, sim, robot="UX_1", motors_topic=ESC_COMMAND_TOPIC, sample_period=0.1, timeout=30.0):
+        from unexmin.control.esc import converter_from_params
+
+        self._timing(sim, robot, sample_period, timeout)
+        self.converter = converter_from_params(lambda name, default: default)
+        self.rejected = 0  # motor commands the converter refused (the ROS driver logs and skips them too)
+
+    def close(self):
+        """Nothing of its own to release (the Simulation closes the world)."""
+
+    def _apply(self, kind, payload, t_sim):
+        from unexmin.control.esc import EscTableError
+
+        if kind != "motors":
+            return super()._apply(kind, payload, t_sim)
+        mode, values = payload
+        try:
+            thrusts, _ = self.converter.to_thrust(mode, list(values)[: self.ux.thruster_count])
+        except EscTableError:
+            self.rejected += 1
+            return None
+        self.ux.thrusts(thrusts)
+        return None

@@ -11,7 +11,7 @@ See docs/python_api.md.
 """
 
 import atexit
-import math
+import os
 import weakref
 
 import rosgraph
@@ -21,6 +21,7 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
+from unexmin.scripting.api import BACKENDS, LAUNCH_ARGUMENTS, RobotApi, SimulationApi, check_launch_arguments, finite
 from unexmin.scripting.launcher import WorldProcess, wait_for
 from unexmin.scripting.rospy_node import master_online, node_master_uri, register_again
 from unexmin.scripting.streams import StreamSet, header_stamp
@@ -37,14 +38,7 @@ _SERVICES = ("/sim/step", "/sim/pause", "/sim/unpause", "/sim/reset", "/sim/rese
 _open = None  # weakref to this process's open Simulation (rospy: one node per process, one master)
 
 
-def _finite(name, value):
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
-    return value
-
-
-class Robot:
+class Robot(RobotApi):
     """Handle on one simulated robot's topics (names relative to /<name>/). Made by Simulation.robot()."""
 
     def __init__(self, sim, name, thrusters):
@@ -180,24 +174,24 @@ class Robot:
                 f"thrusts needs {len(self._thr)} values for {self.name} "
                 f"(/sim/thruster_count/{self.name}), got {len(values)}"
             )
-        msgs = [Float64(_finite(f"thrust[{i}]", v)) for i, v in enumerate(values)]
+        msgs = [Float64(finite(f"thrust[{i}]", v)) for i, v in enumerate(values)]
         for pub, msg in zip(self._thr, msgs):
             self._send(pub, msg)
 
     def wrench(self, X=0.0, Y=0.0, Z=0.0, K=0.0, M=0.0, N=0.0):
         """Desired body wrench [N, N m] on force_moments (needs the thruster allocator running)."""
         w = Wrench()
-        w.force.x, w.force.y, w.force.z = (_finite(n, v) for n, v in (("X", X), ("Y", Y), ("Z", Z)))
-        w.torque.x, w.torque.y, w.torque.z = (_finite(n, v) for n, v in (("K", K), ("M", M), ("N", N)))
+        w.force.x, w.force.y, w.force.z = (finite(n, v) for n, v in (("X", X), ("Y", Y), ("Z", Z)))
+        w.torque.x, w.torque.y, w.torque.z = (finite(n, v) for n, v in (("K", K), ("M", M), ("N", N)))
         self._send(self._wrench, w)
 
     def pendulum(self, angle):
         """Pendulum target angle [rad]."""
-        self._send(self._pendulum, Float64(_finite("pendulum", angle)))
+        self._send(self._pendulum, Float64(finite("pendulum", angle)))
 
     def vbs(self, mass):
         """Ballast mass [kg]."""
-        self._send(self._vbs, Float64(_finite("vbs", mass)))
+        self._send(self._vbs, Float64(finite("vbs", mass)))
 
     def _send(self, pub, msg):
         pub.publish(msg)
@@ -217,13 +211,15 @@ class Robot:
             p.unregister()
 
 
-class Simulation:
+class Simulation(SimulationApi):
     """Client of a running simulator (its ROS master is ROS_MASTER_URI), or of a world it launched.
 
     One per process at a time: rospy runs one ROS node per process, talking to one master. A
     Simulation is a context manager; close() (or the end of the `with` block, also on an exception)
     stops the world it launched. After close(), another Simulation can be made in the same process.
     """
+
+    backend = "ros"
 
     def __init__(self, node_name="unexmin_script", timeout=30.0, world=None):
         """Connect to the simulator of ROS_MASTER_URI (waits up to `timeout` s of wall time for its
@@ -313,7 +309,23 @@ class Simulation:
 
     @classmethod
     def launch(
-        cls, world="tank", robots=1, seed=0, log_dir=None, timeout=60.0, launch_file=None, vehicles=None, **kwargs
+        cls,
+        world="tank",
+        robots=1,
+        seed=0,
+        log_dir=None,
+        timeout=60.0,
+        launch_file=None,
+        vehicles=None,
+        backend="ros",
+        mode="operational",
+        visibility="",
+        sensors="all",
+        mapping=False,
+        map_file="",
+        overrides=None,
+        record="",
+        **kwargs,
     ):
         """Start a headless lockstep world, paused, on a private master and connect to it.
 
@@ -321,12 +333,36 @@ class Simulation:
         world's robots to spawn; seed: the simulator's seed; log_dir: folder for roslaunch.log and the
         nodes' logs; timeout [s] of wall time for the world to offer its services; launch_file: a
         launch file to run instead of `<world>_world.launch` (it must start the simulator paused in
-        lockstep); vehicles: a mixed team instead of `robots` UX-1s, vehicle types in order (e.g.
-        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles). kwargs go to
-        Simulation() (node_name).
+        lockstep; it gets none of the launch arguments). mode, visibility, sensors, mapping, map_file,
+        overrides ({robot: xacro file}, as `<robot>_overrides:=`) and record: the launch file's arguments
+        of the same names. vehicles: a mixed team instead of `robots` UX-1s, vehicle types in order (e.g.
+        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles; ROS back end only).
+        kwargs go to Simulation() (node_name).
+        backend: "ros" (this) or "core": the engine in-process, no ROS (scripting/core_backend.py; kwargs
+        then go to CoreSimulation: descriptions, physics_rate, ray_caster_threads).
         The first launch of a process picks a free port; later ones (after close()) reuse it, because
         rospy stays bound to the master it first registered with.
         """
+        if backend not in BACKENDS:
+            raise ValueError(f"backend = {backend!r}: expected one of {', '.join(BACKENDS)}")
+        arguments = {k: v for k, v in locals().items() if k in LAUNCH_ARGUMENTS}
+        if backend == "core":
+            from unexmin.scripting.core_backend import CoreSimulation
+
+            if vehicles:
+                raise ValueError(
+                    f"vehicles = {vehicles!r}: the core back end spawns the world file's first robots only: "
+                    'use backend="ros"'
+                )
+
+            if log_dir is not None:
+                kwargs["log_dir"] = log_dir
+            if launch_file is not None:
+                kwargs["launch_file"] = launch_file
+            return CoreSimulation.launch(world, robots, seed, timeout=timeout, **arguments, **kwargs)
+        extra_args = launch_arguments(launch_file, **arguments)
+        if vehicles:
+            extra_args = (*extra_args, f"vehicles:={','.join(parse_vehicles(vehicles))}")
         _refuse_a_second("Simulation.launch")
         port = None
         node_master = node_master_uri()
@@ -350,20 +386,13 @@ class Simulation:
             log_dir=log_dir,
             port=port,
             launch_file=launch_file,
-            extra_args=(f"vehicles:={','.join(parse_vehicles(vehicles))}",) if vehicles else (),
+            extra_args=extra_args,
         )
         try:
             return cls(timeout=timeout, world=proc, **kwargs)
         except BaseException:  # Ctrl-C (KeyboardInterrupt) while connecting too: no roslaunch left behind
             proc.close(timeout=3.0)  # a failed world: no need to wait for nodes stuck in their start-up
             raise
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-        return False
 
     def _on_clock(self, msg):
         if self.free_running:  # in lockstep the time comes with each step's answer
@@ -451,13 +480,6 @@ class Simulation:
         for s in self._streams.streams.values():
             s.fresh = False
 
-    def run_for(self, seconds):
-        """Advance by `seconds` of sim time, rounded to whole physics steps; returns the sim time [s]."""
-        seconds = _finite("seconds", seconds)
-        if seconds < 0:
-            raise ValueError(f"run_for needs seconds >= 0, got {seconds}")
-        return self.step(round(seconds * self.physics_rate))
-
     def reset(self, seed=None):
         """Everything back to t = 0 (robots at spawn, actuators zero); a new seed if given. The newest
         message of every stream is forgotten (collectors keep theirs and go on collecting)."""
@@ -498,6 +520,34 @@ class Simulation:
                 self._world = None
             if _open is not None and _open() is self:
                 _open = None
+
+
+def launch_arguments(launch_file, mode, visibility, sensors, mapping, map_file, overrides, record):
+    """The `name:=value` arguments of `<world>_world.launch` for Simulation.launch's world arguments (only those
+    that differ from the launch file's defaults); ValueError naming an argument out of its domain, or one given
+    with a launch_file of the caller's (which gets no arguments)."""
+    sensors = check_launch_arguments(mode, visibility, sensors, mapping, map_file, overrides, record)
+    args = []
+    for name, value, default in (
+        ("mode", mode, "operational"),
+        ("visibility", visibility, ""),
+        ("sensors", sensors, "all"),
+        ("mapping", mapping, False),
+        ("map_file", map_file, ""),
+        ("record", record, ""),
+    ):
+        if value != default:
+            args.append(f"{name}:={str(value).lower() if isinstance(value, bool) else value}")
+    for robot, file in (overrides or {}).items():
+        if file and not os.path.isfile(file):
+            raise FileNotFoundError(f"overrides['{robot}'] = {file}: no such xacro file")
+        args.append(f"{robot}_overrides:={file}")
+    if args and launch_file:
+        raise ValueError(
+            f"launch_file = {launch_file}: a launch file of the caller's gets no arguments, yet "
+            f"{', '.join(a.split(':=')[0] for a in args)} were given: set them in that file"
+        )
+    return args
 
 
 def _refuse_a_second(caller):
