@@ -195,9 +195,12 @@ def check_spec(raw, path="<spec>"):
     spec["control"] = raw.get("control", True)
     if not isinstance(spec["control"], bool):
         raise SpecError(f"{path}: control: expected true or false, got {spec['control']!r}")
-    spec["backend"] = raw.get("backend", "core")
+    # A mixed team runs on the ROS simulator: the core spawns the world file's first robots only.
+    spec["backend"] = raw.get("backend", "ros" if spec["vehicles"] else "core")
     if spec["backend"] not in ("core", "ros"):
         raise SpecError(f"{path}: backend: expected core or ros, got {spec['backend']!r}")
+    if spec["backend"] == "core" and spec["vehicles"]:
+        raise SpecError(f"{path}: backend: core cannot run a mixed team (vehicles): use backend: ros")
     spec["seeds"] = _seeds(f"{path}: seeds", raw.get("seeds", 1))
     python_path = raw.get("python_path", [])
     if not isinstance(python_path, list) or not all(isinstance(p, str) for p in python_path):
