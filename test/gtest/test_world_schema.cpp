@@ -58,7 +58,7 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
       {world("", ", densty: 1025", "", "", "", ""), "water.densty", "density, surface_z", "density"},
       {world("", "", ", meen: 0.2", "", "", ""), "current.speed.meen", "mean, min, max, noise, mu", "mean"},
       {world("", "", "", ", albdo: [0.1, 0.1, 0.1]", "", ""), "meshes[1].albdo",
-       "name, file, scale, xyz, rpy, collision, visual, albedo, material", "albedo"},
+       "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material", "albedo"},
       {world("", "", "", "", ", grian: 0.02", ""), "meshes[1].material.grian",
        "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint", "grain"},
       {world("", "", "", "", "", ", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy",

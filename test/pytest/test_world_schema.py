@@ -39,7 +39,7 @@ TYPOS = [
     (
         world(mesh=", albdo: [0.1, 0.1, 0.1]"),
         "meshes[1].albdo",
-        "name, file, scale, xyz, rpy, collision, visual, albedo, material",
+        "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material",
         "albedo",
     ),
     (

@@ -14,7 +14,8 @@ namespace sim {
 
 struct Material {
   /// plain (one albedo, no texture) | rock | painted | rusty (materialKinds()): a kind is a set of defaults and of
-  /// weights of the texture's components.
+  /// weights of the texture's components. image | vertex_colours: the albedo is the mesh's image texture at the
+  /// hit's texture coordinates, or its vertex colours interpolated at the hit, times `albedo`.
   std::string kind = "plain";
   /// Mean diffuse (Lambertian) reflectance per RGB channel, in [0, 1]: the texture modulates around it.
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};
@@ -30,19 +31,25 @@ struct Material {
   /// Weights of grain, cracks, strata and stains in the texture [-], set by the kind (not a world-file key).
   Eigen::Vector4d weights{0, 0, 0, 0};
 
-  bool textured() const { return kind != "plain"; }
+  /// The image texture of kind `image`: the PNG or JPEG file, resolved against the world file's folder [path].
+  std::string image;
+
+  /// A procedural solid texture (rock, painted, rusty).
+  bool textured() const { return kind != "plain" && !mapped(); }
+  /// The albedo comes from the mesh's own data at the hit (image texture or vertex colours).
+  bool mapped() const { return kind == "image" || kind == "vertex_colours"; }
 };
 
 /// The material kinds a world file can name.
 const std::vector<std::string>& materialKinds();
 
 /// The defaults of material kind `kind` (albedo, contrast, relief, scales) [docs/worlds.md]; throws ParameterError
-/// "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty" for any other name.
+/// "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty|image|vertex_colours" for any other name.
 Material materialDefaults(const std::string& kind, const std::string& prefix = "");
 
 /// Checks every value of `m`; throws ParameterError "'<prefix><key>' = <value>: expected <range>" naming the first
 /// bad key (unknown kind, albedo outside [0, 1], negative or non-finite scale, contrast or tint outside [0, 1],
-/// negative relief).
+/// negative relief, kind image without an image file or an image file with another kind).
 void checkMaterial(const Material& m, const std::string& prefix = "");
 
 }  // namespace sim

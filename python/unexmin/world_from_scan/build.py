@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from unexmin.world_from_scan.colours import read_scan_colours, vertex_colours
 from unexmin.world_from_scan.scan import (
     ScanError,
     check_usable,
@@ -51,7 +52,7 @@ from unexmin.worlds.schema import read_world
 
 
 # ------------------------------------------------------------------------------------------ outputs
-def world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, source):
+def world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, source, coloured=False):
     lines = [
         f"# World made from the scan {source} by python -m unexmin.world_from_scan (docs/world_from_scan.md).",
         "# Schema: docs/worlds.md. Units: SI; world frame = the scan's frame (ENU, z up).",
@@ -67,10 +68,11 @@ def world_yaml(name, surface_z, visibility, current_speed, collision_file, visua
         "  horizontal_angle: {mean: 0.0, min: -3.1416, max: 3.1416, noise: 0.0, mu: 0.01}   # [rad]",
         "  vertical_angle: {mean: 0.0, min: -0.15, max: 0.15, noise: 0.0, mu: 0.05}        # [rad]",
         "meshes:                                       # closed surface, faces towards the water",
+        # the cameras see the coloured visual mesh, else the finer collision mesh (docs/worlds.md "Who sees a mesh")
         f"  - {{name: {name}, file: {collision_file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
-        "collision: true, visual: false}",
+        "collision: true, visual: false" + ("}" if coloured else ", seen_by: [cameras, sonars]}"),
         f"  - {{name: {name}_visual, file: {visual_file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
-        "collision: false, visual: true}",
+        "collision: false, visual: true" + (", material: {kind: vertex_colours}}" if coloured else ", seen_by: []}"),
         "robots:                                       # checked: in the water, clearance [m] to the walls",
     ]
     for k, (xyz, room) in enumerate(spawns):
@@ -191,6 +193,8 @@ def build_world(
             "clearance to the walls: no room for a robot"
         )
     vv, vt = timed("visual", "visual mesh", simplify, v, t, visual_edge)
+    coloured = read_scan_colours(scan)  # the scan's RGB onto the visual mesh's vertices (colours.py)
+    visual_colours = vertex_colours(vv, *coloured) if coloured is not None else None
     t0 = time.monotonic()
     with stage("evaluate") as bar:
         rng = np.random.default_rng(seed)
@@ -203,10 +207,20 @@ def build_world(
     collision_file, visual_file = f"{name}_collision.ply", f"{name}_visual.ply"
     comment = f"unexmin world_from_scan {scan.name} resolution {resolution}"
     write_ply(out / collision_file, v, t, comment + " collision", inward=False)
-    write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
+    write_ply(out / visual_file, vv, vt, comment + " visual", inward=False, colours=visual_colours)
     world_path = out / f"{name}.world"
     world_path.write_text(
-        world_yaml(name, surface_z, visibility, current_speed, collision_file, visual_file, spawns, scan.name)
+        world_yaml(
+            name,
+            surface_z,
+            visibility,
+            current_speed,
+            collision_file,
+            visual_file,
+            spawns,
+            scan.name,
+            coloured=visual_colours is not None,
+        )
     )
     read_world(world_path)  # what the simulator will read follows the schema
     rep = {
@@ -221,7 +235,13 @@ def build_world(
         "max_gap": max_gap,
         "poisson_triangles": int(fine_triangles),
         "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
-        "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
+        "visual": {
+            "file": visual_file,
+            "triangles": int(len(vt)),
+            "vertices": int(len(vv)),
+            "edge": visual_edge,
+            "colours": visual_colours is not None,
+        },
         "world": world_path.name,
         "closed": closed,
         "volume": round(volume, 3) if closed else None,
