@@ -60,7 +60,7 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
       {world("", "", "", ", albdo: [0.1, 0.1, 0.1]", "", ""), "meshes[1].albdo",
        "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material", "albedo"},
       {world("", "", "", "", ", grian: 0.02", ""), "meshes[1].material.grian",
-       "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint", "grain"},
+       "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint, image", "grain"},
       {world("", "", "", "", "", ", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy",
        "description"},
   };

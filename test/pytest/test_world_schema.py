@@ -45,7 +45,7 @@ TYPOS = [
     (
         world(material=", grian: 0.02"),
         "meshes[1].material.grian",
-        "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint",
+        "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint, image",
         "grain",
     ),
     (world(robot=", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy", "description"),
