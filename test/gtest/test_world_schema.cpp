@@ -214,5 +214,5 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 15);  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, albedo x2
+  EXPECT_EQ(checked, 16);  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2
 }

@@ -12,6 +12,7 @@ import yaml
 
 from unexmin import world_from_scan as wfs
 from unexmin.world_from_scan.colours import read_scan_colours, vertex_colours
+from unexmin.worlds.meshes import read_mesh
 
 RED, BLUE = (200, 30, 30), (30, 60, 200)
 FLOOR, TOP = -2.0, 0.0  # [m] the room's floor and ceiling
@@ -53,6 +54,8 @@ def test_the_visual_mesh_keeps_the_scans_colours(room):
     assert floor.sum() > 20 and above.sum() > 20
     assert (c[floor] == RED).all(axis=1).mean() > 0.98  # the floor's edge may take a wall's point
     assert (c[above] == BLUE).all(axis=1).all()
+    mv, mt = read_mesh(str(out / rep["visual"]["file"]))  # what rviz's mesh marker reads: colours skipped
+    assert np.allclose(mv, v, atol=1e-6) and len(mt) == len(mesh.triangles)
     world = yaml.safe_load((out / rep["world"]).read_text())
     collision, visual = world["meshes"]
     assert visual["material"] == {"kind": "vertex_colours"}
