@@ -4,6 +4,7 @@
 #include <unexmin/raycast/bullet_ray_caster.h>
 #include <unexmin/raycast/embree_ray_caster.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
+#include <unexmin/sensors/vision/sls_sensor.h>
 #include "expect_error.h"
 #include "mesh_fixture.h"
 #include "sensor_fixture.h"
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 namespace unexmin {
@@ -165,6 +167,40 @@ TEST(SeenBy, SonarRaysMeetTheCollisionMeshesAndCameraRaysTheVisualOnes) {
                               h.v * m.vertices[m.indices[3 * h.primitive + 2]];
     EXPECT_LT((p - h.point(rays[0])).norm(), 1e-4f);
   }
+}
+
+/// The SLS scan of a unit 10 cm left of the lens (vertical fan of 1 rad, 50 rays, along +x) facing `plate`.
+sensors::vision::SlsScan slsScan(const sim::MeshEntry& wall) {
+  const std::string links =
+      mountLink("T/cam", kLens, Eigen::Vector3d(-M_PI / 2, 0, -M_PI / 2)) +
+      "<link name='T/sls'/><joint name='T/sls_motor' type='revolute'><parent link='T/base_link'/><child "
+      "link='T/sls'/><origin xyz='0.3 0.1 0' rpy='0 0 0'/><axis xyz='0 0 1'/><limit lower='-1' upper='1' "
+      "effort='1' velocity='1'/></joint>\n";
+  const std::map<std::string, std::string> params{{"camera_frame", "T/cam"},
+                                                  {"camera_width", "160"},
+                                                  {"camera_height", "120"},
+                                                  {"camera_hfov", "1.0471975511965976"},
+                                                  {"fan", "1"},
+                                                  {"rays", "50"},
+                                                  {"motor_speed", "0"},
+                                                  {"noise", "none"}};
+  SensorWorld w(withPlates({wall}), sensorUrdf(SphereSpec(), links, sensorXml("sls", "sls", "T/sls", 10.0, params)));
+  const auto& sls = dynamic_cast<const sensors::vision::SlsSensor&>(*w.suite->find("sls"));
+  w.samples(sls, 1);
+  return sls.last();
+}
+
+TEST(SeenBy, TheSlsLaserAndItsCameraSeeTheVisualMeshesOnly) {
+  // A 0.6 m plate 1.2 m ahead of the unit: 0.6 / 1.2 rad of the 1 rad fan meet it (about 24 of the 50 rays).
+  const auto count = [](const std::vector<float>& r) {
+    return std::count_if(r.begin(), r.end(), [](float x) { return std::isfinite(x); });
+  };
+  const auto seen = slsScan(plate("decoration", 1.5, -0.3, 0.3, 0.3, false, true));
+  EXPECT_NEAR(count(seen.ranges), 50 * 2 * std::atan(0.3 / 1.2), 2.0);
+  EXPECT_EQ(seen.points.size(), static_cast<std::size_t>(count(seen.ranges)));
+  const auto unseen = slsScan(plate("coarse_twin", 1.5, -0.3, 0.3, 0.3, true, false));
+  EXPECT_EQ(count(unseen.ranges), 0);
+  EXPECT_TRUE(unseen.points.empty());
 }
 
 TEST(SeenBy, EntriesOfOneFileShareOneMeshAndRenderAsOneEntry) {
