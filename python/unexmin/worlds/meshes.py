@@ -9,7 +9,8 @@ class MeshFormatError(ValueError):
 
 def read_mesh(path):
     """(vertices N x 3 float64, triangles M x 3 int64) of a binary STL or binary little-endian PLY
-    (float x y z vertices, triangle faces). STL vertices are merged by exact position."""
+    (float x y z vertices, then optionally uchar red green blue, skipped; triangle faces). STL vertices are merged by
+    exact position."""
     with open(path, "rb") as f:
         data = f.read()
     if data[:4] == b"ply\n":
