@@ -2,24 +2,36 @@
 """Real-time factor of the engine in-process (unexmin.core), no ROS: the tank, one robot.
 
     source scripts/env.sh && python bench/core_rtf.py [--world tank] [--seconds 60] [--repeat 3] [--threads 1]
+                                                      [--mode visual] [--size 640x480]
 
 Two configurations: dynamics only (sensors="none") and every operational-mode sensor on (sensors="all",
 mode=operational: the cameras take no images). The robot holds a thrust command the whole time; the script calls
 step(500) (1 s of sim time at 500 Hz) --seconds times and prints sim time / wall time (and / this process's CPU
 time, which other processes on a loaded machine do not inflate), best of --repeat, plus the
 cost of one step and the process's peak resident memory. --threads: ray-casting threads (default 1: one core;
-0 = every hardware thread, as the simulator's default).
+0 = every hardware thread, as the simulator's default). --mode visual: the second configuration renders every
+camera's images (the mine: `--world mine --mode visual --size 640x480 --seconds 5`); --size: every camera's image
+size (camera_width, camera_height of the robot description, as bench/visual_rtf.py overrides them).
 """
 
 import argparse
+import os
 import resource
+import tempfile
 import time
 
 from unexmin.core import World
 
 
-def rtf(world, sensors, seconds, repeat, threads):
-    w = World(world, robots=1, seed=0, sensors=sensors, ray_caster_threads=threads)
+def rtf(world, sensors, seconds, repeat, threads, mode="operational", size=None):
+    extra = {}
+    if size:
+        from visual_rtf import overrides  # bench/visual_rtf.py: the same overrides file
+
+        path = os.path.join(tempfile.mkdtemp(prefix="core_rtf_"), "cameras.xacro")
+        overrides(path, *size, 10)
+        extra["overrides"] = {"UX_1": path}
+    w = World(world, robots=1, seed=0, sensors=sensors, ray_caster_threads=threads, mode=mode, **extra)
     ux = w.robot("UX_1")
     best = best_cpu = 0.0
     for _ in range(repeat):
@@ -39,12 +51,15 @@ def main():
     parser.add_argument("--seconds", type=int, default=60, help="sim time per run [s] (default 60)")
     parser.add_argument("--repeat", type=int, default=3, help="runs per configuration, the best counts")
     parser.add_argument("--threads", type=int, default=1, help="ray-casting threads (0: every hardware thread)")
+    parser.add_argument("--mode", default="operational", choices=("operational", "visual"), help="/sim/mode")
+    parser.add_argument("--size", help="WxH of every camera's image (default: the description's)")
     args = parser.parse_args()
-    for label, sensors in (("dynamics only", "none"), ("every operational sensor", "all")):
-        value, cpu, dt = rtf(args.world, sensors, args.seconds, args.repeat, args.threads)
+    size = tuple(int(v) for v in args.size.split("x")) if args.size else None
+    for label, sensors in (("dynamics only", "none"), (f"every {args.mode}-mode sensor", "all")):
+        value, cpu, dt = rtf(args.world, sensors, args.seconds, args.repeat, args.threads, args.mode, size)
         print(
-            f"{args.world}, 1 robot, {label}: RTF {value:.1f} ({dt / value * 1e6:.2f} us of wall time per "
-            f"{dt * 1e3:g} ms step), {cpu:.1f} in this process's CPU time"
+            f"{args.world}, 1 robot, {label}: RTF {value:.4g} ({dt / value * 1e6:.2f} us of wall time per "
+            f"{dt * 1e3:g} ms step), {cpu:.4g} in this process's CPU time"
         )
     print(f"peak RSS {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
 

@@ -143,9 +143,9 @@ TEST(Mesh, AWorldFileLoadsTheMeshWhereTheRayCasterSeesItAtTheClosedFormDistance)
   const sim::WorldConfig config = sim::loadWorldConfig(world_file);
   ASSERT_EQ(config.meshes.size(), 1u);
   const auto w = makeWorld(config, SphereSpec());
-  ASSERT_EQ(w->meshes().size(), 1u);
-  EXPECT_EQ(w->meshes()[0].name, "posed_box");
-  EXPECT_EQ(w->meshes()[0].triangleCount(), 12u);
+  ASSERT_EQ(w->meshCount(), 1u);
+  EXPECT_EQ(w->mesh(0).name, "posed_box");
+  EXPECT_EQ(w->mesh(0).triangleCount(), 12u);
 
   const Eigen::Matrix3d R = rpyMatrix(rpy.x(), rpy.y(), rpy.z());
   const Eigen::Vector3d centre = xyz + R * scale.cwiseProduct(Eigen::Vector3d(0.5, 0.5, 0.5));

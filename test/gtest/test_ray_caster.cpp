@@ -103,7 +103,7 @@ TEST_P(RayCasterBackend, InsideSphereMeshMeasuresTheRadiusWithinTheChordSag) {
   const Eigen::Vector3d c(1.5, -2.0, -3.0);
   const double R = 2.0;
   auto world = makeWorld({{"sphere", icosphere(c, R, 6)}});
-  const sim::TriangleMesh& mesh = world->meshes()[0];
+  const sim::TriangleMesh& mesh = world->mesh(0);
   ASSERT_EQ(mesh.triangleCount(), 81920u);
   // The polyhedron lies between the sphere through its nearest face plane (inner) and the one through its
   // farthest vertex (outer); facet_angle bounds the angle between a face normal and the radius through it.
@@ -313,7 +313,7 @@ TEST_P(RayCasterBackend, RaysAimedAtSharedEdgesOfAClosedMeshNeverEscape) {
   // robust mode still lets about 0.2 % of those through.)
   const Eigen::Vector3d c(0.2, 0.1, -0.4);
   auto world = makeWorld({{"sphere", icosphere(c, 3.0, 4)}});
-  const sim::TriangleMesh& mesh = world->meshes()[0];
+  const sim::TriangleMesh& mesh = world->mesh(0);
   auto rc = caster(GetParam(), *world);
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -340,7 +340,7 @@ TEST(RayCaster, EmbreeWatertightOptionIsWhatStopsEdgeLeaks) {
   // The same edge-aimed rays as above: Embree's default triangle test lets some through, the robust one none.
   const Eigen::Vector3d c(0.2, 0.1, -0.4);
   auto world = makeWorld({{"sphere", icosphere(c, 3.0, 4)}});
-  const sim::TriangleMesh& mesh = world->meshes()[0];
+  const sim::TriangleMesh& mesh = world->mesh(0);
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::vector<Ray> rays;
@@ -493,7 +493,8 @@ TEST(RayCaster, EmbreeAndBulletAgreeInTheTank) {
   // Bullet widens every triangle by ~1e-4 of its size, so it also sees rays passing just outside an open
   // mesh edge (the tank's rim) that Embree, exactly, does not: the only hit/miss disagreement allowed.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> open_edges;
-  for (const auto& mesh : world.meshes()) {
+  for (std::size_t m = 0; m < world.meshCount(); ++m) {
+    const sim::TriangleMesh& mesh = world.mesh(m);
     std::map<std::pair<int, int>, int> uses;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
       for (int k = 0; k < 3; ++k)

@@ -58,10 +58,10 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
       {world("", ", densty: 1025", "", "", "", ""), "water.densty", "density, surface_z", "density"},
       {world("", "", ", meen: 0.2", "", "", ""), "current.speed.meen", "mean, min, max, noise, mu", "mean"},
       {world("", "", "", ", albdo: [0.1, 0.1, 0.1]", "", ""), "meshes[1].albdo",
-       "name, file, scale, xyz, rpy, collision, visual, albedo, material", "albedo"},
+       "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material", "albedo"},
       {world("", "", "", "", ", grian: 0.02", ""), "meshes[1].material.grian",
        "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint, square, rows, columns, "
-       "dark, border",
+       "dark, border, image",
        "grain"},
       {world("", "", "", "", "", ", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy",
        "description"},
@@ -216,5 +216,5 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 15);  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, albedo x2
+  EXPECT_EQ(checked, 16);  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2
 }

@@ -39,14 +39,14 @@ TYPOS = [
     (
         world(mesh=", albdo: [0.1, 0.1, 0.1]"),
         "meshes[1].albdo",
-        "name, file, scale, xyz, rpy, collision, visual, albedo, material",
+        "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material",
         "albedo",
     ),
     (
         world(material=", grian: 0.02"),
         "meshes[1].material.grian",
         "kind, albedo, seed, contrast, relief, grain, cracks, strata, stains, region, tint, square, rows, columns, "
-        "dark, border",
+        "dark, border, image",
         "grain",
     ),
     (world(robot=", descripton: ux1.urdf.xacro"), "robots[0].descripton", "name, description, xyz, rpy", "description"),

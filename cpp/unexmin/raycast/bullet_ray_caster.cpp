@@ -5,55 +5,82 @@
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
+
 namespace unexmin {
 namespace raycast {
 namespace {
 
-/// Start of the vertex array of a triangle-mesh shape (to recognise the world mesh it was built on), or null.
-const void* vertexBase(const btCollisionShape* shape) {
-  if (shape->getShapeType() != TRIANGLE_MESH_SHAPE_PROXYTYPE)
-    return nullptr;
-  const btStridingMeshInterface* mesh = static_cast<const btBvhTriangleMeshShape*>(shape)->getMeshInterface();
-  if (!mesh || mesh->getNumSubParts() < 1)
-    return nullptr;
-  const unsigned char* vertices = nullptr;
-  const unsigned char* indices = nullptr;
-  int num_vertices = 0, vertex_stride = 0, index_stride = 0, num_faces = 0;
-  PHY_ScalarType vertex_type, index_type;
-  mesh->getLockedReadOnlyVertexIndexBase(&vertices, num_vertices, vertex_type, vertex_stride, &indices, index_stride,
-                                         num_faces, index_type, 0);
-  mesh->unLockReadOnlyVertexBase(0);
-  return vertices;
+/// Barycentric coordinates (u, v) of point p in triangle `tri` of `mesh` (p = (1 - u - v) p0 + u p1 + v p2).
+void barycentric(const sim::TriangleMesh& mesh, int tri, const Eigen::Vector3f& p, float& u, float& v) {
+  const Eigen::Vector3f a = mesh.vertices[mesh.indices[3 * tri]], b = mesh.vertices[mesh.indices[3 * tri + 1]],
+                        c = mesh.vertices[mesh.indices[3 * tri + 2]];
+  const Eigen::Vector3f e1 = b - a, e2 = c - a, d = p - a;
+  const float d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), d1 = d.dot(e1), d2 = d.dot(e2);
+  const float den = d11 * d22 - d12 * d12;
+  u = den > 0.0f ? (d22 * d1 - d12 * d2) / den : 0.0f;
+  v = den > 0.0f ? (d11 * d2 - d12 * d1) / den : 0.0f;
 }
 
-std::vector<BulletTarget> worldTargets(sim::World& world) {
-  std::vector<BulletTarget> targets;
-  const btCollisionObjectArray& objects = world.physics().getCollisionObjectArray();
-  for (int k = 0; k < objects.size(); ++k) {
-    const btCollisionObject* object = objects[k];
-    BulletTarget t;
-    t.object = object;
-    for (std::size_t i = 0; i < world.robotCount() && t.index < 0; ++i)
-      if (world.robot(i).body() == object) {
-        t.kind = HitKind::robot;
-        t.index = static_cast<int>(i);
-      }
-    if (const void* base = t.index < 0 ? vertexBase(object->getCollisionShape()) : nullptr)
-      for (std::size_t m = 0; m < world.meshes().size() && t.index < 0; ++m)
-        if (static_cast<const void*>(world.meshes()[m].vertices.data()) == base) {
-          t.kind = HitKind::mesh;
-          t.index = static_cast<int>(m);
-        }
-    if (t.index >= 0)
-      targets.push_back(t);
+/// Bullet's closest-hit callback that also keeps the triangle hit.
+struct ClosestTriangle : btCollisionWorld::ClosestRayResultCallback {
+  using ClosestRayResultCallback::ClosestRayResultCallback;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& result, bool normal_in_world) override {
+    const btScalar f = ClosestRayResultCallback::addSingleResult(result, normal_in_world);
+    triangle = result.m_localShapeInfo ? result.m_localShapeInfo->m_triangleIndex : -1;
+    return f;
   }
-  return targets;
-}
+  int triangle = -1;
+};
 
 }  // namespace
 
+struct BulletRayCaster::OwnBody {
+  std::unique_ptr<btTriangleIndexVertexArray> array;
+  std::unique_ptr<btBvhTriangleMeshShape> shape;
+  btCollisionObject object;
+};
+
 BulletRayCaster::BulletRayCaster(std::vector<BulletTarget> targets, const RayCasterOptions& options)
     : RayCaster(options) {
+  add(targets);
+  update();
+}
+
+BulletRayCaster::BulletRayCaster(sim::World& world, const RayCasterOptions& options) : RayCaster(options) {
+  std::vector<BulletTarget> targets;
+  for (const SeenMesh& s : seenMeshes(world)) {
+    BulletTarget t;
+    t.kind = HitKind::mesh;
+    t.seen_by = s.seen_by;
+    t.index = s.sonar_index;
+    t.camera_index = s.camera_index;
+    t.mesh = s.mesh;
+    for (std::size_t i = 0; i < world.meshCount() && !t.object; ++i)
+      if (&world.mesh(i) == s.mesh)
+        t.object = world.meshBody(i);
+    if (!t.object) {  // physics does not hold it: a static object of our own on the same triangles
+      const sim::TriangleMesh& m = *s.mesh;
+      auto own = std::make_unique<OwnBody>();
+      own->array = std::make_unique<btTriangleIndexVertexArray>(
+          static_cast<int>(m.triangleCount()), const_cast<int*>(m.indices.data()), 3 * static_cast<int>(sizeof(int)),
+          static_cast<int>(m.vertices.size()),
+          const_cast<btScalar*>(reinterpret_cast<const btScalar*>(m.vertices.data())),
+          static_cast<int>(sizeof(Eigen::Vector3f)));
+      own->shape = std::make_unique<btBvhTriangleMeshShape>(own->array.get(), true);
+      own->object.setCollisionShape(own->shape.get());
+      t.object = &own->object;
+      own_.push_back(std::move(own));
+    }
+    targets.push_back(t);
+  }
+  for (std::size_t i = 0; i < world.robotCount(); ++i)
+    targets.push_back(BulletTarget{world.robot(i).body(), HitKind::robot, static_cast<int>(i)});
+  add(targets);
+  update();
+}
+
+void BulletRayCaster::add(const std::vector<BulletTarget>& targets) {
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const BulletTarget& t = targets[i];
     if (!t.object)
@@ -65,11 +92,7 @@ BulletRayCaster::BulletRayCaster(std::vector<BulletTarget> targets, const RayCas
         shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE ? static_cast<const btSphereShape*>(shape)->getRadius() : 0.0;
     targets_.push_back(Target{t, btTransform::getIdentity(), btVector3(0, 0, 0), btVector3(0, 0, 0), radius});
   }
-  update();
 }
-
-BulletRayCaster::BulletRayCaster(sim::World& world, const RayCasterOptions& options)
-    : BulletRayCaster(worldTargets(world), options) {}
 
 BulletRayCaster::~BulletRayCaster() = default;
 
@@ -80,7 +103,8 @@ void BulletRayCaster::update() {
   }
 }
 
-void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const {
+void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, SeenBy seen_by) const {
+  const unsigned who = static_cast<unsigned>(seen_by);
   // btCollisionWorld::rayTest is this loop behind a broadphase whose ray traversal stack is shared (Debian
   // builds Bullet without BT_THREADSAFE), so we cull by AABB ourselves and call Bullet's per-object ray test,
   // which only reads shared state.
@@ -92,14 +116,15 @@ void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
     const btVector3 to(end.x(), end.y(), end.z());
     const btTransform from_tf(btQuaternion::getIdentity(), from);
     const btTransform to_tf(btQuaternion::getIdentity(), to);
-    btCollisionWorld::ClosestRayResultCallback callback(from, to);
+    ClosestTriangle callback(from, to);
     // For convex shapes other than spheres: GJK (converges to 1 mm) rather than the default sub-simplex cast.
     callback.m_flags |= btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest;
     const Target* nearest = nullptr;
     const Target* sphere = nullptr;
+    int triangle = -1;
     double t_sphere = ray.max_range;
     for (const Target& t : targets_) {
-      if (t.target.kind == HitKind::robot && t.target.index == exclude_robot)
+      if ((t.target.kind == HitKind::robot && t.target.index == exclude_robot) || !(t.target.seen_by & who))
         continue;
       if (t.sphere_radius > 0.0) {
         const btVector3& c = t.transform.getOrigin();
@@ -119,14 +144,22 @@ void BulletRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
       const btScalar before = callback.m_closestHitFraction;
       btCollisionWorld::rayTestSingle(from_tf, to_tf, const_cast<btCollisionObject*>(t.target.object),
                                       t.target.object->getCollisionShape(), t.transform, callback);
-      if (callback.m_closestHitFraction < before)
+      if (callback.m_closestHitFraction < before) {
         nearest = &t;
+        triangle = callback.triangle;
+      }
     }
     const float range = callback.m_closestHitFraction * ray.max_range;
     if (nearest && (!sphere || range <= t_sphere)) {
       const btVector3& nw = callback.m_hitNormalWorld;
-      finishHit(ray, Eigen::Vector3f(nw.x(), nw.y(), nw.z()), range, nearest->target.kind, nearest->target.index,
-                hits[i]);
+      const BulletTarget& t = nearest->target;
+      const int index = seen_by == SeenBy::cameras && t.camera_index >= 0 ? t.camera_index : t.index;
+      float u = 0.0f, v = 0.0f;
+      if (t.mesh && triangle >= 0 && static_cast<std::size_t>(triangle) < t.mesh->triangleCount())
+        barycentric(*t.mesh, triangle, ray.origin + range * d, u, v);
+      else
+        triangle = -1;
+      finishHit(ray, Eigen::Vector3f(nw.x(), nw.y(), nw.z()), range, t.kind, index, hits[i], triangle, u, v);
     } else if (sphere) {
       const btVector3& c = sphere->transform.getOrigin();
       const Eigen::Vector3d p = ray.origin.cast<double>() + t_sphere * d.cast<double>();

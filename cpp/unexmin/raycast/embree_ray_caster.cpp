@@ -53,21 +53,22 @@ int nearestRobot(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const std::
 EmbreeRayCaster::EmbreeRayCaster(const std::vector<const sim::TriangleMesh*>& meshes, RobotSphereSource robots,
                                  const RayCasterOptions& options)
     : RayCaster(options), source_(std::move(robots)) {
+  std::vector<SeenMesh> seen;
+  for (std::size_t i = 0; i < meshes.size(); ++i)  // geometry ID = position in `meshes`, null ones skipped
+    seen.push_back(SeenMesh{meshes[i], meshes[i] ? 3u : 0u, static_cast<int>(i), static_cast<int>(i)});
+  build(seen, options.watertight);
+  update();
+}
+
+EmbreeRayCaster::EmbreeRayCaster(const std::vector<SeenMesh>& meshes, RobotSphereSource robots,
+                                 const RayCasterOptions& options)
+    : RayCaster(options), source_(std::move(robots)) {
   build(meshes, options.watertight);
   update();
 }
 
 EmbreeRayCaster::EmbreeRayCaster(sim::World& world, const RayCasterOptions& options)
-    : RayCaster(options), source_([&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); }) {
-  const auto& entries = world.config().meshes;
-  std::vector<const sim::TriangleMesh*> meshes;
-  for (std::size_t i = 0; i < world.meshes().size(); ++i) {
-    const bool collision = i >= entries.size() || entries[i].collision;  // physics sees the same ones
-    meshes.push_back(collision ? &world.meshes()[i] : nullptr);
-  }
-  build(meshes, options.watertight);
-  update();
-}
+    : EmbreeRayCaster(seenMeshes(world), [&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); }, options) {}
 
 EmbreeRayCaster::~EmbreeRayCaster() {
   if (scene_)
@@ -82,7 +83,7 @@ void EmbreeRayCaster::check(const char* what) const {
     throw RayCasterError(std::string("embree ray caster: ") + what + ": " + errorName(e));
 }
 
-void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight) {
+void EmbreeRayCaster::build(const std::vector<SeenMesh>& meshes, bool watertight) {
   device_ = rtcNewDevice(nullptr);
   if (!device_)
     throw RayCasterError(std::string("embree ray caster: cannot create a device: ") +
@@ -93,10 +94,18 @@ void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes,
   // (Rays aimed exactly at a vertex still leak at ~0.2 %; real rays meet a vertex with probability ~1e-12.)
   rtcSetSceneFlags(scene_, watertight ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+  // Which sensors see a mesh is its geometry mask, tested against the ray's mask (SeenBy) inside the traversal:
+  // one scene for every sensor.
+  const bool masks = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
-    const sim::TriangleMesh* mesh = meshes[m];
-    if (!mesh || mesh->triangleCount() == 0)
+    const sim::TriangleMesh* mesh = meshes[m].mesh;
+    index_.push_back({meshes[m].sonar_index, meshes[m].camera_index});
+    if (!mesh || mesh->triangleCount() == 0 || meshes[m].seen_by == 0)
       continue;
+    if (!masks && meshes[m].seen_by != 3u)
+      throw RayCasterError("embree ray caster: mesh '" + mesh->name +
+                           "' is not seen by every ray sensor (seen_by), and this Embree library was built "
+                           "without ray masks (EMBREE_RAY_MASK): use ray_caster: bullet");
     const std::size_t nv = mesh->vertices.size();
     for (int i : mesh->indices)
       if (i < 0 || static_cast<std::size_t>(i) >= nv)
@@ -113,8 +122,9 @@ void EmbreeRayCaster::build(const std::vector<const sim::TriangleMesh*>& meshes,
       std::memcpy(v + 3 * i, mesh->vertices[i].data(), 3 * sizeof(float));
     for (std::size_t i = 0; i < mesh->indices.size(); ++i)
       t[i] = static_cast<unsigned>(mesh->indices[i]);
+    rtcSetGeometryMask(geometry, meshes[m].seen_by);
     rtcCommitGeometry(geometry);
-    rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));  // geometry ID = mesh index
+    rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));  // geometry ID = position in `meshes`
     rtcReleaseGeometry(geometry);
     check(("adding mesh '" + mesh->name + "'").c_str());
   }
@@ -127,7 +137,7 @@ void EmbreeRayCaster::update() {
     source_(robots_);
 }
 
-void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const {
+void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, SeenBy seen_by) const {
   RTCRayHit rh[kBlock];
   int robot[kBlock];
   const Eigen::Vector3f d0 = rays[0].direction.normalized();
@@ -149,7 +159,7 @@ void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
     r.tnear = 0.0f;
     r.tfar = t_far;  // a robot in front hides whatever is behind it: Embree stops looking there
     r.time = 0.0f;
-    r.mask = 0xFFFFFFFFu;
+    r.mask = static_cast<unsigned>(seen_by);
     r.id = static_cast<unsigned>(i);
     r.flags = 0;
     rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -167,8 +177,9 @@ void EmbreeRayCaster::castBlock(const Ray* rays, Hit* hits, std::size_t n, int e
     Hit& hit = hits[i];
     const RTCRayHit& h = rh[i];
     if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      finishHit(ray, Eigen::Vector3f(h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z), h.ray.tfar, HitKind::mesh,
-                static_cast<int>(h.hit.geomID), hit);
+      const int index = index_[h.hit.geomID][seen_by == SeenBy::cameras ? 1 : 0];
+      finishHit(ray, Eigen::Vector3f(h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z), h.ray.tfar, HitKind::mesh, index, hit,
+                static_cast<int>(h.hit.primID), h.hit.u, h.hit.v);
     } else if (robot[i] >= 0) {
       const RobotSphere& s = robots_[robot[i]];
       const double t = h.ray.tfar;

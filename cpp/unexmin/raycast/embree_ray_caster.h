@@ -7,6 +7,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
+
 namespace unexmin {
 namespace raycast {
 
@@ -18,15 +20,20 @@ public:
   /// mesh index out of range or an Embree error.
   EmbreeRayCaster(const std::vector<const sim::TriangleMesh*>& meshes, RobotSphereSource robots,
                   const RayCasterOptions& options = RayCasterOptions());
-  /// The world's collision meshes (its non-collision meshes are not seen) and robots; the world must
-  /// outlive the caster.
+  /// Casts against `meshes`, each seen by the sensors of its SeenMesh::seen_by and reporting its index for them,
+  /// and the spheres `robots` fills on update(). Throws RayCasterError as above, and when a mesh is seen by some
+  /// sensors only and this Embree library has no ray masks.
+  EmbreeRayCaster(const std::vector<SeenMesh>& meshes, RobotSphereSource robots,
+                  const RayCasterOptions& options = RayCasterOptions());
+  /// The world's meshes, as seenMeshes(world) gives them, and its robots; the world must outlive the caster.
   explicit EmbreeRayCaster(sim::World& world, const RayCasterOptions& options = RayCasterOptions());
   ~EmbreeRayCaster() override;
 
   const char* name() const override { return "embree"; }
   void update() override;
 
-  /// The committed Embree scene (geometry ID = mesh index), for benchmarks and tools that call Embree directly.
+  /// The committed Embree scene (geometry ID = position in the meshes given; for a world: in seenMeshes(world)), for
+  /// benchmarks and tools that call Embree directly.
   RTCScene scene() const { return scene_; }
   /// Robot spheres as of the last update().
   const std::vector<RobotSphere>& robots() const { return robots_; }
@@ -37,16 +44,17 @@ public:
   static constexpr float kCoherentCos = 0.7071f;  // 45 deg
 
 protected:
-  void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const override;
+  void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, SeenBy seen_by) const override;
 
 private:
-  void build(const std::vector<const sim::TriangleMesh*>& meshes, bool watertight);
+  void build(const std::vector<SeenMesh>& meshes, bool watertight);
   void check(const char* what) const;
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   RobotSphereSource source_;
   std::vector<RobotSphere> robots_;
+  std::vector<std::array<int, 2>> index_;  ///< per geometry ID: Hit::index for the sonars, for the cameras
 };
 
 }  // namespace raycast

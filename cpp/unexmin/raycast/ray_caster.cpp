@@ -152,13 +152,14 @@ int RayCaster::threads() const {
   return pool_->threads();
 }
 
-void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot,
-                     Incidence incidence) const {
+void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot, Incidence incidence,
+                     SeenBy seen_by) const {
   hits.resize(rays.size());
-  cast(rays.data(), hits.data(), rays.size(), exclude_robot, incidence);
+  cast(rays.data(), hits.data(), rays.size(), exclude_robot, incidence, seen_by);
 }
 
-void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, Incidence incidence) const {
+void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, Incidence incidence,
+                     SeenBy seen_by) const {
   if (exclude_robot < -1)
     throw RayCasterError("ray caster: exclude_robot = " + formatNumber(exclude_robot) +
                          " must be a robot index or -1 (none)");
@@ -168,7 +169,7 @@ void RayCaster::cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robo
   const WorkerPool::Job one = [&](std::size_t b) {
     const std::size_t start = b * kBlock;
     const std::size_t m = std::min(kBlock, n - start);
-    castBlock(rays + start, hits + start, m, exclude_robot);
+    castBlock(rays + start, hits + start, m, exclude_robot, seen_by);
     if (incidence == Incidence::compute)
       for (std::size_t i = start; i < start + m; ++i)
         hits[i].incidence = RayCaster::incidence(rays[i], hits[i]);
@@ -208,6 +209,27 @@ std::vector<RobotSphere> robotSpheres(sim::World& world) {
     spheres[i].radius = static_cast<const btSphereShape*>(shape)->getRadius();
   }
   return spheres;
+}
+
+std::vector<SeenMesh> seenMeshes(const sim::World& world) {
+  std::vector<SeenMesh> out;
+  const auto& entries = world.config().meshes;
+  for (std::size_t i = 0; i < world.meshCount(); ++i) {
+    const bool sonars = i >= entries.size() || entries[i].seen_by_sonars;
+    const bool cameras = i >= entries.size() || entries[i].seen_by_cameras;
+    if (!sonars && !cameras)
+      continue;
+    const sim::TriangleMesh* mesh = &world.mesh(i);
+    auto it = std::find_if(out.begin(), out.end(), [&](const SeenMesh& s) { return s.mesh == mesh; });
+    if (it == out.end())
+      it = out.insert(out.end(), SeenMesh{mesh, 0u, -1, -1});
+    if (sonars && it->sonar_index < 0)
+      it->sonar_index = static_cast<int>(i);
+    if (cameras && it->camera_index < 0)
+      it->camera_index = static_cast<int>(i);
+    it->seen_by |= (sonars ? 1u : 0u) | (cameras ? 2u : 0u);
+  }
+  return out;
 }
 
 const std::vector<std::string>& rayCasterBackends() {

@@ -20,6 +20,7 @@
 namespace unexmin {
 namespace sim {
 class World;
+struct TriangleMesh;
 }  // namespace sim
 
 namespace raycast {
@@ -34,8 +35,17 @@ struct Ray {
 /// What a ray hit.
 enum class HitKind : std::uint8_t {
   none,   ///< Nothing within max_range.
-  mesh,   ///< A static mesh: Hit::index is its index in World::meshes().
+  mesh,   ///< A static mesh: Hit::index is its index in World::mesh() (the world file's mesh entry).
   robot,  ///< A robot hull: Hit::index is its index in World::robot(i).
+};
+
+/// Which world meshes a cast meets (the world file's `seen_by:` of each mesh, docs/worlds.md): the acoustic sensors
+/// (M3, MSIS, DVL, imaging and side-scan sonars) see the meshes seen by `sonars` (by default the collision meshes, as
+/// physics), the optical ones (cameras, their shadow rays, the SLS lasers and their sight lines) those seen by
+/// `cameras` (by default the visual meshes). Robots are seen by both.
+enum class SeenBy : std::uint8_t {
+  sonars = 1,   ///< the acoustic sensors (and any caller that does not say)
+  cameras = 2,  ///< the optical sensors
 };
 
 struct Hit {
@@ -48,6 +58,11 @@ struct Hit {
   float incidence = std::numeric_limits<float>::quiet_NaN();
   HitKind kind = HitKind::none;
   int index = -1;  ///< Mesh or robot index (see HitKind); -1 on no hit.
+  /// Triangle of the mesh hit (its position in TriangleMesh::indices / 3); -1 on no hit and on a robot.
+  int primitive = -1;
+  /// Barycentric coordinates of the hit in that triangle: point = (1 - u - v) p0 + u p1 + v p2, with p0, p1, p2 its
+  /// three vertices in index order [-]; 0 on no hit and on a robot.
+  float u = 0.0f, v = 0.0f;
 
   bool hit() const { return kind != HitKind::none; }
   /// World point of the hit [m] (meaningless on no hit).
@@ -81,6 +96,22 @@ inline bool raySphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const 
   t = oc.squaredNorm() < r * r ? b + h : b - h;
   return t >= 0.0;
 }
+
+/// A mesh as a caster holds it: the triangles (world frame), which sensors see them (SeenBy bits) and the mesh
+/// index a hit reports to each: entries of the world file with the same triangles (file, scale and pose) share one.
+struct SeenMesh {
+  const sim::TriangleMesh* mesh = nullptr;
+  unsigned seen_by = 3;   ///< SeenBy bits: 1 sonars, 2 cameras
+  int sonar_index = -1;   ///< Hit::index of a hit cast for the sonars (-1 when they do not see it)
+  int camera_index = -1;  ///< Hit::index of a hit cast for the cameras (-1 when they do not see it)
+  /// The index a hit cast for `seen_by` reports.
+  int index(SeenBy who) const { return who == SeenBy::cameras ? camera_index : sonar_index; }
+};
+
+/// The world's meshes that some sensor sees (MeshEntry::seen_by_cameras / seen_by_sonars), one per distinct mesh
+/// of World::mesh(), in the order of their first entry; a mesh seen by the same sensors through two entries reports
+/// the first of them.
+std::vector<SeenMesh> seenMeshes(const sim::World& world);
 
 /// Fills the robots' current spheres, indexed by robot index (called by update()).
 using RobotSphereSource = std::function<void(std::vector<RobotSphere>&)>;
@@ -124,11 +155,12 @@ public:
   /// `exclude_robot` (the sensor's own; -1 = none; an index with no robot excludes nothing) is invisible.
   /// Throws RayCasterError naming the first bad ray (non-finite origin, direction not unit, max_range not
   /// finite and > 0) before casting any. `incidence`: whether Hit::incidence is filled (Incidence::skip: NaN).
+  /// `seen_by`: the meshes the rays meet, those the world shows to the sonars (default) or to the cameras.
   void cast(const std::vector<Ray>& rays, std::vector<Hit>& hits, int exclude_robot = -1,
-            Incidence incidence = Incidence::compute) const;
+            Incidence incidence = Incidence::compute, SeenBy seen_by = SeenBy::sonars) const;
   /// Same on raw arrays of n rays and n hits.
-  void cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot = -1,
-            Incidence incidence = Incidence::compute) const;
+  void cast(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot = -1, Incidence incidence = Incidence::compute,
+            SeenBy seen_by = SeenBy::sonars) const;
 
   /// The incidence of `hit`, an answer of cast() to `ray` [rad]: the angle between -ray.direction and hit.normal,
   /// 0 (head-on) .. pi/2 (grazing); NaN on no hit. Bit for bit what cast() writes to Hit::incidence.
@@ -146,14 +178,14 @@ public:
 protected:
   explicit RayCaster(const RayCasterOptions& options);
 
-  /// Casts rays[0..n) into hits[0..n), n <= kBlock, rays already checked. Called concurrently from several
-  /// threads: must only read shared state. `rays` starts at a multiple of kBlock in the batch.
-  virtual void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot) const = 0;
+  /// Casts rays[0..n) into hits[0..n), n <= kBlock, rays already checked, against the meshes seen by `seen_by`.
+  /// Called concurrently from several threads: must only read shared state. `rays` starts at a multiple of kBlock.
+  virtual void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, SeenBy seen_by) const = 0;
 
   /// Fills the range, kind, index and normal (unit, facing the ray) of a hit from any surface normal (cast() adds
   /// the incidence when asked).
   static void finishHit(const Ray& ray, const Eigen::Vector3f& surface_normal, float range, HitKind kind, int index,
-                        Hit& hit) {
+                        Hit& hit, int primitive = -1, float u = 0.0f, float v = 0.0f) {
     const float length = surface_normal.norm();
     Eigen::Vector3f n = length > 0.0f ? Eigen::Vector3f(surface_normal / length) : Eigen::Vector3f(-ray.direction);
     if (n.dot(ray.direction) > 0.0f)
@@ -163,6 +195,9 @@ protected:
     hit.incidence = std::numeric_limits<float>::quiet_NaN();
     hit.kind = kind;
     hit.index = index;
+    hit.primitive = primitive;
+    hit.u = u;
+    hit.v = v;
   }
 
 private:
@@ -172,9 +207,9 @@ private:
 /// Back ends makeRayCaster() accepts: {"embree", "bullet"}.
 const std::vector<std::string>& rayCasterBackends();
 
-/// Builds the back end named `backend` ("" = "embree") on `world`: its collision meshes and its robots'
-/// spheres. The world must outlive the caster. Throws RayCasterError on an unknown name, listing the
-/// accepted ones.
+/// Builds the back end named `backend` ("" = "embree") on `world`: its meshes, each seen by the sensors its world
+/// file's `seen_by:` names (MeshEntry), and its robots' spheres. The world must outlive the caster. Throws
+/// RayCasterError on an unknown name, listing the accepted ones.
 std::unique_ptr<RayCaster> makeRayCaster(const std::string& backend, sim::World& world,
                                          const RayCasterOptions& options = RayCasterOptions());
 

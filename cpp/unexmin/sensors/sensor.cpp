@@ -38,9 +38,9 @@ bool Sensor::update(const SensorContext& ctx) {
 }
 
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
-                      raycast::Incidence incidence) {
+                      raycast::Incidence incidence, raycast::SeenBy seen_by) {
   if (ctx.rays)
-    ctx.rays->cast(rays, hits, ctx.robot_index, incidence);
+    ctx.rays->cast(rays, hits, ctx.robot_index, incidence, seen_by);
   else
     hits.assign(rays.size(), raycast::Hit());
 }

@@ -78,9 +78,11 @@ protected:
   Random& random() { return random_; }
   /// Casts `rays` through ctx.rays, the robot's own hull excluded; `hits` answers them one for one (all
   /// misses when the context has no caster). Incidence::skip: a model that needs the incidence of few hits
-  /// asks raycast::RayCaster::incidence() for those.
+  /// asks raycast::RayCaster::incidence() for those. `seen_by`: the meshes the sensor sees (an optical sensor:
+  /// raycast::SeenBy::cameras).
   static void castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
-                       raycast::Incidence incidence = raycast::Incidence::compute);
+                       raycast::Incidence incidence = raycast::Incidence::compute,
+                       raycast::SeenBy seen_by = raycast::SeenBy::sonars);
   double interval() const { return 1.0 / spec_.rate; }  ///< [s]
 
 private:

@@ -23,7 +23,7 @@ void checkRange(const std::string& prefix, const std::string& key, double x, dou
 }  // namespace
 
 const std::vector<std::string>& materialKinds() {
-  static const std::vector<std::string> kinds{"plain", "rock", "painted", "rusty", "checkerboard"};
+  static const std::vector<std::string> kinds{"plain", "rock", "painted", "rusty", "checkerboard", "image", "vertex_colours"};
   return kinds;
 }
 
@@ -57,6 +57,10 @@ Material materialDefaults(const std::string& kind, const std::string& prefix) {
     m.border = 0.06;
     return m;
   }
+  if (kind == "image" || kind == "vertex_colours") {
+    m.albedo = Eigen::Vector3d::Ones();  // the image's or the vertices' colours as they are
+    return m;
+  }
   for (const Row& r : rows) {
     if (kind != r.kind)
       continue;
@@ -70,7 +74,7 @@ Material materialDefaults(const std::string& kind, const std::string& prefix) {
     m.weights = Eigen::Vector4d(r.weight[0], r.weight[1], r.weight[2], r.weight[3]);
     return m;
   }
-  fail(prefix, "kind", "'" + kind + "'", "plain|rock|painted|rusty|checkerboard");
+  fail(prefix, "kind", "'" + kind + "'", "plain|rock|painted|rusty|checkerboard|image|vertex_colours");
 }
 
 void checkMaterial(const Material& m, const std::string& prefix) {
@@ -85,7 +89,10 @@ void checkMaterial(const Material& m, const std::string& prefix) {
   for (const auto& s : scales)
     checkRange(prefix, s.first, s.second, 0.0, 1e6, "a scale in [0, 1e6] m (0: off)");
   if (!m.textured() && (m.contrast > 0.0 || m.relief > 0.0 || m.tint > 0.0))
-    fail(prefix, "kind", "'plain'", "rock|painted|rusty for a texture (contrast, relief or tint > 0)");
+    fail(prefix, "kind", "'" + m.kind + "'", "rock|painted|rusty for a texture (contrast, relief or tint > 0)");
+  if ((m.kind == "image") != !m.image.empty())
+    fail(prefix, m.image.empty() ? "image" : "kind", m.image.empty() ? "(none)" : "'" + m.kind + "'",
+         m.image.empty() ? "the PNG or JPEG file of kind image" : "image (the only kind with an image file)");
   if (!m.checkerboard())
     return;
   checkRange(prefix, "square", m.square, 1e-4, 100.0, "a side in [1e-4, 100] m");

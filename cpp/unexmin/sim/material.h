@@ -15,6 +15,8 @@ namespace sim {
 struct Material {
   /// plain (one albedo, no texture) | rock | painted | rusty (materialKinds()): a kind is a set of defaults and of
   /// weights of the texture's components; checkerboard: a calibration target (square, rows, columns, dark, border).
+  /// image | vertex_colours: the albedo is the mesh's image texture at the hit's texture coordinates, or its vertex
+  /// colours interpolated at the hit, times `albedo`.
   std::string kind = "plain";
   /// Mean diffuse (Lambertian) reflectance per RGB channel, in [0, 1]: the texture modulates around it.
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};
@@ -37,21 +39,28 @@ struct Material {
   Eigen::Vector3d dark{0, 0, 0};  ///< albedo of the dark squares and of the plate beyond the border, in [0, 1]
   double border = 0.0;            ///< [m] >= 0: width of the light margin around the squares
 
-  bool textured() const { return kind != "plain"; }
+  /// The image texture of kind `image`: the PNG or JPEG file, resolved against the world file's folder [path].
+  std::string image;
+
+  /// A procedural texture evaluated at the hit (rock, painted, rusty, checkerboard).
+  bool textured() const { return kind != "plain" && !mapped(); }
   bool checkerboard() const { return kind == "checkerboard"; }
+  /// The albedo comes from the mesh's own data at the hit (image texture or vertex colours).
+  bool mapped() const { return kind == "image" || kind == "vertex_colours"; }
 };
 
 /// The material kinds a world file can name.
 const std::vector<std::string>& materialKinds();
 
 /// The defaults of material kind `kind` (albedo, contrast, relief, scales; a checkerboard's squares) [docs/worlds.md];
-/// throws ParameterError "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty|checkerboard" for any other
-/// name.
+/// throws ParameterError "'<prefix>kind' = '<kind>': expected plain|rock|painted|rusty|checkerboard|image|
+/// vertex_colours" for any other name.
 Material materialDefaults(const std::string& kind, const std::string& prefix = "");
 
 /// Checks every value of `m`; throws ParameterError "'<prefix><key>' = <value>: expected <range>" naming the first
 /// bad key (unknown kind, albedo outside [0, 1], negative or non-finite scale, contrast or tint outside [0, 1],
-/// negative relief; a checkerboard's square, rows, columns, dark or border out of range, or a rock key on it).
+/// negative relief; a checkerboard's square, rows, columns, dark or border out of range, or a rock key on it; kind
+/// image without an image file or an image file with another kind).
 void checkMaterial(const Material& m, const std::string& prefix = "");
 
 /// Albedo (R, G, B) of checkerboard `m` at point `p` of the mesh frame [m].

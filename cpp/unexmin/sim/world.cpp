@@ -7,6 +7,15 @@
 namespace unexmin {
 namespace sim {
 
+namespace {
+
+/// Whether two mesh entries give the same triangles: the same file, scale and pose.
+bool sameGeometry(const MeshEntry& a, const MeshEntry& b) {
+  return a.file == b.file && a.scale == b.scale && a.pose.matrix() == b.pose.matrix();
+}
+
+}  // namespace
+
 struct World::StaticBody {
   std::unique_ptr<btTriangleIndexVertexArray> array;
   std::unique_ptr<btBvhTriangleMeshShape> shape;
@@ -33,11 +42,21 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
                                                         collision_config_.get());
   dynamics_->setGravity(btVector3(0, 0, 0));  // weight and buoyancy are applied by each robot
 
-  for (const auto& entry : config.meshes) {
-    meshes_.push_back(loadMesh(entry));
+  for (std::size_t i = 0; i < config.meshes.size(); ++i) {
+    const MeshEntry& entry = config.meshes[i];
+    meshes_.push_back(nullptr);
+    mesh_bodies_.push_back(nullptr);
+    for (std::size_t k = 0; k < i && !meshes_[i]; ++k)
+      if (sameGeometry(config.meshes[k], entry) && !meshes_[k]->indices.empty())
+        meshes_[i] = meshes_[k];  // the same file, scale and pose: loaded once
+    if (!meshes_[i])
+      meshes_[i] = std::make_shared<const TriangleMesh>(entry.collision || entry.seen_by_cameras || entry.seen_by_sonars
+                                                            ? loadMesh(entry)
+                                                            : TriangleMesh{entry.name});
+    loadSurface(i);
     if (!entry.collision)
       continue;
-    const TriangleMesh& mesh = meshes_.back();
+    const TriangleMesh& mesh = *meshes_[i];
     auto sb = std::make_unique<StaticBody>();
     sb->array = std::make_unique<btTriangleIndexVertexArray>(
         static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()),
@@ -50,9 +69,9 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
     info.m_friction = 0.5;
     sb->body = std::make_unique<btRigidBody>(info);
     dynamics_->addRigidBody(sb->body.get());
+    mesh_bodies_[i] = sb->body.get();
     static_bodies_.push_back(std::move(sb));
   }
-  meshes_.shrink_to_fit();  // vertex storage must not move after Bullet points at it
 
   for (int i = 0; i < robot_count; ++i) {
     const RobotSpawn& spawn = config.robots[i];
@@ -68,6 +87,31 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
   water_.gravity = config.gravity;
   water_.surface_z = config.surface_z;
   water_.current = current_.velocity();
+}
+
+void World::loadSurface(std::size_t i) {
+  const MeshEntry& entry = config_.meshes[i];
+  const Material& m = entry.material;
+  images_.push_back(nullptr);
+  if (!m.mapped() || !(entry.seen_by_cameras || entry.seen_by_sonars))
+    return;
+  const std::string key = config_.file + ": 'meshes[" + formatNumber(i) + "].material.";
+  const TriangleMesh& mesh = *meshes_[i];
+  if (m.kind == "vertex_colours" && mesh.colours.empty())
+    throw ConfigError(key + "kind' = 'vertex_colours': " + entry.file + " has no vertex colours");
+  if (m.kind != "image")
+    return;
+  if (mesh.uvs.empty())
+    throw ConfigError(key + "kind' = 'image': " + entry.file + " has no texture coordinates");
+  for (std::size_t k = 0; k < i; ++k)
+    if (images_[k] && config_.meshes[k].material.image == m.image)
+      images_[i] = images_[k];  // one file, decoded once
+  try {
+    if (!images_[i])
+      images_[i] = std::make_shared<const TextureImage>(TextureImage::load(m.image));
+  } catch (const ConfigError& e) {
+    throw ConfigError(key + "image': " + e.what());
+  }
 }
 
 World::~World() {

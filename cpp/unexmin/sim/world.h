@@ -5,6 +5,7 @@
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/robot.h>
+#include <unexmin/sim/texture_image.h>
 #include <unexmin/sim/world_config.h>
 
 #include <cstdint>
@@ -52,7 +53,15 @@ public:
   /// nullptr when there is no robot of that name.
   Robot* robot(const std::string& name);
 
-  const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+  /// Meshes of the world file, one per entry of config().meshes in its order (the index of a ray hit). Entries of
+  /// the same file, scale and pose share one mesh (loaded once); an entry that neither physics nor a ray sensor
+  /// uses (collision false, seen by none) is not loaded: its mesh is empty.
+  std::size_t meshCount() const { return meshes_.size(); }
+  const TriangleMesh& mesh(std::size_t i) const { return *meshes_.at(i); }
+  /// The decoded image of mesh entry i's material of kind `image` (entries naming one file share it), else nullptr.
+  const TextureImage* image(std::size_t i) const { return images_.at(i).get(); }
+  /// The static contact body of mesh entry i, or nullptr when it is not a collision mesh.
+  const btRigidBody* meshBody(std::size_t i) const { return mesh_bodies_.at(i); }
   btDiscreteDynamicsWorld& physics() { return *dynamics_; }
 
   /// Everything back to t = 0 with a new seed: robots at their spawn poses at rest, actuators
@@ -60,6 +69,9 @@ public:
   void reset(std::uint64_t seed);
 
 private:
+  /// The image texture or vertex colours of mesh entry i's material, checked against its mesh (after it is loaded).
+  void loadSurface(std::size_t i);
+
   WorldConfig config_;
   double dt_;
   std::uint64_t seed_;
@@ -74,7 +86,9 @@ private:
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
 
-  std::vector<TriangleMesh> meshes_;
+  std::vector<std::shared_ptr<const TriangleMesh>> meshes_;
+  std::vector<const btRigidBody*> mesh_bodies_;
+  std::vector<std::shared_ptr<const TextureImage>> images_;
   struct StaticBody;
   std::vector<std::unique_ptr<StaticBody>> static_bodies_;
   std::vector<std::unique_ptr<Robot>> robots_;

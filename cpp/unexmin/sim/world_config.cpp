@@ -103,6 +103,27 @@ public:
     return base + "/" + norm.string();
   }
 
+  /// A mesh's `seen_by:` list (docs/worlds.md) into e.seen_by_cameras / e.seen_by_sonars; absent: from its
+  /// visual / collision flags.
+  void seenBy(const YAML::Node& mesh, const std::string& where, MeshEntry& e) const {
+    e.seen_by_cameras = e.visual;
+    e.seen_by_sonars = e.collision;
+    const YAML::Node v = mesh["seen_by"];
+    if (!v)
+      return;
+    const std::string expected = "a list of cameras|sonars, each at most once (e.g. [cameras, sonars] or [])";
+    if (!v.IsSequence())
+      fail("'" + where + "seen_by' must be " + expected);
+    e.seen_by_cameras = e.seen_by_sonars = false;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const std::string who = v[k].IsScalar() ? v[k].Scalar() : "(not a name)";
+      bool& seen = who == "cameras" ? e.seen_by_cameras : e.seen_by_sonars;
+      if ((who != "cameras" && who != "sonars") || seen)
+        fail("'" + where + "seen_by[" + formatNumber(k) + "]' is '" + who + "': expected " + expected);
+      seen = true;
+    }
+  }
+
   hydro::GaussMarkovParams channel(const YAML::Node& node, const std::string& key,
                                    const hydro::GaussMarkovParams& fallback) const {
     const YAML::Node c = node[key];
@@ -122,7 +143,7 @@ public:
 
   /// A mesh's `material:` map (docs/worlds.md): the kind's defaults, then every key given; unknown keys and bad
   /// values stop with the key's name.
-  Material material(const YAML::Node& node, const std::string& where) const {
+  Material material(const YAML::Node& node, const std::string& where, const std::string& base) const {
     if (!node.IsMap())
       fail("'" + where.substr(0, where.size() - 1) + "' must be a map (kind, albedo, seed, ...)");
     Material m;
@@ -139,6 +160,11 @@ public:
       for (const auto& kv : numbers)
         *kv.second = number(node, kv.first, where, *kv.second);
       checkerboard(node, where, m);
+      if (node["image"]) {
+        m.image = insidePath(base, text(node, "image", where, ""), where + "image");
+        if (!std::ifstream(m.image))
+          fail("'" + where + "image' " + m.image + " does not exist");
+      }
       checkMaterial(m, where);
     } catch (const ParameterError& e) {
       fail(e.what());
@@ -271,6 +297,7 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
                               r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
       e.collision = r.flag(m, "collision", where, true);
       e.visual = r.flag(m, "visual", where, true);
+      r.seenBy(m, where, e);
       e.albedo = r.vec3(m, "albedo", where, e.albedo);
       if ((e.albedo.array() < 0.0).any() || (e.albedo.array() > 1.0).any())
         r.fail("'" + where + "albedo' must be three numbers in [0, 1]");
@@ -278,7 +305,7 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
       if (const YAML::Node mat = m["material"]) {
         if (m["albedo"])
           r.fail("'" + where + "albedo' and '" + where + "material' both given: put the albedo in the material");
-        e.material = r.material(mat, where + "material.");
+        e.material = r.material(mat, where + "material.", base);
         e.albedo = e.material.albedo;
       }
       w.meshes.push_back(e);

@@ -21,8 +21,12 @@ struct MeshEntry {
   std::string file;
   Eigen::Vector3d scale{1, 1, 1};
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< Mesh frame in the world frame.
-  bool collision = true;
-  bool visual = true;
+  bool collision = true;                                   ///< a static contact body of physics
+  bool visual = true;                                      ///< shown in rviz
+  /// Key `seen_by:` (docs/worlds.md): which ray sensors see the mesh, the optical ones (cameras, SLS) and the
+  /// acoustic ones (sonars, DVL); default: the cameras when `visual`, the sonars when `collision`.
+  bool seen_by_cameras = true;
+  bool seen_by_sonars = true;
   /// Diffuse (Lambertian) reflectance per RGB channel, in [0, 1], for cameras and the SLS lasers
   /// [assumed default 0.3: weathered rock; docs/worlds.md].
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};

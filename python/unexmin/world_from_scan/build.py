@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from unexmin.world_from_scan.cluster import run_tiles
+from unexmin.world_from_scan.colours import streamed_vertex_colours
 from unexmin.world_from_scan.errors import ScanError
 from unexmin.world_from_scan.scan import MIN_POINTS
 from unexmin.world_from_scan.stitch import stitch
@@ -46,7 +47,7 @@ EVAL_POINTS = 1_000_000  # scan points measured against the collision mesh at mo
 
 # ------------------------------------------------------------------------------------------ outputs
 def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, source):
-    """The world file's text; `meshes`: (entry name, file, collision, visual) per mesh."""
+    """The world file's text; `meshes`: (entry name, file, collision, visual, extra keys) per mesh."""
     lines = [
         f"# World made from the scan {source} by python -m unexmin.world_from_scan (docs/world_from_scan.md).",
         "# Schema: docs/worlds.md. Units: SI; world frame = the scan's frame (ENU, z up).",
@@ -63,10 +64,10 @@ def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, sourc
         "  vertical_angle: {mean: 0.0, min: -0.15, max: 0.15, noise: 0.0, mu: 0.05}        # [rad]",
         "meshes:                                       # together a closed surface, faces towards the water",
     ]
-    for entry, file, collision, visual in meshes:
+    for entry, file, collision, visual, extra in meshes:
         lines.append(
             f"  - {{name: {entry}, file: {file}, scale: [1, 1, 1], xyz: [0, 0, 0], rpy: [0, 0, 0], "
-            f"collision: {str(collision).lower()}, visual: {str(visual).lower()}}}"
+            f"collision: {str(collision).lower()}, visual: {str(visual).lower()}{extra}}}"
         )
     lines.append("robots:                                       # checked: in the water, clearance [m] to the walls")
     for k, (xyz, room) in enumerate(spawns):
@@ -295,17 +296,29 @@ def build_world(
         collision_file, visual_file = f"{name}_collision.ply", f"{name}_visual.ply"
         comment = f"unexmin world_from_scan {scan.name} resolution {resolution}"
         write_ply(out / collision_file, v, t, comment + " collision", inward=False)
-        write_ply(out / visual_file, vv, vt, comment + " visual", inward=False)
+        # the scan's RGB onto the visual mesh's vertices, the scan read again in chunks (colours.py)
+        visual_colours = streamed_vertex_colours(scan, vv) if layout["rgb"] else None
+        write_ply(out / visual_file, vv, vt, comment + " visual", inward=False, colours=visual_colours)
         parts = []
         for k, ((pv, pt), (qv, qt)) in enumerate(zip(split_parts(v, t, axis, seams), split_parts(vv, vt, axis, seams))):
             files = (f"{name}_collision_{k:03d}.ply", f"{name}_visual_{k:03d}.ply")
             write_ply(out / files[0], pv, pt, f"{comment} collision tile {k}", inward=False)
-            write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False)
+            part_colours = None
+            if visual_colours is not None:  # a part's vertices are the whole visual mesh's: their colours
+                from scipy.spatial import cKDTree
+
+                part_colours = visual_colours[cKDTree(vv).query(qv, k=1)[1]]
+            write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False, colours=part_colours)
             parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
         world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
-        whole = [(name, collision_file, True, False), (f"{name}_visual", visual_file, False, True)]
-        by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False) for p in parts]
-        by_part += [(f"{name}_visual_{p['index']:03d}", p["visual"], False, True) for p in parts]
+        # the cameras see the coloured visual mesh, else the finer collision mesh (docs/worlds.md "Who sees a mesh")
+        seen, look = ("", ", material: {kind: vertex_colours}") if visual_colours is not None else (
+            ", seen_by: [cameras, sonars]",
+            ", seen_by: []",
+        )
+        whole = [(name, collision_file, True, False, seen), (f"{name}_visual", visual_file, False, True, look)]
+        by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False, seen) for p in parts]
+        by_part += [(f"{name}_visual_{p['index']:03d}", p["visual"], False, True, look) for p in parts]
         for path, meshes in ((world_path, whole), (parts_path, by_part)):
             path.write_text(world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, scan.name))
             read_world(path)  # what the simulator will read follows the schema
@@ -324,7 +337,13 @@ def build_world(
             "max_gap": max_gap,
             "poisson_triangles": int(sum(r["poisson_triangles"] for r in results.values())),
             "collision": {"file": collision_file, "triangles": int(len(t)), "vertices": int(len(v)), "edge": edge},
-            "visual": {"file": visual_file, "triangles": int(len(vt)), "vertices": int(len(vv)), "edge": visual_edge},
+            "visual": {
+                "file": visual_file,
+                "triangles": int(len(vt)),
+                "vertices": int(len(vv)),
+                "edge": visual_edge,
+                "colours": visual_colours is not None,
+            },
             "world": world_path.name,
             "parts_world": parts_path.name,
             "tiles": {

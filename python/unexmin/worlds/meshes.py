@@ -9,7 +9,8 @@ class MeshFormatError(ValueError):
 
 def read_mesh(path):
     """(vertices N x 3 float64, triangles M x 3 int64) of a binary STL or binary little-endian PLY
-    (float x y z vertices, triangle faces). STL vertices are merged by exact position."""
+    (float x y z vertices, then optionally uchar red green blue, skipped; triangle faces). STL vertices are merged by
+    exact position."""
     with open(path, "rb") as f:
         data = f.read()
     if data[:4] == b"ply\n":
@@ -27,10 +28,14 @@ def read_mesh(path):
                 n_f = int(words[2])
             elif words[:1] == ["property"] and n_f is None:
                 props.append(words[1:])
-        if props != [["float", "x"], ["float", "y"], ["float", "z"]] or n_v is None or n_f is None:
-            raise MeshFormatError(f"{path}: PLY vertices must be exactly float x, y, z")
-        v = np.frombuffer(data, "<f4", 3 * n_v, end).reshape(-1, 3).astype(np.float64)
-        faces = np.frombuffer(data, [("n", "u1"), ("i", "<i4", (3,))], n_f, end + 12 * n_v)
+        colour = [["uchar", c] for c in ("red", "green", "blue")]
+        if props[:3] != [["float", "x"], ["float", "y"], ["float", "z"]] or props[3:] not in ([], colour):
+            raise MeshFormatError(f"{path}: PLY vertices must be float x, y, z (then uchar red, green, blue)")
+        if n_v is None or n_f is None:
+            raise MeshFormatError(f"{path}: PLY needs a vertex and a face element")
+        vertex = np.dtype([("p", "<f4", (3,))] + ([("c", "u1", (3,))] if props[3:] else []))
+        v = np.frombuffer(data, vertex, n_v, end)["p"].astype(np.float64)
+        faces = np.frombuffer(data, [("n", "u1"), ("i", "<i4", (3,))], n_f, end + vertex.itemsize * n_v)
         if n_f and (faces["n"] != 3).any():
             raise MeshFormatError(f"{path}: PLY faces must be triangles")
         return v, faces["i"].astype(np.int64)
@@ -42,21 +47,27 @@ def read_mesh(path):
     return v.astype(np.float64), inverse.reshape(-1, 3).astype(np.int64)
 
 
-def write_ply(path, verts, tris, comment, inward=True):
+def write_ply(path, verts, tris, comment, inward=True, colours=None):
     """Binary little-endian PLY (float x y z, int triangles): compact, and loaded by assimp ten times
-    faster than STL. `inward` reverses the winding so the faces point into the void (the water)."""
+    faster than STL. `inward` reverses the winding so the faces point into the void (the water). `colours`
+    (N x 3 uint8, sRGB): vertex colours as uchar red, green, blue."""
     if inward:
         tris = tris[:, ::-1]
+    vertex = np.zeros(len(verts), dtype=[("p", "<f4", (3,))] + ([("c", "u1", (3,))] if colours is not None else []))
+    vertex["p"] = verts
+    if colours is not None:
+        vertex["c"] = colours
     faces = np.zeros(len(tris), dtype=[("n", "u1"), ("i", "<i4", (3,))])
     faces["n"], faces["i"] = 3, tris
     header = (
         f"ply\nformat binary_little_endian 1.0\ncomment {comment}\nelement vertex {len(verts)}\n"
         "property float x\nproperty float y\nproperty float z\n"
-        f"element face {len(tris)}\nproperty list uchar int vertex_indices\nend_header\n"
+        + ("property uchar red\nproperty uchar green\nproperty uchar blue\n" if colours is not None else "")
+        + f"element face {len(tris)}\nproperty list uchar int vertex_indices\nend_header\n"
     )
     with open(path, "wb") as f:
         f.write(header.encode("ascii"))
-        f.write(np.ascontiguousarray(verts, dtype="<f4").tobytes())
+        f.write(vertex.tobytes())
         f.write(faces.tobytes())
 
 

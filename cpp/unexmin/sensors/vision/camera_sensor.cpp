@@ -189,7 +189,7 @@ void CameraSensor::prepare(const SensorContext& ctx) {
     response_.encode = encode_.data();
     response_.encode_last = static_cast<float>(kEncodeEntries);
   }
-  SurfaceMaterials::of(config, materials_);
+  SurfaceMaterials::of(ctx.world, materials_);
 }
 
 void CameraSensor::encode(int n, const std::size_t* pixel, float* const radiance[3], std::uint64_t seed, bool simd) {
@@ -302,7 +302,8 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     }
   // Shading uses the normal, not the angle.
   if (ctx.rays)
-    ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip);
+    ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip,
+                   raycast::SeenBy::cameras);
 
   unsigned lit[raycast::kBlock];
   std::fill(lit, lit + n, ~0u);
@@ -335,7 +336,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       }
     }
     if (ctx.rays && !shadow_rays.empty()) {
-      ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip);
+      ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip, raycast::SeenBy::cameras);
       for (std::size_t s = 0; s < pairs.size(); ++s)
         if (shadow_hits[s].hit())
           lit[pairs[s].first] &= ~(1u << pairs[s].second);
@@ -390,7 +391,10 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
         const Eigen::Vector3f normal(tex_normal[0][i], tex_normal[1][i], tex_normal[2][i]);
         batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * normal, albedo, lit[i]);
       } else {
-        const float* albedo = hit.kind == raycast::HitKind::mesh ? materials_->meanAlbedo(mesh).data() : hull;
+        float mapped[3];
+        const float* albedo = hit.kind != raycast::HitKind::mesh ? hull
+                              : materials_->mapped(mesh)         ? materials_->mappedAlbedo(hit, mapped)
+                                                                 : materials_->meanAlbedo(mesh).data();
         batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
       }
       frame_.range[pixel[i]] = hit.range;

@@ -56,7 +56,8 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     rays_[j].max_range = static_cast<float>(clip_far_);
   }
   if (ctx.rays)
-    ctx.rays->cast(rays_, hits_, ctx.robot_index, raycast::Incidence::skip);  // the normal is enough
+    ctx.rays->cast(rays_, hits_, ctx.robot_index, raycast::Incidence::skip,
+                   raycast::SeenBy::cameras);  // the normal is enough
   else
     hits_.assign(rays_.size(), raycast::Hit());
 
@@ -69,7 +70,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     double density = 0.0;
   };
   std::vector<Spot> spots(fan_.size());
-  const SurfaceMaterials& materials = SurfaceMaterials::of(ctx.world.config(), materials_);
+  const SurfaceMaterials& materials = SurfaceMaterials::of(ctx.world, materials_);
   for (std::size_t j = 0; j < fan_.size(); ++j) {
     const raycast::Hit& hit = hits_[j];
     if (!hit.hit())
@@ -94,7 +95,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     const double jacobian = std::abs(d1.x() * d2.y() - d1.y() * d2.x()) / (eps * eps);  // [px^2 / m^2]
     double albedo = hull_albedo_;
     if (hit.kind == raycast::HitKind::mesh)
-      albedo = materials.albedo(static_cast<std::size_t>(hit.index), hit.point(rays_[j])).y();
+      albedo = materials.albedo(hit, hit.point(rays_[j])).y();
     spots[j].uv = uv;
     spots[j].seen = true;
     spots[j].density = albedo / M_PI * power_ / (dtheta_ * (fan_.size() - 1)) * jacobian *

@@ -111,7 +111,8 @@ void SlsSensor::sample(const SensorContext& ctx) {
     rays_[j].direction = (head.linear() * dirs_[j]).normalized().cast<float>();
     rays_[j].max_range = static_cast<float>(range_max_);
   }
-  castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // needed only for the points the camera sees
+  // Laser light lands on what the cameras see; the incidence is needed only for the points the camera sees.
+  castRays(ctx, rays_, hits_, raycast::Incidence::skip, raycast::SeenBy::cameras);
 
   if (water_world_ != &ctx.world) {  // the water is the world's, fixed while it lives: derive it once
     water_ = WaterOptics::fromVisibility(ctx.world.config().visibility, ctx.world.config().visibility_colour);
@@ -146,7 +147,8 @@ void SlsSensor::sample(const SensorContext& ctx) {
     sight_.push_back(sight);
     candidates_.push_back(static_cast<int>(j));
   }
-  castRays(ctx, sight_, sight_hits_, raycast::Incidence::skip);  // only whether something is in the way
+  castRays(ctx, sight_, sight_hits_, raycast::Incidence::skip,
+           raycast::SeenBy::cameras);  // only whether something is in the way
 
   out.points.clear();
   out.intensity.clear();
@@ -161,9 +163,7 @@ void SlsSensor::sample(const SensorContext& ctx) {
     const double rc = sight_[k].max_range + kSightSlack;
     double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh)
-      albedo = SurfaceMaterials::of(ctx.world.config(), materials_)
-                   .albedo(static_cast<std::size_t>(h.index), h.point(rays_[j]))
-                   .y();
+      albedo = SurfaceMaterials::of(ctx.world, materials_).albedo(h, h.point(rays_[j])).y();
     const double strength = albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) *
                             std::exp(-c * (rl + rc)) / rl;
     if (!(strength >= level) || strength <= 0.0)

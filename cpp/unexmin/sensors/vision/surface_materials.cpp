@@ -4,7 +4,12 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
-SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&config) {
+SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : SurfaceMaterials(config, nullptr) {}
+
+SurfaceMaterials::SurfaceMaterials(const sim::World& world) : SurfaceMaterials(world.config(), &world) {}
+
+SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config, const sim::World* world)
+    : config_(&config), world_(world) {
   meshes_.resize(config.meshes.size());
   for (std::size_t i = 0; i < config.meshes.size(); ++i) {
     const sim::MeshEntry& e = config.meshes[i];
@@ -22,13 +27,55 @@ SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : config_(&co
     m.to_mesh = e.pose.linear().transpose().cast<float>();
     m.origin = e.pose.translation().cast<float>();
     m.identity = m.to_mesh.isIdentity(0.0f) && m.origin.isZero(0.0f);
+    if (e.material.mapped()) {
+      if (!world)
+        throw ConfigError(config.file + ": 'meshes[" + formatNumber(i) + "].material.kind' = '" + e.material.kind +
+                          "' needs the world's loaded meshes");
+      m.data = &world->mesh(i);
+      m.image = world->image(i);
+    }
   }
 }
 
 const SurfaceMaterials& SurfaceMaterials::of(const sim::WorldConfig& config, std::unique_ptr<SurfaceMaterials>& cache) {
-  if (!cache || cache->config_ != &config || cache->size() != config.meshes.size())
+  if (!cache || cache->config_ != &config || cache->world_ || cache->size() != config.meshes.size())
     cache = std::make_unique<SurfaceMaterials>(config);
   return *cache;
+}
+
+const SurfaceMaterials& SurfaceMaterials::of(const sim::World& world, std::unique_ptr<SurfaceMaterials>& cache) {
+  if (!cache || cache->world_ != &world || cache->size() != world.config().meshes.size())
+    cache = std::make_unique<SurfaceMaterials>(world);
+  return *cache;
+}
+
+Eigen::Array3f SurfaceMaterials::albedo(const raycast::Hit& hit, const Eigen::Vector3f& p) const {
+  const auto mesh = static_cast<std::size_t>(hit.index);
+  if (!mapped(mesh))
+    return albedo(mesh, p);
+  float out[3];
+  mappedAlbedo(hit, out);
+  return Eigen::Array3f(out[0], out[1], out[2]);
+}
+
+const float* SurfaceMaterials::mappedAlbedo(const raycast::Hit& hit, float* out) const {
+  const Mesh& m = meshes_[static_cast<std::size_t>(hit.index)];
+  const sim::TriangleMesh& mesh = *m.data;
+  Eigen::Array3f a = m.albedo.head<3>();
+  if (hit.primitive >= 0 && static_cast<std::size_t>(hit.primitive) < mesh.triangleCount()) {
+    const int* tri = &mesh.indices[3 * static_cast<std::size_t>(hit.primitive)];
+    const float w0 = 1.0f - hit.u - hit.v;
+    if (m.image) {
+      const Eigen::Vector2f uv = w0 * mesh.uvs[tri[0]] + hit.u * mesh.uvs[tri[1]] + hit.v * mesh.uvs[tri[2]];
+      a *= m.image->sample(uv.x(), uv.y());
+    } else {
+      a *= (w0 * mesh.colours[tri[0]] + hit.u * mesh.colours[tri[1]] + hit.v * mesh.colours[tri[2]]).array();
+    }
+  }
+  out[0] = a[0];
+  out[1] = a[1];
+  out[2] = a[2];
+  return out;
 }
 
 Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f& p) const {

@@ -5,8 +5,9 @@
 // Knows no ROS.
 #pragma once
 
+#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/vision/rock_texture.h>
-#include <unexmin/sim/world_config.h>
+#include <unexmin/sim/world.h>
 
 #include <Eigen/Geometry>
 
@@ -19,11 +20,17 @@ namespace vision {
 
 class SurfaceMaterials {
 public:
-  /// One entry per mesh of `config` (the index of a raycast::Hit of kind mesh).
+  /// One entry per mesh of `config` (the index of a raycast::Hit of kind mesh). Throws ConfigError naming the key of
+  /// a material of kind image or vertex_colours: those need the world's meshes (the constructor below).
   explicit SurfaceMaterials(const sim::WorldConfig& config);
+  /// The same for the world's configuration, with the image textures and vertex colours of its meshes (the world
+  /// must outlive the materials).
+  explicit SurfaceMaterials(const sim::World& world);
 
   /// The materials of `config` held by `cache`: built on first use and again for another world configuration.
   static const SurfaceMaterials& of(const sim::WorldConfig& config, std::unique_ptr<SurfaceMaterials>& cache);
+  /// The same for `world`, with its image textures and vertex colours.
+  static const SurfaceMaterials& of(const sim::World& world, std::unique_ptr<SurfaceMaterials>& cache);
 
   std::size_t size() const { return meshes_.size(); }
   /// Whether mesh `mesh` has a texture or a checkerboard (else its albedo is one number per channel and its normal
@@ -33,8 +40,17 @@ public:
   }
   /// The mesh's mean albedo (R, G, B, 0) [-].
   const Eigen::Array4f& meanAlbedo(std::size_t mesh) const { return meshes_[mesh].albedo; }
-  /// Albedo (R, G, B) of mesh `mesh` at world point `p` [m].
+  /// Albedo (R, G, B) of mesh `mesh` at world point `p` [m] (its mean where it is mapped: albedo(hit, p) below).
   Eigen::Array3f albedo(std::size_t mesh, const Eigen::Vector3f& p) const;
+  /// Albedo (R, G, B) at `hit`, a hit of kind mesh at world point `p` [m]: from its triangle and barycentric
+  /// coordinates where the mesh is mapped, else as albedo(mesh, p).
+  Eigen::Array3f albedo(const raycast::Hit& hit, const Eigen::Vector3f& p) const;
+  /// Whether mesh `mesh`'s albedo comes from its image texture or vertex colours at each hit (mappedAlbedo()).
+  bool mapped(std::size_t mesh) const { return meshes_[mesh].data != nullptr; }
+  /// Albedo (R, G, B) into out[0..2] of the mapped mesh hit by `hit` (Hit::primitive, u, v): the image texture at the
+  /// interpolated texture coordinates (bilinear), or the interpolated vertex colours, times the material's albedo
+  /// (docs/vision.md "Materials"). Returns `out`.
+  const float* mappedAlbedo(const raycast::Hit& hit, float* out) const;
   /// Albedo (into albedo[0..2]) and unit shading normal (world frame, into `shading`) of mesh `mesh` at world
   /// point `p` [m] of unit face normal `n` (world frame).
   void shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
@@ -50,13 +66,17 @@ private:
   struct Mesh {
     Eigen::Array4f albedo;
     std::unique_ptr<RockTexture> texture;
-    std::unique_ptr<sim::Material> board;  ///< a checkerboard (sim::checkerboardAlbedo; no relief)
-    Eigen::Matrix3f to_mesh;               ///< rotation world -> mesh frame
-    Eigen::Vector3f origin;                ///< the mesh frame's origin in the world [m]
-    bool identity = false;                 ///< the mesh frame is the world frame (no transform)
+    std::unique_ptr<sim::Material> board;      ///< a checkerboard (sim::checkerboardAlbedo; no relief)
+    Eigen::Matrix3f to_mesh;                   ///< rotation world -> mesh frame
+    Eigen::Vector3f origin;                    ///< the mesh frame's origin in the world [m]
+    bool identity = false;                     ///< the mesh frame is the world frame (no transform)
+    const sim::TriangleMesh* data = nullptr;   ///< mapped: the mesh's texture coordinates or vertex colours
+    const sim::TextureImage* image = nullptr;  ///< kind image: its texture
   };
+  SurfaceMaterials(const sim::WorldConfig& config, const sim::World* world);
   std::vector<Mesh> meshes_;
   const sim::WorldConfig* config_;  ///< the world configuration they were built from
+  const sim::World* world_;         ///< the world they were built from (null: from a configuration alone)
 };
 
 }  // namespace vision
