@@ -52,7 +52,11 @@ ForwardScatter::ForwardScatter(const WaterOptics& water, double max_range, doubl
   }
   weight_.assign(4 * (kWeightEntries + 2), 0.0f);
   weight_scale_ = kWeightEntries / max_range;
+  band_.resize(kWeightEntries + 2);
   for (int i = 0; i <= kWeightEntries + 1; ++i) {
+    // The band of a range in [i, i + 1) table steps: that of its start (edges fall on steps within 1 / 4096).
+    band_[i] = static_cast<std::uint8_t>(
+        std::min(kBands - 1, static_cast<int>(kBands * std::sqrt(std::min(1.0, i / double(kWeightEntries))))));
     const Eigen::Array3d w = haloWeight(std::min(max_range, i / weight_scale_));
     for (int c = 0; c < 3; ++c)
       weight_[4 * i + c] = static_cast<float>(w[c]);
@@ -95,12 +99,10 @@ void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct
     const float x = r * static_cast<float>(weight_scale_);
     const int j = std::min(static_cast<int>(x), kWeightEntries);
     const float t = x - static_cast<float>(j);
-    const int band = std::min(kBands - 1, static_cast<int>(kBands * std::sqrt(r / far)));
-    float* out = &sums_[(band * cells + cell) * 3];
-    for (int c = 0; c < 3; ++c) {
-      const float w = weight_[4 * j + c] + t * (weight_[4 * (j + 1) + c] - weight_[4 * j + c]);
-      out[c] += direct[c][i] * w * inv_n;
-    }
+    float* out = &sums_[(static_cast<std::size_t>(band_[j]) * cells + cell) * 3];
+    const float* a = &weight_[4 * j];
+    for (int c = 0; c < 3; ++c)
+      out[c] += direct[c][i] * (a[c] + t * (a[4 + c] - a[c])) * inv_n;
   }
 }
 

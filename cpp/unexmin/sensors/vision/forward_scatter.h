@@ -29,6 +29,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace unexmin {
@@ -84,9 +85,10 @@ private:
   int width_, height_, cell_, cols_, rows_;
   double eta_ = 0.0, theta2_ = 0.0;
   std::array<double, kBands> band_sigma_px_{};
-  std::vector<float> weight_;  ///< per range step of the table: halo weight per channel (4 floats)
-  double weight_scale_ = 0.0;  ///< table steps per metre
-  std::vector<float> sums_;    ///< [band][cell][channel]: mean halo radiance of the cell's pixels
+  std::vector<float> weight_;       ///< per range step of the table: halo weight per channel (4 floats)
+  double weight_scale_ = 0.0;       ///< table steps per metre
+  std::vector<std::uint8_t> band_;  ///< per range step of the table: its band
+  std::vector<float> sums_;         ///< [band][cell][channel]: mean halo radiance of the cell's pixels
 };
 
 }  // namespace vision
