@@ -8,6 +8,8 @@
 //   xacro urdf/ux1.urdf.xacro name:=UX_1 > /tmp/ux1.urdf
 //   camera_fps /tmp/ux1.urdf worlds/mine.world [--camera camera_4] [--frames 20] [--size 640x480]
 //              [--visibility none|low|medium|high] [--shadows] [--ppm out.ppm] [--pose x y z yaw] [--threads N]
+//              [--set name=value]...
+// --set: a camera parameter as the description's <param> would give it (e.g. --set forward_scatter=false).
 // --threads: the caster's threads (default 0 = every hardware thread); --threads 1 under
 // `valgrind --tool=callgrind` counts a frame's instructions, whatever else the machine is doing.
 // --size may be given more than once (default: 640x480 and 2054x1544).
@@ -52,7 +54,11 @@ struct Result {
 
 /// Renders `frames` frames of `spec` (at `width` x `height`, one per physics step) and times them.
 Result run(sim::World& world, raycast::RayCaster& caster, sim::SensorSpec spec, int width, int height, int frames,
-           bool shadows, const std::string& ppm) {
+           bool shadows, const std::string& ppm, const std::vector<std::pair<std::string, std::string>>& set) {
+  for (const auto& kv : set) {
+    spec.params.erase(kv.first);
+    spec.text[kv.first] = kv.second;
+  }
   spec.params["width"] = {static_cast<double>(width)};
   spec.params["height"] = {static_cast<double>(height)};
   spec.params["render_scale"] = {1.0};
@@ -129,9 +135,10 @@ Result run(sim::World& world, raycast::RayCaster& caster, sim::SensorSpec spec, 
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr,
-                 "usage: camera_fps <urdf> <world> [--camera NAME] [--frames N] [--size WxH]... "
-                 "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW] [--threads N]\n");
+    std::fprintf(
+        stderr,
+        "usage: camera_fps <urdf> <world> [--camera NAME] [--frames N] [--size WxH]... "
+        "[--visibility LEVEL] [--shadows] [--ppm FILE] [--pose X Y Z YAW] [--threads N] [--set NAME=VALUE]...\n");
     return 2;
   }
   std::string camera_name = "camera_0", visibility, ppm;
@@ -139,6 +146,7 @@ int main(int argc, char** argv) {
   int frames = 20, threads = 0;
   bool shadows = false;
   std::vector<std::pair<int, int>> sizes;
+  std::vector<std::pair<std::string, std::string>> set;  // --set name=value
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     const bool more = i + 1 < argc;
@@ -152,7 +160,10 @@ int main(int argc, char** argv) {
       ppm = argv[++i];
     else if (a == "--shadows")
       shadows = true;
-    else if (a == "--threads" && more)
+    else if (a == "--set" && more && std::strchr(argv[i + 1], '=')) {
+      const std::string kv = argv[++i];
+      set.emplace_back(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1));
+    } else if (a == "--threads" && more)
       threads = std::max(0, std::atoi(argv[++i]));
     else if (a == "--pose" && i + 4 < argc)
       for (int k = 0; k < 4; ++k)
@@ -203,7 +214,7 @@ int main(int argc, char** argv) {
   std::printf("%-11s %7s %10s %10s %7s %10s %10s %14s %11s\n", "size", "frames", "mean [ms]", "best [ms]", "fps",
               "cpu [ms]", "rays [ms]", "rays cpu [ms]", "first [ms]");
   for (const auto& s : sizes) {
-    const Result r = run(world, *caster, *spec, s.first, s.second, frames, shadows, ppm);
+    const Result r = run(world, *caster, *spec, s.first, s.second, frames, shadows, ppm, set);
     char size[32];
     std::snprintf(size, sizeof size, "%dx%d", s.first, s.second);
     std::printf(

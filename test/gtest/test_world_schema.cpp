@@ -50,10 +50,12 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
   };
   const std::vector<Case> cases = {
       {world("gravty: 9.81\n", "", "", "", "", ""), "gravty",
-       "name, gravity, water, atmospheric_pressure, visibility, ray_caster, magnetic_field, current, meshes, robots",
+       "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, magnetic_field, current, meshes, "
+       "robots",
        "gravity"},
       {world("visiblity: {level: high}\n", "", "", "", "", ""), "visiblity",
-       "name, gravity, water, atmospheric_pressure, visibility, ray_caster, magnetic_field, current, meshes, robots",
+       "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, magnetic_field, current, meshes, "
+       "robots",
        "visibility"},
       {world("", ", densty: 1025", "", "", "", ""), "water.densty", "density, surface_z", "density"},
       {world("", "", ", meen: 0.2", "", "", ""), "current.speed.meen", "mean, min, max, noise, mu", "mean"},
@@ -80,10 +82,10 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
 TEST(WorldSchema, NoSuggestionWhenNoKeyIsClose) {
   std::string path;
   const std::string message = refusal("far.world", world("zzz: 1\n", "", "", "", "", ""), path);
-  EXPECT_EQ(message,
-            path +
-                ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, ray_caster, "
-                "magnetic_field, current, meshes, robots)");
+  EXPECT_EQ(message, path +
+                         ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, "
+                         "sediment, ray_caster, "
+                         "magnetic_field, current, meshes, robots)");
 }
 
 TEST(WorldSchema, NearestKeyAgreesWithPythonsDifflib) {
@@ -216,5 +218,7 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 16);  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2
+  // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2, the seven sediment
+  // numbers x2
+  EXPECT_EQ(checked, 30);
 }

@@ -15,7 +15,10 @@ from unexmin.worlds import schema
 from unexmin.worlds.schema import WorldFileError, check_world, read_world
 
 REPO = Path(__file__).resolve().parents[2]
-TOP = "name, gravity, water, atmospheric_pressure, visibility, ray_caster, magnetic_field, current, meshes, robots"
+TOP = (
+    "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, "
+    "magnetic_field, current, meshes, robots"
+)
 
 
 def world(top="", water="", speed="", mesh="", material="", robot=""):

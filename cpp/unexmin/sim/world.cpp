@@ -24,7 +24,7 @@ struct World::StaticBody {
 
 World::World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions, int robot_count,
              double dt, std::uint64_t seed)
-    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed) {
+    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed), sediment_(config.sediment) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw ConfigError(config.file + ": physics step " + formatNumber(dt) + " s must be > 0");
   const int available = static_cast<int>(config.robots.size());
@@ -139,6 +139,12 @@ void World::step() {
     r->afterStep(dt_);
   ++steps_;
   time_ = static_cast<double>(steps_) * dt_;
+  if (config_.sediment.enabled) {
+    std::vector<Robot*> robots;
+    for (auto& r : robots_)
+      robots.push_back(r.get());
+    sediment_.step(time_, dt_, robots, *dynamics_, water_.current);
+  }
 }
 
 void World::reset(std::uint64_t seed) {
@@ -159,6 +165,7 @@ void World::reset(std::uint64_t seed) {
   }
   time_ = 0.0;
   steps_ = 0;
+  sediment_.clear();
 }
 
 }  // namespace sim

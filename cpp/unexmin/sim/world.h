@@ -6,6 +6,7 @@
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/robot.h>
 #include <unexmin/sim/texture_image.h>
+#include <unexmin/sim/sediment.h>
 #include <unexmin/sim/world_config.h>
 
 #include <cstdint>
@@ -46,6 +47,9 @@ public:
   const WorldConfig& config() const { return config_; }
   const WaterState& water() const { return water_; }
   hydro::CurrentModel& current() { return current_; }
+  /// The silt the thrusters raised (empty when the world's sediment is off).
+  const SedimentField& sediment() const { return sediment_; }
+  SedimentField& sediment() { return sediment_; }
 
   std::size_t robotCount() const { return robots_.size(); }
   Robot& robot(std::size_t i) { return *robots_.at(i); }
@@ -79,6 +83,7 @@ private:
   std::uint64_t steps_ = 0;
   hydro::CurrentModel current_;
   WaterState water_;
+  SedimentField sediment_;
 
   std::unique_ptr<btCollisionConfiguration> collision_config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;

@@ -253,6 +253,23 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
       r.fail("'visibility.colour' must be three numbers in (0, 1]");
   }
 
+  if (const YAML::Node sed = root["sediment"]) {
+    if (!sed.IsMap())
+      r.fail("'sediment' must be a map of enabled/settling_speed/raise/reach/puff_size/diffusivity/interval/max_puffs");
+    SedimentParams& s = w.sediment;
+    s.enabled = r.flag(sed, "enabled", "sediment.", s.enabled);
+    s.settling_speed = r.number(sed, "settling_speed", "sediment.", s.settling_speed);
+    s.raise = r.number(sed, "raise", "sediment.", s.raise);
+    s.reach = r.number(sed, "reach", "sediment.", s.reach);
+    s.puff_size = r.number(sed, "puff_size", "sediment.", s.puff_size);
+    s.diffusivity = r.number(sed, "diffusivity", "sediment.", s.diffusivity);
+    s.interval = r.number(sed, "interval", "sediment.", s.interval);
+    const double puffs = r.number(sed, "max_puffs", "sediment.", s.max_puffs);
+    if (puffs != std::floor(puffs) || !(puffs >= 1.0 && puffs <= 100000.0))
+      r.fail("'sediment.max_puffs' is " + formatNumber(puffs) + ", expected a whole number in [1, 100000]");
+    s.max_puffs = static_cast<int>(puffs);
+    validate(s, path);
+  }
   w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
 
   hydro::GaussMarkovParams zero;

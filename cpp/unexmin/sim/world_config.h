@@ -5,6 +5,7 @@
 
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/material.h>
+#include <unexmin/sim/sediment.h>
 
 #include <Eigen/Geometry>
 
@@ -53,6 +54,8 @@ struct WorldConfig {
   /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.
   Eigen::Vector3d magnetic_field{24.0, 134.0, -508.0};
   hydro::CurrentParams current;
+  /// Silt raised by the thrusters (key `sediment:`; off by default).
+  SedimentParams sediment;
   /// Back end of the world's ray caster for every ray sensor: "embree" (default) or "bullet"
   /// (raycast::rayCasterBackends(); checked when the simulator builds the caster).
   std::string ray_caster = "embree";

@@ -87,6 +87,9 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   const double exponent = p.number("light_exponent", 1.0, 0.0, 1000.0, "");
   shadows_ = p.flag("shadows", false);
   simd_ = p.flag("simd", true);
+  forward_scatter_ = p.flag("forward_scatter", true);
+  marine_snow_ = p.flag("marine_snow", true);
+  exposure_time_ = p.number("exposure_time", 0.01, 0.0, 10.0, "s");
   const double laser_power = p.number("laser_power", 0.05, 0.0, 1000.0, "W");
   const double laser_width = p.number("laser_width", 1.0, 0.1, 100.0, "px");
   const Eigen::Vector3d laser_colour = p.vec3("laser_colour", Eigen::Vector3d(0.05, 1.0, 0.15));
@@ -131,6 +134,7 @@ CameraSensor::~CameraSensor() = default;
 
 void CameraSensor::onReset() {
   exposure_now_ = exposure_;
+  snow_.reset();
   frame_.time = -1.0;
   frame_.rendered = false;
 }
@@ -155,10 +159,15 @@ void CameraSensor::prepare(const SensorContext& ctx) {
     formation_ = std::make_unique<ImageFormation>(
         model_, lights_, WaterOptics::fromVisibility(config.visibility, config.visibility_colour), clip_far_);
     water_key_ = key;
+    scatter_.reset();
+    snow_.reset();
+    silt_.reset();
   }
   const int w = model_.width(), h = model_.height();
   const std::size_t n = static_cast<std::size_t>(w) * h;
   if (dirs_.size() != n) {
+    scatter_.reset();
+    silt_.reset();
     dirs_.resize(n);
     parallelRows(h, [&](int v0, int v1) {
       for (int v = v0; v < v1; ++v)
@@ -189,6 +198,17 @@ void CameraSensor::prepare(const SensorContext& ctx) {
     response_.encode = encode_.data();
     response_.encode_last = static_cast<float>(kEncodeEntries);
   }
+  if (!scatter_ && forward_scatter_ && ForwardScatter::needed(formation_->water()))
+    scatter_ = std::make_unique<ForwardScatter>(formation_->water(), clip_far_, model_.fx(), w, h, kTile);
+  const Eigen::Vector3d lens = (ctx.state.pose * spec().pose).translation();
+  const double density = marine_snow_ ? MarineSnow::density(config.visibility) : 0.0;
+  if (snow_) {
+    snow_->advance(lens, ctx.world.water().current, ctx.world.time() - snow_time_);
+  } else if (density > 0.0) {
+    const std::uint64_t seed = Random::streamSeed(ctx.world.seed(), ctx.robot.name(), spec().name + "/marine_snow");
+    snow_ = std::make_unique<MarineSnow>(density, seed, lens);
+  }
+  snow_time_ = ctx.world.time();
   SurfaceMaterials::of(ctx.world, materials_);
 }
 
@@ -234,11 +254,46 @@ void CameraSensor::encodePixel(std::size_t i, std::uint64_t seed) {
   encode(1, &i, channels, seed, false);
 }
 
+void CameraSensor::encodeAll(const SensorContext& ctx, std::uint64_t seed) {
+  const int w = model_.width(), h = model_.height();
+  const bool simd = simd_ && ImageFormation::simdAvailable();
+  const auto strip = [&](std::size_t k) {
+    const int v0 = static_cast<int>(k) * kTile, v1 = std::min(v0 + kTile, h);
+    for (int u0 = 0; u0 < w; u0 += kTile) {
+      alignas(32) float rad[3][raycast::kBlock] = {};
+      std::size_t pixel[raycast::kBlock];
+      int n = 0;
+      for (int v = v0; v < v1; ++v)
+        for (int u = u0; u < std::min(u0 + kTile, w); ++u, ++n) {
+          pixel[n] = static_cast<std::size_t>(v) * w + u;
+          for (int c = 0; c < 3; ++c)
+            rad[c][n] = frame_.radiance[3 * pixel[n] + c];
+        }
+      float* const radiance[3] = {rad[0], rad[1], rad[2]};
+      encode(n, pixel, radiance, seed, simd);
+    }
+  };
+  const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
+  if (ctx.rays)
+    ctx.rays->parallelFor(strips, strip);
+  else
+    for (std::size_t k = 0; k < strips; ++k)
+      strip(k);
+}
+
 void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   const int w = model_.width(), h = model_.height();
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
   const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
   response_.exposure = static_cast<float>(exposure_now_);
+  if (scatter_)
+    scatter_->clear();
+  silt_on_ = false;
+  if (!ctx.world.sediment().empty()) {
+    if (!silt_)
+      silt_ = std::make_unique<SiltView>(model_, *formation_);
+    silt_on_ = silt_->update(ctx.world.sediment(), cam);
+  }
   // Every tile alone: its rays, their cast, its pixels' shading and sensor (the pixels do not depend on which thread
   // renders them, nor on the order). A thread takes a whole strip of kTile rows at a time: two threads never write
   // to the same cache line of the image but at a strip's first and last row (neighbouring tiles on two threads
@@ -253,6 +308,24 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   else
     for (std::size_t k = 0; k < strips; ++k)
       strip(k);
+  if (scatter_)  // the tiles kept their direct light: blur it over the whole image
+    scatter_->apply(frame_.radiance);
+  touched_.clear();
+  if (snow_) {
+    MarineSnow::Motion motion;
+    motion.pose = cam;
+    motion.base = ctx.state.pose.translation();
+    motion.velocity = ctx.state.linear_velocity;
+    motion.angular = ctx.state.angular_velocity;
+    motion.current = ctx.world.water().current;
+    motion.exposure_time = exposure_time_;
+    snow_->draw(model_, *formation_, motion, frame_.range, frame_.radiance, touched_);
+  }
+  if (scatter_)  // then the sensor, at every pixel
+    encodeAll(ctx, seed);
+  else
+    for (std::size_t i : touched_)
+      encodePixel(i, seed);
   if (laser_) {
     // The line adds light to a few pixels: encode those again (noise is a function of seed and pixel alone).
     touched_.clear();
@@ -382,6 +455,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   }
   PixelBatch batch;
   batch.n = n;
+  batch.keep_direct = scatter_ != nullptr;
   for (int i = 0; i < n; ++i) {
     const raycast::Hit& hit = hits[i];
     if (hit.hit()) {
@@ -403,11 +477,16 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
     }
   }
-  formation_->radiance(batch, simd);
+  formation_->radiance(batch, simd, silt_on_ ? silt_.get() : nullptr);
   for (int i = 0; i < n; ++i) {
     float* out = &frame_.radiance[3 * pixel[i]];
     for (int c = 0; c < 3; ++c)
       out[c] = batch.out[c][i];
+  }
+  if (scatter_) {  // the sensor comes after the whole image's forward scattering (encodeAll)
+    const float* const direct[3] = {batch.direct[0], batch.direct[1], batch.direct[2]};
+    scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range);
+    return;
   }
   float* const radiance[3] = {batch.out[0], batch.out[1], batch.out[2]};
   encode(n, pixel, radiance, seed, simd);

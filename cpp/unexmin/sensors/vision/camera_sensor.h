@@ -33,14 +33,21 @@
 //   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
 //   simd true|false (true): shade and sense eight pixels at a time in AVX2 lanes where the CPU has AVX2 and FMA
 //       (ImageFormation::simdAvailable); false: one at a time. Same kernels, same images up to rounding.
+//   forward_scatter true|false (true): the direct image blurred and brightened by the water's small-angle scattering
+//       (ForwardScatter; runs only in water that scatters, not at visibility none)
+//   marine_snow true|false (true): suspended particles lit by the lights (MarineSnow; their density follows the
+//       visibility level, none at none); exposure_time [s] (0.01): how long the shutter is open (their streaks)
 //   laser_power [W] (0.05), laser_width [px] (1), laser_colour (0.05 1 0.15): the line of the SLS unit whose
 //       <sensor type="sls"> names this camera's link as its camera_frame (none: no line)
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/vision/camera_model.h>
+#include <unexmin/sensors/vision/forward_scatter.h>
 #include <unexmin/sensors/vision/image_formation.h>
 #include <unexmin/sensors/vision/laser_line.h>
+#include <unexmin/sensors/vision/marine_snow.h>
+#include <unexmin/sensors/vision/silt_view.h>
 #include <unexmin/sensors/vision/surface_materials.h>
 
 #include <cstdint>
@@ -94,6 +101,13 @@ public:
   const LaserLine* laser() const { return laser_.get(); }
   /// The image formation of the latest rendered frame's water (null before the first render).
   const ImageFormation* formation() const { return formation_.get(); }
+  /// The forward scattering of the latest rendered frame (null: none in its water, or off).
+  const ForwardScatter* forwardScatter() const { return scatter_.get(); }
+  /// The suspended particles around the lens (null: none in the water, or off, or before the first render).
+  const MarineSnow* marineSnow() const { return snow_.get(); }
+  double exposureTime() const { return exposure_time_; }  ///< [s]
+  /// The silt as the latest rendered frame saw it (null: it saw none).
+  const SiltView* silt() const { return silt_on_ ? silt_.get() : nullptr; }
   /// The camera's optical frame in the base frame.
   const Eigen::Isometry3d& pose() const { return spec().pose; }
 
@@ -118,11 +132,15 @@ private:
   void adjustExposure();
   /// The same for pixel i alone, from frame_.radiance.
   void encodePixel(std::size_t i, std::uint64_t seed);
+  /// The sensor at every pixel, from frame_.radiance (after a pass over the whole image: forward scattering).
+  void encodeAll(const SensorContext& ctx, std::uint64_t seed);
 
   CameraModel model_;
   bool visual_ = false;
   double clip_far_ = 20.0, exposure_ = 20.0, gain_ = 1.0, gamma_ = 1.0;
   bool noise_ = true, shadows_ = false, simd_ = true;
+  bool forward_scatter_ = true, marine_snow_ = true;
+  double exposure_time_ = 0.01;  ///< [s] (marine snow streaks)
   double full_well_ = 10000.0, read_noise_ = 10.0;
   double vignetting_ = 0.0;
   bool auto_exposure_ = false;
@@ -135,6 +153,11 @@ private:
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;
+  std::unique_ptr<ForwardScatter> scatter_;      ///< null in water that scatters too little (ForwardScatter::needed)
+  std::unique_ptr<MarineSnow> snow_;             ///< null in water without particles
+  std::unique_ptr<SiltView> silt_;               ///< made when the world first holds silt
+  bool silt_on_ = false;                         ///< this frame sees silt
+  double snow_time_ = 0.0;                       ///< sim time the particles were last moved to [s]
   std::string water_key_;                        ///< visibility level and colour the formation was built for
   std::vector<Eigen::Vector3f> dirs_;            ///< per pixel: unit ray direction in the optical frame
   std::unique_ptr<SurfaceMaterials> materials_;  ///< per world mesh: albedo, texture (docs/vision.md)

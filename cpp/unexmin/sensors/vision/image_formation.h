@@ -77,7 +77,12 @@ struct PixelBatch : shading::Pixels {
     static const float zero[3] = {0.0f, 0.0f, 0.0f};
     set(i, pu, pv, max_range, Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), zero, 0u);
   }
+
+  bool keep_direct = false;  ///< radiance() also writes the direct term alone into `direct` (forward scattering)
+  alignas(32) float direct[3][raycast::kBlock];  ///< the direct term per channel [W m^-2 sr^-1] (if keep_direct)
 };
+
+class SiltView;
 
 class ImageFormation {
 public:
@@ -105,10 +110,12 @@ public:
   /// Backscatter radiance [W m^-2 sr^-1] per channel along the ray of pixel (u, v) [px] from the lens to range `r`
   /// [m] (clamped to [0, max_range]), interpolated from the table: one pixel of radiance().
   Eigen::Array3f backscatter(float u, float v, float r) const;
-  /// Radiance at the lens of every pixel of `batch` (direct + backscatter, into batch.out). `simd` (and
+  /// Radiance at the lens of every pixel of `batch` (direct + backscatter, into batch.out; the direct term alone
+  /// also into batch.direct when batch.keep_direct). `simd` (and
   /// simdAvailable()): eight pixels side by side in AVX2 lanes; else one at a time. Same kernels either way
   /// (shading_kernels.h); the results differ only by rounding (FMA), about 1e-7 relative.
-  void radiance(PixelBatch& batch, bool simd = true) const;
+  /// `silt` (null: none): the silt the thrusters raised, as this frame's camera sees it (SiltView::apply).
+  void radiance(PixelBatch& batch, bool simd = true, const SiltView* silt = nullptr) const;
   /// Whether this build and this CPU run the eight-lane kernels (x86-64 with AVX2 and FMA).
   static bool simdAvailable();
   /// Whether light `k` can light point `p` (camera frame) from the front of a surface of normal `n`: inside its

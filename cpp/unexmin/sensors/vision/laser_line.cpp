@@ -62,6 +62,7 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     hits_.assign(rays_.size(), raycast::Hit());
 
   const double c = water.c().y();
+  const sim::SedimentField& silt = ctx.world.sediment();
   const int w = camera_.width(), h = camera_.height();
   // Per hit: pixel, visible, and S / dθ (the slice's image signal per radian of fan).
   struct Spot {
@@ -100,6 +101,12 @@ void LaserLine::draw(const SensorContext& ctx, const WaterOptics& water, const s
     spots[j].seen = true;
     spots[j].density = albedo / M_PI * power_ / (dtheta_ * (fan_.size() - 1)) * jacobian *
                        std::exp(-c * (static_cast<double>(hit.range) + rc));
+    if (!silt.empty()) {  // the thrusters' silt on both legs
+      const Eigen::Vector3d lens = cam_inv.inverse().translation(), point = hit.point(rays_[j]).cast<double>();
+      spots[j].density *=
+          std::exp(-silt.opticalDepth(rays_[j].origin.cast<double>(), rays_[j].direction.cast<double>(), hit.range) -
+                   silt.opticalDepth(lens, (point - lens) / rc, rc));
+    }
   }
   for (std::size_t j = 0; j + 1 < spots.size(); ++j) {
     const Spot& a = spots[j];

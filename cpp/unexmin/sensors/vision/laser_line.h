@@ -10,7 +10,8 @@
 //     S = (rho_g / pi) (P dθ / fan) J exp(-c_g (R_L + R_C))   [W m^-2 sr^-1 px^2]
 // with rho_g the green albedo of the material at the hit (SurfaceMaterials: the texture's, where it has one),
 // with J the image area per unit wall area at the hit [px^2 / m^2] (from the camera model, distortion and
-// obliquity included), R_L the laser range and R_C the camera range. S is spread evenly along the segment between
+// obliquity included), R_L the laser range and R_C the camera range (times exp(-tau_L - tau_C) where the thrusters
+// raised silt: its optical depths along both legs, sim::SedimentField). S is spread evenly along the segment between
 // neighbouring hits with a Gaussian profile across it of standard deviation `width` [px] (the lens and the sheet
 // thickness blur it), and added to channel k with weight colour_k (the camera's response to 532 nm light per
 // channel relative to green). Knows no ROS.

@@ -164,15 +164,25 @@ void SlsSensor::sample(const SensorContext& ctx) {
     double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh)
       albedo = SurfaceMaterials::of(ctx.world, materials_).albedo(h, h.point(rays_[j])).y();
-    const double strength = albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) *
-                            std::exp(-c * (rl + rc)) / rl;
-    if (!(strength >= level) || strength <= 0.0)
+    double strength = albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) *
+                      std::exp(-c * (rl + rc)) / rl;
+    double detect = level;
+    const sim::SedimentField& silt = ctx.world.sediment();
+    if (!silt.empty()) {
+      // The thrusters' silt: both legs attenuated, and its glow over the first backscatter_length of the sight line
+      // raises the background as the water's b does.
+      const Eigen::Vector3d lens = sight_[k].origin.cast<double>(), to = sight_[k].direction.cast<double>();
+      strength *= std::exp(-silt.opticalDepth(rays_[j].origin.cast<double>(), rays_[j].direction.cast<double>(), rl) -
+                           silt.opticalDepth(lens, to, rc));
+      detect += threshold_ * silt.opticalDepth(lens, to, std::min(rc, backscatter_length_));
+    }
+    if (!(strength >= detect) || strength <= 0.0)
       continue;
     // Triangulated point in the camera frame, its depth off by sigma_Z along the camera ray.
     const Eigen::Vector3d p = cam_inv * h.point(rays_[j]).cast<double>();
     const double dz = depthSigma(p.z()) * draw;
     out.points.push_back((p * ((p.z() + dz) / p.z())).cast<float>());
-    out.intensity.push_back(static_cast<float>(level > 0.0 ? strength / level : 1.0));
+    out.intensity.push_back(static_cast<float>(detect > 0.0 ? strength / detect : 1.0));
   }
 }
 

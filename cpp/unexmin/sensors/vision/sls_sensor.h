@@ -17,7 +17,10 @@
 //      b_g the water's green attenuation and scattering (WaterOptics of the world's visibility; a line laser
 //      spreads in one dimension: 1 / R_L), R_ref = 1 m, L_b = backscatter_length (the laser sheet's glow
 //      seen along the pixel raises the background) and albedo_g the surface's green albedo at the hit (its
-//      material in the world file, textured or not: SurfaceMaterials);
+//      material in the world file, textured or not: SurfaceMaterials); where the thrusters raised silt
+//      (sim::SedimentField) S is also multiplied by exp(-tau_L - tau_C), the silt's optical depths along the laser
+//      ray and the sight line, and the level's b_g L_b gains the silt's optical depth over the first L_b of the
+//      sight line;
 //   3. triangulation noise along the camera ray: depth error sigma_Z = Z^2 sigma_u / (f B) with Z the depth in
 //      the camera, f its focal length [px] at full resolution, B the camera-laser baseline [m], sigma_u the
 //      sub-pixel accuracy of the line detector [px].
