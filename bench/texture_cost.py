@@ -2,8 +2,8 @@
 """Cost of the cameras' rock texture and relief, and the visual-mode figures that depend on it
 (docs/benchmarks.md, "Cameras"; docs/vision.md, "Cost").
 
-    source scripts/env.sh && python bench/texture_cost.py [--rounds 5] [--frames 10] [--no-callgrind]
-                                                           [--rtf] [--rtf-repeat 3] [--full] [--camera-fps EXE]
+    source scripts/env.sh && python bench/texture_cost.py [--rounds 5] [--frames 10] [--callgrind]
+                                                           [--rtf] [--rtf-repeat 3] [--full] [--camera-fps EXE]...
 
 Three copies of worlds/mine.world, beside links to its meshes, differ only in the walls' material:
   plain   the material's albedo alone (no texture)
@@ -16,9 +16,10 @@ Printed:
   * CPU time per frame (all threads; stays near an idle machine's figure under load), the median of --rounds
     rounds in which the three worlds alternate, and the texture's and relief's shares of the rock frame:
     texture = (flat - plain) / rock, relief = (rock - flat) / rock;
-  * unless --no-callgrind: instructions per frame under `valgrind --tool=callgrind` (one caster thread, only inside
+  * with --callgrind: instructions per frame under `valgrind --tool=callgrind` (one caster thread, only inside
     CameraSensor::render; repeatable whatever the load), the same shares, and the part inside
-    RockTexture::shadeMany;
+    RockTexture::shadeManyFrom (RockTexture::shadeMany in a build without it). Each of the six runs loads the
+    mine's 1.13M triangles under valgrind: minutes of CPU each;
   * with --rtf: bench/visual_rtf.py (mine, 1 robot, every sensor, 5 cameras at 640 x 480 and 10 fps, images
     subscribed; RTF, CPU, resident memory now and peak) and, with --full, its 2054 x 1544 figure.
 """
@@ -74,11 +75,10 @@ def write_worlds(tmp):
     return paths
 
 
-EXE = [os.path.join(workspace(), "devel", "lib", "unexmin", "camera_fps")]
+EXE = os.path.join(workspace(), "devel", "lib", "unexmin", "camera_fps")
 
 
-def camera_fps(urdf, world, view, frames, extra=(), prefix=()):
-    exe = EXE[0]
+def camera_fps(exe, urdf, world, view, frames, extra=(), prefix=()):
     if not os.path.exists(exe):
         sys.exit(f"{exe} not built: catkin_make -j2 camera_fps in {workspace()}")
     cmd = list(prefix) + [exe, urdf, world, "--size", "640x480", "--frames", str(frames)]
@@ -98,11 +98,12 @@ def shares(v):
     return (v["flat"] - v["plain"]) / v["rock"], (v["rock"] - v["flat"]) / v["rock"]
 
 
-def callgrind(urdf, world, view, tmp, name):
+def callgrind(exe, urdf, world, view, tmp, name):
     """Instructions per frame inside CameraSensor::render, and inside RockTexture::shadeMany (one caster thread)."""
     out_file = os.path.join(tmp, f"{name}_{view}.callgrind")
     frames = 1  # camera_fps renders frames + 1 (the first builds the tables, outside render)
     run = camera_fps(
+        exe,
         urdf,
         world,
         view,
@@ -124,7 +125,7 @@ def callgrind(urdf, world, view, tmp, name):
     ).stdout
     texture = 0
     for line in annotate.splitlines():
-        if "RockTexture::shadeMany" in line:
+        if "RockTexture::shadeMany" in line:  # shadeManyFrom, or shadeMany where there is none
             texture = max(texture, int(line.split()[0].replace(",", "")))
     return total, texture / (frames + 1)
 
@@ -137,14 +138,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=5, help="rounds of the three worlds (CPU time: the median)")
     ap.add_argument("--frames", type=int, default=10, help="frames per camera_fps run")
-    ap.add_argument("--no-callgrind", action="store_true", help="skip the instruction counts")
+    ap.add_argument("--callgrind", action="store_true", help="also the instruction counts (slow)")
     ap.add_argument("--rtf", action="store_true", help="also bench/visual_rtf.py at 640x480 (and --full)")
     ap.add_argument("--rtf-repeat", type=int, default=3, help="visual_rtf runs at 640x480")
     ap.add_argument("--full", action="store_true", help="with --rtf: one run at 2054x1544 too")
-    ap.add_argument("--camera-fps", default=EXE[0], help="the camera_fps binary (another build's, to compare)")
+    ap.add_argument(
+        "--camera-fps",
+        action="append",
+        help=f"a camera_fps binary (default {EXE}); given more than once, each in the same rounds (to compare builds)",
+    )
     args = ap.parse_args()
-    EXE[0] = args.camera_fps
-    for tool in ["xacro"] + ([] if args.no_callgrind else ["valgrind", "callgrind_annotate"]):
+    exes = args.camera_fps or [EXE]
+    for tool in ["xacro"] + (["valgrind", "callgrind_annotate"] if args.callgrind else []):
         if not shutil.which(tool):
             sys.exit(f"{tool} not on PATH (source scripts/env.sh; valgrind: Debian's valgrind)")
     tmp = tempfile.mkdtemp(prefix="texture_cost_")
@@ -160,38 +165,44 @@ def main():
                 ).stdout
             )
         worlds = write_worlds(tmp)
-        print(f"{EXE[0]}: camera 0, 640x480, {os.cpu_count()} hardware threads; {load()}", flush=True)
+        print(f"camera 0, 640x480, {os.cpu_count()} hardware threads; {load()}", flush=True)
+        for k, exe in enumerate(exes):
+            print(f"build {k}: {exe}")
         print(f"CPU time per frame [ms], median of {args.rounds} rounds of {args.frames} frames, worlds alternating")
-        print(f"{'view':<6} {'plain':>7} {'flat':>7} {'rock':>7} {'texture':>8} {'relief':>7} {'both':>6}")
+        print(f"{'view':<6} {'build':>5} {'plain':>7} {'flat':>7} {'rock':>7} {'texture':>8} {'relief':>7} {'both':>6}")
         for view in VIEWS:
-            runs = {w: [] for w in WORLDS}
+            runs = {(k, w): [] for k in range(len(exes)) for w in WORLDS}
             for _ in range(args.rounds):
-                for w in WORLDS:
-                    runs[w].append(cpu_ms(camera_fps(urdf, worlds[w], view, args.frames)))
-            v = {w: statistics.median(runs[w]) for w in WORLDS}
-            t, r = shares(v)
-            print(
-                f"{view:<6} {v['plain']:>7.2f} {v['flat']:>7.2f} {v['rock']:>7.2f} {100 * t:>7.1f}% {100 * r:>6.1f}% "
-                f"{100 * (t + r):>5.1f}%   ({load()})",
-                flush=True,
-            )
-        if not args.no_callgrind:
-            print("instructions per frame (callgrind, inside CameraSensor::render, 1 caster thread) [millions]")
-            print(
-                f"{'view':<6} {'plain':>7} {'flat':>7} {'rock':>7} {'texture':>8} {'relief':>7} {'both':>6}  shadeMany"
-            )
-            for view in VIEWS:
-                v, tex = {}, 0.0
-                for w in WORLDS:
-                    v[w], t = callgrind(urdf, worlds[w], view, tmp, w)
-                    tex = t if w == "rock" else tex
+                for k, exe in enumerate(exes):
+                    for w in WORLDS:
+                        runs[k, w].append(cpu_ms(camera_fps(exe, urdf, worlds[w], view, args.frames)))
+            for k in range(len(exes)):
+                v = {w: statistics.median(runs[k, w]) for w in WORLDS}
                 t, r = shares(v)
                 print(
-                    f"{view:<6} {v['plain'] / 1e6:>7.2f} {v['flat'] / 1e6:>7.2f} {v['rock'] / 1e6:>7.2f} "
-                    f"{100 * t:>7.1f}% {100 * r:>6.1f}% {100 * (t + r):>5.1f}%  {tex / 1e6:.2f} "
-                    f"({100 * tex / v['rock']:.1f}% of the rock frame)",
+                    f"{view:<6} {k:>5} {v['plain']:>7.2f} {v['flat']:>7.2f} {v['rock']:>7.2f} {100 * t:>7.1f}% "
+                    f"{100 * r:>6.1f}% {100 * (t + r):>5.1f}%   ({load()})",
                     flush=True,
                 )
+        if args.callgrind:
+            print("instructions per frame (callgrind, inside CameraSensor::render, 1 caster thread) [millions]")
+            print(
+                f"{'view':<6} {'build':>5} {'plain':>7} {'flat':>7} {'rock':>7} {'texture':>8} {'relief':>7} "
+                f"{'both':>6}  shadeMany"
+            )
+            for view in VIEWS:
+                for k, exe in enumerate(exes):
+                    v, tex = {}, 0.0
+                    for w in WORLDS:
+                        v[w], t = callgrind(exe, urdf, worlds[w], view, tmp, f"{w}{k}")
+                        tex = t if w == "rock" else tex
+                    t, r = shares(v)
+                    print(
+                        f"{view:<6} {k:>5} {v['plain'] / 1e6:>7.2f} {v['flat'] / 1e6:>7.2f} {v['rock'] / 1e6:>7.2f} "
+                        f"{100 * t:>7.1f}% {100 * r:>6.1f}% {100 * (t + r):>5.1f}%  {tex / 1e6:.2f} "
+                        f"({100 * tex / v['rock']:.1f}% of the rock frame)",
+                        flush=True,
+                    )
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if args.rtf:
