@@ -17,7 +17,7 @@ Each run, in a fresh process with its own ROS master:
     deserialised by rospy, which costs the two cores a few per cent more);
   * pauses, then steps --sim-seconds through /sim/step in 1 s chunks while UX_1 surges into the wall;
   * RTF: sim time over the wall time it took; images received against 5 x fps x sim time; the
-    simulator's CPU use.
+    simulator's CPU use and its resident memory (now and peak, VmHWM).
 """
 
 import argparse
@@ -149,6 +149,7 @@ def measure(width, height, fps, sim_seconds, seed, timeout, visibility, sink="cp
             "rtf": (sim1 - sim0) / (wall1 - wall0),
             "cpu_percent": 100.0 * (cpu1 - cpu0) / (wall1 - wall0),
             "rss_mb": mem["VmRSS"],
+            "peak_rss_mb": mem["VmHWM"],
             "sim_seconds": sim1 - sim0,
             "images": [r - b for r, b in zip(received, base)],
             "expected_per_camera": expected,
@@ -192,7 +193,7 @@ def main():
         f"subscribed ({args.sink} sink), lockstep_wait_subscribers; {args.sim_seconds:g} s of sim time per run; "
         f"{machine()}"
     )
-    print(f"{'run':>4} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7}  images per camera (expected)")
+    print(f"{'run':>4} {'RTF':>7} {'CPU %':>6} {'RSS MB':>7} {'peak MB':>8}  images per camera (expected)")
     runs = []
     for k in range(args.repeat):
         r = run_child(
@@ -220,7 +221,8 @@ def main():
             return 1
         runs.append(r)
         print(
-            f"{k + 1:>4} {r['rtf']:>7.2f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f}  {r['images']} "
+            f"{k + 1:>4} {r['rtf']:>7.2f} {r['cpu_percent']:>6.0f} {r['rss_mb']:>7.0f} {r['peak_rss_mb']:>8.0f}  "
+            f"{r['images']} "
             f"({r['expected_per_camera']}); image sizes {r['image_sizes']}",
             flush=True,
         )

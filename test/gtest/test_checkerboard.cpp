@@ -100,12 +100,16 @@ TEST(Checkerboard, InAWorldFileItIsInTheMeshFrameWithTheFacesNormal) {
   sm.shade(0, next, n, albedo, shading);
   EXPECT_FLOAT_EQ(albedo[2], 0.7f);
   EXPECT_TRUE(shading.isApprox(n));
-  // shadeMany, as the camera's tiles call it: the same albedos, the normals untouched.
-  float x[2] = {first.x(), next.x()}, y[2] = {first.y(), next.y()}, z[2] = {first.z(), next.z()};
+  // shadeMany, as the camera's tiles call it (points in a camera frame given by its pose in the world): the same
+  // albedos, the normals untouched.
+  const Eigen::Matrix3f cam_rot = Eigen::AngleAxisf(0.4f, Eigen::Vector3f(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3f cam_pos(0.3f, -0.2f, 1.5f);
+  const Eigen::Vector3f a = cam_rot.transpose() * (first - cam_pos), c = cam_rot.transpose() * (next - cam_pos);
+  float x[2] = {a.x(), c.x()}, y[2] = {a.y(), c.y()}, z[2] = {a.z(), c.z()};
   float nx[2] = {n.x(), n.x()}, ny[2] = {n.y(), n.y()}, nz[2] = {n.z(), n.z()};
   float r[2], g[2], b[2];
   float* const out[3] = {r, g, b};
-  sm.shadeMany(0, 2, x, y, z, nx, ny, nz, out, true);
+  sm.shadeMany(0, cam_rot, cam_pos, 2, x, y, z, nx, ny, nz, out, true);
   EXPECT_FLOAT_EQ(r[0], 0.1f);
   EXPECT_FLOAT_EQ(b[1], 0.7f);
   EXPECT_FLOAT_EQ(nz[1], n.z());

@@ -9,6 +9,7 @@
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -330,20 +331,21 @@ TEST(RockTexture, EightLanesEqualOne) {
 }
 
 TEST(RockTexture, SlowNoisesAreLinearOverASmallBatch) {
-  // shadeMany takes the regions' and the stains' noise as linear about the batch's first point when the batch's
-  // bounding box is within 0.02 of their scale on every axis (a tile of a frame: 8 x 8 pixels, 2-3 cm at 2 m). The rest
+  // shadeMany takes the regions' and the stains' noise as linear about the centre of the batch's bounding box when
+  // the box is within 0.04 of their scale on every axis (a tile of a frame: 8 x 8 pixels, 2-3 cm at 2 m). The rest
   // of the field is exact, so against shade() the albedo differs by the second-order remainder of those two noises:
-  // with |d2n| <= 24 per lattice unit^2 (smoothstep's 6 times the corners' range of 4; rough bound), span 0.02 scales
-  // and the unit noise's 1 / value_sd ~ 3.5: < 0.5 * 24 * 3 * 0.02^2 * 3.5 = 0.05 in the noise, times (tint + contrast
-  // weight) in the albedo; seen 0.2 %. Normals: the stains have no relief, but they warp the strata, whose slope then
-  // takes the stains' slope as constant over the batch: off by relief * strata height * 2 pi value_sd/2 * (the stains'
-  // slope change over the batch) < 0.34 * 0.04 * 0.9 * 0.5 = 6e-3 rad; seen 2.7e-3. A batch spread wider is exact.
+  // with |d2n| <= 24 per lattice unit^2 (smoothstep's 6 times the corners' range of 4; rough bound), a distance from
+  // the centre of at most sqrt(3) / 2 x 0.04 scales and the unit noise's 1 / value_sd ~ 3.5:
+  // < 0.5 * 24 * 3 * 0.02^2 * 3.5 = 0.05 in the noise, times (tint + contrast weight) in the albedo. Normals: the
+  // stains have no relief, but they warp the strata, whose slope then takes the stains' slope as constant over the
+  // batch: off by relief * strata height * 2 pi value_sd/2 * (the stains' slope change over half the batch)
+  // < 0.34 * 0.04 * 0.9 * 0.5 = 6e-3 rad. A batch spread wider is exact.
   Material m = unexmin::sim::materialDefaults("rock");
   m.seed = 5;
   m.region = 20.0;
   m.tint = 0.2;
   const RockTexture t(m);
-  const float side = 0.02f * static_cast<float>(std::min(m.stains, m.region));  // 4 cm: within the guard
+  const float side = 0.04f * static_cast<float>(std::min(m.stains, m.region));  // 8 cm: within the guard
   double worst_albedo = 0.0, worst_tilt = 0.0;
   for (int batch = 0; batch < 50; ++batch) {
     const auto pts = points(64, side, Eigen::Vector3f(3.0f * batch, -1.0f, 0.5f * batch), 100 + batch);
@@ -368,6 +370,57 @@ TEST(RockTexture, SlowNoisesAreLinearOverASmallBatch) {
   EXPECT_GT(worst_albedo, 0.0);  // the linear path was taken
   EXPECT_LT(worst_albedo, 0.005);
   EXPECT_LT(worst_tilt, 0.006);
-  std::printf("slow noises linear over a batch of 4 cm: albedo off by <= %.2g (relative), normal by <= %.2g rad\n",
+  std::printf("slow noises linear over a batch of 8 cm: albedo off by <= %.2g (relative), normal by <= %.2g rad\n",
               worst_albedo, worst_tilt);
+}
+
+TEST(RockTexture, ATileGivenInAnotherFrameIsTheMeshFramesTexture) {
+  // shadeManyFrom (the camera's path: points and normals in the camera frame, moved into the mesh frame in lanes)
+  // against shadeMany one point at a time on the same points in the mesh frame: tiles of 64 points 3 cm across (the
+  // cracks' lattice cell is then shared by most groups of eight, which reuse its corners), 4-9 m from the mesh
+  // origin. Within the rounding of the transforms (~1e-6 m, times the albedo's slope of < 20 per m) and of the lanes
+  // (EightLanesEqualOne): albedo 1e-4, normals 1e-3.
+  Material m = unexmin::sim::materialDefaults("rock");
+  m.seed = 9;
+  m.region = 20.0;
+  m.tint = 0.2;
+  m.relief = 0.5;
+  const RockTexture t(m);
+  const Eigen::Matrix3f rotation =
+      Eigen::AngleAxisf(0.7f, Eigen::Vector3f(0.3f, -0.5f, 0.8f).normalized()).toRotationMatrix();
+  const Eigen::Vector3f translation(2.5f, -4.0f, 6.0f);
+  std::mt19937 gen(5);
+  std::normal_distribution<float> g;
+  double worst_albedo = 0.0, worst_normal = 0.0;
+  for (int tile = 0; tile < 40; ++tile) {
+    const auto pts = points(64, 0.03f, Eigen::Vector3f(0.13f * tile, -1.0f, 0.071f * tile - 2.0f), 300 + tile);
+    constexpr int n = 64;
+    float x[3][n], a[3][n], d[3][n], ref[3][n], dref[3][n];
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3f normal = Eigen::Vector3f(g(gen), g(gen), g(gen)).normalized();
+      const Eigen::Vector3f pa = rotation.transpose() * (pts[i] - translation), na = rotation.transpose() * normal;
+      for (int c = 0; c < 3; ++c) {
+        x[c][i] = pa[c], d[c][i] = na[c];
+        dref[c][i] = normal[c];
+      }
+    }
+    std::vector<float> mx(n), my(n), mz(n);
+    for (int i = 0; i < n; ++i)
+      mx[i] = pts[i].x(), my[i] = pts[i].y(), mz[i] = pts[i].z();
+    float* const out_ref[3] = {ref[0], ref[1], ref[2]};
+    t.shadeMany(n, mx.data(), my.data(), mz.data(), dref[0], dref[1], dref[2], out_ref, false);
+    float* const out[3] = {a[0], a[1], a[2]};
+    t.shadeManyFrom(rotation, translation, n, x[0], x[1], x[2], d[0], d[1], d[2], out, tile % 4 != 3);
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c)
+        worst_albedo = std::max(worst_albedo, static_cast<double>(std::abs(a[c][i] - ref[c][i])));
+      const Eigen::Vector3f back = rotation * Eigen::Vector3f(d[0][i], d[1][i], d[2][i]);
+      worst_normal = std::max(worst_normal,
+                              static_cast<double>((back - Eigen::Vector3f(dref[0][i], dref[1][i], dref[2][i])).norm()));
+      EXPECT_NEAR(Eigen::Vector3f(d[0][i], d[1][i], d[2][i]).norm(), 1.0f, 1e-5f);
+    }
+  }
+  EXPECT_LT(worst_albedo, 1e-4);
+  EXPECT_LT(worst_normal, 1e-3);
+  std::printf("a tile in another frame: albedo off by <= %.2g, normal by <= %.2g\n", worst_albedo, worst_normal);
 }

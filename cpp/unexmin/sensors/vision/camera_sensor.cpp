@@ -420,61 +420,63 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   const float hull[3] = {static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
                          static_cast<float>(kHullAlbedo.z())};
   const bool simd = simd_ && ImageFormation::simdAvailable();
-  // Textured surfaces: albedo and shading normal at each hit, the pixels of one mesh at a time (eight in lanes).
-  std::size_t material_of[raycast::kBlock];  // the textured mesh hit, or kNone
-  constexpr std::size_t kNone = ~std::size_t(0);
-  float tex_albedo[3][raycast::kBlock], tex_normal[3][raycast::kBlock];
-  for (int i = 0; i < n; ++i) {
-    const bool textured = hits[i].hit() && hits[i].kind == raycast::HitKind::mesh &&
-                          materials_->textured(static_cast<std::size_t>(hits[i].index));
-    material_of[i] = textured ? static_cast<std::size_t>(hits[i].index) : kNone;
-  }
-  for (int first = 0; first < n; ++first) {
-    const std::size_t mesh = material_of[first];
-    if (mesh == kNone || (first > 0 && std::find(material_of, material_of + first, mesh) != material_of + first))
-      continue;  // not textured, or this mesh is done
-    alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
-    int which[raycast::kBlock], count = 0;
-    for (int i = first; i < n; ++i) {
-      if (material_of[i] != mesh)
-        continue;
-      const Eigen::Vector3f p = hits[i].point(rays[i]);
-      for (int a = 0; a < 3; ++a) {
-        x[a][count] = p[a];
-        nrm[a][count] = hits[i].normal[a];
-      }
-      which[count++] = i;
-    }
-    float* const out[3] = {albedo[0], albedo[1], albedo[2]};
-    materials_->shadeMany(mesh, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, simd);
-    for (int j = 0; j < count; ++j)
-      for (int a = 0; a < 3; ++a) {
-        tex_albedo[a][which[j]] = albedo[a][j];
-        tex_normal[a][which[j]] = nrm[a][j];
-      }
-  }
+  // Every pixel as if plain (the hull's or the mesh's one albedo, the face's normal), then the textured ones: albedo
+  // and shading normal evaluated into the batch itself, one textured mesh at a time (eight pixels in lanes).
   PixelBatch batch;
   batch.n = n;
   batch.keep_direct = scatter_ != nullptr;
+  constexpr std::size_t kNone = ~std::size_t(0);
+  std::size_t material_of[raycast::kBlock];  // the textured mesh hit, or kNone
+  int textured = 0;                          // pixels on a textured mesh
+  bool one_mesh = true;                      // all on the same one
   for (int i = 0; i < n; ++i) {
     const raycast::Hit& hit = hits[i];
+    material_of[i] = kNone;
     if (hit.hit()) {
       const auto mesh = static_cast<std::size_t>(hit.index);
-      if (material_of[i] != kNone) {
-        const float albedo[3] = {tex_albedo[0][i], tex_albedo[1][i], tex_albedo[2][i]};
-        const Eigen::Vector3f normal(tex_normal[0][i], tex_normal[1][i], tex_normal[2][i]);
-        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * normal, albedo, lit[i]);
-      } else {
-        float mapped[3];
-        const float* albedo = hit.kind != raycast::HitKind::mesh ? hull
-                              : materials_->mapped(mesh)         ? materials_->mappedAlbedo(hit, mapped)
-                                                                 : materials_->meanAlbedo(mesh).data();
-        batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
-      }
+      const bool is_mesh = hit.kind == raycast::HitKind::mesh;
+      float mapped[3];
+      const float* albedo = !is_mesh                  ? hull
+                            : materials_->mapped(mesh) ? materials_->mappedAlbedo(hit, mapped)
+                                                       : materials_->meanAlbedo(mesh).data();
+      batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
       frame_.range[pixel[i]] = hit.range;
+      if (is_mesh && materials_->textured(mesh)) {
+        material_of[i] = mesh;
+        one_mesh = one_mesh && mesh == material_of[0];
+        ++textured;
+      }
     } else {
       batch.setWater(i, pu[i], pv[i], far);
       frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
+    }
+  }
+  if (textured == n && one_mesh) {  // the usual tile: one textured wall
+    float* const albedo[3] = {batch.albedo[0], batch.albedo[1], batch.albedo[2]};
+    materials_->shadeMany(material_of[0], rot, origin, n, batch.px, batch.py, batch.pz, batch.nx, batch.ny, batch.nz,
+                          albedo, simd);
+  } else if (textured > 0) {
+    for (int first = 0; first < n; ++first) {
+      const std::size_t mesh = material_of[first];
+      if (mesh == kNone || std::find(material_of, material_of + first, mesh) != material_of + first)
+        continue;  // not textured, or this mesh is done
+      // The pixels of this mesh, gathered, evaluated and put back.
+      alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
+      int which[raycast::kBlock], count = 0;
+      for (int i = first; i < n; ++i)
+        if (material_of[i] == mesh) {
+          x[0][count] = batch.px[i], x[1][count] = batch.py[i], x[2][count] = batch.pz[i];
+          nrm[0][count] = batch.nx[i], nrm[1][count] = batch.ny[i], nrm[2][count] = batch.nz[i];
+          which[count++] = i;
+        }
+      float* const out[3] = {albedo[0], albedo[1], albedo[2]};
+      materials_->shadeMany(mesh, rot, origin, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, simd);
+      for (int j = 0; j < count; ++j) {
+        const int i = which[j];
+        batch.nx[i] = nrm[0][j], batch.ny[i] = nrm[1][j], batch.nz[i] = nrm[2][j];
+        for (int c = 0; c < 3; ++c)
+          batch.albedo[c][i] = albedo[c][j];
+      }
     }
   }
   formation_->radiance(batch, simd, silt_on_ ? silt_.get() : nullptr);

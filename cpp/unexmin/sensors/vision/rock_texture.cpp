@@ -14,17 +14,18 @@ namespace {
 
 constexpr float kTwoPi = 6.28318530718f;
 constexpr float kCrackWidth = 0.12f;  ///< |n| below which a crack darkens (fraction of the noise's range)
-/// shadeMany takes a slow noise (regions, stains) as linear about a batch's first point when the batch's bounding box
-/// is within this fraction of its scale on every axis: the error is second order in it.
-constexpr float kLinearSpan = 0.02f;
+/// shadeMany takes a slow noise (regions, stains) as linear about the centre of a batch's bounding box when the box
+/// is within this fraction of its scale on every axis: the error is second order in it (in the distance from the
+/// centre, at most half the box's diagonal).
+constexpr float kLinearSpan = 0.04f;
 
 /// A lattice value in [-1, 1) from the integer cell corner (x, y, z) and a seed: per-axis multiplicative hashes,
-/// combined and finished with one multiply between xor-shifts (one round: enough for noise, cheap in lanes).
+/// combined and finished by one xor-shift and one multiply (whose top bits, the value's, mix every bit: enough for
+/// noise, cheap in lanes).
 inline float lattice(std::uint32_t hx, std::uint32_t hy, std::uint32_t hz, std::uint32_t seed) {
   std::uint32_t h = seed ^ hx ^ hy ^ hz;
   h ^= h >> 15;
   h *= 0x2c1b3c6du;
-  h ^= h >> 12;
   return static_cast<float>(h >> 1) * (1.0f / 1073741824.0f) - 1.0f;
 }
 
@@ -298,14 +299,20 @@ void RockTexture::shadeMany(int n, const float* px, const float* py, const float
   // The slow noises, linear over a batch small against their scales.
   RockLanes k = lanes_;
   // The batch's extent: its bounding box's largest side (six independent running bounds, no chain between axes).
+  const bool lanes = simd && rockAvx2Built() && ImageFormation::simdAvailable();
   float lo[3] = {px[0], py[0], pz[0]}, hi[3] = {px[0], py[0], pz[0]};
-  for (int i = 1; i < n; ++i) {
+  int from = 1;
+  if (lanes && n >= 8) {
+    from = n / 8 * 8;
+    rockBoundsAvx2(from, px, py, pz, lo, hi);
+  }
+  for (int i = from; i < n; ++i) {
     lo[0] = std::min(lo[0], px[i]), hi[0] = std::max(hi[0], px[i]);
     lo[1] = std::min(lo[1], py[i]), hi[1] = std::max(hi[1], py[i]);
     lo[2] = std::min(lo[2], pz[i]), hi[2] = std::max(hi[2], pz[i]);
   }
   const float span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const Eigen::Vector3f p0(px[0], py[0], pz[0]);
+  const Eigen::Vector3f p0(0.5f * (lo[0] + hi[0]), 0.5f * (lo[1] + hi[1]), 0.5f * (lo[2] + hi[2]));
   const float inv_sd = 1.0f / moments().value_sd;
   auto linearise = [&](int scale, std::uint32_t seed, float& value, float* grad) {
     Eigen::Vector3f g;
@@ -321,7 +328,7 @@ void RockTexture::shadeMany(int n, const float* px, const float* py, const float
   if (n > 1 && inv_scale_[3] > 0.0f && span * inv_scale_[3] <= kLinearSpan)
     k.stain_linear = linearise(3, seed_[3], k.stain0, k.stain_grad);
   int i = 0;
-  if (simd && rockAvx2Built() && ImageFormation::simdAvailable()) {
+  if (lanes) {
     i = n / 8 * 8;
     rockShadeAvx2(k, i, px, py, pz, nx, ny, nz, albedo);
   }
@@ -334,6 +341,38 @@ void RockTexture::shadeMany(int n, const float* px, const float* py, const float
     nx[i] = s.x();
     ny[i] = s.y();
     nz[i] = s.z();
+  }
+}
+
+void RockTexture::shadeManyFrom(const Eigen::Matrix3f& rotation, const Eigen::Vector3f& translation, int n,
+                                const float* px, const float* py, const float* pz, float* nx, float* ny, float* nz,
+                                float* const albedo[3], bool simd) const {
+  const bool lanes = simd && rockAvx2Built() && ImageFormation::simdAvailable();
+  // (x, y, z)[i] = m (x, y, z)[i] + t, eight at a time where the CPU can.
+  auto transform = [lanes](int count, const Eigen::Matrix3f& m, const float* t, const float* x, const float* y,
+                           const float* z, float* ox, float* oy, float* oz) {
+    int i = 0;
+    if (lanes) {
+      const Eigen::Matrix<float, 3, 3, Eigen::RowMajor> rows = m;
+      i = count / 8 * 8;
+      rockTransformAvx2(i, rows.data(), t, x, y, z, ox, oy, oz);
+    }
+    for (; i < count; ++i) {
+      const Eigen::Vector3f v = m * Eigen::Vector3f(x[i], y[i], z[i]) + Eigen::Vector3f(t[0], t[1], t[2]);
+      ox[i] = v.x(), oy[i] = v.y(), oz[i] = v.z();
+    }
+  };
+  constexpr int kChunk = 64;
+  const float none[3] = {0.0f, 0.0f, 0.0f};
+  const Eigen::Matrix3f back = rotation.transpose();
+  for (int first = 0; first < n; first += kChunk) {
+    const int count = std::min(kChunk, n - first);
+    alignas(32) float x[3][kChunk], d[3][kChunk];
+    transform(count, rotation, translation.data(), px + first, py + first, pz + first, x[0], x[1], x[2]);
+    transform(count, rotation, none, nx + first, ny + first, nz + first, d[0], d[1], d[2]);
+    float* const out[3] = {albedo[0] + first, albedo[1] + first, albedo[2] + first};
+    shadeMany(count, x[0], x[1], x[2], d[0], d[1], d[2], out, simd);
+    transform(count, back, none, d[0], d[1], d[2], nx + first, ny + first, nz + first);
   }
 }
 

@@ -44,8 +44,8 @@ struct RockLanes {
   float contrast, relief, crack_width;
   float value_sd, grain_mean, grain_sd, crack_mean, crack_sd;
   bool tinted;
-  /// The slow noises as linear over one batch (shadeMany), about its first point `origin` [m]: the region noise
-  /// r = region0 + region_grad . (p - origin), the stains' unit noise s = stain0 + stain_grad . (p - origin).
+  /// The slow noises as linear over one batch (shadeMany), about its bounding box's centre `origin` [m]: the region
+  /// noise r = region0 + region_grad . (p - origin), the stains' unit noise s = stain0 + stain_grad . (p - origin).
   bool region_linear, stain_linear;
   float origin[3], region0, region_grad[3], stain0, stain_grad[3];
 };
@@ -54,6 +54,13 @@ bool rockAvx2Built();
 /// RockTexture::shade of the first n points (n a multiple of 8), eight at a time: the CPU must have AVX2 and FMA.
 void rockShadeAvx2(const RockLanes& k, int n, const float* px, const float* py, const float* pz, float* nx, float* ny,
                    float* nz, float* const albedo[3]);
+/// The bounding box (lo[0..2], hi[0..2]) of the first n points (n a positive multiple of 8), eight at a time: the CPU
+/// must have AVX2.
+void rockBoundsAvx2(int n, const float* px, const float* py, const float* pz, float* lo, float* hi);
+/// (ox, oy, oz)[i] = m (x, y, z)[i] + t for the first n points (n a multiple of 8; m row-major 3 x 3, t 3 numbers;
+/// the outputs may be the inputs), eight at a time: the CPU must have AVX2 and FMA.
+void rockTransformAvx2(int n, const float* m, const float* t, const float* x, const float* y, const float* z, float* ox,
+                       float* oy, float* oz);
 
 class RockTexture {
 public:
@@ -79,11 +86,18 @@ public:
   /// shade() of n points at once (mesh frame; coordinates px, py, pz [m]); the unit normals nx, ny, nz are tilted in
   /// place, the albedo goes to albedo[c][0..n). `simd` (and a CPU with AVX2 and FMA): eight at a time, the same
   /// values up to rounding (FMA, the sine's polynomial). The slow noises (regions, stains) are evaluated once, at the
-  /// first point, with their gradients, and each taken as linear over the batch when the batch's bounding box is
-  /// within 0.02 of its scale on every axis (the tiles of a frame): the albedo then differs from shade()'s by
+  /// centre of the batch's bounding box, with their gradients, and each taken as linear over the batch when the box
+  /// is within 0.04 of its scale on every axis (the tiles of a frame): the albedo then differs from shade()'s by
   /// second-order terms (below 0.5 % of it at the defaults, tested).
   void shadeMany(int n, const float* px, const float* py, const float* pz, float* nx, float* ny, float* nz,
                  float* const albedo[3], bool simd) const;
+
+  /// shadeMany() of n points given in another frame A: the mesh frame's p = rotation p_A + translation. Points
+  /// px, py, pz (frame A [m], left as they are) and unit normals nx, ny, nz (frame A, tilted in place, still in frame
+  /// A); albedo into albedo[c][0..n). The transforms run in lanes too with `simd`.
+  void shadeManyFrom(const Eigen::Matrix3f& rotation, const Eigen::Vector3f& translation, int n, const float* px,
+                     const float* py, const float* pz, float* nx, float* ny, float* nz, float* const albedo[3],
+                     bool simd) const;
 
 private:
   /// f at p; grad f into `gf`, h into `h`, grad h into `gh` and the region noise r into `region`.

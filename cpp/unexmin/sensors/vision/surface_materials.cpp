@@ -26,7 +26,6 @@ SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config, const sim::Wo
     }
     m.to_mesh = e.pose.linear().transpose().cast<float>();
     m.origin = e.pose.translation().cast<float>();
-    m.identity = m.to_mesh.isIdentity(0.0f) && m.origin.isZero(0.0f);
     if (e.material.mapped()) {
       if (!world)
         throw ConfigError(config.file + ": 'meshes[" + formatNumber(i) + "].material.kind' = '" + e.material.kind +
@@ -108,33 +107,23 @@ void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const E
   shading = m.to_mesh.transpose() * local;
 }
 
-void SurfaceMaterials::shadeMany(std::size_t mesh, int n, float* x, float* y, float* z, float* nx, float* ny, float* nz,
-                                 float* const albedo[3], bool simd) const {
+void SurfaceMaterials::shadeMany(std::size_t mesh, const Eigen::Matrix3f& rotation, const Eigen::Vector3f& translation,
+                                 int n, const float* px, const float* py, const float* pz, float* nx, float* ny,
+                                 float* nz, float* const albedo[3], bool simd) const {
   const Mesh& m = meshes_.at(mesh);
   if (m.board) {  // the normals stay the faces'
+    const Eigen::Matrix3f r = m.to_mesh * rotation;
+    const Eigen::Vector3f t = m.to_mesh * (translation - m.origin);
     for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3f a =
-          sim::checkerboardAlbedo(*m.board, m.to_mesh * (Eigen::Vector3f(x[i], y[i], z[i]) - m.origin));
+      const Eigen::Vector3f a = sim::checkerboardAlbedo(*m.board, r * Eigen::Vector3f(px[i], py[i], pz[i]) + t);
       for (int k = 0; k < 3; ++k)
         albedo[k][i] = a[k];
     }
     return;
   }
-  if (m.identity) {  // the same numbers without the two transforms
-    m.texture->shadeMany(n, x, y, z, nx, ny, nz, albedo, simd);
-    return;
-  }
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3f p = m.to_mesh * (Eigen::Vector3f(x[i], y[i], z[i]) - m.origin);
-    const Eigen::Vector3f d = m.to_mesh * Eigen::Vector3f(nx[i], ny[i], nz[i]);
-    x[i] = p.x(), y[i] = p.y(), z[i] = p.z();
-    nx[i] = d.x(), ny[i] = d.y(), nz[i] = d.z();
-  }
-  m.texture->shadeMany(n, x, y, z, nx, ny, nz, albedo, simd);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3f d = m.to_mesh.transpose() * Eigen::Vector3f(nx[i], ny[i], nz[i]);
-    nx[i] = d.x(), ny[i] = d.y(), nz[i] = d.z();
-  }
+  // frame A -> world -> mesh frame, as one rotation and translation
+  m.texture->shadeManyFrom(m.to_mesh * rotation, m.to_mesh * (translation - m.origin), n, px, py, pz, nx, ny, nz,
+                           albedo, simd);
 }
 
 }  // namespace vision

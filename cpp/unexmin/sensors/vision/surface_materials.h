@@ -56,10 +56,12 @@ public:
   void shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
              Eigen::Vector3f& shading) const;
 
-  /// shade() of n points of the textured mesh `mesh` at once: world points x, y, z [m] (overwritten) and unit
-  /// face normals nx, ny, nz (world frame, replaced by the shading normals); albedo into albedo[c][0..n). `simd`:
-  /// eight at a time where the CPU can (RockTexture::shadeMany).
-  void shadeMany(std::size_t mesh, int n, float* x, float* y, float* z, float* nx, float* ny, float* nz,
+  /// shade() of n points of the textured mesh `mesh` at once, given in a frame A whose pose in the world is
+  /// (`rotation`, `translation`) (a camera's): points px, py, pz [m] and unit face normals nx, ny, nz (frame A,
+  /// replaced by the shading normals, frame A); albedo into albedo[c][0..n). `simd`: eight at a time where the CPU can
+  /// (RockTexture::shadeManyFrom).
+  void shadeMany(std::size_t mesh, const Eigen::Matrix3f& rotation, const Eigen::Vector3f& translation, int n,
+                 const float* px, const float* py, const float* pz, float* nx, float* ny, float* nz,
                  float* const albedo[3], bool simd) const;
 
 private:
@@ -69,7 +71,6 @@ private:
     std::unique_ptr<sim::Material> board;      ///< a checkerboard (sim::checkerboardAlbedo; no relief)
     Eigen::Matrix3f to_mesh;                   ///< rotation world -> mesh frame
     Eigen::Vector3f origin;                    ///< the mesh frame's origin in the world [m]
-    bool identity = false;                     ///< the mesh frame is the world frame (no transform)
     const sim::TriangleMesh* data = nullptr;   ///< mapped: the mesh's texture coordinates or vertex colours
     const sim::TextureImage* image = nullptr;  ///< kind image: its texture
   };
