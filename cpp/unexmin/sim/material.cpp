@@ -23,7 +23,8 @@ void checkRange(const std::string& prefix, const std::string& key, double x, dou
 }  // namespace
 
 const std::vector<std::string>& materialKinds() {
-  static const std::vector<std::string> kinds{"plain", "rock", "painted", "rusty", "checkerboard", "image", "vertex_colours"};
+  static const std::vector<std::string> kinds{"plain",        "rock",  "painted",       "rusty",
+                                              "checkerboard", "image", "vertex_colours"};
   return kinds;
 }
 

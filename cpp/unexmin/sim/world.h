@@ -5,8 +5,8 @@
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/robot.h>
-#include <unexmin/sim/texture_image.h>
 #include <unexmin/sim/sediment.h>
+#include <unexmin/sim/texture_image.h>
 #include <unexmin/sim/world_config.h>
 
 #include <cstdint>

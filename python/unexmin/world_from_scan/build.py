@@ -312,9 +312,13 @@ def build_world(
             parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
         world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
         # the cameras see the coloured visual mesh, else the finer collision mesh (docs/worlds.md "Who sees a mesh")
-        seen, look = ("", ", material: {kind: vertex_colours}") if visual_colours is not None else (
-            ", seen_by: [cameras, sonars]",
-            ", seen_by: []",
+        seen, look = (
+            ("", ", material: {kind: vertex_colours}")
+            if visual_colours is not None
+            else (
+                ", seen_by: [cameras, sonars]",
+                ", seen_by: []",
+            )
         )
         whole = [(name, collision_file, True, False, seen), (f"{name}_visual", visual_file, False, True, look)]
         by_part = [(f"{name}_{p['index']:03d}", p["collision"], True, False, seen) for p in parts]

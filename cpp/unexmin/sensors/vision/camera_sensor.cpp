@@ -436,7 +436,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       const auto mesh = static_cast<std::size_t>(hit.index);
       const bool is_mesh = hit.kind == raycast::HitKind::mesh;
       float mapped[3];
-      const float* albedo = !is_mesh                  ? hull
+      const float* albedo = !is_mesh                   ? hull
                             : materials_->mapped(mesh) ? materials_->mappedAlbedo(hit, mapped)
                                                        : materials_->meanAlbedo(mesh).data();
       batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
