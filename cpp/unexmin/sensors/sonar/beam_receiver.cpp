@@ -83,6 +83,7 @@ BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
     block_visible_.push_back(p);
     block_log_miss_.push_back(std::log1p(-p));
   }
+  codes_per_log2_ = static_cast<float>(10.0 * std::log10(2.0) / echo_.step());
   offset_.resize(n);
   for (int i = 0; i < n; ++i)
     offset_[i] = static_cast<float>((echo_.gainDb() + echo_.tvg(echo_.binCenter(i)) - echo_.params().display_min) /
@@ -113,12 +114,11 @@ void BeamReceiver::add(const Echo& e, double extent, std::size_t rays, std::vect
   }
 }
 
-std::uint8_t BeamReceiver::code(double power, std::size_t i) const {
+inline std::uint8_t BeamReceiver::code(double power, std::size_t i) const {
   // q = round((10 log10(P) + G + TVG(r_i) - display_min) / step), 0 .. 255: the echo model's code, in single precision
   // (an 8-bit output) without its search over the code thresholds.
-  const float codes_per_log2 = static_cast<float>(10.0 * std::log10(2.0) / echo_.step());
-  const float q = codes_per_log2 * fastLog2(static_cast<float>(power)) + offset_[i] + 0.5f;
-  return static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, std::floor(q))));
+  const float q = codes_per_log2_ * fastLog2(static_cast<float>(power)) + offset_[i] + 0.5f;
+  return static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, q)));  // truncation: floor of q >= 0
 }
 
 void BeamReceiver::receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const {
