@@ -76,7 +76,7 @@ BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
   // with probability exp(-t_i).
   visible_.resize(n);
   for (int i = 0; i < n; ++i)
-    visible_[i] = std::exp(-echo_.codePower(1, i) / noise_power_);
+    visible_[i] = static_cast<float>(std::exp(-echo_.codePower(1, i) / noise_power_));
   const int block = static_cast<int>(kBlock);
   for (int b = 0; b < n; b += block) {
     const double p = *std::max_element(visible_.begin() + b, visible_.begin() + std::min(n, b + block));
@@ -84,6 +84,7 @@ BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
     block_log_miss_.push_back(std::log1p(-p));
   }
   codes_per_log2_ = static_cast<float>(10.0 * std::log10(2.0) / echo_.step());
+  log2_noise_power_ = static_cast<float>(std::log2(noise_power_));
   offset_.resize(n);
   for (int i = 0; i < n; ++i)
     offset_[i] = static_cast<float>((echo_.gainDb() + echo_.tvg(echo_.binCenter(i)) - echo_.params().display_min) /
@@ -152,11 +153,22 @@ void BeamReceiver::receive(std::vector<double>& energy, Random& random, std::uin
       continue;
     const std::size_t end = std::min(n, (b + 1) * kBlock);
     if (p > kDense) {
-      for (std::size_t i = b * kBlock; i < end; ++i) {
-        const double w = (static_cast<double>(random.bits() >> 11) + 0.5) * unit53;
-        if (w < visible_[i] && !(energy[i] > 0.0))
-          codes[i * stride] = code(noise_power_ * exponential(static_cast<float>(w)), i);
+      // The draws first (the generator is sequential), then every bin's code without a branch (vectorisable), then
+      // the codes of the bins where the noise shows.
+      const std::size_t i0 = b * kBlock, m = end - i0;
+      float w[kBlock];
+      std::uint8_t q[kBlock];
+      for (std::size_t j = 0; j < m; ++j)
+        w[j] = (static_cast<float>(random.bits() >> 40) + 0.5f) * unit;
+      for (std::size_t j = 0; j < m; ++j) {
+        const float level =
+            codes_per_log2_ * (log2_noise_power_ + fastLog2(exponential(w[j]))) + offset_[i0 + j] + 0.5f;
+        const auto c = static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, level)));
+        q[j] = w[j] < visible_[i0 + j] ? c : 0;
       }
+      for (std::size_t j = 0; j < m; ++j)
+        if (q[j] != 0 && !(energy[i0 + j] > 0.0))
+          codes[(i0 + j) * stride] = q[j];
       continue;
     }
     for (std::size_t i = b * kBlock;; ++i) {

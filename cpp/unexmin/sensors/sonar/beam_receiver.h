@@ -70,10 +70,11 @@ private:
   EchoModel echo_;
   ReceiverNoise noise_;
   double noise_power_ = 0.0;            ///< 10^(noise_level / 10) [uPa^2]
-  std::vector<double> visible_;         ///< per bin: the probability that the noise alone makes code >= 1
+  std::vector<float> visible_;          ///< per bin: the probability that the noise alone makes code >= 1
   std::vector<double> block_visible_;   ///< per block of kBlock bins: the largest visible_
   std::vector<double> block_log_miss_;  ///< per block: ln(1 - block_visible_)
   float codes_per_log2_ = 0.0f;         ///< codes per factor 2 of power: 10 log10(2) / step
+  float log2_noise_power_ = 0.0f;       ///< log2 of noise_power_
   std::vector<float> offset_;           ///< per bin: (G + TVG(r_i) - display_min) / step, in codes
 };
 
