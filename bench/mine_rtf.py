@@ -26,6 +26,9 @@ With --translations, a C++ sink (bench/topic_counter.cpp, built with g++) subscr
 m3/points and dvl_water_track from the start, so the simulator builds its M3 and DVL translations and sends
 them; the sink's CPU is reported apart, and the share of the translated messages stamped inside the stepped
 span that reached it ("delivered", 1.00 = all).
+With --subscribe TOPIC@HZ[,TOPIC@HZ...] (e.g. /ROV_1/imaging_sonar/polar@10), the same sink subscribes to those
+topics too (alone, without --translations): a sensor whose messages are built only while someone subscribes (the
+sonars' images, the cameras' frames) then does its work.
 """
 
 import argparse
@@ -74,7 +77,20 @@ def cpu_seconds(pid):
 TRANSLATIONS = {"m3/points": 40.0, "dvl_water_track": 8.0}  # [Hz of sim time]: the C++ translations
 
 
-def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False, vehicles=""):
+def parse_subscriptions(text):
+    """{topic: rate [Hz]} from "TOPIC@HZ,TOPIC@HZ" (--subscribe); {} for ""."""
+    out = {}
+    for item in filter(None, text.split(",")):
+        topic, sep, hz = item.rpartition("@")
+        if not sep or not topic.startswith("/"):
+            raise SystemExit(f"--subscribe {item!r}: expected /absolute/topic@rate_hz")
+        out[topic] = float(hz)
+    return out
+
+
+def measure(
+    robots, sim_seconds, seed, timeout, world_name="mine", sensors="all", translations=False, vehicles="", subscribe=""
+):
     t_launch = time.monotonic()
     from unexmin.scripting.launcher import WorldProcess, wait_for
 
@@ -105,7 +121,9 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
         t_master = time.monotonic()
         names = team_names(vehicles) if vehicles else [f"UX_{i + 1}" for i in range(robots)]
         window = Path(workdir.name) / "window"
-        sink_topics = [f"/{n}/{t}" for n in names for t in TRANSLATIONS] if translations else []
+        rates = {f"/{n}/{t}": hz for n in names for t, hz in TRANSLATIONS.items()} if translations else {}
+        rates.update(parse_subscriptions(subscribe))
+        sink_topics = sorted(rates)
         if sink_topics:
             sys.path.insert(0, str(Path(__file__).resolve().parent))
             from sensors_rtf import build_counter, wait_for_sink
@@ -184,9 +202,7 @@ def measure(robots, sim_seconds, seed, timeout, world_name="mine", sensors="all"
             window.write_text(f"{sim0} {sim1}")
             sink.send_signal(signal.SIGINT)  # it counts what it got stamped inside the window, then exits
             counts = dict(line.split() for line in sink.communicate(timeout=timeout)[0].splitlines())
-            result["delivered"] = min(
-                int(counts.get(t, 0)) / round((sim1 - sim0) * TRANSLATIONS[t.split("/", 2)[2]]) for t in sink_topics
-            )
+            result["delivered"] = min(int(counts.get(t, 0)) / round((sim1 - sim0) * rates[t]) for t in sink_topics)
         return result
     finally:
         if sink and sink.poll() is None:
@@ -219,7 +235,13 @@ def main():
         action="store_true",
         help="a C++ sink subscribes to every robot's m3/points and dvl_water_track (the C++ translations)",
     )
+    ap.add_argument(
+        "--subscribe",
+        default="",
+        help="the sink subscribes to these topics too, e.g. /ROV_1/imaging_sonar/polar@10 (TOPIC@HZ, comma-separated)",
+    )
     args = ap.parse_args()
+    parse_subscriptions(args.subscribe)
     if args.robots:
         print(
             json.dumps(
@@ -232,12 +254,14 @@ def main():
                     args.sensors,
                     args.translations,
                     args.vehicles,
+                    args.subscribe,
                 )
             )
         )
         return 0
     print(
         f"{args.world} world{', team ' + args.vehicles if args.vehicles else ''}, sensors {args.sensors}, "
+        f"{'subscribed ' + args.subscribe + ', ' if args.subscribe else ''}"
         "physics 500 Hz, stepped as fast as it goes, "
         f"{args.sim_seconds:.0f} s of sim time per run, {args.repeat} runs per count; {machine()}"
     )
@@ -265,6 +289,7 @@ def main():
                     args.sensors,
                     *(["--translations"] if args.translations else []),
                     *(["--vehicles", args.vehicles] if args.vehicles else []),
+                    *(["--subscribe", args.subscribe] if args.subscribe else []),
                     "--timeout",
                     str(args.timeout),
                 ],

@@ -1,6 +1,7 @@
 // The imaging sonar (cpp/unexmin/sensors/sonar/imaging_sonar_sensor.h) against closed forms: a sphere at a known
 // range and bearing in its bin and beam, the acoustic shadow of a box on a flat floor by similar triangles, the echo
-// level against the sonar equation's spreading and absorption at two ranges, seeded speckle, parameter errors.
+// level against the sonar equation's spreading and absorption at two ranges, seeded speckle, the noise floor's codes
+// against an exponential power's, pings built only on demand, parameter errors.
 #include "expect_error.h"
 #include "sonar_image_fixture.h"
 
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace unexmin {
 namespace test {
@@ -169,6 +171,60 @@ TEST(ImagingSonar, SeededSpeckleRepeatsWithTheSeedAndChangesWithIt) {
   const double n = static_cast<double>(codes.size());
   EXPECT_NEAR(low / n, 0.067, 4.0 * std::sqrt(0.067 * 0.933 / n));
   EXPECT_NEAR(high / n, 0.112, 4.0 * std::sqrt(0.112 * 0.888 / n));
+}
+
+TEST(ImagingSonar, TheNoiseAloneShowsEachCodeWithTheProbabilityOfAnExponentialPower) {
+  // The receiver with no echo: the noise power E x 10^(noise_level / 10) (E exponential, mean 1) reaches code q in
+  // bin i with probability exp(-codePower(q, i) / noise power); the codes of 400 beams counted over the bins, within
+  // 4 sigma of the sum of those probabilities.
+  auto w = sonarRig({{"shell", icosphere(kAt, 6.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                    {{"rays_per_beam", "4"}});
+  const sensors::sonar::BeamReceiver& r = sonar(*w).receiver();
+  const double noise = std::pow(10.0, r.noise().noise_level / 10.0);
+  const std::size_t n = sonar(*w).bins();
+  const int beams = 400;
+  sensors::Random random;
+  random.seed(3);
+  std::vector<std::uint8_t> codes(n);
+  std::vector<double> energy;
+  const std::vector<int> levels = {1, 3, 10, 30};
+  std::vector<double> count(levels.size(), 0.0);
+  for (int k = 0; k < beams; ++k) {
+    energy.assign(n, 0.0);
+    r.receive(energy, random, codes.data(), 1);
+    for (std::size_t l = 0; l < levels.size(); ++l)
+      for (std::size_t i = 0; i < n; ++i)
+        count[l] += codes[i] >= levels[l];
+  }
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    double mean = 0.0, variance = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double p = std::exp(-r.echo().codePower(levels[l], i) / noise);
+      mean += beams * p;
+      variance += beams * p * (1.0 - p);
+    }
+    EXPECT_GT(mean, 10.0) << "code " << levels[l];
+    EXPECT_NEAR(count[l], mean, 4.0 * std::sqrt(variance) + 1.0) << "code " << levels[l];
+  }
+}
+
+TEST(ImagingSonar, APingNotWantedIsNotBuiltAndTheNextDoesNotDependOnIt) {
+  const auto second = [](bool first_wanted) {
+    auto w = sonarRig({{"shell", icosphere(kAt, 6.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                      {{"rays_per_beam", "4"}}, 5);
+    bool wanted = first_wanted;
+    sonar(*w).setDemand([&wanted] { return wanted; });
+    w->samples(sonar(*w), 1);
+    EXPECT_EQ(sonar(*w).last().built, first_wanted);
+    EXPECT_EQ(sonar(*w).last().codes.empty(), !first_wanted);
+    wanted = true;
+    w->samples(sonar(*w), 1);
+    EXPECT_TRUE(sonar(*w).last().built);
+    return sonar(*w).last().codes;
+  };
+  const auto a = second(true), b = second(false);
+  EXPECT_EQ(a.size(), 500u * 512u);
+  EXPECT_TRUE(a == b);
 }
 
 TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {

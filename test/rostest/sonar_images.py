@@ -4,7 +4,8 @@
 A robot description carrying both (sonar_images.urdf.xacro) in the tank, or a team whose ROV carries the imaging
 sonar and whose AUV the side-scan (~imaging_robot, ~side_scan_robot); the test subscribes to every documented
 topic, steps the paused simulator by /sim/step until each has delivered an image, and checks the documented layout:
-mono8, frame the sensor link, and the sizes of docs/sonars.md for the default parameters."""
+mono8, frame the sensor link, and the sizes of docs/sonars.md for the default parameters; then, subscribed, that a
+second of sim time brings one polar image per ping (~imaging_rate, Hz)."""
 
 import math
 import threading
@@ -39,16 +40,18 @@ class SonarImages(unittest.TestCase):
         # ~imaging_robot, ~side_scan_robot: the robots carrying each sonar (a team: ROV_1 and AUV_1)
         imaging, side_scan = rospy.get_param("~imaging_robot", "UX_1"), rospy.get_param("~side_scan_robot", "UX_1")
         expected = sizes(imaging, side_scan)
-        got, lock = {}, threading.Lock()
+        got, seen, lock = {}, {t: [] for t in expected}, threading.Lock()
 
         def keep(topic):
             def callback(msg):
                 with lock:
                     got.setdefault(topic, msg)
+                    if topic.endswith("/polar"):
+                        seen[topic].append(msg)
 
             return callback
 
-        subs = [rospy.Subscriber(t, Image, keep(t), queue_size=5) for t in expected]
+        subs = [rospy.Subscriber(t, Image, keep(t), queue_size=50) for t in expected]
         rospy.wait_for_service("/sim/step", timeout=60.0)
         step = rospy.ServiceProxy("/sim/step", Step)
         deadline = time.monotonic() + 30.0
@@ -56,7 +59,7 @@ class SonarImages(unittest.TestCase):
             self.assertLess(time.monotonic(), deadline, "the simulator never connected to every topic")
             time.sleep(0.05)
         while True:  # 0.2 s of sim time per step: at least one imaging ping (20 Hz) and one side-scan ping (10 Hz)
-            step(duration=0.2)
+            t0 = step(duration=0.2).time
             with lock:
                 if len(got) == len(expected):
                     break
@@ -77,6 +80,22 @@ class SonarImages(unittest.TestCase):
         self.assertAlmostEqual(
             rospy.get_param(f"/{side_scan}/side_scan/range_resolution"), (50.0 - 0.1) / SIDE_BINS, places=9
         )
+        # While subscribed, every ping is built and published: over 1 s of sim time, one polar image per ping.
+        rate = rospy.get_param("~imaging_rate", 20.0)
+        t1 = step(duration=1.0).time
+        expected_count = math.floor(t1 * rate + 1e-6) - math.floor(t0 * rate + 1e-6)
+        self.assertGreaterEqual(expected_count, int(rate) - 1)
+        polar = f"/{imaging}/imaging_sonar/polar"
+        deadline = time.monotonic() + 30.0
+        while True:
+            with lock:
+                stamps = sorted({m.header.stamp.to_sec() for m in seen[polar] if t0 < m.header.stamp.to_sec() <= t1})
+            if len(stamps) >= expected_count or time.monotonic() > deadline:
+                break
+            time.sleep(0.05)
+        self.assertEqual(len(stamps), expected_count, f"polar images in ({t0}, {t1}] s of sim time at {rate} Hz")
+        for a, b in zip(stamps, stamps[1:]):
+            self.assertAlmostEqual(b - a, 1.0 / rate, places=6)
 
 
 if __name__ == "__main__":

@@ -8,8 +8,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-ImagingSonarPublisher::ImagingSonarPublisher(const sensors::sonar::ImagingSonarSensor& sensor,
-                                             const PublisherContext& ctx)
+ImagingSonarPublisher::ImagingSonarPublisher(sensors::sonar::ImagingSonarSensor& sensor, const PublisherContext& ctx)
     : sensor_(sensor),
       fan_(sensor.beams(), sensor.fovH(), sensor.bins(), sensor.rangeMin(), sensor.rangeMax(), sensor.fanHeight()) {
   // Images are large: a short queue (a slow subscriber drops images rather than filling the memory).
@@ -27,6 +26,12 @@ ImagingSonarPublisher::ImagingSonarPublisher(const sensors::sonar::ImagingSonarS
   ctx.nh.setParam(params + "range_max", sensor.rangeMax());
   ctx.nh.setParam(params + "range_resolution", sensor.rangeResolution());
   ctx.nh.setParam(params + "fan_pixel_size", fan_.pixelSize());
+  // Ping only while someone subscribes to an image or the simulator records one.
+  sensor_.setDemand([this] { return wanted(polar_pub_) || wanted(fan_pub_); });
+}
+
+ImagingSonarPublisher::~ImagingSonarPublisher() {
+  sensor_.setDemand(nullptr);
 }
 
 sensor_msgs::Image ImagingSonarPublisher::mono8(double time, const std::string& frame, std::size_t rows,
@@ -58,6 +63,8 @@ sensor_msgs::Image ImagingSonarPublisher::fan() const {
 }
 
 void ImagingSonarPublisher::publish() {
+  if (!sensor_.last().built)
+    return;
   if (wanted(polar_pub_))
     emit(polar_pub_, polar());
   if (wanted(fan_pub_))

@@ -21,7 +21,10 @@ namespace ros_layer {
 
 class ImagingSonarPublisher : public SensorPublisher {
 public:
-  ImagingSonarPublisher(const sensors::sonar::ImagingSonarSensor& sensor, const PublisherContext& ctx);
+  /// Sets the sensor's demand: a ping is built only while one of its image topics is wanted (a subscriber or the
+  /// recorder).
+  ImagingSonarPublisher(sensors::sonar::ImagingSonarSensor& sensor, const PublisherContext& ctx);
+  ~ImagingSonarPublisher() override;
   void publish() override;
   /// The latest ping as a polar image message.
   sensor_msgs::Image polar() const;
@@ -31,7 +34,7 @@ public:
   static sensor_msgs::Image mono8(double time, const std::string& frame, std::size_t rows, std::size_t cols);
 
 private:
-  const sensors::sonar::ImagingSonarSensor& sensor_;
+  sensors::sonar::ImagingSonarSensor& sensor_;
   sensors::sonar::FanImage fan_;
   Stream polar_pub_, fan_pub_;
 };

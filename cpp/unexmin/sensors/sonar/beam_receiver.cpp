@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace unexmin {
 namespace sensors {
@@ -11,6 +12,29 @@ namespace {
 EchoParams eightBit(EchoParams p) {
   p.levels = 255;
   return p;
+}
+
+/// log2(x) for a float x > 0, within 3e-6 relative: x = 2^e m with m in [sqrt(1/2), sqrt(2)) from the bits, and
+/// log2(m) = t p(t), t = m - 1, p a degree-6 polynomial fitted to log2(1 + t) / t on that interval. No branch and no
+/// library call (the receiver takes two or three logarithms per bin). Zero or a subnormal gives about -127.
+inline float fastLog2(float x) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const std::int32_t e = static_cast<std::int32_t>(bits - 0x3f3504f3u) >> 23;  // 0x3f3504f3: sqrt(1/2)
+  bits -= static_cast<std::uint32_t>(e) << 23;
+  float m;
+  std::memcpy(&m, &bits, sizeof m);
+  const float t = m - 1.0f;
+  const float p =
+      1.44269609f +
+      t * (-0.72135812f +
+           t * (0.480676174f + t * (-0.359656751f + t * (0.295109302f + t * (-0.26626122f + t * 0.170013204f)))));
+  return static_cast<float>(e) + t * p;
+}
+
+/// An exponential draw of mean 1, -ln(u), from u in (0, 1).
+inline float exponential(float u) {
+  return -0.693147181f * fastLog2(u);
 }
 
 }  // namespace
@@ -48,11 +72,19 @@ BeamReceiver BeamReceiver::read(SensorParams& p, const ReceiverDefaults& default
 BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
     : echo_(eightBit(params)), noise_(noise), noise_power_(std::pow(10.0, noise.noise_level / 10.0)) {
   const int n = echo_.params().nbins;
+  // Noise power E x noise_power (E exponential, mean 1) reaches code 1 when E >= t_i = codePower(1) / noise_power,
+  // with probability exp(-t_i).
   visible_.resize(n);
-  // Noise power E x noise_power (E exponential, mean 1) reaches code 1 when E >= codePower(1) / noise_power, that
-  // is when the draw u (E = -ln(1 - u)) is at least 1 - exp(-codePower(1) / noise_power).
   for (int i = 0; i < n; ++i)
-    visible_[i] = -std::expm1(-echo_.codePower(1, i) / noise_power_);
+    visible_[i] = static_cast<float>(std::exp(-echo_.codePower(1, i) / noise_power_));
+  const int block = static_cast<int>(kBlock);
+  for (int b = 0; b < n; b += block) {
+    const double p = *std::max_element(visible_.begin() + b, visible_.begin() + std::min(n, b + block));
+    block_visible_.push_back(p);
+    block_log_miss_.push_back(std::log1p(-p));
+  }
+  codes_per_log2_ = static_cast<float>(10.0 * std::log10(2.0) / echo_.step());
+  log2_noise_power_ = static_cast<float>(std::log2(noise_power_));
   offset_.resize(n);
   for (int i = 0; i < n; ++i)
     offset_[i] = static_cast<float>((echo_.gainDb() + echo_.tvg(echo_.binCenter(i)) - echo_.params().display_min) /
@@ -83,26 +115,72 @@ void BeamReceiver::add(const Echo& e, double extent, std::size_t rays, std::vect
   }
 }
 
-void BeamReceiver::receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const {
+inline std::uint8_t BeamReceiver::code(double power, std::size_t i) const {
   // q = round((10 log10(P) + G + TVG(r_i) - display_min) / step), 0 .. 255: the echo model's code, in single precision
   // (an 8-bit output) without its search over the code thresholds.
-  const float codes_per_bel = static_cast<float>(10.0 / echo_.step());
-  const float unit = 1.0f / 16777216.0f;  // 2^-24
+  const float q = codes_per_log2_ * fastLog2(static_cast<float>(power)) + offset_[i] + 0.5f;
+  return static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, q)));  // truncation: floor of q >= 0
+}
+
+void BeamReceiver::receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const {
+  const float unit = 1.0f / 16777216.0f;           // 2^-24
+  const double unit53 = 1.0 / 9007199254740992.0;  // 2^-53
   const std::size_t n = energy.size();
+  // The bins with an echo: speckle and noise, one 64-bit draw each.
   for (std::size_t i = 0; i < n; ++i) {
     double power = energy[i];
+    if (!(power > 0.0)) {
+      codes[i * stride] = 0;
+      continue;
+    }
     const std::uint64_t bits = random.bits();
-    const float u_speckle = static_cast<float>(bits >> 40) * unit;
-    const float u_noise = static_cast<float>((bits >> 16) & 0xffffffu) * unit;
-    if (noise_.speckle && power > 0.0)
-      power *= -std::log1p(-u_speckle);
-    if (noise_.noise_floor && (power > 0.0 || u_noise >= visible_[i]))
-      power += noise_power_ * -std::log1p(-u_noise);
-    float q = 0.0f;
-    if (power > 0.0)
-      q = std::min(255.0f, std::max(0.0f, std::floor(codes_per_bel * std::log10(static_cast<float>(power)) +
-                                                     offset_[i] + 0.5f)));
-    codes[i * stride] = static_cast<std::uint8_t>(q);
+    if (noise_.speckle)
+      power *= exponential((static_cast<float>(bits >> 40) + 0.5f) * unit);
+    if (noise_.noise_floor)
+      power += noise_power_ * exponential((static_cast<float>((bits >> 16) & 0xffffffu) + 0.5f) * unit);
+    codes[i * stride] = code(power, i);
+  }
+  if (!noise_.noise_floor)
+    return;
+  // The noise alone in a bin without echo shows (code >= 1) with probability visible_[i]: a uniform draw w is kept
+  // when w < visible_[i], and then -ln(w) is an exponential draw given that it exceeds -ln(visible_[i]), the noise's
+  // power in units of noise_power. Per block of kBlock bins with p the block's largest visible_: where p is small,
+  // only candidates at geometric gaps of parameter p (one draw each), each with w uniform in [0, p) (kept with
+  // probability visible_[i] / p); elsewhere every bin draws w in [0, 1).
+  for (std::size_t b = 0; b < block_visible_.size(); ++b) {
+    const double p = block_visible_[b];
+    if (!(p > 0.0))
+      continue;
+    const std::size_t end = std::min(n, (b + 1) * kBlock);
+    if (p > kDense) {
+      // The draws first (the generator is sequential), then every bin's code without a branch (vectorisable), then
+      // the codes of the bins where the noise shows.
+      const std::size_t i0 = b * kBlock, m = end - i0;
+      float w[kBlock];
+      std::uint8_t q[kBlock];
+      for (std::size_t j = 0; j < m; ++j)
+        w[j] = (static_cast<float>(random.bits() >> 40) + 0.5f) * unit;
+      for (std::size_t j = 0; j < m; ++j) {
+        const float level =
+            codes_per_log2_ * (log2_noise_power_ + fastLog2(exponential(w[j]))) + offset_[i0 + j] + 0.5f;
+        const auto c = static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, level)));
+        q[j] = w[j] < visible_[i0 + j] ? c : 0;
+      }
+      for (std::size_t j = 0; j < m; ++j)
+        if (q[j] != 0 && !(energy[i0 + j] > 0.0))
+          codes[(i0 + j) * stride] = q[j];
+      continue;
+    }
+    for (std::size_t i = b * kBlock;; ++i) {
+      const double u = static_cast<double>((random.bits() >> 11) + 1) * unit53;  // (0, 1]
+      const double gap = std::floor(std::log(u) / block_log_miss_[b]);
+      if (!(gap < static_cast<double>(end - i)))
+        break;
+      i += static_cast<std::size_t>(gap);
+      const double w = (static_cast<double>(random.bits() >> 11) + 0.5) * unit53 * p;
+      if (w < visible_[i] && !(energy[i] > 0.0))
+        codes[i * stride] = code(noise_power_ * exponential(static_cast<float>(w)), i);
+    }
   }
 }
 

@@ -5,8 +5,9 @@
 //   noise_floor  + 10^(noise_level / 10) uPa^2 x an exponential draw (Rayleigh noise) at the receiver input
 //   output       L_i = 10 log10(P_i) + G + TVG(r_i), code q_i = round((L_i - display_min) / display_span 255)
 //                clamped to 0 .. 255 (EchoModel::code)
-// One 64-bit draw per bin whatever the echoes (the stream does not depend on the geometry): its high and low 24-bit
-// halves are the speckle's and the noise's uniform draws. Knows no ROS.
+// One 64-bit draw per bin with an echo (its high and low 24-bit halves are the speckle's and the noise's uniform
+// draws); the noise alone in the other bins is drawn only where it shows (code >= 1), at geometric gaps (receive()).
+// Knows no ROS.
 #pragma once
 
 #include <unexmin/sensors/random.h>
@@ -60,11 +61,21 @@ public:
   void receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const;
 
 private:
+  static constexpr std::size_t kBlock = 32;  ///< bins per block of the noise's candidates
+  static constexpr double kDense = 0.25;     ///< above this block probability every bin of the block draws
+
+  /// The 8-bit code of power `power` [uPa^2] > 0 in bin i.
+  std::uint8_t code(double power, std::size_t i) const;
+
   EchoModel echo_;
   ReceiverNoise noise_;
-  double noise_power_ = 0.0;     ///< 10^(noise_level / 10) [uPa^2]
-  std::vector<double> visible_;  ///< per bin: the uniform draw from which the noise alone makes code >= 1
-  std::vector<float> offset_;    ///< per bin: (G + TVG(r_i) - display_min) / step, in codes
+  double noise_power_ = 0.0;            ///< 10^(noise_level / 10) [uPa^2]
+  std::vector<float> visible_;          ///< per bin: the probability that the noise alone makes code >= 1
+  std::vector<double> block_visible_;   ///< per block of kBlock bins: the largest visible_
+  std::vector<double> block_log_miss_;  ///< per block: ln(1 - block_visible_)
+  float codes_per_log2_ = 0.0f;         ///< codes per factor 2 of power: 10 log10(2) / step
+  float log2_noise_power_ = 0.0f;       ///< log2 of noise_power_
+  std::vector<float> offset_;           ///< per bin: (G + TVG(r_i) - display_min) / step, in codes
 };
 
 }  // namespace sonar

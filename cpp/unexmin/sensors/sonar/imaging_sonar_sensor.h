@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace unexmin {
@@ -36,6 +37,7 @@ struct PolarImage {
   std::size_t beams = 0;            ///< columns
   std::size_t bins = 0;             ///< rows
   std::vector<std::uint8_t> codes;  ///< row-major: codes[i * beams + k] = bin i of beam k, 0 .. 255
+  bool built = false;               ///< false: the ping was not wanted (setDemand) and codes hold an older ping
   std::uint8_t at(std::size_t bin, std::size_t beam) const { return codes[bin * beams + beam]; }
 };
 
@@ -45,6 +47,10 @@ public:
   ImagingSonarSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
   const PolarImage& last() const { return last_; }
+  /// Builds a ping (rays, echoes, receiver) only at samples where `wanted()` is true (e.g. one of its image topics has
+  /// a subscriber); null: always. Each ping draws one seed from the sensor's stream, built or not, so the images do
+  /// not depend on who watched before.
+  void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
   std::size_t beams() const { return beams_.size(); }
   std::size_t bins() const { return static_cast<std::size_t>(beams_.receiver().echo().params().nbins); }
   double fovH() const { return fov_h_; }  ///< [rad]
@@ -72,6 +78,8 @@ private:
   BeamSet beams_;
   std::vector<raycast::Hit> hits_;
   PolarImage last_;
+  std::function<bool()> demand_;
+  Random ping_random_;  // the ping's speckle and noise, seeded from one draw of random() per ping
 };
 
 }  // namespace sonar
