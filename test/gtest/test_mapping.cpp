@@ -181,6 +181,12 @@ TEST(OccupancyMap, FreeSpaceInsideTheRoomIsFreeAndNothingOutsideIsKnown) {
   EXPECT_EQ(outside, 0u);
 }
 
+/// The voxel at (x, y, 0.05) [m]: 'u' unknown, 'o' occupied, 'f' free.
+char stateAt(const octomap::OcTree& tree, double x, double y) {
+  const octomap::OcTreeNode* node = tree.search(x, y, 0.05);
+  return node == nullptr ? 'u' : (tree.isNodeOccupied(node) ? 'o' : 'f');
+}
+
 TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt) {
   MapperParams params;
   params.max_range = 10.0;
@@ -190,11 +196,7 @@ TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt)
       map.insertCloud({octomap::point3d(15.05f, 0.05f, 0.05f), octomap::point3d(0.05f, 4.05f, 0.05f)}, origin);
   EXPECT_EQ(stats.beyond_range, 1u);
   EXPECT_EQ(stats.occupied_voxels, 1u);
-  const octomap::OcTree& tree = map.tree();
-  const auto state = [&](double x, double y) {
-    const octomap::OcTreeNode* node = tree.search(x, y, 0.05);
-    return node == nullptr ? 'u' : (tree.isNodeOccupied(node) ? 'o' : 'f');
-  };
+  const auto state = [&map](double x, double y) { return stateAt(map.tree(), x, y); };
   EXPECT_EQ(state(5.05, 0.05), 'f');
   EXPECT_EQ(state(9.85, 0.05), 'f');
   EXPECT_EQ(state(10.45, 0.05), 'u');
@@ -222,11 +224,7 @@ TEST(OccupancyMap, ACloudsOwnRangeMarksNothingBeyondItAndCarvesUpToIt) {
   EXPECT_EQ(stats.occupied_voxels, 1u);
   reference.insertCloud(cloud, origin);
   expectSameTree(limited.tree(), reference.tree());
-  const octomap::OcTree& tree = limited.tree();
-  const auto state = [&](double x, double y) {
-    const octomap::OcTreeNode* node = tree.search(x, y, 0.05);
-    return node == nullptr ? 'u' : (tree.isNodeOccupied(node) ? 'o' : 'f');
-  };
+  const auto state = [&limited](double x, double y) { return stateAt(limited.tree(), x, y); };
   EXPECT_EQ(state(3.05, 0.05), 'o');
   EXPECT_EQ(state(0.05, 4.85), 'f');
   EXPECT_EQ(state(0.05, 5.45), 'u');
