@@ -36,9 +36,10 @@ from unexmin.missions.survey import (
 REPO = Path(__file__).resolve().parents[2]
 SEED = 5
 GALLERY = 16.0  # [m]
-# Measured on this mine (seed 5, small preset, gallery 16 m, visibility none): precision 0.976, recall 0.675.
+# Measured on this mine (seed 5, small preset, gallery 16 m, visibility none, the M3 within 7 m): precision 0.983,
+# recall 0.666.
 MIN_RECALL = 0.55
-MIN_PRECISION = 0.96
+MIN_PRECISION = 0.97
 
 
 @pytest.fixture(scope="module")

@@ -160,7 +160,7 @@ def run(
     seed=0,
     gallery=40.0,
     resolution=0.1,
-    time_limit=1500.0,
+    time_limit=None,
     visibility=None,
     world_file=None,
     snapshot_every=90.0,
@@ -186,6 +186,8 @@ def run(
     options = options_for(level, sum(amplitude for _, amplitude in preset.octaves), gallery)
     frames, durations = plan(layout, preset, (spawn[0], spawn[1], spawn[2], 0.0), options)
     reference = Reference(frames, durations)
+    # [s, sim] the plan and half again for the robot to catch up
+    time_limit = time_limit if time_limit is not None else 1.5 * reference.duration + 60.0
     extra = [
         "mapping:=true",
         f"map_file:={map_path}",
