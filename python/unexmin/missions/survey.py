@@ -195,35 +195,27 @@ def plan(layout, preset, start, options=None):
         near, far = (t.points[0], t.points[1]) if gap[0] <= gap[1] else (t.points[1], t.points[0])
         if x0 + 1.0 <= near[0] <= x1 - 1.0 and min(gap) < gallery.a + t.a:
             dz = np.array([0.0, 0.0, max(t.b - o.gallery_standoff, 0.0)])
-            # where the SLS do not reach across it: also along each side wall at mid-height (pulled in from its
-            # rounded ends by as much), between the low and the high leg on the axis
-            u = np.array([far[0] - near[0], far[1] - near[1], 0.0])
-            u /= np.linalg.norm(u)
-            reach_across = o.sls_reach >= 2.0 * min(t.a, t.b) - o.gallery_standoff
-            lateral = 0.0 if reach_across else max(t.a - o.gallery_standoff, 0.0)
-            legs = [near - dz, far - dz, far + dz, near + dz]
-            if lateral > 0.0:
-                dn, du = lateral * np.array([-u[1], u[0], 0.0]), lateral * u
-                legs[2:2] = [far - du + dn, near + du + dn, near + du - dn, far - du - dn]
-            sides.append((float(near[0]), legs))
+            sides.append((float(near[0]), near, far, dz))
     sides.sort(key=lambda v: v[0])
     passes = [(1, -1, (x0, x1)), (-1, 1, (x1, x0))]
     if o.sls_reach < 2.0 * min(gallery.a, gallery.b) - o.gallery_standoff:
         passes += [(-1, -1, (x0, x1)), (1, 1, (x1, x0))]
     for k, (side, vertical, (xa, xb)) in enumerate(passes):
         go(*offset_point(xa, side, vertical), yaw, o.gallery_speed, pendulum=0.0)
-        stops = [v for v in sides if k == 0] + [(xb, None)]
+        stops = [v for v in sides if k == 0] + [(xb, None, None, None)]
         x = xa
-        for xs, legs in stops:
+        for xs, near, far, dz in stops:
             n = max(1, int(math.ceil(abs(xs - x) / per_step)))
             for xi in np.linspace(x, xs, n + 1)[1:]:
                 yaw += step if o.gallery_yaw_rate > 0 else 0.0
                 go(*offset_point(float(xi), side, vertical), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
             x = xs
-            if legs is not None:
-                route = [offset_point(xs, side, vertical), *(tuple(v) for v in legs), offset_point(xs, side, vertical)]
-                for p, q in zip(route, route[1:]):
-                    fly(p, q)
+            if near is not None:
+                fly(offset_point(xs, side, vertical), tuple(near - dz))
+                fly(tuple(near - dz), tuple(far - dz))
+                fly(tuple(far - dz), tuple(far + dz))
+                fly(tuple(far + dz), tuple(near + dz))
+                fly(tuple(near + dz), offset_point(xs, side, vertical))
     go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed, pendulum=0.0)
     return np.array(frames), np.array(times)
 
