@@ -181,6 +181,12 @@ TEST(OccupancyMap, FreeSpaceInsideTheRoomIsFreeAndNothingOutsideIsKnown) {
   EXPECT_EQ(outside, 0u);
 }
 
+/// The voxel at (x, y, 0.05) [m]: 'u' unknown, 'o' occupied, 'f' free.
+char stateAt(const octomap::OcTree& tree, double x, double y) {
+  const octomap::OcTreeNode* node = tree.search(x, y, 0.05);
+  return node == nullptr ? 'u' : (tree.isNodeOccupied(node) ? 'o' : 'f');
+}
+
 TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt) {
   MapperParams params;
   params.max_range = 10.0;
@@ -190,11 +196,7 @@ TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt)
       map.insertCloud({octomap::point3d(15.05f, 0.05f, 0.05f), octomap::point3d(0.05f, 4.05f, 0.05f)}, origin);
   EXPECT_EQ(stats.beyond_range, 1u);
   EXPECT_EQ(stats.occupied_voxels, 1u);
-  const octomap::OcTree& tree = map.tree();
-  const auto state = [&](double x, double y) {
-    const octomap::OcTreeNode* node = tree.search(x, y, 0.05);
-    return node == nullptr ? 'u' : (tree.isNodeOccupied(node) ? 'o' : 'f');
-  };
+  const auto state = [&map](double x, double y) { return stateAt(map.tree(), x, y); };
   EXPECT_EQ(state(5.05, 0.05), 'f');
   EXPECT_EQ(state(9.85, 0.05), 'f');
   EXPECT_EQ(state(10.45, 0.05), 'u');
@@ -202,6 +204,39 @@ TEST(OccupancyMap, EndpointsBeyondMaxRangeAreNotOccupiedButCarveFreeSpaceUpToIt)
   EXPECT_EQ(state(0.05, 3.95), 'f');
   EXPECT_EQ(state(0.05, 4.05), 'o');
   EXPECT_EQ(map.occupiedLeafCount(), 1u);
+}
+
+TEST(OccupancyMap, ACloudsOwnRangeMarksNothingBeyondItAndCarvesUpToIt) {
+  // Points at 3, 6 and 9 m along x, y and -x from the origin, inserted with a range of 5 m into a map whose
+  // max_range is 10 m: only the 3 m point is occupied, the 6 and 9 m rays are free up to 5 m and unknown
+  // beyond; the result is voxel for voxel a map whose max_range is 5 m.
+  MapperParams wide;
+  wide.max_range = 10.0;
+  MapperParams narrow;
+  narrow.max_range = 5.0;
+  const octomap::point3d origin(0.05f, 0.05f, 0.05f);
+  const std::vector<octomap::point3d> cloud = {octomap::point3d(3.05f, 0.05f, 0.05f),
+                                               octomap::point3d(0.05f, 6.05f, 0.05f),
+                                               octomap::point3d(-8.95f, 0.05f, 0.05f)};
+  OccupancyMap limited(wide), reference(narrow), full(wide);
+  const CloudStats stats = limited.insertCloud(cloud, origin, 5.0);
+  EXPECT_EQ(stats.beyond_range, 2u);
+  EXPECT_EQ(stats.occupied_voxels, 1u);
+  reference.insertCloud(cloud, origin);
+  expectSameTree(limited.tree(), reference.tree());
+  const auto state = [&limited](double x, double y) { return stateAt(limited.tree(), x, y); };
+  EXPECT_EQ(state(3.05, 0.05), 'o');
+  EXPECT_EQ(state(0.05, 4.85), 'f');
+  EXPECT_EQ(state(0.05, 5.45), 'u');
+  EXPECT_EQ(state(0.05, 6.05), 'u');
+  EXPECT_EQ(state(-4.75, 0.05), 'f');
+  EXPECT_EQ(state(-5.35, 0.05), 'u');
+  EXPECT_EQ(state(-8.95, 0.05), 'u');
+  // The same cloud without a range of its own: the map's 10 m, every point occupied.
+  EXPECT_EQ(full.insertCloud(cloud, origin).occupied_voxels, 3u);
+  EXPECT_EQ(full.occupiedLeafCount(), 3u);
+  EXPECT_TRUE(
+      test::contains(test::thrownMessage([&] { limited.insertCloud(cloud, origin, std::nan("")); }), "range = nan"));
 }
 
 TEST(OccupancyMap, RepeatedPointsInOneCloudUpdateEachVoxelOnce) {

@@ -24,6 +24,7 @@ struct PendingCloud {
   Stamp stamp = 0;                       ///< [ns]
   std::vector<octomap::point3d> points;  ///< [m, sensor frame]
   double received = 0.0;                 ///< [s, wall]
+  double max_range = 0.0;                ///< [m] its source's range (OccupancyMap::insertCloud); <= 0: no limit
 };
 
 /// The fate of the front cloud.

@@ -191,6 +191,13 @@ void OccupancyMap::traceRay(const octomap::point3d& origin, const octomap::OcTre
 }
 
 CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin) {
+  return insertCloud(points, origin, params_.max_range);
+}
+
+CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin,
+                                     double max_range) {
+  if (!std::isfinite(max_range))
+    throw ParameterError("mapper: a cloud's range = " + formatNumber(max_range) + ": expected a finite number of m");
   CloudStats stats;
   stats.points = points.size();
   if (!std::isfinite(origin.x()) || !std::isfinite(origin.y()) || !std::isfinite(origin.z())) {
@@ -202,7 +209,6 @@ CloudStats OccupancyMap::insertCloud(const std::vector<octomap::point3d>& points
   const bool rays = tree_->coordToKeyChecked(origin, key_origin);
   const uint64_t code_origin = rays ? mortonCode(key_origin) : 0;
   keys_.clear();
-  const double max_range = params_.max_range;
   for (const octomap::point3d& p : points) {
     octomap::OcTreeKey key;
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !tree_->coordToKeyChecked(p, key)) {

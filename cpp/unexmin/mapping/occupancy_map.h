@@ -22,7 +22,7 @@ namespace mapping {
 struct CloudStats {
   std::size_t points = 0;           ///< points handed in
   std::size_t invalid = 0;          ///< non-finite or outside the tree: ignored
-  std::size_t beyond_range = 0;     ///< farther than max_range: free space up to it, no endpoint
+  std::size_t beyond_range = 0;     ///< farther than the range: free space up to it, no endpoint
   std::size_t occupied_voxels = 0;  ///< distinct voxels updated as occupied
   std::size_t free_voxels = 0;      ///< distinct voxels updated as free
 };
@@ -42,6 +42,10 @@ public:
   /// between origin and point become freer, the point's voxel more occupied; points beyond max_range only
   /// carve free space up to max_range.
   CloudStats insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin);
+  /// The same with this cloud's own max_range [m] in place of the parameter (a source whose far echoes are
+  /// less trusted): points farther than it from the origin are not marked occupied and their rays carve free
+  /// space up to it only. <= 0: no limit. Throws ParameterError when it is not finite.
+  CloudStats insertCloud(const std::vector<octomap::point3d>& points, const octomap::point3d& origin, double max_range);
 
   /// Brings inner nodes up to date and prunes, if anything changed since the last call (insertCloud keeps
   /// the tree up to date: this is for trees changed otherwise).

@@ -80,8 +80,9 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   tf_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &tf_queue_);
   tf_spinner_->start();
   ROS_INFO_STREAM("mapper: " << robots_.size() << " robot(s), resolution " << params_.resolution << " m, max range "
-                             << params_.max_range << " m, M3 " << (use_m3_ ? "on" : "off") << ", " << sls_units_
-                             << " SLS unit(s)" << (map_file_.empty() ? "" : ", saves to " + map_file_));
+                             << params_.max_range << " m (M3 " << m3_max_range_ << " m, SLS " << sls_max_range_
+                             << " m), M3 " << (use_m3_ ? "on" : "off") << ", " << sls_units_ << " SLS unit(s)"
+                             << (map_file_.empty() ? "" : ", saves to " + map_file_));
 }
 
 void MapperRos::loadParams() {
@@ -92,6 +93,17 @@ void MapperRos::loadParams() {
   pnh_.param("clamp_min", params_.clamp_min, params_.clamp_min);
   pnh_.param("clamp_max", params_.clamp_max, params_.clamp_max);
   params_.validate();
+  m3_max_range_ = sls_max_range_ = params_.max_range;
+  pnh_.param("m3_max_range", m3_max_range_, m3_max_range_);
+  pnh_.param("sls_max_range", sls_max_range_, sls_max_range_);
+  // A source's range may only be shorter than max_range (its rays carve no farther than max_range anyway).
+  const bool limited = params_.max_range > 0.0;
+  const std::string expected =
+      limited ? "(0, max_range = " + formatNumber(params_.max_range) + "] m" : "a finite number of m (<= 0: no limit)";
+  require(!limited || (m3_max_range_ > 0.0 && m3_max_range_ <= params_.max_range), "m3_max_range", m3_max_range_,
+          expected);
+  require(!limited || (sls_max_range_ > 0.0 && sls_max_range_ <= params_.max_range), "sls_max_range", sls_max_range_,
+          expected);
   pnh_.param("frame_id", world_frame_, world_frame_);
   pnh_.param("m3", use_m3_, use_m3_);
   pnh_.param("sls_units", sls_units_, sls_units_);
@@ -149,7 +161,7 @@ void MapperRos::subscribe(const std::string& robot) {
 }
 
 void MapperRos::onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan) {
-  enqueue(robot, scan->header,
+  enqueue(robot, scan->header, m3_max_range_,
           mapping::scanPoints(
               mapping::ScanGeometry{scan->angle_min, scan->angle_increment, scan->range_min, scan->range_max},
               scan->ranges));
@@ -163,7 +175,7 @@ void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2
     for (; x != x.end(); ++x, ++y, ++z)
       points.emplace_back(*x, *y, *z);
   }
-  enqueue(robot, msg->header, std::move(points));
+  enqueue(robot, msg->header, sls_max_range_, std::move(points));
 }
 
 void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {
@@ -194,10 +206,10 @@ void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, 
   }
 }
 
-void MapperRos::enqueue(const std::string& robot, const std_msgs::Header& header,
+void MapperRos::enqueue(const std::string& robot, const std_msgs::Header& header, double max_range,
                         std::vector<octomap::point3d>&& points) {
   queue_->push(mapping::PendingCloud{robot, header.frame_id, static_cast<mapping::Stamp>(header.stamp.toNSec()),
-                                     std::move(points), ros::WallTime::now().toSec()});
+                                     std::move(points), ros::WallTime::now().toSec(), max_range});
   pending_count_ = queue_->size();
   drain();
 }
@@ -223,11 +235,11 @@ void MapperRos::drain() {
     const Eigen::Vector3d& t = step.sensor_in_map.translation;
     const octomap::point3d origin(static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z()));
     const ros::WallTime start = ros::WallTime::now();
-    all_.map->insertCloud(world, origin);
+    all_.map->insertCloud(world, origin, cloud.max_range);
     all_.changed();
     auto robot_map = robot_maps_.find(cloud.robot);
     if (robot_map != robot_maps_.end()) {
-      robot_map->second.map->insertCloud(world, origin);
+      robot_map->second.map->insertCloud(world, origin, cloud.max_range);
       robot_map->second.changed();
     }
     insert_seconds_ += (ros::WallTime::now() - start).toSec();

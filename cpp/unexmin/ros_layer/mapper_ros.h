@@ -51,7 +51,9 @@ private:
   Output makeOutput(ros::NodeHandle nh);
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
   void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
-  void enqueue(const std::string& robot, const std_msgs::Header& header, std::vector<octomap::point3d>&& points);
+  /// Queues a cloud [m, sensor frame] of a source whose points beyond max_range [m] are not marked occupied.
+  void enqueue(const std::string& robot, const std_msgs::Header& header, double max_range,
+               std::vector<octomap::point3d>&& points);
   /// On the tf thread: hands the samples to the tf history, logs what it reports and asks the main thread to drain.
   void onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
   /// Inserts the pending clouds whose tf has come, drops those the queue gives up on (mapping::CloudQueue).
@@ -69,9 +71,11 @@ private:
   bool use_m3_ = true;
   int sls_units_ = 4;
   bool per_robot_ = false;
-  double publish_rate_ = 1.0;  ///< [Hz, wall]
-  double tf_timeout_ = 10.0;   ///< [s, wall]
-  double tf_max_gap_ = 0.5;    ///< [s, sim]
+  double m3_max_range_ = 10.0;   ///< [m] the M3's points beyond it are not marked occupied
+  double sls_max_range_ = 10.0;  ///< [m] the SLS units' points beyond it are not marked occupied
+  double publish_rate_ = 1.0;    ///< [Hz, wall]
+  double tf_timeout_ = 10.0;     ///< [s, wall]
+  double tf_max_gap_ = 0.5;      ///< [s, sim]
   int queue_size_ = 5000;
   std::string map_file_;
 

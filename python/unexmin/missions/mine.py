@@ -24,7 +24,7 @@ import numpy as np
 from unexmin.control.allocation import ThrusterAllocator
 from unexmin.geometry import yaw_of
 from unexmin.missions.common import mission_parser, recorder_connected, wait_until_written, write_summary
-from unexmin.missions.survey import Reference, SurveyOptions, mine_layout, plan, track
+from unexmin.missions.survey import Reference, mine_layout, options_for, plan, track
 from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
 
 ROBOT = "UX_1"
@@ -32,6 +32,9 @@ SPEED = 0.4  # [m/s] cruise speed
 TOLERANCE = 0.5  # [m] a waypoint is reached within this distance
 CONTROL_DT = 0.1  # [s] sim time between controller updates
 SLS_UNITS = 4
+# [m] the M3's points farther than this are not marked occupied (the mapper's m3_max_range): beyond it the fan's
+# 3-degree beam meets the walls at grazing incidence and a share of its echoes land beside them (docs/mapping.md)
+M3_MAX_RANGE = 7.0
 
 
 def waypoints(gallery_length):
@@ -157,13 +160,14 @@ def run(
     seed=0,
     gallery=40.0,
     resolution=0.1,
-    time_limit=1500.0,
+    time_limit=None,
     visibility=None,
     world_file=None,
     snapshot_every=90.0,
 ):
     from unexmin.scripting.simulation import Simulation
     from unexmin.worlds.files import world_path
+    from unexmin.worlds.schema import read_world
 
     out = os.path.abspath(out)
     world_file = os.path.abspath(world_file) if world_file else world_path("mine")
@@ -178,9 +182,19 @@ def run(
             os.remove(stale)
     layout, preset = mine_layout(world_file)
     spawn = layout.spawns[0]
-    frames, durations = plan(layout, preset, (spawn[0], spawn[1], spawn[2], 0.0), SurveyOptions(gallery=gallery))
+    level = visibility or (read_world(world_file).get("visibility") or {}).get("level", "none")
+    options = options_for(level, sum(amplitude for _, amplitude in preset.octaves), gallery)
+    frames, durations = plan(layout, preset, (spawn[0], spawn[1], spawn[2], 0.0), options)
     reference = Reference(frames, durations)
-    extra = ["mapping:=true", f"map_file:={map_path}", f"map_resolution:={resolution}", f"world_file:={world_file}"]
+    # [s, sim] the plan and half again for the robot to catch up
+    time_limit = time_limit if time_limit is not None else 1.5 * reference.duration + 60.0
+    extra = [
+        "mapping:=true",
+        f"map_file:={map_path}",
+        f"map_resolution:={resolution}",
+        f"map_m3_max_range:={M3_MAX_RANGE}",
+        f"world_file:={world_file}",
+    ]
     if visibility:
         extra.append(f"visibility:={visibility}")
     wall0 = time.monotonic()
@@ -320,7 +334,9 @@ def run(
         "world_file": world_file,
         "robot": ROBOT,
         "seed": seed,
-        "visibility": visibility or "world file",
+        "visibility": visibility or f"world file ({level})",
+        "standoff_m": {"shaft": round(options.standoff, 3), "gallery": round(options.gallery_standoff, 3)},
+        "m3_max_range_m": M3_MAX_RANGE,
         "resolution_m": resolution,
         "sim_time_s": sim_time,
         "plan_s": round(reference.duration, 1),

@@ -12,6 +12,9 @@ gives the seed and the preset), so it follows any generated mine:
    the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it); on the way out,
    each side tunnel (crosscut, chamber) that opens on that stretch is flown to its far end low and back high
    (`gallery_standoff` from its nominal floor and roof), still turning.
+Where the water is murky the SLS units see only a short way (`sls_reach`): the passes come closer to the walls,
+as close as the rock's roughness allows (`options_for`), and where the units do not reach across the gallery it
+is flown twice more, out low by the other wall and back high by the first, so that every corner is passed near.
 The pendulum pitches the robot (a positive angle: nose down, about 10 degrees at its 30-degree limit;
 docs/hydrodynamics.md): nose up for the first turn of the helix (the shaft above), nose down under the first
 level (the shaft below), level otherwise (pitched in the gallery, the M3 fan grazes the floor far off and
@@ -28,6 +31,13 @@ from dataclasses import dataclass
 import numpy as np
 
 HULL_RADIUS = 0.3  # [m] the UX-1's spherical hull
+CLEARANCE = 0.2  # [m] of water kept between the planned hull and the rock
+MESH_MARGIN = 0.05  # [m] more, for the collision mesh's flat facets across curved, rough walls
+# [m] how far the SLS units see a wall of albedo 0.3 facing them, per visibility level (docs/sls.md; test_sls.cpp
+# solves the detection formula for it)
+SLS_REACH = {"none": 5.0, "low": 4.9, "medium": 1.85, "high": 0.59}
+# a unit paints a wall out to this angle off the wall's normal when the wall is at cos(angle) of its reach
+PAINT_ANGLE = math.radians(55.0)
 
 
 @dataclass
@@ -42,15 +52,40 @@ class SurveyOptions:
     gallery_speed: float = 0.25  # [m/s] along the gallery
     gallery_yaw_rate: float = 0.25  # [rad/s] the turn while flying the gallery
     step_deg: float = 15.0  # [deg] of turn between keyframes
+    sls_reach: float = 5.0  # [m] how far the SLS units see (SLS_REACH); shorter than across the gallery: 4 passes
     pendulum_deg: float = 30.0  # [deg] pendulum swing for the nose-up and nose-down parts (the model's limit)
 
     def check(self):
-        for name in ("gallery", "standoff", "gallery_standoff", "helix_pitch", "shaft_speed", "gallery_speed"):
+        for name in (
+            "gallery",
+            "standoff",
+            "gallery_standoff",
+            "helix_pitch",
+            "shaft_speed",
+            "gallery_speed",
+            "sls_reach",
+        ):
             if not getattr(self, name) > 0:
                 raise ValueError(f"survey option {name} = {getattr(self, name)}: expected > 0")
         for name in ("below", "surface_clearance", "gallery_yaw_rate", "pendulum_deg"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"survey option {name} = {getattr(self, name)}: expected >= 0")
+
+
+def options_for(visibility, wall_noise, gallery=40.0):
+    """SurveyOptions for a water visibility level (SLS_REACH) in a mine whose walls stray up to wall_noise [m]
+    from their nominal surface (the generator's `wall_noise_max`): the stand-offs shrink to cos(PAINT_ANGLE) of
+    the SLS reach, but never below the hull's radius, CLEARANCE, MESH_MARGIN and wall_noise."""
+    if visibility not in SLS_REACH:
+        raise ValueError(f"visibility {visibility!r}: expected one of {', '.join(SLS_REACH)}")
+    if not wall_noise >= 0:
+        raise ValueError(f"wall_noise {wall_noise} m: expected >= 0")
+    o = SurveyOptions(gallery=gallery, sls_reach=SLS_REACH[visibility])
+    nearest = HULL_RADIUS + CLEARANCE + MESH_MARGIN + wall_noise
+    wanted = math.cos(PAINT_ANGLE) * o.sls_reach
+    o.standoff = max(nearest, min(o.standoff, wanted))
+    o.gallery_standoff = max(nearest, min(o.gallery_standoff, wanted))
+    return o
 
 
 def mine_layout(world_file):
@@ -122,13 +157,14 @@ def plan(layout, preset, start, options=None):
     yaw = round(yaw / (2 * math.pi)) * 2 * math.pi
     go(sx, sy, z_level, yaw, o.shaft_speed)
 
-    # 3. the gallery, out (one side, low) and back (other side, high), turning
-    def offset_point(x, side):
+    # 3. the gallery, out (one side, low) and back (other side, high), turning; where the SLS units do not
+    # reach across it, out again low by the other side and back high by the first
+    def offset_point(x, side, vertical):
         p = np.array([x, np.interp(x, poly[:, 0], poly[:, 1]), np.interp(x, poly[:, 0], poly[:, 2])])
         t = np.array([1.0, np.interp(x + 0.5, poly[:, 0], poly[:, 1]) - np.interp(x - 0.5, poly[:, 0], poly[:, 1])])
         n = np.array([-t[1], t[0]]) / np.linalg.norm(t)
         dy = max(gallery.a - o.gallery_standoff, 0.0) * side
-        dz = max(gallery.b - o.gallery_standoff, 0.0) * -side
+        dz = max(gallery.b - o.gallery_standoff, 0.0) * vertical
         return p[0] + n[0] * dy, p[1] + n[1] * dy, p[2] + dz
 
     x0 = sx + shaft.a + 0.5
@@ -161,22 +197,25 @@ def plan(layout, preset, start, options=None):
             dz = np.array([0.0, 0.0, max(t.b - o.gallery_standoff, 0.0)])
             sides.append((float(near[0]), near, far, dz))
     sides.sort(key=lambda v: v[0])
-    for side, (xa, xb) in ((1, (x0, x1)), (-1, (x1, x0))):
-        go(*offset_point(xa, side), yaw, o.gallery_speed, pendulum=0.0)
-        stops = [v for v in sides if side > 0] + [(xb, None, None, None)]
+    passes = [(1, -1, (x0, x1)), (-1, 1, (x1, x0))]
+    if o.sls_reach < 2.0 * min(gallery.a, gallery.b) - o.gallery_standoff:
+        passes += [(-1, -1, (x0, x1)), (1, 1, (x1, x0))]
+    for k, (side, vertical, (xa, xb)) in enumerate(passes):
+        go(*offset_point(xa, side, vertical), yaw, o.gallery_speed, pendulum=0.0)
+        stops = [v for v in sides if k == 0] + [(xb, None, None, None)]
         x = xa
         for xs, near, far, dz in stops:
             n = max(1, int(math.ceil(abs(xs - x) / per_step)))
             for xi in np.linspace(x, xs, n + 1)[1:]:
                 yaw += step if o.gallery_yaw_rate > 0 else 0.0
-                go(*offset_point(float(xi), side), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
+                go(*offset_point(float(xi), side, vertical), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
             x = xs
             if near is not None:
-                fly(offset_point(xs, side), tuple(near - dz))
+                fly(offset_point(xs, side, vertical), tuple(near - dz))
                 fly(tuple(near - dz), tuple(far - dz))
                 fly(tuple(far - dz), tuple(far + dz))
                 fly(tuple(far + dz), tuple(near + dz))
-                fly(tuple(near + dz), offset_point(xs, side))
+                fly(tuple(near + dz), offset_point(xs, side, vertical))
     go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed, pendulum=0.0)
     return np.array(frames), np.array(times)
 
