@@ -103,6 +103,7 @@ def test_mission_while_launching(tmp_path, runs):
 
 
 def test_replay(tmp_path, runs):
+    """The replay on the ROS back end (its world's roslaunch, master and nodes); the core back end runs no child."""
     proc, _ = runs.start(
         [
             sys.executable,
@@ -113,6 +114,8 @@ def test_replay(tmp_path, runs):
             str(tmp_path / "replay"),
             "--pace",
             "1",
+            "--backend",
+            "ros",
         ],
         tmp_path,
     )

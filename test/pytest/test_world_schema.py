@@ -164,7 +164,8 @@ def test_the_world_written_by_world_from_scan_passes(tmp_path):
     assert read_world(tmp_path / "world" / rep["world"])["robots"]
     for visibility, speed in (("none", 0.0), ("high", 0.25)):
         spawns = [((0, 1, -2), 0.8), ((1, 1, -2), 0.9)]
-        text = world_yaml("cave", -1.5, visibility, speed, "c.ply", "v.ply", spawns, "scan.xyz")
+        meshes = [("cave", "c.ply", True, False, ""), ("cave_visual", "v.ply", False, True, ", seen_by: []")]
+        text = world_yaml("cave", -1.5, visibility, speed, meshes, spawns, "scan.xyz")
         data = check_world(yaml.safe_load(text), "cave.world")
         assert [r["name"] for r in data["robots"]] == ["UX_1", "UX_2"]
 
