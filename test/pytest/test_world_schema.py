@@ -223,7 +223,7 @@ def test_world_launch_stops_on_a_typo_with_one_line(tmp_path):
     fatal = [line for line in output.splitlines() if "FATAL" in line]
     assert len(fatal) == 1, output
     assert (
-        f"{file}: unknown key 'meshes[1].albdo' (accepted: name, file, scale, xyz, rpy, collision, visual, albedo, "
-        "material); did you mean 'albedo'?" in fatal[0]
+        f"{file}: unknown key 'meshes[1].albdo' (accepted: name, file, scale, xyz, rpy, collision, visual, seen_by, "
+        "albedo, material); did you mean 'albedo'?" in fatal[0]
     ), fatal[0]
     assert "REQUIRED process [simulator" in output, output
