@@ -300,14 +300,15 @@ def build_world(
         visual_colours = streamed_vertex_colours(scan, vv) if layout["rgb"] else None
         write_ply(out / visual_file, vv, vt, comment + " visual", inward=False, colours=visual_colours)
         parts = []
+        whole_visual = None  # a part's vertices are the whole visual mesh's: their colours are found in it
+        if visual_colours is not None:
+            from scipy.spatial import cKDTree
+
+            whole_visual = cKDTree(vv)
         for k, ((pv, pt), (qv, qt)) in enumerate(zip(split_parts(v, t, axis, seams), split_parts(vv, vt, axis, seams))):
             files = (f"{name}_collision_{k:03d}.ply", f"{name}_visual_{k:03d}.ply")
             write_ply(out / files[0], pv, pt, f"{comment} collision tile {k}", inward=False)
-            part_colours = None
-            if visual_colours is not None:  # a part's vertices are the whole visual mesh's: their colours
-                from scipy.spatial import cKDTree
-
-                part_colours = visual_colours[cKDTree(vv).query(qv, k=1)[1]]
+            part_colours = None if whole_visual is None else visual_colours[whole_visual.query(qv, k=1)[1]]
             write_ply(out / files[1], qv, qt, f"{comment} visual tile {k}", inward=False, colours=part_colours)
             parts.append({"index": k, "collision": files[0], "visual": files[1], "triangles": int(len(pt))})
         world_path, parts_path = out / f"{name}.world", out / f"{name}_parts.world"
