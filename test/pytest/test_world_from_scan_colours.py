@@ -11,7 +11,7 @@ import trimesh
 import yaml
 
 from unexmin import world_from_scan as wfs
-from unexmin.world_from_scan.colours import read_scan_colours, vertex_colours
+from unexmin.world_from_scan.colours import read_scan_colours, streamed_vertex_colours, vertex_colours
 from unexmin.worlds.meshes import read_mesh
 
 RED, BLUE = (200, 30, 30), (30, 60, 200)
@@ -86,3 +86,15 @@ def test_the_simulator_loads_the_coloured_world(room):
     world = World(str(out / rep["world"]), robots=1, sensors="none")
     world.step(10)
     assert world.time == pytest.approx(10 * world.dt)
+
+
+def test_colours_streamed_in_chunks_are_those_of_the_whole_scan(tmp_path):
+    """The scan read again chunk by chunk (as build_world does) gives each vertex its nearest point's colour over
+    every chunk: the same as one k-d tree over the whole scan, with chunks far smaller than the scan."""
+    room_scan(tmp_path / "room.ply")
+    points, colours = read_scan_colours(tmp_path / "room.ply")
+    rng = np.random.default_rng(7)
+    vertices = rng.uniform((-2, -1.5, FLOOR), (2, 1.5, TOP), size=(300, 3))
+    got = streamed_vertex_colours(tmp_path / "room.ply", vertices, chunk=997)
+    assert len(points) > 20 * 997
+    assert np.array_equal(got, vertex_colours(vertices, points, colours))

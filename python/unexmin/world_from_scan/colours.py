@@ -46,25 +46,25 @@ def vertex_colours(vertices, points, colours):
     return np.asarray(colours, dtype=np.uint8)[nearest]
 
 
-def streamed_vertex_colours(path, vertices):
-    """Colour (M x 3 uint8) of each vertex (M x 3 [m]) from the scan `path` read in chunks (stream.iter_chunks), so
-    that memory holds one chunk and the vertices, whatever the scan's size: each vertex keeps the colour of the
-    nearest point over all chunks. None when the scan carries no colours."""
+def streamed_vertex_colours(path, vertices, chunk=None):
+    """Colour (M x 3 uint8) of each vertex (M x 3 [m]) from the scan `path` read in chunks of `chunk` points
+    (stream.iter_chunks; default stream.CHUNK), so that memory holds one chunk and the vertices, whatever the scan's
+    size: each vertex keeps the colour of the nearest point over all chunks. None when the scan carries no colours."""
     from scipy.spatial import cKDTree
 
-    from unexmin.world_from_scan.stream import iter_chunks
+    from unexmin.world_from_scan.stream import CHUNK, iter_chunks
 
     vertices = np.asarray(vertices, dtype=np.float64)
     best = np.full(len(vertices), np.inf)
     colours = np.zeros((len(vertices), 3), dtype=np.uint8)
-    for chunk in iter_chunks(path):
-        if chunk.rgb is None:
+    for part in iter_chunks(path, chunk or CHUNK):
+        if part.rgb is None:
             return None
-        ok = np.isfinite(chunk.points).all(axis=1)
+        ok = np.isfinite(part.points).all(axis=1)
         if not ok.any():
             continue
-        d, nearest = cKDTree(chunk.points[ok]).query(vertices, k=1, workers=-1)
+        d, nearest = cKDTree(part.points[ok]).query(vertices, k=1, workers=-1)
         closer = d < best
         best[closer] = d[closer]
-        colours[closer] = np.asarray(chunk.rgb, dtype=np.uint8)[ok][nearest[closer]]
+        colours[closer] = np.asarray(part.rgb, dtype=np.uint8)[ok][nearest[closer]]
     return colours if np.isfinite(best).all() else None
