@@ -10,11 +10,17 @@ velocity for the horizontal position, the pressure for the depth.
   velocity decays with the drag's time constant (`coast_tau`) and the estimate is flagged.
 - Position: x, y integrate the world-frame velocity; z = start z - (p - p_start) / (ρ g) (the pressure sensor's
   offset on the hull cancels with the start reading at the start attitude).
+
+The start: the attitude from the first odometry's quaternion (quat_matrix), the DVL's mounting from the robot
+description (sensor_joint).
 """
 
 import math
+import xml.etree.ElementTree as ET
 
 import numpy as np
+
+from unexmin.geometry import rpy_matrix
 
 
 def exp_so3(w):
@@ -82,3 +88,28 @@ class DeadReckoning:
         if self.p0 is None:
             self.p0 = float(pa)
         self.p[2] = self.z0 - (float(pa) - self.p0) / self.rho_g
+
+
+def sensor_joint(description, child):
+    """(rotation 3x3, offset [m]) of the fixed joint whose child link is `child`, from a URDF string."""
+    root = ET.fromstring(description)
+    for joint in root.iter("joint"):
+        c = joint.find("child")
+        if c is not None and c.get("link") == child:
+            o = joint.find("origin")
+            xyz = [float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()]
+            rpy = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
+            return rpy_matrix(rpy), np.array(xyz)
+    raise LookupError(f"the robot description has no joint whose child is {child}")
+
+
+def quat_matrix(q):
+    """Rotation matrix (body to world) of a quaternion with fields x, y, z, w (geometry_msgs/Quaternion)."""
+    x, y, z, w = q.x, q.y, q.z, q.w
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
