@@ -1,19 +1,16 @@
-// unexmin._core: the simulator's engine in-process from Python (docs/python_api.md, "unexmin.core"). The same
-// World, ray caster and sensor models the simulator node builds (cpp/unexmin/ros_layer/simulator_ros.cpp), stepped in
-// the same order: world step, caster update, every robot's sensors. No ROS runs: the sensor models come from the
-// simulator's one registration point (SensorRegistry::builtin()), whose publishers are never made here.
-#include <unexmin/raycast/ray_caster.h>
+// unexmin._core: the simulator's engine in-process from Python (docs/python_api.md, "unexmin.core"). The engine the
+// simulator node runs (engine::Engine: the World, the ray caster, every robot's sensors, stepped in one order), with
+// Python's arguments and conversions. No ROS runs: the sensor models come from the simulator's one registration point
+// (SensorRegistry::builtin()), whose publishers are never made here.
+#include <unexmin/engine/engine.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
-#include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>
-#include <unexmin/sim/robot_description.h>
-#include <unexmin/sim/world.h>
 
 #include <btBulletDynamicsCommon.h>
 #include <pybind11/numpy.h>
@@ -93,71 +90,52 @@ public:
         badArgument("descriptions", "(no '" + name + "')", "a description of " + name);
       parsed.emplace(name, sim::parseRobotDescription(found->second, name + " description"));
     }
-    world_ = std::make_unique<sim::World>(config, parsed, robots, 1.0 / physics_rate, seed);
-    selection_ = sensors::SensorSelection::parse(sensors, registry_.types(), "sensors");
-    if (!selection_.none()) {
-      raycast::RayCasterOptions options;
-      options.threads = ray_caster_threads;
-      try {
-        caster_ = raycast::makeRayCaster(config.ray_caster, *world_, options);
-      } catch (const RayCasterError& e) {
-        throw ConfigError(world_file + ": 'ray_caster': " + e.what());
-      }
-      caster_->update();
-    }
-    const bool visual = mode == "visual";
-    for (std::size_t i = 0; i < world_->robotCount(); ++i)
-      suites_.push_back(std::make_unique<sensors::SensorSuite>(*world_, world_->robot(i), caster_.get(),
-                                                               registry_.models(), selection_, visual));
+    engine::EngineOptions options;
+    options.dt = 1.0 / physics_rate;
+    options.seed = seed;
+    options.selection = sensors::SensorSelection::parse(sensors, registry_.types(), "sensors");
+    options.visual = mode == "visual";
+    options.ray_caster_threads = ray_caster_threads;
+    engine_ = std::make_unique<engine::Engine>(config, parsed, robots, registry_.models(), options, world_file);
   }
 
-  /// `n` physics steps, each as the simulator's lockstep step: commands held (the watchdog does not expire them)
-  /// when `hold`, then the world, the caster, every robot's sensors.
+  /// `n` physics steps, each as the simulator's lockstep step (Engine::step): commands held (the watchdog does not
+  /// expire them) when `hold`, then the world, the caster, every robot's sensors.
   void step(std::uint64_t n, bool hold) {
     const Busy busy(*this);
-    for (std::uint64_t i = 0; i < n; ++i) {
-      if (hold)
-        for (std::size_t r = 0; r < world_->robotCount(); ++r)
-          for (std::size_t k = 0; k < world_->robot(r).thrusterCount(); ++k)
-            world_->robot(r).thruster(k).holdCommand(world_->time());
-      world_->step();
-      if (caster_)
-        caster_->update();
-      for (auto& s : suites_)
-        s->update();
-    }
+    for (std::uint64_t i = 0; i < n; ++i)
+      engine_->step(hold);
   }
 
   void reset(std::uint64_t seed) {
     const Busy busy(*this);
-    world_->reset(seed);
-    for (auto& s : suites_)
-      s->reset(seed);
+    engine_->reset(seed);
   }
 
   /// True while step() or reset() runs (in another thread: they release the GIL).
   bool busy() const { return busy_; }
   sim::World& world() {
     idle();
-    return *world_;
+    return engine_->world();
   }
-  std::string selection() const { return selection_.text(); }
+  std::string selection() const { return engine_->selection().text(); }
 
   std::size_t index(const std::string& robot) const {
     idle();
+    const sim::World& world = engine_->world();
     std::vector<std::string> names;
-    for (std::size_t i = 0; i < world_->robotCount(); ++i) {
-      if (world_->robot(i).name() == robot)
+    for (std::size_t i = 0; i < world.robotCount(); ++i) {
+      if (world.robot(i).name() == robot)
         return i;
-      names.push_back(world_->robot(i).name());
+      names.push_back(world.robot(i).name());
     }
     std::string known;
     for (const auto& n : names)
       known += (known.empty() ? "" : ", ") + n;
     throw py::key_error("robot = '" + robot + "': expected one of the spawned robots (" + known + ")");
   }
-  sim::Robot& robot(const std::string& name) { return world_->robot(index(name)); }
-  sensors::SensorSuite& suite(const std::string& robot) { return *suites_[index(robot)]; }
+  sim::Robot& robot(const std::string& name) { return engine_->world().robot(index(name)); }
+  sensors::SensorSuite& suite(const std::string& robot) { return engine_->suite(index(robot)); }
 
   sensors::Sensor& sensor(const std::string& robot, const std::string& name) {
     sensors::SensorSuite& s = suite(robot);
@@ -170,7 +148,7 @@ public:
     for (const auto& k : s.skipped())
       off += (off.empty() ? "" : ", ") + k;
     throw py::key_error("sensor = '" + name + "': expected one of " + robot + "'s running sensors (" + known + ")" +
-                        (off.empty() ? "" : "; off by sensors='" + selection_.text() + "': " + off));
+                        (off.empty() ? "" : "; off by sensors='" + selection() + "': " + off));
   }
 
 private:
@@ -192,10 +170,7 @@ private:
 
   std::atomic<bool> busy_{false};
   ros_layer::SensorRegistry registry_;
-  sensors::SensorSelection selection_;
-  std::unique_ptr<sim::World> world_;
-  std::unique_ptr<raycast::RayCaster> caster_;
-  std::vector<std::unique_ptr<sensors::SensorSuite>> suites_;
+  std::unique_ptr<engine::Engine> engine_;
 };
 
 /// A finite command or a ValueError naming it.

@@ -1,9 +1,9 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
 in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its
-sub-folders sonar, vision) -> ros_layer. No folder includes a folder above it (the sub-folders of sensors stand
-side by side: neither includes the other), no core folder includes a ROS header or links a ROS library, and
-every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing collides with
-roscpp's <ros/...>.
+sub-folders sonar, vision) -> engine -> ros_layer. No folder includes a folder above it (the sub-folders of
+sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS
+library, and every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing
+collides with roscpp's <ros/...>.
 
 Names follow folders: every file of cpp/unexmin/<a>/<b> declares its code in namespace unexmin::<a>::<b> (or in
 namespaces nested inside it: anonymous ones, detail helpers such as vision::shading), and opens no other namespace
@@ -17,7 +17,18 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CPP = REPO / "cpp" / "unexmin"
-LAYERS = ["core", "mapping", "hydro", "sim", "raycast", "sensors", "sensors/sonar", "sensors/vision", "ros_layer"]
+LAYERS = [
+    "core",
+    "mapping",
+    "hydro",
+    "sim",
+    "raycast",
+    "sensors",
+    "sensors/sonar",
+    "sensors/vision",
+    "engine",
+    "ros_layer",
+]
 SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
 ROS_ROOTS = {

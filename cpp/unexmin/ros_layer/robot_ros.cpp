@@ -21,10 +21,10 @@ ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh,
-                   const PublishRates& rates, double physics_rate, std::map<std::string, std::uint64_t>& received,
-                   const raycast::RayCaster* rays, const SensorRegistry& registry,
-                   const sensors::SensorSelection& selection, bool visual)
+RobotRos::RobotRos(const sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
+                   ros::NodeHandle& nh, const PublishRates& rates, double physics_rate,
+                   std::map<std::string, std::uint64_t>& received, const SensorRegistry& registry,
+                   const sensors::SensorSelection& selection)
     : robot_(robot), received_(received) {
   const std::string ns = "/" + robot.name() + "/";
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
@@ -47,7 +47,7 @@ RobotRos::RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& comman
   joint_every_ = every(physics_rate, rates.joint_states);
   thrust_every_ = every(physics_rate, rates.thrust);
   joint_names_ = robot.description().movableJoints();
-  sensors_ = std::make_unique<SensorsRos>(world, robot, rays, registry, selection, nh, visual);
+  sensors_ = std::make_unique<SensorsRos>(world, robot, suite, registry, selection, nh);
 }
 
 bool RobotRos::finite(const std::string& topic, double value) const {

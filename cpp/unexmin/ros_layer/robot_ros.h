@@ -30,17 +30,15 @@ class RobotRos {
 public:
   /// Subscribes /<robot>/thrusters/<i>/input, fins/<i>/input, pendulum, vbs on `command_nh`'s callback queue.
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
-  /// The robot's sensors of the `selection`'s families run in `world` (SensorsRos), casting through `rays`, in
-  /// visual mode when `visual` (SensorSetup::visual).
-  RobotRos(sim::World& world, sim::Robot& robot, ros::NodeHandle& command_nh, ros::NodeHandle& nh,
-           const PublishRates& rates, double physics_rate, std::map<std::string, std::uint64_t>& received,
-           const raycast::RayCaster* rays, const SensorRegistry& registry, const sensors::SensorSelection& selection,
-           bool visual = false);
+  /// `suite`: the robot's sensors (of the `selection`'s families) that the engine runs in `world`; their samples go
+  /// out through SensorsRos. `world` and `suite` must outlive this.
+  RobotRos(const sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
+           ros::NodeHandle& nh, const PublishRates& rates, double physics_rate,
+           std::map<std::string, std::uint64_t>& received, const SensorRegistry& registry,
+           const sensors::SensorSelection& selection);
 
-  /// Samples the sensors due at this physics step (after every step, before publish()).
-  void sample(std::uint64_t step) { sensors_->sample(step); }
-  /// Publishes whatever is due at this physics step: the robot's state streams (all of them when `all`: end of a
-  /// /sim/step, reset) and the samples sample() took at this step.
+  /// Publishes whatever is due at this physics step (after the engine's step): the robot's state streams (all of
+  /// them when `all`: end of a /sim/step, reset) and the samples its sensors took at this step.
   void publish(std::uint64_t step, const ros::Time& stamp, bool all = false);
 
   /// Ground truth of the base link: pose in `world`, twist in the body frame (REP-105).

@@ -45,23 +45,18 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
       throw ConfigError("parameter " + param + " is not set: load the robot description (xacro) first");
     descriptions.emplace(name, sim::parseRobotDescription(xml, param, thrusters));
   }
-  world_ = std::make_unique<sim::World>(config, descriptions, robot_count_, 1.0 / physics_rate_,
-                                        static_cast<std::uint64_t>(seed_));
-
-  selection_ = sensors::SensorSelection::parse(sensors_param_, registry_.types(), "parameter ~sensors");
-  if (!selection_.none()) {
-    try {
-      raycast::RayCasterOptions options;
-      options.threads = ray_caster_threads_;
-      caster_ = raycast::makeRayCaster(config.ray_caster, *world_, options);
-    } catch (const RayCasterError& e) {
-      throw ConfigError(world_file_ + ": 'ray_caster': " + e.what());
-    }
-    caster_->update();
-  }
+  engine::EngineOptions options;
+  options.dt = 1.0 / physics_rate_;
+  options.seed = static_cast<std::uint64_t>(seed_);
+  options.selection = sensors::SensorSelection::parse(sensors_param_, registry_.types(), "parameter ~sensors");
+  options.visual = visual_;
+  options.ray_caster_threads = ray_caster_threads_;
+  engine_ =
+      std::make_unique<engine::Engine>(config, descriptions, robot_count_, registry_.models(), options, world_file_);
+  world_ = &engine_->world();
   for (std::size_t i = 0; i < world_->robotCount(); ++i)
-    robots_.push_back(std::make_unique<RobotRos>(*world_, world_->robot(i), command_nh_, nh_, rates_, physics_rate_,
-                                                 received_, caster_.get(), registry_, selection_, visual_));
+    robots_.push_back(std::make_unique<RobotRos>(*world_, world_->robot(i), engine_->suite(i), command_nh_, nh_, rates_,
+                                                 physics_rate_, received_, registry_, engine_->selection()));
 
   // What scripts and tools learn from the simulator (docs/simulator_node.md): the spawned robots and their
   // thruster counts.
@@ -95,7 +90,7 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
   ROS_INFO_STREAM("unexmin simulator: world '"
                   << config.name << "' (" << world_file_ << "), " << world_->robotCount() << " robot(s), physics "
                   << physics_rate_ << " Hz, " << (realtime_ ? "real time" : "lockstep") << ", seed " << seed_
-                  << ", sensors " << selection_.text() << ", " << (visual_ ? "visual" : "operational")
+                  << ", sensors " << engine_->selection().text() << ", " << (visual_ ? "visual" : "operational")
                   << " mode, visibility " << config.visibility << (paused_ ? ", paused" : ""));
 }
 
@@ -177,13 +172,9 @@ void SimulatorRos::publishNow() {
     r->publish(world_->stepCount(), stamp, true);
 }
 
-void SimulatorRos::stepOnce() {
-  world_->step();
-  if (caster_)
-    caster_->update();  // the robots where the sensors of this step see them
+void SimulatorRos::stepOnce(bool hold) {
+  engine_->step(hold);  // the world, the caster, every robot's sensors
   const std::uint64_t n = world_->stepCount();
-  for (auto& r : robots_)
-    r->sample(n);
   // lockstep_wait_subscribers: the sensors have sampled (the cameras rendered) while the subscribers were still
   // taking the last step's messages; nothing of this step goes out before they have taken them all. One step's
   // messages (one per stream at most) are then in flight at a time, so neither roscpp's queue on our side nor a
@@ -219,11 +210,7 @@ void SimulatorRos::stepOnce() {
 void SimulatorRos::advance(std::uint64_t steps, bool hold) {
   for (std::uint64_t i = 0; i < steps && ros::ok(); ++i) {
     command_queue_.callAvailable();
-    if (hold)
-      for (std::size_t r = 0; r < world_->robotCount(); ++r)
-        for (std::size_t k = 0; k < world_->robot(r).thrusterCount(); ++k)
-          world_->robot(r).thruster(k).holdCommand(world_->time());
-    stepOnce();
+    stepOnce(hold);
   }
   publishNow();
 }
@@ -242,7 +229,7 @@ bool SimulatorRos::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Respons
 }
 
 void SimulatorRos::resetWorld(std::uint64_t seed) {
-  world_->reset(seed);
+  engine_->reset(seed);
   pace_wall_ = ros::WallTime::now();
   pace_sim_ = 0.0;
   for (auto& r : robots_)

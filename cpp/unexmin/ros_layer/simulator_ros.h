@@ -1,16 +1,14 @@
-// The simulator node: owns the World, steps it at a fixed step (lockstep or real time), publishes
-// /clock, /current and every robot's topics, and serves /sim/pause|unpause|reset|reset_seed|step.
-// Parameters are documented in docs/simulator_node.md.
+// The simulator node: runs the engine (engine::Engine: the World, the ray caster, every robot's sensors) at a fixed
+// step (lockstep or real time), publishes /clock, /current and every robot's topics, and serves
+// /sim/pause|unpause|reset|reset_seed|step. Parameters are documented in docs/simulator_node.md.
 #pragma once
 
+#include <unexmin/engine/engine.h>
 #include <unexmin/hydro/thruster_factory.h>
-#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/ros_layer/bag_recorder.h>
 #include <unexmin/ros_layer/robot_ros.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/ros_layer/subscriber_pacer.h>
-#include <unexmin/sensors/sensor_selection.h>
-#include <unexmin/sim/world.h>
 
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -37,7 +35,8 @@ public:
 private:
   void loadParams();
   void advance(std::uint64_t steps, bool hold = false);
-  void stepOnce();
+  /// One engine step (commands held when `hold`), then what is due of it goes out.
+  void stepOnce(bool hold = false);
   void publishClock();
   /// /clock and every robot's state now (end of a /sim/step, after a reset).
   void publishNow();
@@ -71,12 +70,11 @@ private:
 
   SensorRegistry registry_;
   std::string sensors_param_ = "all";
-  sensors::SensorSelection selection_;  ///< from ~sensors
-  bool visual_ = false;                 ///< /sim/mode == visual: cameras render, lights and lasers on
-  std::string visibility_;              ///< ~visibility: overrides the world file's level (empty: keep it)
-  int ray_caster_threads_ = 0;          ///< ~ray_caster_threads: threads that cast rays (0 = every hardware thread)
-  std::unique_ptr<sim::World> world_;
-  std::unique_ptr<raycast::RayCaster> caster_;  ///< every ray sensor's (null when no sensor runs)
+  bool visual_ = false;         ///< /sim/mode == visual: cameras render, lights and lasers on
+  std::string visibility_;      ///< ~visibility: overrides the world file's level (empty: keep it)
+  int ray_caster_threads_ = 0;  ///< ~ray_caster_threads: threads that cast rays (0 = every hardware thread)
+  std::unique_ptr<engine::Engine> engine_;
+  sim::World* world_ = nullptr;  ///< the engine's
   std::vector<std::unique_ptr<RobotRos>> robots_;
   std::map<std::string, std::uint64_t> received_;  ///< command messages applied, per publishing node
   Stream clock_pub_;
