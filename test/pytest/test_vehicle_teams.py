@@ -65,6 +65,8 @@ def test_batch_spec_runs_a_team(tmp_path):
     assert spec["vehicles"] == ["ux1", "bluerov2_heavy", "remus100"]
     assert launch_args(spec, str(tmp_path / "m"))["vehicles"] == "ux1,bluerov2_heavy,remus100"
     assert "vehicles" not in launch_args(spec_file(tmp_path, ""), str(tmp_path / "n")), "no team: the robots count"
+    repeats = spec_file(tmp_path, "vehicles: [bluerov2_heavy, ux1, bluerov2_heavy, remus100]\n")
+    assert launch_args(repeats, str(tmp_path / "r"))["vehicles"] == "bluerov2_heavy,ux1,bluerov2_heavy,remus100"
     with pytest.raises(SpecError, match="spec.yaml: vehicles: unknown vehicle type"):
         spec_file(tmp_path, "vehicles: [ux1, glider]\n")
 
