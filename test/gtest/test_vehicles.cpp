@@ -291,8 +291,10 @@ TEST(VehicleTeams, TheWorldsRobotsAreSelectedByNameInOrder) {
   EXPECT_EQ(config.robots[1].name, "AUV_1");
   EXPECT_EQ(config.robots[2].name, "ROV_1");
   EXPECT_TRUE(config.robots[0].pose.translation().isApprox(ux_at)) << "a robot keeps its spawn pose";
-  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"UX_9"}), unexmin::ConfigError,
-               config.file + ": no robot 'UX_9' in 'robots' (expected one of: UX_1, AUV_1, ROV_1)");
+  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"GLIDER_1"}), unexmin::ConfigError,
+               config.file +
+                   ": no robot 'GLIDER_1' in 'robots' (expected one of: UX_1, AUV_1, ROV_1, or <prefix>_<k> of a "
+                   "listed robot's prefix)");
   EXPECT_ERROR(unexmin::sim::selectRobots(config, {"AUV_1", "AUV_1"}), unexmin::ConfigError,
                config.file + ": robot 'AUV_1' is selected twice");
 }
