@@ -73,10 +73,11 @@ void placeSpawns(std::vector<RobotSpawn>& spawns, const std::vector<double>& rad
       found = true;
       break;
     }
+    const auto mm = [](double x) { return formatNumber(std::round(1000.0 * x) / 1000.0); };
     if (!found)
-      throw ConfigError(file + ": no room for robot '" + spawns[n].name + "' (hull radius " + formatNumber(r) +
-                        " m): no point of the " + formatNumber(step) + " m lattice within " +
-                        formatNumber(kSpawnSteps) + " steps of its anchor lies " + formatNumber(kSpawnMargin) +
+      throw ConfigError(file + ": no room for robot '" + spawns[n].name + "' (hull radius " + mm(r) +
+                        " m): no point of the " + mm(step) + " m lattice within " + formatNumber(kSpawnSteps) +
+                        " steps of its anchor lies " + formatNumber(kSpawnMargin) +
                         " m clear of the walls, the surface and the other robots in the anchor's water; list it "
                         "in 'robots'");
   }
