@@ -2,6 +2,7 @@
 // from the published parameters (written here, so that a wrong number in the xacro files fails too): von Benzon et
 // al. 2022 for the ROV, Prestero 2001 for the AUV. No roscore; the descriptions are expanded with xacro.
 #include "expect_error.h"
+#include "xacro_fixture.h"
 
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
@@ -25,23 +26,9 @@ namespace {
 
 using unexmin::sim::RobotDescription;
 using unexmin::sim::World;
+using unexmin::test::expand;
 
 constexpr double kG = 9.81;
-
-/// The expansion of urdf/<file> with `args` (xacro from PATH: scripts/env.sh puts the venv's on it).
-std::string expand(const std::string& file, const std::string& args = "") {
-  const std::string cmd = "xacro " + std::string(UNEXMIN_SOURCE_DIR) + "/urdf/" + file + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  if (!pipe)
-    throw std::runtime_error("cannot run: " + cmd);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe.get()))
-    out.append(buf.data(), n);
-  if (out.find("<robot") == std::string::npos)
-    throw std::runtime_error(cmd + " failed: " + out);
-  return out;
-}
 
 /// One robot `name` of description `xml` at 100 m depth in still water of density rho [kg/m^3].
 std::unique_ptr<World> openWater(const std::string& xml, const std::string& name, double rho, double dt = 0.002) {
@@ -304,8 +291,10 @@ TEST(VehicleTeams, TheWorldsRobotsAreSelectedByNameInOrder) {
   EXPECT_EQ(config.robots[1].name, "AUV_1");
   EXPECT_EQ(config.robots[2].name, "ROV_1");
   EXPECT_TRUE(config.robots[0].pose.translation().isApprox(ux_at)) << "a robot keeps its spawn pose";
-  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"UX_9"}), unexmin::ConfigError,
-               config.file + ": no robot 'UX_9' in 'robots' (expected one of: UX_1, AUV_1, ROV_1)");
+  EXPECT_ERROR(unexmin::sim::selectRobots(config, {"GLIDER_1"}), unexmin::ConfigError,
+               config.file +
+                   ": no robot 'GLIDER_1' in 'robots' (expected one of: UX_1, AUV_1, ROV_1, or <prefix>_<k> of a "
+                   "listed robot's prefix)");
   EXPECT_ERROR(unexmin::sim::selectRobots(config, {"AUV_1", "AUV_1"}), unexmin::ConfigError,
                config.file + ": robot 'AUV_1' is selected twice");
 }

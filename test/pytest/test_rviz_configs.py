@@ -13,6 +13,8 @@ from pathlib import Path
 import pytest
 import yaml
 
+from unexmin.rviz_config import team_config
+
 REPO = Path(__file__).resolve().parents[2]
 spec = importlib.util.spec_from_file_location("rviz_configs", REPO / "scripts" / "rviz_configs.py")
 rviz_configs = importlib.util.module_from_spec(spec)
@@ -109,5 +111,37 @@ def test_team_config_shows_every_vehicle_and_the_mine_team_opens_it():
     assert displays["AUV_1 odom"]["Topic"] == "/AUV_1/odom"
     assert displays["ROV_1 imaging sonar"]["Image Topic"] == "/ROV_1/imaging_sonar/fan"
     assert displays["AUV_1 side scan"]["Image Topic"] == "/AUV_1/side_scan/waterfall"
-    opened = launched_config("ux1,remus100", "mine_world.launch", "vehicles")
-    assert opened.resolve() == rviz_configs.TEAM_PATH.resolve()
+    assert displays["ROV_1 sonar cloud"]["Topic"] == "/ROV_1/imaging_sonar/points"
+
+
+def test_a_team_launch_writes_the_config_of_its_own_list():
+    """mine_world.launch vehicles:=<list> rviz:=true runs nodes/team_rviz on the team's robot names; its
+    configuration shows each robot once, and no robot outside the team."""
+    out = subprocess.run(
+        [
+            "roslaunch",
+            "--args",
+            "rviz",
+            "unexmin",
+            "mine_world.launch",
+            "rviz:=true",
+            "vehicles:=bluerov2_heavy,ux1,bluerov2_heavy",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert out.returncode == 0, out.stderr
+    args = out.stdout.split()
+    assert Path(args[0]).name == "team_rviz"
+    team = args[args.index("--team") + 1].split(",")
+    assert team == ["ROV_1", "UX_1", "ROV_2"]
+    config = yaml.safe_load(team_config(Path(args[args.index("--template") + 1]).read_text(), team))
+    names = display_names(config)
+    for robot in team:
+        assert names.count(f"{robot} model") == 1 and names.count(f"{robot} odom") == 1
+    for robot in ("ROV_1", "ROV_2"):
+        assert f"{robot} imaging sonar" in names and f"{robot} sonar cloud" in names
+    assert robots_named(config) == {1} and not any(n.startswith("AUV_") for n in names)
+    with pytest.raises(ValueError, match="rviz team: robot 'GLIDER_1'"):
+        team_config(rviz_configs.TEMPLATE.read_text(), ["GLIDER_1"])

@@ -4,6 +4,7 @@ the batch runner's `vehicles` key and the Python API's `vehicles` argument. No r
 Run: /work/main_ws/venv/bin/python -m pytest test/pytest/test_vehicle_teams.py
 """
 
+import subprocess
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -64,6 +65,8 @@ def test_batch_spec_runs_a_team(tmp_path):
     assert spec["vehicles"] == ["ux1", "bluerov2_heavy", "remus100"]
     assert launch_args(spec, str(tmp_path / "m"))["vehicles"] == "ux1,bluerov2_heavy,remus100"
     assert "vehicles" not in launch_args(spec_file(tmp_path, ""), str(tmp_path / "n")), "no team: the robots count"
+    repeats = spec_file(tmp_path, "vehicles: [bluerov2_heavy, ux1, bluerov2_heavy, remus100]\n")
+    assert launch_args(repeats, str(tmp_path / "r"))["vehicles"] == "bluerov2_heavy,ux1,bluerov2_heavy,remus100"
     with pytest.raises(SpecError, match="spec.yaml: vehicles: unknown vehicle type"):
         spec_file(tmp_path, "vehicles: [ux1, glider]\n")
 
@@ -73,3 +76,33 @@ def test_simulation_launch_refuses_an_unknown_vehicle_before_starting_anything()
 
     with pytest.raises(ValueError, match="vehicles: unknown vehicle type"):
         Simulation.launch("mine", vehicles="ux1,submarine", timeout=1.0)
+
+
+def roslaunch(*args):
+    return subprocess.run(["roslaunch", *args], capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("launch", ["mine_world.launch", "tank_team.launch"])
+def test_the_launch_runs_any_list_with_repeats_in_its_order(launch):
+    vehicles = "ux1,bluerov2_heavy,bluerov2_heavy,remus100,ux1"
+    names = team_names(vehicles)
+    assert names == ["UX_1", "ROV_1", "ROV_2", "AUV_1", "UX_2"]
+    out = roslaunch("--dump-params", "unexmin", launch, f"vehicles:={vehicles}")
+    assert out.returncode == 0, out.stderr
+    params = yaml.safe_load(out.stdout)
+    assert params["/simulator/spawns"] == ",".join(names)
+    for name, vehicle in zip(names, vehicles.split(",")):
+        assert f"urdf/{VEHICLE_TYPES[vehicle][1]}" in params[f"/{name}/robot_description"]  # xacro's header
+        assert params[f"/{name}/thruster_allocator/robot"] == name
+        # the others' allocation comes from their own description; the UX-1's is its own allocator's
+        assert params.get(f"/{name}/thruster_allocator/from_description", False) == (vehicle != "ux1")
+    for name in ("UX_1", "UX_2"):
+        assert params[f"/{name}/dvl_from_simulator"] is True
+
+
+def test_an_unknown_vehicle_type_stops_the_launch_with_one_line_naming_it():
+    out = roslaunch("--nodes", "unexmin", "mine_world.launch", "vehicles:=ux1,bluerov2_heavy,glider")
+    assert out.returncode != 0
+    assert (
+        "vehicles: unknown vehicle type 'glider' (expected: ux1, bluerov2_heavy, remus100)" in out.stderr + out.stdout
+    )

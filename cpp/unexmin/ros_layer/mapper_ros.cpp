@@ -81,8 +81,10 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   tf_spinner_->start();
   ROS_INFO_STREAM("mapper: " << robots_.size() << " robot(s), resolution " << params_.resolution << " m, max range "
                              << params_.max_range << " m (M3 " << m3_max_range_ << " m, SLS " << sls_max_range_
-                             << " m), M3 " << (use_m3_ ? "on" : "off") << ", " << sls_units_ << " SLS unit(s)"
-                             << (map_file_.empty() ? "" : ", saves to " + map_file_));
+                             << " m, sonar " << sonar_max_range_ << " m, DVL " << dvl_max_range_ << " m), M3 "
+                             << (use_m3_ ? "on" : "off") << ", " << sls_units_ << " SLS unit(s), sonar "
+                             << (use_sonar_ ? "/<robot>/" + sonar_topic_ : "off") << ", DVL "
+                             << (use_dvl_ ? "on" : "off") << (map_file_.empty() ? "" : ", saves to " + map_file_));
 }
 
 void MapperRos::loadParams() {
@@ -93,9 +95,11 @@ void MapperRos::loadParams() {
   pnh_.param("clamp_min", params_.clamp_min, params_.clamp_min);
   pnh_.param("clamp_max", params_.clamp_max, params_.clamp_max);
   params_.validate();
-  m3_max_range_ = sls_max_range_ = params_.max_range;
+  m3_max_range_ = sls_max_range_ = sonar_max_range_ = dvl_max_range_ = params_.max_range;
   pnh_.param("m3_max_range", m3_max_range_, m3_max_range_);
   pnh_.param("sls_max_range", sls_max_range_, sls_max_range_);
+  pnh_.param("sonar_max_range", sonar_max_range_, sonar_max_range_);
+  pnh_.param("dvl_max_range", dvl_max_range_, dvl_max_range_);
   // A source's range may only be shorter than max_range (its rays carve no farther than max_range anyway).
   const bool limited = params_.max_range > 0.0;
   const std::string expected =
@@ -104,9 +108,16 @@ void MapperRos::loadParams() {
           expected);
   require(!limited || (sls_max_range_ > 0.0 && sls_max_range_ <= params_.max_range), "sls_max_range", sls_max_range_,
           expected);
+  require(!limited || (sonar_max_range_ > 0.0 && sonar_max_range_ <= params_.max_range), "sonar_max_range",
+          sonar_max_range_, expected);
+  require(!limited || (dvl_max_range_ > 0.0 && dvl_max_range_ <= params_.max_range), "dvl_max_range", dvl_max_range_,
+          expected);
   pnh_.param("frame_id", world_frame_, world_frame_);
   pnh_.param("m3", use_m3_, use_m3_);
   pnh_.param("sls_units", sls_units_, sls_units_);
+  pnh_.param("sonar", use_sonar_, use_sonar_);
+  pnh_.param("sonar_topic", sonar_topic_, sonar_topic_);
+  pnh_.param("dvl", use_dvl_, use_dvl_);
   pnh_.param("per_robot", per_robot_, per_robot_);
   pnh_.param("publish_rate", publish_rate_, publish_rate_);
   pnh_.param("tf_timeout", tf_timeout_, tf_timeout_);
@@ -121,6 +132,9 @@ void MapperRos::loadParams() {
   require(tf_max_gap_ > 0.0, "tf_max_gap", tf_max_gap_, "> 0 s");
   require(queue_size_ >= 1, "queue_size", queue_size_, ">= 1");
   require(robots_timeout >= 0.0, "robots_timeout", robots_timeout, ">= 0 s");
+  if (use_sonar_ && (sonar_topic_.empty() || sonar_topic_[0] == '/'))
+    throw ParameterError("mapper: parameter '~sonar_topic' = '" + sonar_topic_ +
+                         "': expected a topic relative to /<robot>/ (e.g. imaging_sonar/points)");
   if (world_frame_.empty())
     throw ParameterError("mapper: parameter '~frame_id' is empty: expected a frame");
 
@@ -156,7 +170,19 @@ void MapperRos::subscribe(const std::string& robot) {
   for (int i = 0; i < sls_units_; ++i) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::PointCloud2>(
         "/" + robot + "/sls_" + std::to_string(i) + "/points", queue_size_,
-        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m); }, ros::VoidConstPtr(), hints));
+        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sls_max_range_); },
+        ros::VoidConstPtr(), hints));
+  }
+  if (use_sonar_) {
+    subscribers_.push_back(nh_.subscribe<sensor_msgs::PointCloud2>(
+        "/" + robot + "/" + sonar_topic_, queue_size_,
+        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sonar_max_range_); },
+        ros::VoidConstPtr(), hints));
+  }
+  for (int i = 0; use_dvl_ && i < 4; ++i) {
+    subscribers_.push_back(nh_.subscribe<sensor_msgs::Range>(
+        "/" + robot + "/dvl_sonar" + std::to_string(i), queue_size_,
+        [this, robot](const sensor_msgs::RangeConstPtr& m) { onRange(robot, m); }, ros::VoidConstPtr(), hints));
   }
 }
 
@@ -167,7 +193,7 @@ void MapperRos::onScan(const std::string& robot, const sensor_msgs::LaserScanCon
               scan->ranges));
 }
 
-void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& msg) {
+void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& msg, double max_range) {
   std::vector<octomap::point3d> points;
   points.reserve(static_cast<std::size_t>(msg->width) * msg->height);
   if (msg->width * msg->height > 0) {
@@ -175,7 +201,14 @@ void MapperRos::onCloud(const std::string& robot, const sensor_msgs::PointCloud2
     for (; x != x.end(); ++x, ++y, ++z)
       points.emplace_back(*x, *y, *z);
   }
-  enqueue(robot, msg->header, sls_max_range_, std::move(points));
+  enqueue(robot, msg->header, max_range, std::move(points));
+}
+
+void MapperRos::onRange(const std::string& robot, const sensor_msgs::RangeConstPtr& msg) {
+  std::vector<octomap::point3d> points;
+  if (std::isfinite(msg->range) && msg->range >= msg->min_range && msg->range <= msg->max_range)
+    points.emplace_back(msg->range, 0.0f, 0.0f);
+  enqueue(robot, msg->header, dvl_max_range_, std::move(points));
 }
 
 void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {

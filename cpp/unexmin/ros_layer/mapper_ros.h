@@ -1,9 +1,9 @@
-// The mapper node: every robot's M3 scans and SLS clouds, each placed in the world frame through tf at its own
-// stamp and ray-cast from its own sensor origin into one OctoMap (and per-robot maps on request); the map published
-// on a timer to whoever subscribes, saved on request and at shutdown. Parameters, topics and services:
-// docs/mapping.md. ROS plumbing only: the tf history and its rules (mapping::TfHistory), the clouds waiting for tf
-// (mapping::CloudQueue), scan -> points (mapping::scanPoints), the map and what is shown of it
-// (mapping::OccupancyMap, mapping::occupiedCubes) are in cpp/unexmin/mapping (no ROS).
+// The mapper node: every robot's M3 scans, SLS clouds, imaging sonar clouds and (optionally) DVL beam ranges, each
+// placed in the world frame through tf at its own stamp and ray-cast from its own sensor origin into one OctoMap (and
+// per-robot maps on request); the map published on a timer to whoever subscribes, saved on request and at shutdown.
+// Parameters, topics and services: docs/mapping.md. ROS plumbing only: the tf history and its rules
+// (mapping::TfHistory), the clouds waiting for tf (mapping::CloudQueue), scan -> points (mapping::scanPoints), the map
+// and what is shown of it (mapping::OccupancyMap, mapping::occupiedCubes) are in cpp/unexmin/mapping (no ROS).
 #pragma once
 
 #include <unexmin/mapping/cloud_queue.h>
@@ -14,6 +14,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
 #include <std_srvs/Empty.h>
 #include <tf2_msgs/TFMessage.h>
 #include <unexmin/SaveMap.h>
@@ -50,7 +51,10 @@ private:
   void subscribe(const std::string& robot);
   Output makeOutput(ros::NodeHandle nh);
   void onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan);
-  void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud);
+  /// A point cloud of a source whose points beyond max_range [m] are not marked occupied.
+  void onCloud(const std::string& robot, const sensor_msgs::PointCloud2ConstPtr& cloud, double max_range);
+  /// One DVL beam's range: a point on the beam's +x at that range (none for an invalid or out-of-window range).
+  void onRange(const std::string& robot, const sensor_msgs::RangeConstPtr& range);
   /// Queues a cloud [m, sensor frame] of a source whose points beyond max_range [m] are not marked occupied.
   void enqueue(const std::string& robot, const std_msgs::Header& header, double max_range,
                std::vector<octomap::point3d>&& points);
@@ -71,11 +75,16 @@ private:
   bool use_m3_ = true;
   int sls_units_ = 4;
   bool per_robot_ = false;
-  double m3_max_range_ = 10.0;   ///< [m] the M3's points beyond it are not marked occupied
-  double sls_max_range_ = 10.0;  ///< [m] the SLS units' points beyond it are not marked occupied
-  double publish_rate_ = 1.0;    ///< [Hz, wall]
-  double tf_timeout_ = 10.0;     ///< [s, wall]
-  double tf_max_gap_ = 0.5;      ///< [s, sim]
+  double m3_max_range_ = 10.0;                        ///< [m] the M3's points beyond it are not marked occupied
+  double sls_max_range_ = 10.0;                       ///< [m] the SLS units' points beyond it are not marked occupied
+  bool use_sonar_ = true;                             ///< each robot's imaging sonar cloud (if it has one)
+  std::string sonar_topic_ = "imaging_sonar/points";  ///< relative to /<robot>/
+  double sonar_max_range_ = 10.0;                     ///< [m] the sonar's points beyond it are not marked occupied
+  bool use_dvl_ = false;                              ///< each robot's DVL beam ranges (dvl_sonar0..3)
+  double dvl_max_range_ = 10.0;                       ///< [m] the DVL's points beyond it are not marked occupied
+  double publish_rate_ = 1.0;                         ///< [Hz, wall]
+  double tf_timeout_ = 10.0;                          ///< [s, wall]
+  double tf_max_gap_ = 0.5;                           ///< [s, sim]
   int queue_size_ = 5000;
   std::string map_file_;
 

@@ -1,5 +1,7 @@
 #include <unexmin/sim/world.h>
 
+#include <unexmin/sim/spawn_placement.h>
+
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
@@ -73,12 +75,19 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
     static_bodies_.push_back(std::move(sb));
   }
 
+  std::vector<double> radii;
   for (int i = 0; i < robot_count; ++i) {
-    const RobotSpawn& spawn = config.robots[i];
-    const auto it = descriptions.find(spawn.name);
+    const auto it = descriptions.find(config.robots[i].name);
     if (it == descriptions.end())
-      throw ConfigError(config.file + ": no robot description for '" + spawn.name + "'");
-    robots_.push_back(std::make_unique<Robot>(it->second, spawn));
+      throw ConfigError(config.file + ": no robot description for '" + config.robots[i].name + "'");
+    radii.push_back(hullRadius(it->second));
+  }
+  placeSpawns(config_.robots, radii, static_cast<std::size_t>(robot_count), config.surface_z, spawnProbe(),
+              config.file);
+
+  for (int i = 0; i < robot_count; ++i) {
+    const RobotSpawn& spawn = config_.robots[i];
+    robots_.push_back(std::make_unique<Robot>(descriptions.at(spawn.name), spawn));
     dynamics_->addRigidBody(robots_.back()->body());
     robots_.back()->body()->setGravity(btVector3(0, 0, 0));
   }
@@ -87,6 +96,34 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
   water_.gravity = config.gravity;
   water_.surface_z = config.surface_z;
   water_.current = current_.velocity();
+}
+
+SpawnProbe World::spawnProbe() {
+  SpawnProbe probe;
+  probe.clear = [this](const Eigen::Vector3d& centre, double radius) {
+    struct Touch : btCollisionWorld::ContactResultCallback {
+      bool touched = false;
+      btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
+                               const btCollisionObjectWrapper*, int, int) override {
+        touched = touched || point.getDistance() < 0;
+        return 0;
+      }
+    };
+    btSphereShape sphere(static_cast<btScalar>(radius));
+    btCollisionObject ball;
+    ball.setCollisionShape(&sphere);
+    ball.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(centre.x(), centre.y(), centre.z())));
+    Touch touch;
+    dynamics_->contactTest(&ball, touch);
+    return !touch.touched;
+  };
+  probe.open = [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const btVector3 from(a.x(), a.y(), a.z()), to(b.x(), b.y(), b.z());
+    btCollisionWorld::ClosestRayResultCallback ray(from, to);
+    dynamics_->rayTest(from, to, ray);
+    return !ray.hasHit();
+  };
+  return probe;
 }
 
 void World::loadSurface(std::size_t i) {

@@ -6,6 +6,7 @@
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/robot.h>
 #include <unexmin/sim/sediment.h>
+#include <unexmin/sim/spawn_placement.h>
 #include <unexmin/sim/texture_image.h>
 #include <unexmin/sim/world_config.h>
 
@@ -29,7 +30,8 @@ namespace sim {
 class World {
 public:
   /// `descriptions` maps robot name -> description for every robot to spawn; robots are spawned in
-  /// the world file's order, the first `robot_count` of them (all when robot_count < 0).
+  /// the world file's order, the first `robot_count` of them (all when robot_count < 0); those not `placed` get a
+  /// pose by placeSpawns (sim/spawn_placement.h) among the collision meshes.
   /// dt: physics step [s] > 0. Throws ConfigError on a bad mesh, a missing description or a bad step.
   World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions, int robot_count,
         double dt, std::uint64_t seed);
@@ -73,6 +75,8 @@ public:
   void reset(std::uint64_t seed);
 
 private:
+  /// The spawn placement's questions answered by the static collision bodies (before any robot is added).
+  SpawnProbe spawnProbe();
   /// The image texture or vertex colours of mesh entry i's material, checked against its mesh (after it is loaded).
   void loadSurface(std::size_t i);
 

@@ -356,13 +356,29 @@ void selectRobots(WorldConfig& config, const std::vector<std::string>& names) {
   for (const auto& r : config.robots)
     known += (known.empty() ? "" : ", ") + r.name;
   for (const auto& name : names) {
-    const auto it =
-        std::find_if(config.robots.begin(), config.robots.end(), [&](const RobotSpawn& r) { return r.name == name; });
-    if (it == config.robots.end())
-      throw ConfigError(config.file + ": no robot '" + name + "' in 'robots' (expected one of: " + known + ")");
     if (std::any_of(chosen.begin(), chosen.end(), [&](const RobotSpawn& r) { return r.name == name; }))
       throw ConfigError(config.file + ": robot '" + name + "' is selected twice");
-    chosen.push_back(*it);
+    const auto it =
+        std::find_if(config.robots.begin(), config.robots.end(), [&](const RobotSpawn& r) { return r.name == name; });
+    if (it != config.robots.end()) {
+      chosen.push_back(*it);
+      continue;
+    }
+    // <prefix>_<k>: anchored at the world's first robot of that prefix, placed by the world
+    const std::size_t cut = name.rfind('_');
+    const std::string prefix = cut == std::string::npos ? "" : name.substr(0, cut + 1);
+    const bool numbered = cut != std::string::npos && cut + 1 < name.size() && name[cut + 1] != '0' &&
+                          name.find_first_not_of("0123456789", cut + 1) == std::string::npos;
+    const auto anchor = std::find_if(config.robots.begin(), config.robots.end(), [&](const RobotSpawn& r) {
+      return !prefix.empty() && r.name.compare(0, prefix.size(), prefix) == 0;
+    });
+    if (!numbered || anchor == config.robots.end())
+      throw ConfigError(config.file + ": no robot '" + name + "' in 'robots' (expected one of: " + known +
+                        ", or <prefix>_<k> of a listed robot's prefix)");
+    RobotSpawn extra = *anchor;
+    extra.name = name;
+    extra.placed = false;
+    chosen.push_back(extra);
   }
   for (const auto& r : config.robots)
     if (std::find(names.begin(), names.end(), r.name) == names.end())

@@ -39,6 +39,9 @@ struct RobotSpawn {
   std::string name;         ///< Robot namespace, e.g. "UX_1".
   std::string description;  ///< Robot description file name in the package's urdf/ folder.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< base_link in the world frame.
+  /// False for a robot the world file does not list (a team's extra vehicle): the world places it by the rule of
+  /// sim/spawn_placement.h, and `pose` holds its anchor's pose until then.
+  bool placed = true;
 };
 
 struct WorldConfig {
@@ -68,7 +71,9 @@ struct WorldConfig {
 WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file = "");
 
 /// Puts the world's robots named in `names` first, in that order (the simulator then runs the first names.size()
-/// robots). Throws ConfigError naming a name the world does not spawn, or one given twice.
+/// robots). A name the world does not list but of the form <prefix>_<k> (k >= 1) where some listed robot is
+/// <prefix>_<j> becomes an unplaced spawn anchored at that robot (docs/worlds.md, "Robots the world does not list").
+/// Throws ConfigError naming any other unknown name, or one given twice.
 void selectRobots(WorldConfig& config, const std::vector<std::string>& names);
 
 /// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
