@@ -41,6 +41,7 @@ PAINT_ANGLE = math.radians(55.0)
 # a pass's corner point (by a side wall and the floor or the roof) keeps this share of the stand-off from the
 # tunnel's nominal cross-section: the gallery's own corners keep 0.72 (murky water) to 0.82 (clear water)
 CORNER_SHARE = 0.7
+MURKY_BELOW = 14.0  # [m] the helix's depth under the first level where the SLS units see less than the stand-off
 
 
 @dataclass
@@ -78,7 +79,8 @@ class SurveyOptions:
 def options_for(visibility, wall_noise, gallery=40.0):
     """SurveyOptions for a water visibility level (SLS_REACH) in a mine whose walls stray up to wall_noise [m]
     from their nominal surface (the generator's `wall_noise_max`): the stand-offs shrink to cos(PAINT_ANGLE) of
-    the SLS reach, but never below the hull's radius, CLEARANCE, MESH_MARGIN and wall_noise."""
+    the SLS reach, but never below the hull's radius, CLEARANCE, MESH_MARGIN and wall_noise; where they shrink
+    (murky water) the helix goes down to MURKY_BELOW under the first level."""
     if visibility not in SLS_REACH:
         raise ValueError(f"visibility {visibility!r}: expected one of {', '.join(SLS_REACH)}")
     if not wall_noise >= 0:
@@ -86,6 +88,10 @@ def options_for(visibility, wall_noise, gallery=40.0):
     o = SurveyOptions(gallery=gallery, sls_reach=SLS_REACH[visibility])
     nearest = HULL_RADIUS + CLEARANCE + MESH_MARGIN + wall_noise
     wanted = math.cos(PAINT_ANGLE) * o.sls_reach
+    if wanted < o.standoff:
+        # murky: from their stand-off the units see neither the gallery's floor nor its roof (their cameras look
+        # 32 degrees up and down at most), but every wall of the shaft from the helix: the helix goes on deeper
+        o.below = MURKY_BELOW
     o.standoff = max(nearest, min(o.standoff, wanted))
     o.gallery_standoff = max(nearest, min(o.gallery_standoff, wanted))
     return o
