@@ -27,6 +27,7 @@ from unexmin.missions.survey import (
     CORNER_SHARE,
     HULL_RADIUS,
     MESH_MARGIN,
+    MURKY_BELOW,
     Reference,
     SurveyOptions,
     mine_layout,
@@ -84,6 +85,12 @@ def test_the_plan_follows_another_mine_and_keeps_clear_of_its_walls(mine, visibi
         # as close as the roughest wall allows: hull radius, clearance, a margin and the noise's largest amplitude
         nearest = HULL_RADIUS + CLEARANCE + MESH_MARGIN + sum(a for _, a in preset.octaves)
         assert options.standoff == pytest.approx(nearest) and options.gallery_standoff == pytest.approx(nearest)
+        # the helix goes deeper, down to MURKY_BELOW under the level or 1.5 m above the shaft's rounded bottom
+        shaft = next(t for t in layout.tunnels if t.kind == "shaft")
+        bottom = max(gallery.points[0, 2] - MURKY_BELOW, shaft.points[:, 2].min() + shaft.c + 1.5)
+        assert pts[:, 2].min() == pytest.approx(bottom, abs=0.05)
+    else:
+        assert options.below == SurveyOptions().below
 
 
 def test_murky_water_adds_two_gallery_passes(mine):
