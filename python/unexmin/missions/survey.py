@@ -10,11 +10,13 @@ gives the seed and the preset), so it follows any generated mine:
 3. the first level's gallery, out and back over `gallery` metres: out off-centre to one side and low, back to
    the other side and high (`standoff` from the nominal walls), the robot turning about its vertical axis all
    the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it); on the way out,
-   each side tunnel (crosscut, chamber) that opens on that stretch is flown to its far end low and back high
-   (`gallery_standoff` from its nominal floor and roof), still turning.
+   each side tunnel (crosscut, chamber, ramp) that opens on that stretch is flown along its first leg, out low
+   by one wall and back high by the other (`gallery_standoff` from its nominal walls, `section_offsets`), in
+   and out through its axis at the junction, still turning.
 Where the water is murky the SLS units see only a short way (`sls_reach`): the passes come closer to the walls,
-as close as the rock's roughness allows (`options_for`), and where the units do not reach across the gallery it
-is flown twice more, out low by the other wall and back high by the first, so that every corner is passed near.
+as close as the rock's roughness allows (`options_for`), where the units do not reach across the gallery it
+is flown twice more, out low by the other wall and back high by the first, so that every corner is passed near,
+and the helix goes on deeper (MURKY_BELOW: the units see the shaft's walls, not a gallery's floor or roof).
 The pendulum pitches the robot (a positive angle: nose down, about 10 degrees at its 30-degree limit;
 docs/hydrodynamics.md): nose up for the first turn of the helix (the shaft above), nose down under the first
 level (the shaft below), level otherwise (pitched in the gallery, the M3 fan grazes the floor far off and
