@@ -24,13 +24,16 @@ import yaml
 from unexmin.mine_generator import generator as mg
 from unexmin.missions.survey import (
     CLEARANCE,
+    CORNER_SHARE,
     HULL_RADIUS,
     MESH_MARGIN,
+    MURKY_BELOW,
     Reference,
     SurveyOptions,
     mine_layout,
     options_for,
     plan,
+    section_offsets,
 )
 
 REPO = Path(__file__).resolve().parents[2]
@@ -82,6 +85,12 @@ def test_the_plan_follows_another_mine_and_keeps_clear_of_its_walls(mine, visibi
         # as close as the roughest wall allows: hull radius, clearance, a margin and the noise's largest amplitude
         nearest = HULL_RADIUS + CLEARANCE + MESH_MARGIN + sum(a for _, a in preset.octaves)
         assert options.standoff == pytest.approx(nearest) and options.gallery_standoff == pytest.approx(nearest)
+        # the helix goes deeper, down to MURKY_BELOW under the level or 1.5 m above the shaft's rounded bottom
+        shaft = next(t for t in layout.tunnels if t.kind == "shaft")
+        bottom = max(gallery.points[0, 2] - MURKY_BELOW, shaft.points[:, 2].min() + shaft.c + 1.5)
+        assert pts[:, 2].min() == pytest.approx(bottom, abs=0.05)
+    else:
+        assert options.below == SurveyOptions().below
 
 
 def test_murky_water_adds_two_gallery_passes(mine):
@@ -103,6 +112,39 @@ def test_murky_water_adds_two_gallery_passes(mine):
         crossings[visibility] = int(np.count_nonzero(np.diff(beyond.astype(int)) != 0))
     assert crossings["none"] == 2  # in at the end of the way out, out at the start of the way back
     assert crossings["medium"] == 4
+
+
+def test_section_offsets_keep_the_corners_off_a_round_section():
+    """A circular section of radius R (exponent 2 above and below): a corner (±o, ±o) is R - sqrt(2) o from the
+    wall. Narrow (R = 1.9, stand-off 1.115): o = R - standoff already keeps CORNER_SHARE of the stand-off; wide
+    (R = 3.5, stand-off 1): R - standoff would come within 0.23 m of the curved wall, so o shrinks to about
+    (R - CORNER_SHARE standoff) / sqrt(2) (steps of 2 %)."""
+    narrow = mg.Tunnel("crosscut", [[0, 0, 0], [5, 0, 0]], 1.9, 1.9, p_floor=2.0, p_roof=2.0)
+    assert section_offsets(narrow, 1.115) == pytest.approx((1.9 - 1.115, 1.9 - 1.115))
+    wide = mg.Tunnel("chamber", [[0, 0, 0], [5, 0, 0]], 3.5, 3.5, p_floor=2.0, p_roof=2.0)
+    across, up = section_offsets(wide, 1.0)
+    assert across == pytest.approx(up)
+    expected = (3.5 - CORNER_SHARE * 1.0) / math.sqrt(2.0)
+    assert expected * 0.98 <= across <= expected + 1e-3
+    assert 3.5 - math.sqrt(2.0) * across >= CORNER_SHARE * 1.0 - 0.01  # the circle sampled every half degree
+
+
+def test_a_side_chamber_is_flown_by_both_its_walls(mine):
+    """The chamber beside the gallery on this mine (its first leg opens on the stretch): flown low by one wall
+    and high by the other, each the stand-off (or less, at the corners) from its nominal walls."""
+    layout, preset = mine_layout(str(mine))
+    sx, _ = layout.shaft_xy
+    chamber = next(t for t in layout.tunnels if t.kind == "chamber" and sx < t.points[:, 0].min() < sx + GALLERY - 1.0)
+    (x0, y0, z0), (x1, _, _) = chamber.points[0], chamber.points[1]
+    options = options_for("medium", sum(a for _, a in preset.octaves), GALLERY)
+    across, up = section_offsets(chamber, options.gallery_standoff)
+    ref = Reference(*plan(layout, preset, (*layout.spawns[0], 0.0), options))
+    pts = np.array([ref(s)[0][:3] for s in np.arange(0.0, ref.duration, 0.5)])
+    along = pts[(pts[:, 0] > x0 + 1.0) & (pts[:, 0] < x1 - 1.0)]
+    for side in (-1, 1):
+        target = np.array([y0 + side * across, z0 + side * up])
+        assert np.min(np.linalg.norm(along[:, 1:] - target, axis=1)) < 0.05, (side, target)
+    assert across > 1.5  # well off the chamber's axis, towards its walls 3.5 m away
 
 
 def test_bad_survey_options_are_named():

@@ -10,11 +10,13 @@ gives the seed and the preset), so it follows any generated mine:
 3. the first level's gallery, out and back over `gallery` metres: out off-centre to one side and low, back to
    the other side and high (`standoff` from the nominal walls), the robot turning about its vertical axis all
    the way (every SLS unit and the M3 fan paint the walls, the floor and the roof around it); on the way out,
-   each side tunnel (crosscut, chamber) that opens on that stretch is flown to its far end low and back high
-   (`gallery_standoff` from its nominal floor and roof), still turning.
+   each side tunnel (crosscut, chamber, ramp) that opens on that stretch is flown along its first leg, out low
+   by one wall and back high by the other (`gallery_standoff` from its nominal walls, `section_offsets`), in
+   and out through its axis at the junction, still turning.
 Where the water is murky the SLS units see only a short way (`sls_reach`): the passes come closer to the walls,
-as close as the rock's roughness allows (`options_for`), and where the units do not reach across the gallery it
-is flown twice more, out low by the other wall and back high by the first, so that every corner is passed near.
+as close as the rock's roughness allows (`options_for`), where the units do not reach across the gallery it
+is flown twice more, out low by the other wall and back high by the first, so that every corner is passed near,
+and the helix goes on deeper (MURKY_BELOW: the units see the shaft's walls, not a gallery's floor or roof).
 The pendulum pitches the robot (a positive angle: nose down, about 10 degrees at its 30-degree limit;
 docs/hydrodynamics.md): nose up for the first turn of the helix (the shaft above), nose down under the first
 level (the shaft below), level otherwise (pitched in the gallery, the M3 fan grazes the floor far off and
@@ -38,6 +40,10 @@ MESH_MARGIN = 0.05  # [m] more, for the collision mesh's flat facets across curv
 SLS_REACH = {"none": 5.0, "low": 4.9, "medium": 1.85, "high": 0.59}
 # a unit paints a wall out to this angle off the wall's normal when the wall is at cos(angle) of its reach
 PAINT_ANGLE = math.radians(55.0)
+# a pass's corner point (by a side wall and the floor or the roof) keeps this share of the stand-off from the
+# tunnel's nominal cross-section: the gallery's own corners keep 0.72 (murky water) to 0.82 (clear water)
+CORNER_SHARE = 0.7
+MURKY_BELOW = 14.0  # [m] the helix's depth under the first level where the SLS units see less than the stand-off
 
 
 @dataclass
@@ -75,7 +81,8 @@ class SurveyOptions:
 def options_for(visibility, wall_noise, gallery=40.0):
     """SurveyOptions for a water visibility level (SLS_REACH) in a mine whose walls stray up to wall_noise [m]
     from their nominal surface (the generator's `wall_noise_max`): the stand-offs shrink to cos(PAINT_ANGLE) of
-    the SLS reach, but never below the hull's radius, CLEARANCE, MESH_MARGIN and wall_noise."""
+    the SLS reach, but never below the hull's radius, CLEARANCE, MESH_MARGIN and wall_noise; where they shrink
+    (murky water) the helix goes down to MURKY_BELOW under the first level."""
     if visibility not in SLS_REACH:
         raise ValueError(f"visibility {visibility!r}: expected one of {', '.join(SLS_REACH)}")
     if not wall_noise >= 0:
@@ -83,6 +90,10 @@ def options_for(visibility, wall_noise, gallery=40.0):
     o = SurveyOptions(gallery=gallery, sls_reach=SLS_REACH[visibility])
     nearest = HULL_RADIUS + CLEARANCE + MESH_MARGIN + wall_noise
     wanted = math.cos(PAINT_ANGLE) * o.sls_reach
+    if wanted < o.standoff:
+        # murky: from their stand-off the units see neither the gallery's floor nor its roof (their cameras look
+        # 32 degrees up and down at most), but every wall of the shaft from the helix: the helix goes on deeper
+        o.below = MURKY_BELOW
     o.standoff = max(nearest, min(o.standoff, wanted))
     o.gallery_standoff = max(nearest, min(o.gallery_standoff, wanted))
     return o
@@ -107,6 +118,27 @@ def mine_layout(world_file):
         r = json.load(f)
     preset = PRESETS[r["preset"]["name"]]
     return make_layout(preset, int(r["seed"])), preset
+
+
+def section_offsets(tunnel, standoff):
+    """(across, up) [m]: offsets from a tunnel's axis, towards a side wall and towards the floor or the roof, of a
+    pass `standoff` from the nominal side wall and the nominal floor or roof: (a - standoff, b - standoff) (0
+    where negative), shrunk together where a corner point (±across, ±up) would come nearer than CORNER_SHARE
+    of the stand-off to the tunnel's nominal cross-section (the generator's superellipse: half width a, half
+    height b, exponent p_floor below the axis and p_roof above; in a tall, rounded chamber the corners of
+    (a - standoff, b - standoff) lie near the curved roof)."""
+    theta = np.linspace(0.0, 2.0 * math.pi, 721)[:-1]
+    ct, st = np.cos(theta), np.sin(theta)
+    p = np.where(st < 0.0, tunnel.p_floor, tunnel.p_roof)
+    r = (np.abs(ct / tunnel.a) ** p + np.abs(st / tunnel.b) ** p) ** (-1.0 / p)
+    boundary = np.column_stack([r * ct, r * st])
+    across, up = max(tunnel.a - standoff, 0.0), max(tunnel.b - standoff, 0.0)
+    for _ in range(200):
+        corners = np.array([[across, up], [-across, up], [across, -up], [-across, -up]])
+        if np.linalg.norm(boundary[None, :, :] - corners[:, None, :], axis=2).min() >= CORNER_SHARE * standoff:
+            break
+        across, up = 0.98 * across, 0.98 * up
+    return across, up
 
 
 def _turns(yaw0, yaw1, step):
@@ -159,19 +191,20 @@ def plan(layout, preset, start, options=None):
 
     # 3. the gallery, out (one side, low) and back (other side, high), turning; where the SLS units do not
     # reach across it, out again low by the other side and back high by the first
+    g_across, g_up = section_offsets(gallery, o.gallery_standoff)
+
     def offset_point(x, side, vertical):
         p = np.array([x, np.interp(x, poly[:, 0], poly[:, 1]), np.interp(x, poly[:, 0], poly[:, 2])])
         t = np.array([1.0, np.interp(x + 0.5, poly[:, 0], poly[:, 1]) - np.interp(x - 0.5, poly[:, 0], poly[:, 1])])
         n = np.array([-t[1], t[0]]) / np.linalg.norm(t)
-        dy = max(gallery.a - o.gallery_standoff, 0.0) * side
-        dz = max(gallery.b - o.gallery_standoff, 0.0) * vertical
-        return p[0] + n[0] * dy, p[1] + n[1] * dy, p[2] + dz
+        return p[0] + n[0] * g_across * side, p[1] + n[1] * g_across * side, p[2] + g_up * vertical
 
     x0 = sx + shaft.a + 0.5
     x1 = min(sx + o.gallery, float(poly[-1, 0]) - 3.0)
     if x1 <= x0:
         raise ValueError(f"survey gallery {o.gallery} m: the first level's gallery is too short")
     per_step = step / o.gallery_yaw_rate * o.gallery_speed if o.gallery_yaw_rate > 0 else 1.0
+    murky = o.sls_reach < 2.0 * min(gallery.a, gallery.b) - o.gallery_standoff
 
     def fly(p, q):
         """Straight from p to q [m], turning."""
@@ -186,36 +219,45 @@ def plan(layout, preset, start, options=None):
                 1.05 * o.gallery_yaw_rate,
             )
 
-    # side tunnels opening on the stretch: (x of the junction on the gallery, near end, far end)
+    # side tunnels opening on the stretch (crosscuts, chambers, ramps): their first leg, from the end on the
+    # gallery to the next point of the tunnel's axis, lies within the sensors' range of the gallery; it is flown
+    # out low by one wall and back high by the other, `gallery_standoff` from its nominal walls
+    def gap(pt):
+        return abs(pt[1] - np.interp(pt[0], poly[:, 0], poly[:, 1])) + abs(pt[2] - z_level)
+
     sides = []
     for t in layout.tunnels:
-        if t.kind not in ("crosscut", "chamber") or len(t.points) != 2:
+        if t.kind not in ("crosscut", "chamber", "ramp") or len(t.points) < 2:
             continue
-        gap = [abs(pt[1] - np.interp(pt[0], poly[:, 0], poly[:, 1])) + abs(pt[2] - z_level) for pt in t.points]
-        near, far = (t.points[0], t.points[1]) if gap[0] <= gap[1] else (t.points[1], t.points[0])
-        if x0 + 1.0 <= near[0] <= x1 - 1.0 and min(gap) < gallery.a + t.a:
-            dz = np.array([0.0, 0.0, max(t.b - o.gallery_standoff, 0.0)])
-            sides.append((float(near[0]), near, far, dz))
+        near, far = (t.points[0], t.points[1]) if gap(t.points[0]) <= gap(t.points[-1]) else t.points[[-1, -2]]
+        u = far - near
+        if not (x0 + 1.0 <= near[0] <= x1 - 1.0 and gap(near) < gallery.a + t.a) or math.hypot(u[0], u[1]) < 1e-6:
+            continue
+        t_across, t_up = section_offsets(t, o.gallery_standoff)
+        n = np.array([-u[1], u[0], 0.0]) / math.hypot(u[0], u[1])
+        low, high = -t_across * n - [0.0, 0.0, t_up], t_across * n + [0.0, 0.0, t_up]
+        # in and out through the tunnel's axis at the junction (a straight line from a pass's corner to the
+        # other tunnel's corner would cut the rock between them)
+        sides.append((float(near[0]), [near, near + low, far + low, far + high, near + high, near]))
     sides.sort(key=lambda v: v[0])
     passes = [(1, -1, (x0, x1)), (-1, 1, (x1, x0))]
-    if o.sls_reach < 2.0 * min(gallery.a, gallery.b) - o.gallery_standoff:
+    if murky:
         passes += [(-1, -1, (x0, x1)), (1, 1, (x1, x0))]
     for k, (side, vertical, (xa, xb)) in enumerate(passes):
         go(*offset_point(xa, side, vertical), yaw, o.gallery_speed, pendulum=0.0)
-        stops = [v for v in sides if k == 0] + [(xb, None, None, None)]
+        stops = [v for v in sides if k == 0] + [(xb, None)]
         x = xa
-        for xs, near, far, dz in stops:
+        for xs, corners in stops:
             n = max(1, int(math.ceil(abs(xs - x) / per_step)))
             for xi in np.linspace(x, xs, n + 1)[1:]:
                 yaw += step if o.gallery_yaw_rate > 0 else 0.0
                 go(*offset_point(float(xi), side, vertical), yaw, o.gallery_speed, 1.05 * o.gallery_yaw_rate)
             x = xs
-            if near is not None:
-                fly(offset_point(xs, side, vertical), tuple(near - dz))
-                fly(tuple(near - dz), tuple(far - dz))
-                fly(tuple(far - dz), tuple(far + dz))
-                fly(tuple(far + dz), tuple(near + dz))
-                fly(tuple(near + dz), offset_point(xs, side, vertical))
+            if corners is not None:
+                route = [offset_point(xs, side, vertical)] + [tuple(c) for c in corners]
+                route.append(offset_point(xs, side, vertical))
+                for p, q in zip(route, route[1:]):
+                    fly(p, q)
     go(sx + shaft.a - 1.0, sy, z_level, yaw, o.gallery_speed, pendulum=0.0)
     return np.array(frames), np.array(times)
 
