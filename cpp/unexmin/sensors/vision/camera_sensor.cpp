@@ -309,7 +309,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
     for (std::size_t k = 0; k < strips; ++k)
       strip(k);
   if (scatter_)  // the tiles kept their direct light: blur it over the whole image
-    scatter_->apply(frame_.radiance);
+    scatter_->apply(frame_.radiance, ctx.rays);
   touched_.clear();
   if (snow_) {
     MarineSnow::Motion motion;

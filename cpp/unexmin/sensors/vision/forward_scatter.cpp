@@ -1,7 +1,6 @@
 #include <unexmin/sensors/vision/forward_scatter.h>
 
 #include <unexmin/core/error.h>
-#include <unexmin/sensors/vision/parallel_rows.h>
 
 #include <algorithm>
 #include <cmath>
@@ -142,7 +141,7 @@ void ForwardScatter::blur(const float* in, float* out, double sigma_cells, std::
     }
 }
 
-void ForwardScatter::apply(std::vector<float>& radiance) const {
+void ForwardScatter::apply(std::vector<float>& radiance, const raycast::RayCaster* pool) const {
   const std::size_t cells = static_cast<std::size_t>(cols_) * rows_;
   std::vector<float> total(cells * 3, 0.0f), tmp;
   for (int k = 0; k < kBands; ++k) {
@@ -153,7 +152,8 @@ void ForwardScatter::apply(std::vector<float>& radiance) const {
   }
   // Bilinear between cell centres, clamped at the edges.
   const float inv_cell = 1.0f / static_cast<float>(cell_), half = 0.5f * static_cast<float>(cell_ - 1);
-  parallelRows(height_, [&](int v0, int v1) {
+  const auto strip = [&](std::size_t k) {
+    const int v0 = static_cast<int>(k) * kStripRows, v1 = std::min(v0 + kStripRows, height_);
     for (int v = v0; v < v1; ++v) {
       const float y = std::min(static_cast<float>(rows_ - 1), std::max(0.0f, (v - half) * inv_cell));
       const int r0 = std::min(static_cast<int>(y), std::max(0, rows_ - 2));
@@ -175,7 +175,13 @@ void ForwardScatter::apply(std::vector<float>& radiance) const {
         }
       }
     }
-  });
+  };
+  const std::size_t strips = static_cast<std::size_t>((height_ + kStripRows - 1) / kStripRows);
+  if (pool)
+    pool->parallelFor(strips, strip);
+  else
+    for (std::size_t k = 0; k < strips; ++k)
+      strip(k);
 }
 
 }  // namespace vision

@@ -24,6 +24,7 @@
 // Clear water is left alone: below kMinScattering (the `none` level) the pass does not run. Knows no ROS.
 #pragma once
 
+#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Core>
@@ -73,8 +74,12 @@ public:
   /// Adds the halo of `n` pixels of the tile (cell column cu, row cv): their direct radiance per channel
   /// (direct[c][i]) at range[i] [m] (max_range and beyond: open water, nothing). One thread per cell at a time.
   void accumulate(int cu, int cv, int n, const float* const direct[3], const float* range);
-  /// Blurs the frame's halo and adds it to `radiance` (3 floats per pixel, row-major [W m^-2 sr^-1]).
-  void apply(std::vector<float>& radiance) const;
+  /// Blurs the frame's halo and adds it to `radiance` (3 floats per pixel, row-major [W m^-2 sr^-1]). The
+  /// interpolation to the pixels runs in strips of kStripRows rows on `pool`'s threads (the camera's ray caster; null:
+  /// on the calling thread alone); every pixel is computed alone, so the image does not depend on it.
+  void apply(std::vector<float>& radiance, const raycast::RayCaster* pool = nullptr) const;
+
+  static constexpr int kStripRows = 16;  ///< rows per job of the interpolation pass
 
 private:
   /// Separable Gaussian blur of one band's grid (3 channels interleaved), normalised at the edges.
