@@ -163,6 +163,30 @@ TEST(ForwardScatter, OnTheCastersThreadsTheImageIsTheOneThreadsBitForBit) {
   EXPECT_NE(alone, base);  // the pass added a halo
 }
 
+TEST(ForwardScatter, SiltOnTheCameraLegAddsItsForwardScatteringsToTheHalo) {
+  // One tile of direct light 1 at range r with x more forward scatterings per pixel (the silt's eta tau): its halo
+  // holds exp(lambda + x) - 1 of the direct light, also in water too clear for the pass alone; x = 0 is the water's.
+  const int size = 256, cell = 8;  // the tile in the middle, its halo well inside the frame
+  const double r = 1.2;
+  for (const char* level : {"none", "medium"}) {
+    const WaterOptics water = WaterOptics::fromVisibility(level, kColour);
+    ForwardScatter fs(water, 10.0, 400.0, size, size, cell);
+    for (const float x : {0.0f, 0.3f, 1.5f}) {
+      fs.clear();
+      std::vector<float> ones(64, 1.0f), range(64, static_cast<float>(r)), extra(64, x);
+      const float* direct[3] = {ones.data(), ones.data(), ones.data()};
+      fs.accumulate(16, 16, 64, direct, range.data(), extra.data());
+      std::vector<float> radiance(3 * size * size, 0.0f);
+      fs.apply(radiance);
+      double power = 0;
+      for (int i = 0; i < size * size; ++i)
+        power += radiance[3 * i + 1];
+      const double expected = 64 * (std::exp(fs.scatterings(r)[1] + x) - 1.0);
+      EXPECT_NEAR(power, expected, 2e-3 * expected + 1e-9) << level << ", x = " << x;
+    }
+  }
+}
+
 TEST(ForwardScatter, BadGeometryIsRefused) {
   const WaterOptics water = WaterOptics::fromVisibility("medium", kColour);
   EXPECT_THROW(ForwardScatter(water, 0.0, 400, 64, 48, 8), ParameterError);

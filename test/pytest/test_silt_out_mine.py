@@ -16,13 +16,15 @@ Altitude is the robot's own DVL's; the hold is a PID on it whose heave force goe
 (thrusters at zero, its pose set back every 0.1 s by ``set_pose``: a robot landed on the floor would see another view),
 and each judged frame is taken parked at the same pose.
 
-Contrast of a frame: the standard deviation of the 4 x 4-pixel block means of the green channel over a 96 x 64-pixel
-patch in the LED's spot on the floor (blocks average the sensor noise out). Expected values from the model
-(sim/sediment.h, docs/vision.md): the direct light is attenuated by exp(-2 tau), tau the silt's optical depth along
-the ray through the patch's centre (the puffs' closed form), so the contrast relative to clear water follows it; the
-silt is gone when the last puff's centre has sunk 3 sigma below its floor, sigma growing by diffusion. Measured (seed
-5): contrast 0.23 of clear after the hold (exp(-2 tau) 0.19), lowest 0.13 a minute later (the cloud sinks into the
-view), then rising each minute within 20 % of exp(-2 tau); the silt gone at t = 967 s as reckoned; 13 s of wall time.
+Contrast of a frame: the rock's fine contrast, the RMS step between neighbouring 4 x 4-pixel block means of the green
+channel over a 96 x 64-pixel patch in the LED's spot on the floor (blocks average the sensor noise out; steps leave out
+the spot's slow fall). Expected values from the model (sim/sediment.h, docs/vision.md): the direct light is attenuated
+by exp(-2 tau), tau the silt's optical depth along the ray through the patch's centre (the puffs' closed form), so the
+contrast relative to clear water follows it (the halo of the silt's forward scattering, blurred over about 9 px, adds
+little to it); the silt is gone when the last puff's centre has sunk 3 sigma below its floor, sigma growing by
+diffusion. Measured (seed 5): contrast 0.24 of clear after the hold (exp(-2 tau) 0.19), lowest 0.15 a minute later
+(the cloud sinks into the view), then rising each minute within 10 % of exp(-2 tau); the silt gone at t = 967 s as
+reckoned; 15-70 s of wall time (quiet to loaded machine).
 
 Needs the built workspace (unexmin.core), xacro on PATH and the generated mine (scripts/setup.sh).
 Run: source scripts/env.sh; python -m pytest test/pytest/test_silt_out_mine.py -q -s
@@ -61,10 +63,12 @@ def patch(image):
 
 
 def contrast(image):
-    """Standard deviation of the 4 x 4 block means of the patch's green channel [8-bit levels]."""
+    """The rock's fine contrast in the patch [8-bit levels]: the RMS step between neighbouring 4 x 4 block means of the
+    green channel (blocks average the sensor noise out; steps leave out the slow fall of the LED's spot)."""
     pw, ph, _ = PATCH
     blocks = patch(image).astype(float).reshape(ph // 4, 4, pw // 4, 4).mean(axis=(1, 3))
-    return float(blocks.std())
+    steps = np.concatenate([np.diff(blocks, axis=0).ravel(), np.diff(blocks, axis=1).ravel()])
+    return float(np.sqrt(np.mean(steps**2)))
 
 
 def noise_difference(image):
@@ -248,8 +252,10 @@ def test_thrust_near_the_floor_drowns_the_rock_until_the_silt_settles(scene):
         f"silted contrast {silted:.2f} levels ({silted / clear:.3f} of clear); tau {tau:.3f} at the patch's centre: "
         f"exp(-2 tau) = {math.exp(-2 * tau):.3f}; {len(puffs['sigma'])} puffs"
     )
-    assert silted < 0.25 * clear, "well below the clear water's"
-    assert silted / clear == pytest.approx(math.exp(-2 * tau), rel=0.3)
+    assert silted < 0.3 * clear, "well below the clear water's"
+    # exp(-2 tau) dims the direct light; the halo of the silt's forward scattering keeps a little of the fine contrast
+    # (most where the silt is densest, right after the hold).
+    assert silted / clear == pytest.approx(math.exp(-2 * tau), rel=0.4)
 
     # Thrusters off, the robot parked: the silt sinks at the mine's 2 mm/s and goes when the model says (reckoned once
     # the thrust has died away: the thrusters' first-order lag, 0.1 s, still stirs a little for a second).

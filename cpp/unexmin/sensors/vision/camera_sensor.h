@@ -101,8 +101,8 @@ public:
   const LaserLine* laser() const { return laser_.get(); }
   /// The image formation of the latest rendered frame's water (null before the first render).
   const ImageFormation* formation() const { return formation_.get(); }
-  /// The forward scattering of the latest rendered frame (null: none in its water, or off).
-  const ForwardScatter* forwardScatter() const { return scatter_.get(); }
+  /// The forward scattering of the latest rendered frame (null: none in its water and no silt in view, or off).
+  const ForwardScatter* forwardScatter() const { return scatter_on_ ? scatter_.get() : nullptr; }
   /// The suspended particles around the lens (null: none in the water, or off, or before the first render).
   const MarineSnow* marineSnow() const { return snow_.get(); }
   double exposureTime() const { return exposure_time_; }  ///< [s]
@@ -153,7 +153,8 @@ private:
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;
-  std::unique_ptr<ForwardScatter> scatter_;      ///< null in water that scatters too little (ForwardScatter::needed)
+  std::unique_ptr<ForwardScatter> scatter_;      ///< made when first needed (ForwardScatter::needed, or silt in view)
+  bool scatter_on_ = false;                      ///< this frame runs forward scattering
   std::unique_ptr<MarineSnow> snow_;             ///< null in water without particles
   std::unique_ptr<SiltView> silt_;               ///< made when the world first holds silt
   bool silt_on_ = false;                         ///< this frame sees silt

@@ -85,7 +85,8 @@ void ForwardScatter::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0f);
 }
 
-void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct[3], const float* range) {
+void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct[3], const float* range,
+                                const float* extra) {
   if (n <= 0)
     return;
   const float inv_n = 1.0f / static_cast<float>(n), far = static_cast<float>(max_range_);
@@ -100,8 +101,14 @@ void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct
     const float t = x - static_cast<float>(j);
     float* out = &sums_[(static_cast<std::size_t>(band_[j]) * cells + cell) * 3];
     const float* a = &weight_[4 * j];
+    if (extra == nullptr) {
+      for (int c = 0; c < 3; ++c)
+        out[c] += direct[c][i] * (a[c] + t * (a[4 + c] - a[c])) * inv_n;
+      continue;
+    }
+    const float more = std::exp(extra[i]);  // exp(lambda + x) - 1 = (w + 1) exp(x) - 1, w = exp(lambda) - 1
     for (int c = 0; c < 3; ++c)
-      out[c] += direct[c][i] * (a[c] + t * (a[4 + c] - a[c])) * inv_n;
+      out[c] += direct[c][i] * ((a[c] + t * (a[4 + c] - a[c]) + 1.0f) * more - 1.0f) * inv_n;
   }
 }
 
