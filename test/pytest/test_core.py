@@ -275,6 +275,10 @@ def test_set_rendering_renders_only_the_frames_asked_for(urdf):
     ux.set_rendering("camera_0", True)
     w.run_for(0.1)
     assert ux.sample("camera_0")["count"] == 4 and ux.sample("camera_0")["rendered"] is True
+    ux.set_rendering("camera_0", False)
+    w.reset()
+    w.run_for(0.1)
+    assert ux.sample("camera_0")["count"] == 1 and ux.sample("camera_0")["rendered"] is False, "kept across reset()"
 
 
 def test_steady_current_and_no_sediment_in_the_tank(urdf):

@@ -75,8 +75,8 @@ class Robot:
     def set_rendering(self, camera, on):
         """Whether camera `camera` (a name of ``sensors`` of family camera) renders its frames in visual mode. Off,
         its samples only move its schedule (``rendered`` False, no ``image``), as when nobody subscribes to its
-        image topic: a long run renders only the frames it needs. On by default. KeyError for an unknown sensor,
-        ValueError for one that is not a camera."""
+        image topic: a long run renders only the frames it needs. On by default; kept across reset(). KeyError for an
+        unknown sensor, ValueError for one that is not a camera."""
         self.world._core.set_rendering(self.name, camera, bool(on))
 
     def contacts(self):
