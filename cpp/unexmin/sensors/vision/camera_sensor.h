@@ -33,8 +33,9 @@
 //   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
 //   simd true|false (true): shade and sense eight pixels at a time in AVX2 lanes where the CPU has AVX2 and FMA
 //       (ImageFormation::simdAvailable); false: one at a time. Same kernels, same images up to rounding.
-//   forward_scatter true|false (true): the direct image blurred and brightened by the water's small-angle scattering
-//       (ForwardScatter; runs only in water that scatters, not at visibility none)
+//   forward_scatter true|false (true): the direct image blurred and brightened by the water's and the silt's
+//       small-angle scattering (ForwardScatter; runs in water that scatters, and at visibility none only in frames
+//       that see silt)
 //   marine_snow true|false (true): suspended particles lit by the lights (MarineSnow; their density follows the
 //       visibility level, none at none); exposure_time [s] (0.01): how long the shutter is open (their streaks)
 //   laser_power [W] (0.05), laser_width [px] (1), laser_colour (0.05 1 0.15): the line of the SLS unit whose
