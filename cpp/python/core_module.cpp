@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -200,8 +201,9 @@ void setThrusts(CoreWorld& w, const std::string& robot, const py::array_t<double
 
 /// Replaces the means of the world's current channels (speed [m/s], horizontal and vertical angle [rad]) and
 /// restarts the current at them with the world's seed; each channel's bounds widen to hold its new mean, its noise
-/// and return rate stay the world file's. Kept across reset(); the world file is not changed.
-void setCurrent(CoreWorld& w, double speed, double horizontal_angle, double vertical_angle) {
+/// and return rate stay the world file's, or its noise is zero when `steady` (the current constant at the means).
+/// Kept across reset(); the world file is not changed.
+void setCurrent(CoreWorld& w, double speed, double horizontal_angle, double vertical_angle, bool steady) {
   hydro::CurrentParams p = w.world().current().params();
   const std::pair<hydro::GaussMarkovParams*, double> channels[] = {
       {&p.speed, finiteCommand("speed", speed)},
@@ -213,8 +215,83 @@ void setCurrent(CoreWorld& w, double speed, double horizontal_angle, double vert
     channel->mean = mean;
     channel->min = std::min(channel->min, mean);
     channel->max = std::max(channel->max, mean);
+    if (steady)
+      channel->noise = 0.0;
   }
   w.world().current() = hydro::CurrentModel(p, w.world().seed());
+}
+
+/// A vector of `n` finite numbers or a ValueError naming `name`.
+std::vector<double> finiteVector(const std::string& name, const py::array_t<double, py::array::forcecast>& values,
+                                 py::ssize_t n, const std::string& what) {
+  if (values.ndim() != 1 || values.shape(0) != n)
+    badArgument(name, std::to_string(values.size()) + " values in " + std::to_string(values.ndim()) + " dimension(s)",
+                std::to_string(n) + " numbers in one dimension (" + what + ")");
+  std::vector<double> v(values.data(), values.data() + n);
+  for (py::ssize_t i = 0; i < n; ++i)
+    finiteCommand(name + "[" + std::to_string(i) + "]", v[i]);
+  return v;
+}
+
+/// Teleports the robot's base link to `position` [m] and `orientation` (unit quaternion x, y, z, w) in the world
+/// frame, at rest (Robot::setPose): from the next step on the physics and the sensors see it there. Both are checked
+/// before anything moves.
+void setPose(CoreWorld& w, const std::string& robot, const py::array_t<double, py::array::forcecast>& position,
+             const py::array_t<double, py::array::forcecast>& orientation) {
+  sim::Robot& r = w.robot(robot);
+  const std::vector<double> p = finiteVector("position", position, 3, "x, y, z [m], world frame");
+  const std::vector<double> q = finiteVector("orientation", orientation, 4, "a unit quaternion x, y, z, w");
+  const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
+  if (std::abs(quat.norm() - 1.0) > 1e-6)
+    badArgument("orientation", "a quaternion of norm " + formatNumber(quat.norm()),
+                "a unit quaternion x, y, z, w (norm 1 within 1e-6)");
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = quat.normalized().toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  r.setPose(pose);
+}
+
+/// Whether camera `name` renders its frames in visual mode: off, its samples only move the schedule (as when nobody
+/// subscribes to its image topic), on (the default) it renders every sample.
+void setRendering(CoreWorld& w, const std::string& robot, const std::string& name, bool on) {
+  auto* cam = dynamic_cast<sensors::vision::CameraSensor*>(&w.sensor(robot, name));
+  if (cam == nullptr)
+    badArgument("sensor", "'" + name + "' (family " + w.sensor(robot, name).type() + ")", "a camera");
+  cam->setDemand(on ? std::function<bool()>() : [] { return false; });
+}
+
+/// The silt the thrusters raised: one row per puff (sim/sediment.h).
+py::dict sediment(CoreWorld& w) {
+  const auto& puffs = w.world().sediment().puffs();
+  std::vector<double> centre, sigma, strength, floor_z;
+  for (const auto& p : puffs) {
+    for (int k = 0; k < 3; ++k)
+      centre.push_back(p.centre[k]);
+    sigma.push_back(p.sigma);
+    strength.push_back(p.strength);
+    floor_z.push_back(p.floor_z);
+  }
+  py::dict d;
+  d["centre"] = copyOf(centre).reshape({static_cast<py::ssize_t>(puffs.size()), py::ssize_t(3)});
+  d["sigma"] = copyOf(sigma);
+  d["strength"] = copyOf(strength);
+  d["floor_z"] = copyOf(floor_z);
+  return d;
+}
+
+/// The world's `sediment:` block in force.
+py::dict sedimentParams(CoreWorld& w) {
+  const sim::SedimentParams& p = w.world().sediment().params();
+  py::dict d;
+  d["enabled"] = p.enabled;
+  d["settling_speed"] = p.settling_speed;
+  d["raise"] = p.raise;
+  d["reach"] = p.reach;
+  d["puff_size"] = p.puff_size;
+  d["diffusivity"] = p.diffusivity;
+  d["interval"] = p.interval;
+  d["max_puffs"] = p.max_puffs;
+  return d;
 }
 
 /// Ground truth of the base link as the simulator's odometry: pose in world, twist in the body frame (REP-105),
@@ -377,7 +454,10 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("visibility", [](CoreWorld& w) { return w.world().config().visibility; })
       .def_property_readonly("sensors", &CoreWorld::selection)
       .def_property_readonly("current", [](CoreWorld& w) { return vector3(w.world().current().velocity()); })
-      .def("set_current", &setCurrent, py::arg("speed"), py::arg("horizontal_angle"), py::arg("vertical_angle"))
+      .def("set_current", &setCurrent, py::arg("speed"), py::arg("horizontal_angle"), py::arg("vertical_angle"),
+           py::arg("steady"))
+      .def("sediment", &sediment)
+      .def_property_readonly("sediment_params", &sedimentParams)
       .def_property_readonly("robots",
                              [](CoreWorld& w) {
                                std::vector<std::string> names;
@@ -416,6 +496,8 @@ PYBIND11_MODULE(_core, m) {
                            "[" + formatNumber(p.min_mass) + ", " + formatNumber(p.max_mass) + "] kg");
            })
       .def("state", &state, py::arg("robot"))
+      .def("set_pose", &setPose, py::arg("robot"), py::arg("position"), py::arg("orientation"))
+      .def("set_rendering", &setRendering, py::arg("robot"), py::arg("sensor"), py::arg("on"))
       .def("contacts", &contacts, py::arg("robot"))
       .def("sensor_names",
            [](CoreWorld& w, const std::string& r) {

@@ -1,12 +1,16 @@
 // Forward scattering (cpp/unexmin/sensors/vision/forward_scatter.h) against closed forms computed here: the forward
 // lobe's share of Henyey-Greenstein scattering, the PSF's width sqrt(eta b R <theta^2> / 6) and its zero at b = 0,
-// the halo's weight exp(eta b R) - 1, and the blurred image of one bright tile (its power and its spread).
+// the halo's weight exp(eta b R) - 1, and the blurred image of one bright tile (its power and its spread); the pass
+// run on a ray caster's worker threads gives the image it gives on one thread, bit for bit.
 #include <unexmin/core/error.h>
+#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/vision/forward_scatter.h>
+#include "sensor_fixture.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace unexmin {
@@ -117,6 +121,70 @@ TEST(ForwardScatter, OneBrightTileSpreadsItsHaloWithTheBandsWidthAndKeepsItsPowe
   // That width is the formula's at the band's middle range.
   const double mid = 10.0 * std::pow((band + 0.5) / ForwardScatter::kBands, 2);
   EXPECT_NEAR(sigma, fs.haloSigma(mid) * focal, 1e-9);
+}
+
+TEST(ForwardScatter, OnTheCastersThreadsTheImageIsTheOneThreadsBitForBit) {
+  // An image whose size is a multiple of neither the cell nor the strip, direct light and ranges drawn at random in
+  // every tile; the pass applied on the calling thread alone and on a caster's pool of 2 and 3 threads.
+  const int width = 203, height = 157, cell = 8;
+  const WaterOptics water = WaterOptics::fromVisibility("medium", kColour);
+  ForwardScatter fs(water, 20.0, 150.0, width, height, cell);
+  fs.clear();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> light(0.0f, 0.05f), far(0.3f, 25.0f);
+  for (int cv = 0; cv < (height + cell - 1) / cell; ++cv)
+    for (int cu = 0; cu < (width + cell - 1) / cell; ++cu) {
+      std::vector<float> d[3], range(64);
+      for (auto& c : d)
+        for (int i = 0; i < 64; ++i)
+          c.push_back(light(rng));
+      for (auto& r : range)
+        r = far(rng);  // some beyond max_range: open water
+      const float* direct[3] = {d[0].data(), d[1].data(), d[2].data()};
+      fs.accumulate(cu, cv, 64, direct, range.data());
+    }
+  std::vector<float> base(3 * width * height);
+  for (auto& x : base)
+    x = light(rng);
+  std::vector<float> alone = base;
+  fs.apply(alone);
+  sim::WorldConfig config = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+  std::map<std::string, sim::RobotDescription> d;
+  d.emplace(config.robots.at(0).name, sim::parseRobotDescription(sensorUrdf(SphereSpec(), "", ""), "(test robot)"));
+  sim::World world(config, d, 1, 0.002, 1);
+  for (int threads : {2, 3}) {
+    raycast::RayCasterOptions options;
+    options.threads = threads;
+    const auto pool = raycast::makeRayCaster("embree", world, options);
+    std::vector<float> shared = base;
+    fs.apply(shared, pool.get());
+    EXPECT_EQ(shared, alone) << threads << " threads";
+  }
+  EXPECT_NE(alone, base);  // the pass added a halo
+}
+
+TEST(ForwardScatter, SiltOnTheCameraLegAddsItsForwardScatteringsToTheHalo) {
+  // One tile of direct light 1 at range r with x more forward scatterings per pixel (the silt's eta tau): its halo
+  // holds exp(lambda + x) - 1 of the direct light, also in water too clear for the pass alone; x = 0 is the water's.
+  const int size = 256, cell = 8;  // the tile in the middle, its halo well inside the frame
+  const double r = 1.2;
+  for (const char* level : {"none", "medium"}) {
+    const WaterOptics water = WaterOptics::fromVisibility(level, kColour);
+    ForwardScatter fs(water, 10.0, 400.0, size, size, cell);
+    for (const float x : {0.0f, 0.3f, 1.5f}) {
+      fs.clear();
+      std::vector<float> ones(64, 1.0f), range(64, static_cast<float>(r)), extra(64, x);
+      const float* direct[3] = {ones.data(), ones.data(), ones.data()};
+      fs.accumulate(16, 16, 64, direct, range.data(), extra.data());
+      std::vector<float> radiance(3 * size * size, 0.0f);
+      fs.apply(radiance);
+      double power = 0;
+      for (int i = 0; i < size * size; ++i)
+        power += radiance[3 * i + 1];
+      const double expected = 64 * (std::exp(fs.scatterings(r)[1] + x) - 1.0);
+      EXPECT_NEAR(power, expected, 2e-3 * expected + 1e-9) << level << ", x = " << x;
+    }
+  }
 }
 
 TEST(ForwardScatter, BadGeometryIsRefused) {

@@ -125,6 +125,18 @@ def test_sensor_selection_and_visibility_of_the_world_file(urdf):
         (lambda w: w.step(1.5), ValueError, r"n = 1.5"),
         (lambda w: w.run_for(math.nan), ValueError, r"seconds = nan"),
         (lambda w: w.reset(-2), ValueError, r"seed = -2"),
+        (lambda w: w.robot("UX_1").set_pose([0, 0]), ValueError, r"position = 2 values.*expected 3 numbers"),
+        (lambda w: w.robot("UX_1").set_pose([0, math.nan, 0]), ValueError, r"position\[1\] = nan: expected a finite"),
+        (lambda w: w.robot("UX_1").set_pose([0, 0, -1], [0, 0, 0]), ValueError, r"orientation = 3 values.*4 numbers"),
+        (
+            lambda w: w.robot("UX_1").set_pose([0, 0, -1], [0, 0, 0, 2]),
+            ValueError,
+            r"orientation = a quaternion of norm 2",
+        ),
+        (lambda w: w.robot("UX_1").set_pose([0, 0, -1], [0, math.inf, 0, 1]), ValueError, r"orientation\[1\] = inf"),
+        (lambda w: w.robot("UX_1").set_rendering("dvl", False), ValueError, r"sensor = 'dvl' \(family dvl\).*a camera"),
+        (lambda w: w.robot("UX_1").set_rendering("camera_9", False), KeyError, r"sensor = 'camera_9'"),
+        (lambda w: w.set_current(math.nan, steady=True), ValueError, r"speed = nan"),
     ],
 )
 def test_bad_commands_raise_naming_the_argument(world, call, error, words):
@@ -226,6 +238,58 @@ def test_the_world_files_current_and_visibility_are_honoured(tmp_path, urdf):
     w.run_for(10.0)
     moved = w.robot("UX_1").state()["position"] - start
     assert moved[1] > 0.3 and abs(moved[0]) < 0.2 * moved[1], f"the robot drifts with the current: {moved}"
+
+
+def test_set_pose_teleports_at_rest_and_the_robot_falls_from_there(urdf):
+    # Tank, still water: 1 kg of ballast makes the robot sink. Teleported at rest, it starts again from rest: the
+    # same fall from the same pose, to the bit, whatever it did before.
+    w = World("tank", sensors="none", descriptions={"UX_1": urdf})
+    w.set_current(0.0, steady=True)
+    ux = w.robot("UX_1")
+    ux.vbs(1.0)
+    w.run_for(1.0)
+    assert np.linalg.norm(ux.state()["linear_velocity"]) > 0.01
+    q = np.array([0.0, 0.0, math.sin(0.3), math.cos(0.3)])  # yaw 0.6 rad
+    ux.set_pose([0.5, -0.25, -1.0], q)
+    s = ux.state()
+    np.testing.assert_allclose(s["position"], [0.5, -0.25, -1.0], atol=1e-12)
+    np.testing.assert_allclose(s["orientation"], q, atol=1e-12)
+    np.testing.assert_array_equal(s["linear_velocity"], np.zeros(3))
+    np.testing.assert_array_equal(s["angular_velocity"], np.zeros(3))
+    w.run_for(0.2)
+    fall = -1.0 - ux.state()["position"][2]
+    assert 0.0 < fall < 0.01 and abs(ux.state()["position"][0] - 0.5) < 1e-3
+    ux.set_pose([0.5, -0.25, -1.0], q)
+    w.run_for(0.2)
+    assert -1.0 - ux.state()["position"][2] == fall, "the same fall from the same rest"
+
+
+def test_set_rendering_renders_only_the_frames_asked_for(urdf):
+    w = World("tank", sensors="camera", mode="visual", descriptions={"UX_1": urdf})
+    ux = w.robot("UX_1")
+    ux.set_rendering("camera_0", False)
+    w.run_for(0.3)
+    s = ux.sample("camera_0")
+    assert s["count"] == 3 and s["rendered"] is False and "image" not in s
+    assert ux.sample("camera_1")["rendered"] is True
+    ux.set_rendering("camera_0", True)
+    w.run_for(0.1)
+    assert ux.sample("camera_0")["count"] == 4 and ux.sample("camera_0")["rendered"] is True
+    ux.set_rendering("camera_0", False)
+    w.reset()
+    w.run_for(0.1)
+    assert ux.sample("camera_0")["count"] == 1 and ux.sample("camera_0")["rendered"] is False, "kept across reset()"
+
+
+def test_steady_current_and_no_sediment_in_the_tank(urdf):
+    w = World("tank", sensors="none", descriptions={"UX_1": urdf})
+    assert w.sediment_params["enabled"] is False  # off by default (tank.world has no sediment block)
+    w.set_current(0.1, math.pi / 2, 0.0, steady=True)
+    w.robot("UX_1").thrusts([0, 20, 0, 20, 0, -20, 0, -20])
+    w.run_for(2.0)
+    np.testing.assert_allclose(w.current, [0.0, 0.1, 0.0], atol=1e-12)  # no noise: the mean, exactly
+    puffs = w.sediment()
+    assert puffs["centre"].shape == (0, 3) and len(puffs["sigma"]) == 0
 
 
 def test_contacts_of_a_robot_pressed_on_a_wall(urdf):

@@ -64,6 +64,21 @@ class Robot:
         frame (REP-105); ``time`` [s]."""
         return self.world._core.state(self.name)
 
+    def set_pose(self, position, orientation=(0.0, 0.0, 0.0, 1.0)):
+        """Teleport the base link to `position` [m] with `orientation` (unit quaternion x, y, z, w; default level,
+        heading +x) in the world frame, at rest (velocities zero; thrusters, pendulum and ballast as they are): the
+        next step starts there. ValueError naming a value that is not finite, a position that is not 3 numbers or
+        an orientation that is not 4 numbers of norm 1 (within 1e-6); nothing moves then. Whether the hull overlaps
+        the rock is not checked: the physics pushes it out at the next step."""
+        self.world._core.set_pose(self.name, position, orientation)
+
+    def set_rendering(self, camera, on):
+        """Whether camera `camera` (a name of ``sensors`` of family camera) renders its frames in visual mode. Off,
+        its samples only move its schedule (``rendered`` False, no ``image``), as when nobody subscribes to its
+        image topic: a long run renders only the frames it needs. On by default; kept across reset(). KeyError for an
+        unknown sensor, ValueError for one that is not a camera."""
+        self.world._core.set_rendering(self.name, camera, bool(on))
+
     def contacts(self):
         """Where the hull touches the world's meshes or another robot after the last step: dict of numpy arrays,
         one row per contact point: ``position`` (N x 3) on the obstacle's surface [m] and ``normal`` (N x 3, unit)
@@ -179,11 +194,25 @@ class World:
             raise ValueError(f"seed = {seed!r}: expected a non-negative whole number")
         self._core.reset(int(seed))
 
-    def set_current(self, speed, horizontal_angle=0.0, vertical_angle=0.0):
+    def set_current(self, speed, horizontal_angle=0.0, vertical_angle=0.0, steady=False):
         """Replace the means of the world's current: speed [m/s] (>= 0), horizontal angle [rad, from +x towards +y],
         vertical angle [rad, up positive]; each channel restarts at its new mean (bounds widened to hold it, noise
-        and return rate the world file's) and keeps it across reset(). ValueError naming a bad value."""
-        self._core.set_current(float(speed), float(horizontal_angle), float(vertical_angle))
+        and return rate the world file's; steady=True: no noise, the current stays at the means) and keeps it across
+        reset(). ValueError naming a bad value."""
+        self._core.set_current(float(speed), float(horizontal_angle), float(vertical_angle), bool(steady))
+
+    def sediment(self):
+        """The silt the robots' thrusters raised now (docs/vision.md "Silt-out"), one row per puff: ``centre`` (N x 3)
+        world frame [m], ``sigma`` (N) its spread [m], ``strength`` (N) Q, the integral of its extra scattering
+        coefficient over space [m^2], ``floor_z`` (N) the floor under the place it was raised [m]. N = 0 in clear
+        water (always, when the world's sediment is off)."""
+        return self._core.sediment()
+
+    sediment_params = property(
+        lambda self: self._core.sediment_params,
+        doc="The world file's sediment block in force (docs/worlds.md): enabled, settling_speed [m/s], raise "
+        "[m^2/(N s)], reach [m], puff_size [m], diffusivity [m^2/s], interval [s], max_puffs.",
+    )
 
     time = property(lambda self: self._core.time, doc="Simulation time [s].")
     step_count = property(lambda self: self._core.step_count, doc="Physics steps since t = 0.")

@@ -198,8 +198,6 @@ void CameraSensor::prepare(const SensorContext& ctx) {
     response_.encode = encode_.data();
     response_.encode_last = static_cast<float>(kEncodeEntries);
   }
-  if (!scatter_ && forward_scatter_ && ForwardScatter::needed(formation_->water()))
-    scatter_ = std::make_unique<ForwardScatter>(formation_->water(), clip_far_, model_.fx(), w, h, kTile);
   const Eigen::Vector3d lens = (ctx.state.pose * spec().pose).translation();
   const double density = marine_snow_ ? MarineSnow::density(config.visibility) : 0.0;
   if (snow_) {
@@ -286,14 +284,18 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   const Eigen::Isometry3d cam = ctx.state.pose * spec().pose;
   const std::size_t strips = static_cast<std::size_t>((h + kTile - 1) / kTile);
   response_.exposure = static_cast<float>(exposure_now_);
-  if (scatter_)
-    scatter_->clear();
   silt_on_ = false;
   if (!ctx.world.sediment().empty()) {
     if (!silt_)
       silt_ = std::make_unique<SiltView>(model_, *formation_);
     silt_on_ = silt_->update(ctx.world.sediment(), cam);
   }
+  // Forward scattering in water that scatters enough, and wherever the view holds silt (which scatters forward too).
+  scatter_on_ = forward_scatter_ && (ForwardScatter::needed(formation_->water()) || silt_on_);
+  if (scatter_on_ && !scatter_)
+    scatter_ = std::make_unique<ForwardScatter>(formation_->water(), clip_far_, model_.fx(), w, h, kTile);
+  if (scatter_on_)
+    scatter_->clear();
   // Every tile alone: its rays, their cast, its pixels' shading and sensor (the pixels do not depend on which thread
   // renders them, nor on the order). A thread takes a whole strip of kTile rows at a time: two threads never write
   // to the same cache line of the image but at a strip's first and last row (neighbouring tiles on two threads
@@ -308,8 +310,8 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
   else
     for (std::size_t k = 0; k < strips; ++k)
       strip(k);
-  if (scatter_)  // the tiles kept their direct light: blur it over the whole image
-    scatter_->apply(frame_.radiance);
+  if (scatter_on_)  // the tiles kept their direct light: blur it over the whole image
+    scatter_->apply(frame_.radiance, ctx.rays);
   touched_.clear();
   if (snow_) {
     MarineSnow::Motion motion;
@@ -321,7 +323,7 @@ void CameraSensor::render(const SensorContext& ctx, std::uint64_t seed) {
     motion.exposure_time = exposure_time_;
     snow_->draw(model_, *formation_, motion, frame_.range, frame_.radiance, touched_);
   }
-  if (scatter_)  // then the sensor, at every pixel
+  if (scatter_on_)  // then the sensor, at every pixel
     encodeAll(ctx, seed);
   else
     for (std::size_t i : touched_)
@@ -424,7 +426,7 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   // and shading normal evaluated into the batch itself, one textured mesh at a time (eight pixels in lanes).
   PixelBatch batch;
   batch.n = n;
-  batch.keep_direct = scatter_ != nullptr;
+  batch.keep_direct = scatter_on_;
   constexpr std::size_t kNone = ~std::size_t(0);
   std::size_t material_of[raycast::kBlock];  // the textured mesh hit, or kNone
   int textured = 0;                          // pixels on a textured mesh
@@ -485,9 +487,18 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
     for (int c = 0; c < 3; ++c)
       out[c] = batch.out[c][i];
   }
-  if (scatter_) {  // the sensor comes after the whole image's forward scattering (encodeAll)
+  if (scatter_on_) {  // the sensor comes after the whole image's forward scattering (encodeAll)
     const float* const direct[3] = {batch.direct[0], batch.direct[1], batch.direct[2]};
-    scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range);
+    if (silt_on_) {
+      // The silt on the camera leg scatters forward as the water does: its forward scatterings eta tau(R).
+      float silt[raycast::kBlock];
+      const float eta = static_cast<float>(scatter_->eta());
+      for (int i = 0; i < n; ++i)
+        silt[i] = eta * static_cast<float>(silt_->opticalDepth(batch.u[i], batch.v[i], batch.range[i]));
+      scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range, silt);
+    } else {
+      scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range);
+    }
     return;
   }
   float* const radiance[3] = {batch.out[0], batch.out[1], batch.out[2]};

@@ -33,8 +33,9 @@
 //   shadows true|false (false): one shadow ray per lit pixel and light (ray cast; see docs/vision.md for its cost)
 //   simd true|false (true): shade and sense eight pixels at a time in AVX2 lanes where the CPU has AVX2 and FMA
 //       (ImageFormation::simdAvailable); false: one at a time. Same kernels, same images up to rounding.
-//   forward_scatter true|false (true): the direct image blurred and brightened by the water's small-angle scattering
-//       (ForwardScatter; runs only in water that scatters, not at visibility none)
+//   forward_scatter true|false (true): the direct image blurred and brightened by the water's and the silt's
+//       small-angle scattering (ForwardScatter; runs in water that scatters, and at visibility none only in frames
+//       that see silt)
 //   marine_snow true|false (true): suspended particles lit by the lights (MarineSnow; their density follows the
 //       visibility level, none at none); exposure_time [s] (0.01): how long the shutter is open (their streaks)
 //   laser_power [W] (0.05), laser_width [px] (1), laser_colour (0.05 1 0.15): the line of the SLS unit whose
@@ -101,8 +102,8 @@ public:
   const LaserLine* laser() const { return laser_.get(); }
   /// The image formation of the latest rendered frame's water (null before the first render).
   const ImageFormation* formation() const { return formation_.get(); }
-  /// The forward scattering of the latest rendered frame (null: none in its water, or off).
-  const ForwardScatter* forwardScatter() const { return scatter_.get(); }
+  /// The forward scattering of the latest rendered frame (null: none in its water and no silt in view, or off).
+  const ForwardScatter* forwardScatter() const { return scatter_on_ ? scatter_.get() : nullptr; }
   /// The suspended particles around the lens (null: none in the water, or off, or before the first render).
   const MarineSnow* marineSnow() const { return snow_.get(); }
   double exposureTime() const { return exposure_time_; }  ///< [s]
@@ -153,7 +154,8 @@ private:
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;
-  std::unique_ptr<ForwardScatter> scatter_;      ///< null in water that scatters too little (ForwardScatter::needed)
+  std::unique_ptr<ForwardScatter> scatter_;      ///< made when first needed (ForwardScatter::needed, or silt in view)
+  bool scatter_on_ = false;                      ///< this frame runs forward scattering
   std::unique_ptr<MarineSnow> snow_;             ///< null in water without particles
   std::unique_ptr<SiltView> silt_;               ///< made when the world first holds silt
   bool silt_on_ = false;                         ///< this frame sees silt

@@ -1,7 +1,6 @@
 #include <unexmin/sensors/vision/forward_scatter.h>
 
 #include <unexmin/core/error.h>
-#include <unexmin/sensors/vision/parallel_rows.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +85,8 @@ void ForwardScatter::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0f);
 }
 
-void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct[3], const float* range) {
+void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct[3], const float* range,
+                                const float* extra) {
   if (n <= 0)
     return;
   const float inv_n = 1.0f / static_cast<float>(n), far = static_cast<float>(max_range_);
@@ -101,8 +101,14 @@ void ForwardScatter::accumulate(int cu, int cv, int n, const float* const direct
     const float t = x - static_cast<float>(j);
     float* out = &sums_[(static_cast<std::size_t>(band_[j]) * cells + cell) * 3];
     const float* a = &weight_[4 * j];
+    if (extra == nullptr) {
+      for (int c = 0; c < 3; ++c)
+        out[c] += direct[c][i] * (a[c] + t * (a[4 + c] - a[c])) * inv_n;
+      continue;
+    }
+    const float more = std::exp(extra[i]);  // exp(lambda + x) - 1 = (w + 1) exp(x) - 1, w = exp(lambda) - 1
     for (int c = 0; c < 3; ++c)
-      out[c] += direct[c][i] * (a[c] + t * (a[4 + c] - a[c])) * inv_n;
+      out[c] += direct[c][i] * ((a[c] + t * (a[4 + c] - a[c]) + 1.0f) * more - 1.0f) * inv_n;
   }
 }
 
@@ -142,7 +148,7 @@ void ForwardScatter::blur(const float* in, float* out, double sigma_cells, std::
     }
 }
 
-void ForwardScatter::apply(std::vector<float>& radiance) const {
+void ForwardScatter::apply(std::vector<float>& radiance, const raycast::RayCaster* pool) const {
   const std::size_t cells = static_cast<std::size_t>(cols_) * rows_;
   std::vector<float> total(cells * 3, 0.0f), tmp;
   for (int k = 0; k < kBands; ++k) {
@@ -153,7 +159,8 @@ void ForwardScatter::apply(std::vector<float>& radiance) const {
   }
   // Bilinear between cell centres, clamped at the edges.
   const float inv_cell = 1.0f / static_cast<float>(cell_), half = 0.5f * static_cast<float>(cell_ - 1);
-  parallelRows(height_, [&](int v0, int v1) {
+  const auto strip = [&](std::size_t k) {
+    const int v0 = static_cast<int>(k) * kStripRows, v1 = std::min(v0 + kStripRows, height_);
     for (int v = v0; v < v1; ++v) {
       const float y = std::min(static_cast<float>(rows_ - 1), std::max(0.0f, (v - half) * inv_cell));
       const int r0 = std::min(static_cast<int>(y), std::max(0, rows_ - 2));
@@ -175,7 +182,13 @@ void ForwardScatter::apply(std::vector<float>& radiance) const {
         }
       }
     }
-  });
+  };
+  const std::size_t strips = static_cast<std::size_t>((height_ + kStripRows - 1) / kStripRows);
+  if (pool)
+    pool->parallelFor(strips, strip);
+  else
+    for (std::size_t k = 0; k < strips; ++k)
+      strip(k);
 }
 
 }  // namespace vision

@@ -21,9 +21,14 @@
 // halo width (sigma_h at the band's middle range, in pixels through the focal length, normalised at the image's
 // edges: what lies beyond the frame is taken as what lies at its edge) and the sum is interpolated back to every
 // pixel (bilinear between tile centres). Widths below about half a cell come out as about half a cell.
-// Clear water is left alone: below kMinScattering (the `none` level) the pass does not run. Knows no ROS.
+// Clear water is left alone: below kMinScattering (the `none` level) the pass does not run, unless the camera sees
+// silt (sim::SedimentField): the silt's own scattering on the camera leg, of optical depth tau, is taken to have the
+// water's phase function [assumed], so it adds eta tau forward scatterings to the pixel's lambda (its halo weight
+// exp(lambda + eta tau) - 1), spread with the water's band widths [assumed: the silt's scatterings would widen it].
+// Knows no ROS.
 #pragma once
 
+#include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <Eigen/Core>
@@ -71,10 +76,17 @@ public:
   /// Starts a frame: every cell's sums to zero.
   void clear();
   /// Adds the halo of `n` pixels of the tile (cell column cu, row cv): their direct radiance per channel
-  /// (direct[c][i]) at range[i] [m] (max_range and beyond: open water, nothing). One thread per cell at a time.
-  void accumulate(int cu, int cv, int n, const float* const direct[3], const float* range);
-  /// Blurs the frame's halo and adds it to `radiance` (3 floats per pixel, row-major [W m^-2 sr^-1]).
-  void apply(std::vector<float>& radiance) const;
+  /// (direct[c][i]) at range[i] [m] (max_range and beyond: open water, nothing). `extra` (null: none): per pixel, more
+  /// forward scatterings on its camera leg than the water's (the silt's eta tau), so that its halo weight is
+  /// exp(lambda + extra[i]) - 1; spread with the water's band widths. One thread per cell at a time.
+  void accumulate(int cu, int cv, int n, const float* const direct[3], const float* range,
+                  const float* extra = nullptr);
+  /// Blurs the frame's halo and adds it to `radiance` (3 floats per pixel, row-major [W m^-2 sr^-1]). The
+  /// interpolation to the pixels runs in strips of kStripRows rows on `pool`'s threads (the camera's ray caster; null:
+  /// on the calling thread alone); every pixel is computed alone, so the image does not depend on it.
+  void apply(std::vector<float>& radiance, const raycast::RayCaster* pool = nullptr) const;
+
+  static constexpr int kStripRows = 16;  ///< rows per job of the interpolation pass
 
 private:
   /// Separable Gaussian blur of one band's grid (3 channels interleaved), normalised at the edges.
