@@ -48,7 +48,6 @@ struct Layout {
   bool signed_index = true;        // the face indices are int (else uint)
   long rgb[3] = {-1, -1, -1};      // offsets of uchar red, green, blue; -1: absent
   std::size_t count_bytes = 0;     // the face list's count
-  std::size_t data_start = 0;      // bytes of the header
 };
 
 /// Parses the header of `f` (at its start); false when the file is not of the layout this reader takes.
@@ -65,7 +64,6 @@ bool readHeader(std::FILE* f, Layout& layout) {
     std::string word;
     words >> word;
     if (word == "end_header") {
-      layout.data_start = static_cast<std::size_t>(std::ftell(f));
       const bool rgb = layout.rgb[0] >= 0 && layout.rgb[1] >= 0 && layout.rgb[2] >= 0;
       const bool no_rgb = layout.rgb[0] < 0 && layout.rgb[1] < 0 && layout.rgb[2] < 0;
       return format && elements == 2 && seen_x && seen_y && seen_z && face_list && (rgb || no_rgb);
