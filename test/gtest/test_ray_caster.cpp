@@ -1,6 +1,8 @@
 // Ray caster (cpp/unexmin/raycast) against closed-form answers computed here: an icosphere, a box, a plane, sphere
-// robots; the Embree and Bullet back ends against each other in the shipped tank; thread-count invariance.
+// robots; the Embree and Bullet back ends against each other in the shipped tank; thread-count invariance; Embree on
+// the world's own mesh arrays against Embree on copies of them.
 // Every geometry goes through a World built from STL files written by the test (the path sensors use).
+#include <unexmin/raycast/embree_ray_caster.h>
 #include <unexmin/raycast/ray_caster.h>
 #include "mesh_fixture.h"
 #include "sphere_fixture.h"
@@ -578,4 +580,32 @@ TEST(RayCaster, DefectsAreNamed) {
   EXPECT_NE(message({good}, -2).find("exclude_robot = -2"), std::string::npos);
   EXPECT_EQ(message({good}, -1), "");
   EXPECT_THROW(caster("embree", *world, -1), RayCasterError);
+}
+
+TEST(RayCaster, EmbreeOnTheWorldsOwnArraysHitsAsOnCopiesOfThem) {
+  // The world's caster uses the meshes' vertex and index arrays in place (the loader leaves the spare vertex slot
+  // Embree's loads read); a caster built on the same meshes as a list copies them. Every hit must be the same.
+  auto world = makeWorld({{"ball", icosphere(Eigen::Vector3d(0.5, -1.0, 2.0), 3.0, 4)},
+                          {"crate", box(Eigen::Vector3d(-0.5, -2.0, 1.0), Eigen::Vector3d(0.5, 0.0, 2.5))}});
+  for (std::size_t i = 0; i < world->meshCount(); ++i)
+    ASSERT_GT(world->mesh(i).vertices.capacity(), world->mesh(i).vertices.size()) << "the spare slot of mesh " << i;
+  raycast::EmbreeRayCaster in_place(*world);
+  raycast::EmbreeRayCaster copied(raycast::seenMeshes(*world), raycast::RobotSphereSource());
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> inside(-1.5, 1.5);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 20000; ++i)
+    rays.push_back(
+        makeRay(Eigen::Vector3d(0.5 + inside(rng), -1.0 + inside(rng), 2.0 + inside(rng)), randomUnit(rng), 10.0));
+  std::vector<Hit> a, b;
+  in_place.cast(rays, a);
+  copied.cast(rays, b);
+  int crate = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_TRUE(a[i].hit()) << "ray " << i << " leaves the closed ball";
+    EXPECT_TRUE(sameHit(a[i], b[i]) && a[i].primitive == b[i].primitive && a[i].u == b[i].u && a[i].v == b[i].v)
+        << "ray " << i;
+    crate += a[i].index == 1;
+  }
+  EXPECT_GT(crate, 500) << "some rays meet the crate first";
 }

@@ -1,5 +1,6 @@
 #include <unexmin/raycast/bullet_ray_caster.h>
 
+#include <unexmin/sim/collision_shape.h>
 #include <unexmin/sim/world.h>
 
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
@@ -36,8 +37,7 @@ struct ClosestTriangle : btCollisionWorld::ClosestRayResultCallback {
 }  // namespace
 
 struct BulletRayCaster::OwnBody {
-  std::unique_ptr<btTriangleIndexVertexArray> array;
-  std::unique_ptr<btBvhTriangleMeshShape> shape;
+  std::unique_ptr<sim::MeshCollisionShape> shape;
   btCollisionObject object;
 };
 
@@ -60,15 +60,9 @@ BulletRayCaster::BulletRayCaster(sim::World& world, const RayCasterOptions& opti
       if (&world.mesh(i) == s.mesh)
         t.object = world.meshBody(i);
     if (!t.object) {  // physics does not hold it: a static object of our own on the same triangles
-      const sim::TriangleMesh& m = *s.mesh;
       auto own = std::make_unique<OwnBody>();
-      own->array = std::make_unique<btTriangleIndexVertexArray>(
-          static_cast<int>(m.triangleCount()), const_cast<int*>(m.indices.data()), 3 * static_cast<int>(sizeof(int)),
-          static_cast<int>(m.vertices.size()),
-          const_cast<btScalar*>(reinterpret_cast<const btScalar*>(m.vertices.data())),
-          static_cast<int>(sizeof(Eigen::Vector3f)));
-      own->shape = std::make_unique<btBvhTriangleMeshShape>(own->array.get(), true);
-      own->object.setCollisionShape(own->shape.get());
+      own->shape = std::make_unique<sim::MeshCollisionShape>(*s.mesh);
+      own->object.setCollisionShape(&own->shape->shape());
       t.object = &own->object;
       own_.push_back(std::move(own));
     }

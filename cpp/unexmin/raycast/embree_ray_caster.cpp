@@ -56,19 +56,22 @@ EmbreeRayCaster::EmbreeRayCaster(const std::vector<const sim::TriangleMesh*>& me
   std::vector<SeenMesh> seen;
   for (std::size_t i = 0; i < meshes.size(); ++i)  // geometry ID = position in `meshes`, null ones skipped
     seen.push_back(SeenMesh{meshes[i], meshes[i] ? 3u : 0u, static_cast<int>(i), static_cast<int>(i)});
-  build(seen, options.watertight);
+  build(seen, options.watertight, false);
   update();
 }
 
 EmbreeRayCaster::EmbreeRayCaster(const std::vector<SeenMesh>& meshes, RobotSphereSource robots,
                                  const RayCasterOptions& options)
     : RayCaster(options), source_(std::move(robots)) {
-  build(meshes, options.watertight);
+  build(meshes, options.watertight, false);
   update();
 }
 
 EmbreeRayCaster::EmbreeRayCaster(sim::World& world, const RayCasterOptions& options)
-    : EmbreeRayCaster(seenMeshes(world), [&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); }, options) {}
+    : RayCaster(options), source_([&world](std::vector<RobotSphere>& s) { s = robotSpheres(world); }) {
+  build(seenMeshes(world), options.watertight, true);  // the world outlives the caster: its arrays are used in place
+  update();
+}
 
 EmbreeRayCaster::~EmbreeRayCaster() {
   if (scene_)
@@ -83,7 +86,7 @@ void EmbreeRayCaster::check(const char* what) const {
     throw RayCasterError(std::string("embree ray caster: ") + what + ": " + errorName(e));
 }
 
-void EmbreeRayCaster::build(const std::vector<SeenMesh>& meshes, bool watertight) {
+void EmbreeRayCaster::build(const std::vector<SeenMesh>& meshes, bool watertight, bool in_place) {
   device_ = rtcNewDevice(nullptr);
   if (!device_)
     throw RayCasterError(std::string("embree ray caster: cannot create a device: ") +
@@ -112,16 +115,28 @@ void EmbreeRayCaster::build(const std::vector<SeenMesh>& meshes, bool watertight
         throw RayCasterError("embree ray caster: mesh '" + mesh->name + "' has vertex index " + formatNumber(i) +
                              " outside [0, " + formatNumber(nv) + ")");
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Embree's own buffers are padded for its 16-byte vertex loads, which a tight Vector3f array is not.
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                             3 * sizeof(unsigned), mesh->triangleCount()));
-    check(("allocating mesh '" + mesh->name + "'").c_str());
-    for (std::size_t i = 0; i < nv; ++i)
-      std::memcpy(v + 3 * i, mesh->vertices[i].data(), 3 * sizeof(float));
-    for (std::size_t i = 0; i < mesh->indices.size(); ++i)
-      t[i] = static_cast<unsigned>(mesh->indices[i]);
+    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float) && sizeof(int) == sizeof(unsigned),
+                  "the mesh arrays are Embree's FLOAT3 and UINT3 layouts");
+    if (in_place && mesh->vertices.capacity() > nv) {
+      // The mesh's own arrays (indices checked >= 0 above): Embree's 16-byte load of the last vertex reads the spare
+      // slot loadMesh() leaves after it (TriangleMesh::vertices).
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh->vertices.data(), 0,
+                                 sizeof(Eigen::Vector3f), nv);
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->indices.data(), 0,
+                                 3 * sizeof(int), mesh->triangleCount());
+      check(("sharing the arrays of mesh '" + mesh->name + "'").c_str());
+    } else {
+      // Embree's own buffers are padded for its 16-byte vertex loads, which a tight Vector3f array is not.
+      auto* v = static_cast<float*>(
+          rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+      auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh->triangleCount()));
+      check(("allocating mesh '" + mesh->name + "'").c_str());
+      for (std::size_t i = 0; i < nv; ++i)
+        std::memcpy(v + 3 * i, mesh->vertices[i].data(), 3 * sizeof(float));
+      for (std::size_t i = 0; i < mesh->indices.size(); ++i)
+        t[i] = static_cast<unsigned>(mesh->indices[i]);
+    }
     rtcSetGeometryMask(geometry, meshes[m].seen_by);
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));  // geometry ID = position in `meshes`

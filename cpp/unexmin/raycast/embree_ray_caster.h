@@ -25,7 +25,9 @@ public:
   /// sensors only and this Embree library has no ray masks.
   EmbreeRayCaster(const std::vector<SeenMesh>& meshes, RobotSphereSource robots,
                   const RayCasterOptions& options = RayCasterOptions());
-  /// The world's meshes, as seenMeshes(world) gives them, and its robots; the world must outlive the caster.
+  /// The world's meshes, as seenMeshes(world) gives them, and its robots; the world must outlive the caster. The
+  /// meshes' vertex and index arrays are used in place, not copied, when they have the spare vertex loadMesh()
+  /// leaves (TriangleMesh::vertices).
   explicit EmbreeRayCaster(sim::World& world, const RayCasterOptions& options = RayCasterOptions());
   ~EmbreeRayCaster() override;
 
@@ -47,7 +49,8 @@ protected:
   void castBlock(const Ray* rays, Hit* hits, std::size_t n, int exclude_robot, SeenBy seen_by) const override;
 
 private:
-  void build(const std::vector<SeenMesh>& meshes, bool watertight);
+  /// in_place: use the meshes' arrays where TriangleMesh::vertices has its spare slot, else copy them.
+  void build(const std::vector<SeenMesh>& meshes, bool watertight, bool in_place);
   void check(const char* what) const;
 
   RTCDevice device_ = nullptr;

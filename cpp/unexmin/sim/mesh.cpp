@@ -1,5 +1,7 @@
 #include <unexmin/sim/mesh.h>
 
+#include <unexmin/sim/ply_reader.h>
+
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -20,6 +22,19 @@ float linearFromSrgb(float c) {
 }  // namespace
 
 TriangleMesh loadMesh(const MeshEntry& entry) {
+  TriangleMesh out;
+  if (!readBinaryPly(entry, out))
+    out = loadMeshWithAssimp(entry);
+  if (out.indices.empty())
+    throw ConfigError(entry.file + ": mesh '" + entry.name + "' has no triangle");
+  // The spare vertex slot of TriangleMesh::vertices, zeroed (a slot a ray caster reads is never uninitialised).
+  out.vertices.reserve(out.vertices.size() + 1);
+  out.vertices.emplace_back(0.0f, 0.0f, 0.0f);
+  out.vertices.pop_back();
+  return out;
+}
+
+TriangleMesh loadMeshWithAssimp(const MeshEntry& entry) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(
       entry.file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);

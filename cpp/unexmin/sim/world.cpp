@@ -1,6 +1,7 @@
 #include <unexmin/sim/world.h>
 
 #include <unexmin/sim/spawn_placement.h>
+#include <unexmin/sim/collision_shape.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -19,8 +20,7 @@ bool sameGeometry(const MeshEntry& a, const MeshEntry& b) {
 }  // namespace
 
 struct World::StaticBody {
-  std::unique_ptr<btTriangleIndexVertexArray> array;
-  std::unique_ptr<btBvhTriangleMeshShape> shape;
+  std::unique_ptr<MeshCollisionShape> shape;
   std::unique_ptr<btRigidBody> body;
 };
 
@@ -60,14 +60,8 @@ World::World(const WorldConfig& config, const std::map<std::string, RobotDescrip
       continue;
     const TriangleMesh& mesh = *meshes_[i];
     auto sb = std::make_unique<StaticBody>();
-    sb->array = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()),
-        3 * static_cast<int>(sizeof(int)), static_cast<int>(mesh.vertices.size()),
-        const_cast<btScalar*>(reinterpret_cast<const btScalar*>(mesh.vertices.data())),
-        static_cast<int>(sizeof(Eigen::Vector3f)));
-    static_assert(sizeof(btScalar) == sizeof(float), "Bullet must be built with float scalars");
-    sb->shape = std::make_unique<btBvhTriangleMeshShape>(sb->array.get(), true);
-    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, sb->shape.get());
+    sb->shape = std::make_unique<MeshCollisionShape>(mesh, bvhCacheFile(entry, mesh));
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, &sb->shape->shape());
     info.m_friction = 0.5;
     sb->body = std::make_unique<btRigidBody>(info);
     dynamics_->addRigidBody(sb->body.get());

@@ -20,8 +20,6 @@ class btCollisionDispatcher;
 class btBroadphaseInterface;
 class btSequentialImpulseConstraintSolver;
 class btRigidBody;
-class btTriangleIndexVertexArray;
-class btBvhTriangleMeshShape;
 struct btDefaultMotionState;
 
 namespace unexmin {
