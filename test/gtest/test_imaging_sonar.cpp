@@ -183,15 +183,14 @@ TEST(ImagingSonar, TheNoiseAloneShowsEachCodeWithTheProbabilityOfAnExponentialPo
   const double noise = std::pow(10.0, r.noise().noise_level / 10.0);
   const std::size_t n = sonar(*w).bins();
   const int beams = 400;
-  sensors::Random random;
-  random.seed(3);
+  const sensors::CounterRandom random(3);
   std::vector<std::uint8_t> codes(n);
   std::vector<double> energy;
   const std::vector<int> levels = {1, 3, 10, 30};
   std::vector<double> count(levels.size(), 0.0);
   for (int k = 0; k < beams; ++k) {
     energy.assign(n, 0.0);
-    r.receive(energy, random, codes.data(), 1);
+    r.receive(energy, random.stream(static_cast<std::uint64_t>(k)), codes.data(), 1);
     for (std::size_t l = 0; l < levels.size(); ++l)
       for (std::size_t i = 0; i < n; ++i)
         count[l] += codes[i] >= levels[l];

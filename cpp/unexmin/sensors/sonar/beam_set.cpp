@@ -22,7 +22,7 @@ const std::vector<raycast::Ray>& BeamSet::aim(const Eigen::Isometry3d& pose, dou
 }
 
 void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
-                     Random& random, std::uint8_t* codes, std::size_t stride) {
+                     const CounterRandom& random, std::uint8_t* codes, std::size_t stride) {
   std::fill(energy_.begin(), energy_.end(), 0.0);
   fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy_);
   receiver_.receive(energy_, random, codes, stride);

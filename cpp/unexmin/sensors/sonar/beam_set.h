@@ -4,7 +4,7 @@
 #pragma once
 
 #include <unexmin/raycast/ray_caster.h>
-#include <unexmin/sensors/random.h>
+#include <unexmin/sensors/counter_random.h>
 #include <unexmin/sensors/sonar/beam_fan.h>
 #include <unexmin/sensors/sonar/beam_receiver.h>
 
@@ -32,9 +32,9 @@ public:
   /// range_max or the free surface at height surface_z [m] (BeamFan::aim).
   const std::vector<raycast::Ray>& aim(const Eigen::Isometry3d& pose, double surface_z);
   /// Beam k's line from `hits` (the answers to aim()'s rays, the sensor at `pose`): echoes, receiver noise from
-  /// `random`, codes[i * stride] = the code of bin i.
-  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, Random& random,
-              std::uint8_t* codes, std::size_t stride);
+  /// `random` (the beam's stream of this ping), codes[i * stride] = the code of bin i.
+  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+              const CounterRandom& random, std::uint8_t* codes, std::size_t stride);
 
 private:
   std::vector<BeamFan> fans_;
