@@ -36,11 +36,24 @@ public:
   void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
               const CounterRandom& random, std::uint8_t* codes, std::size_t stride);
 
+  /// Every beam's line as listen() gives it, into a polar image: bin i of beam k to codes[i * size() + k], beam k's
+  /// noise from ping.stream(k). Groups of kGroup beams run on the threads of `caster` (null: this thread); the image
+  /// does not depend on which thread builds which group.
+  void listenAll(const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, const CounterRandom& ping,
+                 std::uint8_t* codes, const raycast::RayCaster* caster);
+
+  static constexpr std::size_t kGroup = 64;  ///< beams per group of listenAll() (a cache line of the image's row)
+
 private:
+  /// Beam k's line with `energy` (nbins) as its scratch.
+  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+              const CounterRandom& random, std::uint8_t* codes, std::size_t stride, std::vector<double>& energy) const;
+
   std::vector<BeamFan> fans_;
   BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
   std::vector<raycast::Ray> rays_;
-  std::vector<double> energy_;
+  std::vector<double> energy_;                 ///< listen()'s scratch
+  std::vector<std::vector<double>> energies_;  ///< listenAll()'s scratch, one per group
 };
 
 }  // namespace sonar

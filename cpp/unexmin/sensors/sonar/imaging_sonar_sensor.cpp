@@ -57,9 +57,8 @@ void ImagingSonarSensor::sample(const SensorContext& ctx) {
   out.beams = beams();
   out.bins = bins();
   out.codes.resize(out.beams * out.bins);
-  const CounterRandom ping(seed);  // beam k draws from its stream k
-  for (std::size_t k = 0; k < out.beams; ++k)
-    beams_.listen(k, pose, hits_, ping.stream(k), &out.codes[k], out.beams);
+  // Beam k draws from stream k of the ping: the beams' groups may run on the caster's threads in any order.
+  beams_.listenAll(pose, hits_, CounterRandom(seed), out.codes.data(), ctx.rays);
   out.built = true;
 }
 
