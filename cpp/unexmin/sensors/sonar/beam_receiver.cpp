@@ -122,7 +122,7 @@ inline std::uint8_t BeamReceiver::code(double power, std::size_t i) const {
   return static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, q)));  // truncation: floor of q >= 0
 }
 
-void BeamReceiver::receive(const std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes,
+void BeamReceiver::receive(std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes,
                            std::size_t stride) const {
   const float unit = 1.0f / 16777216.0f;           // 2^-24
   const double unit53 = 1.0 / 9007199254740992.0;  // 2^-53
@@ -170,6 +170,7 @@ void BeamReceiver::receive(const std::vector<double>& energy, const CounterRando
     // The bins with an echo: speckle and noise from the bin's own draw.
     for (std::size_t j = 0; j < m; ++j) {
       double power = energy[i0 + j];
+      energy[i0 + j] = 0.0;  // zero again for the next beam
       if (!(power > 0.0))
         continue;
       const std::uint64_t bits = random.bits(i0 + j);

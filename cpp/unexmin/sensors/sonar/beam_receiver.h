@@ -59,9 +59,8 @@ public:
   /// to `energy` (nbins) [uPa^2]; what falls outside the range window is lost.
   void add(const Echo& e, double extent, std::size_t rays, std::vector<double>& energy) const;
   /// Speckle and noise floor on the echo power `energy` (nbins) [uPa^2], drawn from `random` (the beam's stream of
-  /// this ping), then the codes: bin i to codes[i * stride].
-  void receive(const std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes,
-               std::size_t stride) const;
+  /// this ping), then the codes: bin i to codes[i * stride]. `energy` is left all zeros, ready for the next beam.
+  void receive(std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes, std::size_t stride) const;
 
 private:
   static constexpr std::size_t kBlock = 32;  ///< bins per block of the noise's candidates

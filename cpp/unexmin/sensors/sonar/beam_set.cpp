@@ -29,7 +29,6 @@ void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::ve
 void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
                      const CounterRandom& random, std::uint8_t* codes, std::size_t stride,
                      std::vector<double>& energy) const {
-  std::fill(energy.begin(), energy.end(), 0.0);
   fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy);
   receiver_.receive(energy, random, codes, stride);
 }
