@@ -1,7 +1,8 @@
 // The imaging sonar (cpp/unexmin/sensors/sonar/imaging_sonar_sensor.h) against closed forms: a sphere at a known
 // range and bearing in its bin and beam, the acoustic shadow of a box on a flat floor by similar triangles, the echo
 // level against the sonar equation's spreading and absorption at two ranges, seeded speckle, the noise floor's codes
-// against an exponential power's, pings built only on demand, parameter errors.
+// against an exponential power's, pings built only on demand, the same image for any number of caster threads,
+// parameter errors.
 #include "expect_error.h"
 #include "sonar_image_fixture.h"
 
@@ -224,6 +225,22 @@ TEST(ImagingSonar, APingNotWantedIsNotBuiltAndTheNextDoesNotDependOnIt) {
   const auto a = second(true), b = second(false);
   EXPECT_EQ(a.size(), 500u * 512u);
   EXPECT_TRUE(a == b);
+}
+
+TEST(ImagingSonar, TheImageDoesNotDependOnTheCastersThreads) {
+  // The beams' receivers run in groups on the caster's threads, each beam with its own stream of the ping: one thread
+  // or three give the same image, noise and speckle included.
+  const auto image = [](int threads) {
+    auto w = sonarRig({{"shell", icosphere(kAt, 20.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                      {{"rays_per_beam", "4"}}, 9, threads);
+    EXPECT_EQ(w->caster->threads(), threads);
+    w->samples(sonar(*w), 2);
+    return sonar(*w).last().codes;
+  };
+  const auto one = image(1), three = image(3);
+  EXPECT_EQ(one.size(), 500u * 512u);
+  EXPECT_TRUE(one == three);
+  EXPECT_GT(std::count_if(one.begin(), one.end(), [](std::uint8_t q) { return q > 0; }), 10000);  // noise beyond 8 m
 }
 
 TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {
