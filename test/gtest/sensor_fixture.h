@@ -93,14 +93,17 @@ inline const sensors::SensorFactory& coreModels() {
 }
 
 /// A world with one robot (named after the world's first spawn) described by `urdf`, the world's ray caster
-/// of back end `backend` and the robot's sensor suite, reset with the world's seed.
+/// of back end `backend` (`caster_threads` threads, 0 = every hardware thread) and the robot's sensor suite, reset with
+/// the world's seed.
 struct SensorWorld {
   SensorWorld(const sim::WorldConfig& config, const std::string& urdf, std::uint64_t seed = 1, double dt = 0.002,
-              const std::string& backend = "embree") {
+              const std::string& backend = "embree", int caster_threads = 0) {
     std::map<std::string, sim::RobotDescription> d;
     d.emplace(config.robots.at(0).name, sim::parseRobotDescription(urdf, "(test robot)"));
     world = std::make_unique<sim::World>(config, d, 1, dt, seed);
-    caster = raycast::makeRayCaster(backend, *world);
+    raycast::RayCasterOptions options;
+    options.threads = caster_threads;
+    caster = raycast::makeRayCaster(backend, *world, options);
     caster->update();
     suite = std::make_unique<sensors::SensorSuite>(*world, robot(), caster.get(), coreModels());
   }

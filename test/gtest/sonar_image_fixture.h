@@ -19,14 +19,16 @@ namespace test {
 constexpr double kDegree = M_PI / 180.0;
 
 /// A world with `meshes` and the robot at `at` (world; surface z = 0) carrying one sensor of `type` at `rate` [Hz]
-/// on T/sonar_link, turned by `rpy` [rad] from the base link.
+/// on T/sonar_link, turned by `rpy` [rad] from the base link; the caster on `caster_threads` threads (0: every hardware
+/// thread).
 inline std::unique_ptr<SonarWorld> sonarRig(const std::vector<std::pair<std::string, Geometry>>& meshes,
                                             const Eigen::Vector3d& at, const Eigen::Vector3d& rpy,
                                             const std::string& type, double rate,
-                                            const std::map<std::string, std::string>& params, std::uint64_t seed = 1) {
+                                            const std::map<std::string, std::string>& params, std::uint64_t seed = 1,
+                                            int caster_threads = 0) {
   const std::string urdf = sensorUrdf(SphereSpec(), mountLink("T/sonar_link", Eigen::Vector3d::Zero(), rpy),
                                       sensorXml("sonar", type, "T/sonar_link", rate, params));
-  return std::make_unique<SonarWorld>(meshWorld(meshes, at), urdf, seed);
+  return std::make_unique<SonarWorld>(meshWorld(meshes, at), urdf, seed, 0.002, "embree", caster_threads);
 }
 
 /// A flat floor, its top `altitude` [m] below `at`, 200 m square.

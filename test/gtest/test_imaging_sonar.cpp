@@ -1,7 +1,8 @@
 // The imaging sonar (cpp/unexmin/sensors/sonar/imaging_sonar_sensor.h) against closed forms: a sphere at a known
 // range and bearing in its bin and beam, the acoustic shadow of a box on a flat floor by similar triangles, the echo
 // level against the sonar equation's spreading and absorption at two ranges, seeded speckle, the noise floor's codes
-// against an exponential power's, pings built only on demand, parameter errors.
+// against an exponential power's, pings built only on demand, the same image for any number of caster threads,
+// parameter errors.
 #include "expect_error.h"
 #include "sonar_image_fixture.h"
 
@@ -183,15 +184,14 @@ TEST(ImagingSonar, TheNoiseAloneShowsEachCodeWithTheProbabilityOfAnExponentialPo
   const double noise = std::pow(10.0, r.noise().noise_level / 10.0);
   const std::size_t n = sonar(*w).bins();
   const int beams = 400;
-  sensors::Random random;
-  random.seed(3);
+  const sensors::CounterRandom random(3);
   std::vector<std::uint8_t> codes(n);
   std::vector<double> energy;
   const std::vector<int> levels = {1, 3, 10, 30};
   std::vector<double> count(levels.size(), 0.0);
   for (int k = 0; k < beams; ++k) {
     energy.assign(n, 0.0);
-    r.receive(energy, random, codes.data(), 1);
+    r.receive(energy, random.stream(static_cast<std::uint64_t>(k)), codes.data(), 1);
     for (std::size_t l = 0; l < levels.size(); ++l)
       for (std::size_t i = 0; i < n; ++i)
         count[l] += codes[i] >= levels[l];
@@ -225,6 +225,22 @@ TEST(ImagingSonar, APingNotWantedIsNotBuiltAndTheNextDoesNotDependOnIt) {
   const auto a = second(true), b = second(false);
   EXPECT_EQ(a.size(), 500u * 512u);
   EXPECT_TRUE(a == b);
+}
+
+TEST(ImagingSonar, TheImageDoesNotDependOnTheCastersThreads) {
+  // The beams' receivers run in groups on the caster's threads, each beam with its own stream of the ping: one thread
+  // or three give the same image, noise and speckle included.
+  const auto image = [](int threads) {
+    auto w = sonarRig({{"shell", icosphere(kAt, 20.0, 3)}}, kAt, Eigen::Vector3d::Zero(), "imaging_sonar", 10.0,
+                      {{"rays_per_beam", "4"}}, 9, threads);
+    EXPECT_EQ(w->caster->threads(), threads);
+    w->samples(sonar(*w), 2);
+    return sonar(*w).last().codes;
+  };
+  const auto one = image(1), three = image(3);
+  EXPECT_EQ(one.size(), 500u * 512u);
+  EXPECT_TRUE(one == three);
+  EXPECT_GT(std::count_if(one.begin(), one.end(), [](std::uint8_t q) { return q > 0; }), 10000);  // noise beyond 8 m
 }
 
 TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {

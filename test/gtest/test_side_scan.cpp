@@ -1,6 +1,7 @@
 // The side-scan sonar (cpp/unexmin/sensors/sonar/side_scan_sensor.h) against closed forms: the nadir gap at the
 // slant range of the fan's steepest ray over a flat floor (the altitude itself for a fan reaching the vertical), the
-// acoustic shadow of a box on the floor by similar triangles, the waterfall's layout, seeded lines, parameter errors.
+// acoustic shadow of a box on the floor by similar triangles, the waterfall's layout, seeded lines, pings built only on
+// demand, parameter errors.
 #include "expect_error.h"
 #include "sonar_image_fixture.h"
 
@@ -111,6 +112,40 @@ TEST(SideScan, LinesRepeatWithTheSeed) {
   };
   EXPECT_TRUE(lines(3) == lines(3));
   EXPECT_FALSE(lines(3) == lines(4));
+}
+
+TEST(SideScan, APingNotWantedIsNotBuiltLeavesABlankWaterfallRowAndTheNextDoesNotDependOnIt) {
+  // Three pings, the second wanted or not: the third's lines are the same either way; the waterfall's middle row is
+  // the second ping's lines when it was built and zeros when it was not.
+  const auto run = [](bool second_wanted) {
+    auto w = sonarRig({{"floor", floorBelow(kAt, 5.0)}}, kAt, Eigen::Vector3d::Zero(), "side_scan", 10.0,
+                      {{"nbins", "200"}, {"waterfall_lines", "3"}}, 5);
+    SideScanSensor& s = sonar(*w);
+    bool wanted = true;
+    s.setDemand([&wanted] { return wanted; });
+    w->samples(s, 1);
+    EXPECT_TRUE(s.last().built);
+    wanted = second_wanted;
+    w->samples(s, 1);
+    EXPECT_EQ(s.last().built, second_wanted);
+    wanted = true;
+    w->samples(s, 1);
+    EXPECT_TRUE(s.last().built);
+    std::vector<std::uint8_t> image;
+    s.waterfall().image(image);
+    return std::make_pair(s.last().port, image);
+  };
+  const auto built = run(true), skipped = run(false);
+  EXPECT_TRUE(built.first == skipped.first);
+  ASSERT_EQ(built.second.size(), 3u * 400u);
+  const auto row = [](const std::vector<std::uint8_t>& image, std::size_t r) {
+    return std::vector<std::uint8_t>(image.begin() + r * 400, image.begin() + (r + 1) * 400);
+  };
+  EXPECT_TRUE(row(built.second, 0) == row(skipped.second, 0));  // the third ping
+  EXPECT_TRUE(row(built.second, 2) == row(skipped.second, 2));  // the first
+  EXPECT_EQ(row(skipped.second, 1), std::vector<std::uint8_t>(400, 0));
+  EXPECT_GT(std::count_if(built.second.begin() + 400, built.second.begin() + 800, [](std::uint8_t q) { return q > 0; }),
+            100);  // the floor's echoes
 }
 
 TEST(SideScan, BadParametersNameTheSensorAndTheParameter) {

@@ -5,7 +5,8 @@ A robot description carrying both (sonar_images.urdf.xacro) in the tank, or a te
 sonar and whose AUV the side-scan (~imaging_robot, ~side_scan_robot); the test subscribes to every documented
 topic, steps the paused simulator by /sim/step until each has delivered an image, and checks the documented layout:
 mono8, frame the sensor link, and the sizes of docs/sonars.md for the default parameters; then, subscribed, that a
-second of sim time brings one polar image per ping (~imaging_rate, Hz)."""
+second of sim time brings one polar image per ping (~imaging_rate, Hz) and one port line per side-scan ping
+(~side_scan_rate, Hz): both sonars ping while someone listens."""
 
 import math
 import threading
@@ -46,7 +47,7 @@ class SonarImages(unittest.TestCase):
             def callback(msg):
                 with lock:
                     got.setdefault(topic, msg)
-                    if topic.endswith("/polar"):
+                    if topic.endswith("/polar") or topic.endswith("/port"):
                         seen[topic].append(msg)
 
             return callback
@@ -80,22 +81,27 @@ class SonarImages(unittest.TestCase):
         self.assertAlmostEqual(
             rospy.get_param(f"/{side_scan}/side_scan/range_resolution"), (50.0 - 0.1) / SIDE_BINS, places=9
         )
-        # While subscribed, every ping is built and published: over 1 s of sim time, one polar image per ping.
-        rate = rospy.get_param("~imaging_rate", 20.0)
+        # While subscribed, every ping is built and published: over 1 s of sim time, one image per ping of each sonar.
+        rates = {
+            f"/{imaging}/imaging_sonar/polar": rospy.get_param("~imaging_rate", 20.0),
+            f"/{side_scan}/side_scan/port": rospy.get_param("~side_scan_rate", 10.0),
+        }
         t1 = step(duration=1.0).time
-        expected_count = math.floor(t1 * rate + 1e-6) - math.floor(t0 * rate + 1e-6)
-        self.assertGreaterEqual(expected_count, int(rate) - 1)
-        polar = f"/{imaging}/imaging_sonar/polar"
-        deadline = time.monotonic() + 30.0
-        while True:
-            with lock:
-                stamps = sorted({m.header.stamp.to_sec() for m in seen[polar] if t0 < m.header.stamp.to_sec() <= t1})
-            if len(stamps) >= expected_count or time.monotonic() > deadline:
-                break
-            time.sleep(0.05)
-        self.assertEqual(len(stamps), expected_count, f"polar images in ({t0}, {t1}] s of sim time at {rate} Hz")
-        for a, b in zip(stamps, stamps[1:]):
-            self.assertAlmostEqual(b - a, 1.0 / rate, places=6)
+        for topic, rate in rates.items():
+            expected_count = math.floor(t1 * rate + 1e-6) - math.floor(t0 * rate + 1e-6)
+            self.assertGreaterEqual(expected_count, int(rate) - 1)
+            deadline = time.monotonic() + 30.0
+            while True:
+                with lock:
+                    stamps = sorted(
+                        {m.header.stamp.to_sec() for m in seen[topic] if t0 < m.header.stamp.to_sec() <= t1}
+                    )
+                if len(stamps) >= expected_count or time.monotonic() > deadline:
+                    break
+                time.sleep(0.05)
+            self.assertEqual(len(stamps), expected_count, f"{topic} in ({t0}, {t1}] s of sim time at {rate} Hz")
+            for a, b in zip(stamps, stamps[1:]):
+                self.assertAlmostEqual(b - a, 1.0 / rate, places=6)
 
 
 if __name__ == "__main__":

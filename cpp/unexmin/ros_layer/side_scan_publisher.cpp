@@ -7,7 +7,7 @@
 namespace unexmin {
 namespace ros_layer {
 
-SideScanPublisher::SideScanPublisher(const sensors::sonar::SideScanSensor& sensor, const PublisherContext& ctx)
+SideScanPublisher::SideScanPublisher(sensors::sonar::SideScanSensor& sensor, const PublisherContext& ctx)
     : sensor_(sensor) {
   const int lines = queueSize(sensor.rate());
   const std::string& name = sensor.name();
@@ -23,6 +23,12 @@ SideScanPublisher::SideScanPublisher(const sensors::sonar::SideScanSensor& senso
   ctx.nh.setParam(params + "range_min", sensor.rangeMin());
   ctx.nh.setParam(params + "range_max", sensor.rangeMax());
   ctx.nh.setParam(params + "range_resolution", sensor.rangeResolution());
+  // Ping only while someone subscribes to a line or the waterfall, or the simulator records one.
+  sensor_.setDemand([this] { return wanted(port_pub_) || wanted(starboard_pub_) || wanted(waterfall_pub_); });
+}
+
+SideScanPublisher::~SideScanPublisher() {
+  sensor_.setDemand(nullptr);
 }
 
 sensor_msgs::Image SideScanPublisher::line(int side) const {
@@ -40,6 +46,8 @@ sensor_msgs::Image SideScanPublisher::waterfall() const {
 }
 
 void SideScanPublisher::publish() {
+  if (!sensor_.last().built)
+    return;
   if (wanted(port_pub_))
     emit(port_pub_, line(0));
   if (wanted(starboard_pub_))

@@ -18,7 +18,9 @@ namespace ros_layer {
 
 class SideScanPublisher : public SensorPublisher {
 public:
-  SideScanPublisher(const sensors::sonar::SideScanSensor& sensor, const PublisherContext& ctx);
+  /// Makes the sensor ping only while one of its topics is wanted (subscribed or recorded).
+  SideScanPublisher(sensors::sonar::SideScanSensor& sensor, const PublisherContext& ctx);
+  ~SideScanPublisher() override;
   void publish() override;
   /// The latest ping's line of one side (0 port, 1 starboard).
   sensor_msgs::Image line(int side) const;
@@ -26,7 +28,7 @@ public:
   sensor_msgs::Image waterfall() const;
 
 private:
-  const sensors::sonar::SideScanSensor& sensor_;
+  sensors::sonar::SideScanSensor& sensor_;
   Stream port_pub_, starboard_pub_, waterfall_pub_;
 };
 

@@ -32,18 +32,22 @@ double BeamFan::solidAngle() const {
 
 void BeamFan::aim(const Eigen::Isometry3d& sensor, double range_max, double surface_z, raycast::Ray* out) const {
   const Eigen::Vector3d origin = sensor.translation();
+  const Eigen::Vector3f origin_f = origin.cast<float>();
+  const Eigen::Matrix3d rotation = sensor.linear();  // a plain 3 x 3 for the loop
   const bool wet = origin.z() < surface_z;
   for (std::size_t j = 0; j < dirs_.size(); ++j) {
     // Components within 1e-9 of zero (rounding of the rotations) are zero: Embree's robust traversal loses rays
     // with a component of ~1e-17 whose origin lies on a bound of its hierarchy (a level sensor at x = 0 over a floor).
-    const Eigen::Vector3d d =
-        (sensor.linear() * dirs_[j]).unaryExpr([](double c) { return std::abs(c) < 1e-9 ? 0.0 : c; }).normalized();
+    Eigen::Vector3d d = rotation * dirs_[j];
+    for (int c = 0; c < 3; ++c)
+      d[c] = std::abs(d[c]) < 1e-9 ? 0.0 : d[c];
+    d.normalize();
     double reach = range_max;
     if (!wet)
       reach = 1e-6;
     else if (d.z() > 1e-9)
       reach = std::min(range_max, (surface_z - origin.z()) / d.z());
-    out[j].origin = origin.cast<float>();
+    out[j].origin = origin_f;
     out[j].direction = d.cast<float>();
     out[j].max_range = static_cast<float>(std::max(reach, 1e-6));
   }

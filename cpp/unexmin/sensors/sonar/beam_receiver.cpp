@@ -122,65 +122,66 @@ inline std::uint8_t BeamReceiver::code(double power, std::size_t i) const {
   return static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, q)));  // truncation: floor of q >= 0
 }
 
-void BeamReceiver::receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const {
+void BeamReceiver::receive(std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes,
+                           std::size_t stride) const {
   const float unit = 1.0f / 16777216.0f;           // 2^-24
   const double unit53 = 1.0 / 9007199254740992.0;  // 2^-53
   const std::size_t n = energy.size();
-  // The bins with an echo: speckle and noise, one 64-bit draw each.
-  for (std::size_t i = 0; i < n; ++i) {
-    double power = energy[i];
-    if (!(power > 0.0)) {
-      codes[i * stride] = 0;
-      continue;
-    }
-    const std::uint64_t bits = random.bits();
-    if (noise_.speckle)
-      power *= exponential((static_cast<float>(bits >> 40) + 0.5f) * unit);
-    if (noise_.noise_floor)
-      power += noise_power_ * exponential((static_cast<float>((bits >> 16) & 0xffffffu) + 0.5f) * unit);
-    codes[i * stride] = code(power, i);
-  }
-  if (!noise_.noise_floor)
-    return;
-  // The noise alone in a bin without echo shows (code >= 1) with probability visible_[i]: a uniform draw w is kept
-  // when w < visible_[i], and then -ln(w) is an exponential draw given that it exceeds -ln(visible_[i]), the noise's
-  // power in units of noise_power. Per block of kBlock bins with p the block's largest visible_: where p is small,
-  // only candidates at geometric gaps of parameter p (one draw each), each with w uniform in [0, p) (kept with
-  // probability visible_[i] / p); elsewhere every bin draws w in [0, 1).
-  for (std::size_t b = 0; b < block_visible_.size(); ++b) {
-    const double p = block_visible_[b];
-    if (!(p > 0.0))
-      continue;
-    const std::size_t end = std::min(n, (b + 1) * kBlock);
+  // Draws 0 .. n - 1: bin i's with an echo; n .. n + ceil(n / 2) - 1: two bins' noise alone each (bins 2h and 2h + 1
+  // from draw n + h, its upper and lower 32-bit halves); after them, the sparse noise's.
+  std::uint64_t next = n + (n + 1) / 2;
+  for (std::size_t b = 0, i0 = 0; i0 < n; ++b, i0 += kBlock) {
+    const std::size_t m = std::min(kBlock, n - i0);
+    std::uint8_t q[kBlock];
+    // The noise alone in every bin of the block (the echo bins' codes replace theirs below). It shows (code >= 1) with
+    // probability visible_[i]: a uniform draw w is kept when w < visible_[i], and then -ln(w) is an exponential draw
+    // given that it exceeds -ln(visible_[i]), the noise's power in units of noise_power. With p the block's largest
+    // visible_: where p is small, only candidates at geometric gaps of parameter p (two draws each), each with w
+    // uniform in [0, p) (kept with probability visible_[i] / p); elsewhere every bin draws w in [0, 1) from its own
+    // draw.
+    const double p = noise_.noise_floor ? block_visible_[b] : 0.0;
     if (p > kDense) {
-      // The draws first (the generator is sequential), then every bin's code without a branch (vectorisable), then
-      // the codes of the bins where the noise shows.
-      const std::size_t i0 = b * kBlock, m = end - i0;
+      // The draws, then every bin's code without a branch (vectorisable). i0 is even (kBlock is).
       float w[kBlock];
-      std::uint8_t q[kBlock];
-      for (std::size_t j = 0; j < m; ++j)
-        w[j] = (static_cast<float>(random.bits() >> 40) + 0.5f) * unit;
+      for (std::size_t j = 0; j < m; j += 2) {
+        const std::uint64_t bits = random.bits(n + (i0 + j) / 2);
+        w[j] = (static_cast<float>(bits >> 40) + 0.5f) * unit;
+        w[j + 1] = (static_cast<float>((bits >> 8) & 0xffffffu) + 0.5f) * unit;  // past m when m is odd: not read
+      }
       for (std::size_t j = 0; j < m; ++j) {
         const float level =
             codes_per_log2_ * (log2_noise_power_ + fastLog2(exponential(w[j]))) + offset_[i0 + j] + 0.5f;
         const auto c = static_cast<std::uint8_t>(std::min(255.0f, std::max(0.0f, level)));
         q[j] = w[j] < visible_[i0 + j] ? c : 0;
       }
-      for (std::size_t j = 0; j < m; ++j)
-        if (q[j] != 0 && !(energy[i0 + j] > 0.0))
-          codes[(i0 + j) * stride] = q[j];
-      continue;
+    } else {
+      std::fill(q, q + m, std::uint8_t{0});
+      for (std::size_t j = 0; p > 0.0; ++j) {
+        const double u = static_cast<double>((random.bits(next++) >> 11) + 1) * unit53;  // (0, 1]
+        const double gap = std::floor(std::log(u) / block_log_miss_[b]);
+        if (!(gap < static_cast<double>(m - j)))
+          break;
+        j += static_cast<std::size_t>(gap);
+        const double w = (static_cast<double>(random.bits(next++) >> 11) + 0.5) * unit53 * p;
+        if (w < visible_[i0 + j])
+          q[j] = code(noise_power_ * exponential(static_cast<float>(w)), i0 + j);
+      }
     }
-    for (std::size_t i = b * kBlock;; ++i) {
-      const double u = static_cast<double>((random.bits() >> 11) + 1) * unit53;  // (0, 1]
-      const double gap = std::floor(std::log(u) / block_log_miss_[b]);
-      if (!(gap < static_cast<double>(end - i)))
-        break;
-      i += static_cast<std::size_t>(gap);
-      const double w = (static_cast<double>(random.bits() >> 11) + 0.5) * unit53 * p;
-      if (w < visible_[i] && !(energy[i] > 0.0))
-        codes[i * stride] = code(noise_power_ * exponential(static_cast<float>(w)), i);
+    // The bins with an echo: speckle and noise from the bin's own draw.
+    for (std::size_t j = 0; j < m; ++j) {
+      double power = energy[i0 + j];
+      energy[i0 + j] = 0.0;  // zero again for the next beam
+      if (!(power > 0.0))
+        continue;
+      const std::uint64_t bits = random.bits(i0 + j);
+      if (noise_.speckle)
+        power *= exponential((static_cast<float>(bits >> 40) + 0.5f) * unit);
+      if (noise_.noise_floor)
+        power += noise_power_ * exponential((static_cast<float>((bits >> 16) & 0xffffffu) + 0.5f) * unit);
+      q[j] = code(power, i0 + j);
     }
+    for (std::size_t j = 0; j < m; ++j)
+      codes[(i0 + j) * stride] = q[j];
   }
 }
 

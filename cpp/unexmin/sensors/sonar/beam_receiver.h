@@ -5,12 +5,13 @@
 //   noise_floor  + 10^(noise_level / 10) uPa^2 x an exponential draw (Rayleigh noise) at the receiver input
 //   output       L_i = 10 log10(P_i) + G + TVG(r_i), code q_i = round((L_i - display_min) / display_span 255)
 //                clamped to 0 .. 255 (EchoModel::code)
-// One 64-bit draw per bin with an echo (its high and low 24-bit halves are the speckle's and the noise's uniform
-// draws); the noise alone in the other bins is drawn only where it shows (code >= 1), at geometric gaps (receive()).
-// Knows no ROS.
+// Randomness from a counter-based stream (counter_random.h), one per beam and ping: draw i belongs to bin i (with an
+// echo, its two 24-bit halves are the speckle's and the noise's uniform draws; without, its high 24 bits are the
+// noise's), and the noise alone is drawn bin by bin only where it shows often; elsewhere at geometric gaps, from the
+// draws after the bins' (receive()). Knows no ROS.
 #pragma once
 
-#include <unexmin/sensors/random.h>
+#include <unexmin/sensors/counter_random.h>
 #include <unexmin/sensors/sensor_params.h>
 #include <unexmin/sensors/sonar/echo_model.h>
 #include <unexmin/sensors/sonar/equation_params.h>
@@ -57,8 +58,9 @@ public:
   /// Adds the power of `e` (one of `rays` rays of the beam) spread evenly over [r - extent/2, r + extent/2] [m]
   /// to `energy` (nbins) [uPa^2]; what falls outside the range window is lost.
   void add(const Echo& e, double extent, std::size_t rays, std::vector<double>& energy) const;
-  /// Speckle and noise floor on `energy` (nbins, changed), then the codes: bin i to codes[i * stride].
-  void receive(std::vector<double>& energy, Random& random, std::uint8_t* codes, std::size_t stride) const;
+  /// Speckle and noise floor on the echo power `energy` (nbins) [uPa^2], drawn from `random` (the beam's stream of
+  /// this ping), then the codes: bin i to codes[i * stride]. `energy` is left all zeros, ready for the next beam.
+  void receive(std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes, std::size_t stride) const;
 
 private:
   static constexpr std::size_t kBlock = 32;  ///< bins per block of the noise's candidates

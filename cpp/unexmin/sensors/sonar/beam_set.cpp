@@ -22,10 +22,30 @@ const std::vector<raycast::Ray>& BeamSet::aim(const Eigen::Isometry3d& pose, dou
 }
 
 void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
-                     Random& random, std::uint8_t* codes, std::size_t stride) {
-  std::fill(energy_.begin(), energy_.end(), 0.0);
-  fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy_);
-  receiver_.receive(energy_, random, codes, stride);
+                     const CounterRandom& random, std::uint8_t* codes, std::size_t stride) {
+  listen(k, pose, hits, random, codes, stride, energy_);
+}
+
+void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+                     const CounterRandom& random, std::uint8_t* codes, std::size_t stride,
+                     std::vector<double>& energy) const {
+  fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy);
+  receiver_.receive(energy, random, codes, stride);
+}
+
+void BeamSet::listenAll(const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, const CounterRandom& ping,
+                        std::uint8_t* codes, const raycast::RayCaster* caster) {
+  const std::size_t beams = fans_.size(), groups = (beams + kGroup - 1) / kGroup;
+  energies_.resize(groups, energy_);
+  const auto group = [&](std::size_t g) {
+    for (std::size_t k = g * kGroup; k < std::min(beams, (g + 1) * kGroup); ++k)
+      listen(k, pose, hits, ping.stream(k), codes + k, beams, energies_[g]);
+  };
+  if (caster)
+    caster->parallelFor(groups, group);
+  else
+    for (std::size_t g = 0; g < groups; ++g)
+      group(g);
 }
 
 }  // namespace sonar

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <unexmin/raycast/ray_caster.h>
-#include <unexmin/sensors/random.h>
+#include <unexmin/sensors/counter_random.h>
 #include <unexmin/sensors/sonar/beam_fan.h>
 #include <unexmin/sensors/sonar/beam_receiver.h>
 
@@ -32,15 +32,28 @@ public:
   /// range_max or the free surface at height surface_z [m] (BeamFan::aim).
   const std::vector<raycast::Ray>& aim(const Eigen::Isometry3d& pose, double surface_z);
   /// Beam k's line from `hits` (the answers to aim()'s rays, the sensor at `pose`): echoes, receiver noise from
-  /// `random`, codes[i * stride] = the code of bin i.
-  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, Random& random,
-              std::uint8_t* codes, std::size_t stride);
+  /// `random` (the beam's stream of this ping), codes[i * stride] = the code of bin i.
+  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+              const CounterRandom& random, std::uint8_t* codes, std::size_t stride);
+
+  /// Every beam's line as listen() gives it, into a polar image: bin i of beam k to codes[i * size() + k], beam k's
+  /// noise from ping.stream(k). Groups of kGroup beams run on the threads of `caster` (null: this thread); the image
+  /// does not depend on which thread builds which group.
+  void listenAll(const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits, const CounterRandom& ping,
+                 std::uint8_t* codes, const raycast::RayCaster* caster);
+
+  static constexpr std::size_t kGroup = 64;  ///< beams per group of listenAll() (a cache line of the image's row)
 
 private:
+  /// Beam k's line with `energy` (nbins) as its scratch.
+  void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
+              const CounterRandom& random, std::uint8_t* codes, std::size_t stride, std::vector<double>& energy) const;
+
   std::vector<BeamFan> fans_;
   BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
   std::vector<raycast::Ray> rays_;
-  std::vector<double> energy_;
+  std::vector<double> energy_;                 ///< listen()'s scratch
+  std::vector<std::vector<double>> energies_;  ///< listenAll()'s scratch, one per group
 };
 
 }  // namespace sonar

@@ -50,7 +50,6 @@ void ImagingSonarSensor::sample(const SensorContext& ctx) {
   const std::uint64_t seed = random().bits();  // one draw per ping, built or not
   if (demand_ && !demand_())
     return;
-  ping_random_.seed(seed);
   const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
   const auto& rays = beams_.aim(pose, ctx.world.water().surface_z);
   castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
@@ -58,8 +57,8 @@ void ImagingSonarSensor::sample(const SensorContext& ctx) {
   out.beams = beams();
   out.bins = bins();
   out.codes.resize(out.beams * out.bins);
-  for (std::size_t k = 0; k < out.beams; ++k)
-    beams_.listen(k, pose, hits_, ping_random_, &out.codes[k], out.beams);
+  // Beam k draws from stream k of the ping: the beams' groups may run on the caster's threads in any order.
+  beams_.listenAll(pose, hits_, CounterRandom(seed), out.codes.data(), ctx.rays);
   out.built = true;
 }
 

@@ -79,7 +79,6 @@ private:
   std::vector<raycast::Hit> hits_;
   PolarImage last_;
   std::function<bool()> demand_;
-  Random ping_random_;  // the ping's speckle and noise, seeded from one draw of random() per ping
 };
 
 }  // namespace sonar

@@ -40,17 +40,25 @@ void SideScanSensor::onReset() {
 }
 
 void SideScanSensor::sample(const SensorContext& ctx) {
+  last_.time = ctx.world.time();
+  last_.built = false;
+  const std::uint64_t seed = random().bits();  // one draw per ping, built or not
+  if (demand_ && !demand_()) {
+    waterfall_.addBlank();
+    return;
+  }
   const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
   const auto& rays = beams_.aim(pose, ctx.world.water().surface_z);
   castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
 
-  last_.time = ctx.world.time();
+  const CounterRandom ping(seed);  // side s draws from its stream s
   for (std::size_t s = 0; s < 2; ++s) {
     std::vector<std::uint8_t>& line = s == 0 ? last_.port : last_.starboard;
     line.resize(bins());
-    beams_.listen(s, pose, hits_, random(), line.data(), 1);
+    beams_.listen(s, pose, hits_, ping.stream(s), line.data(), 1);
   }
   waterfall_.add(last_.port.data(), last_.starboard.data());
+  last_.built = true;
 }
 
 }  // namespace sonar

@@ -10,6 +10,8 @@
 //     bottom return carries only noise: the nadir gap, at the slant range altitude / sin(tilt + fov_v/2) of the
 //     steepest ray over a flat floor (the altitude itself for a fan that reaches the vertical);
 //   - the waterfall (waterfall.h) keeps the latest waterfall_lines pings.
+// Pings are built only while they are wanted (setDemand); a ping's speckle and noise come from one draw of the
+// sensor's seeded stream per ping, built or not, so the lines do not depend on which pings were built.
 // Parameters (defaults in brackets): fov_v [rad] (60 deg), beam_width [rad] (0.5 deg), tilt [rad] (30 deg), rays
 // (256), range_min [m] (0.1), range_max [m] (50), nbins (1000), gain (0.5), noise gaussian|none (gaussian), speckle
 // (true), noise_floor (true), noise_level [dB re 1 uPa] (75), sound_speed [m/s] (1500), waterfall_lines (400), and
@@ -24,6 +26,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace unexmin {
@@ -35,6 +38,7 @@ struct SideScanPing {
   double time = -1.0;                   ///< ping time [s]
   std::vector<std::uint8_t> port;       ///< nbins codes 0 .. 255, bin 0 the nearest
   std::vector<std::uint8_t> starboard;  ///< likewise
+  bool built = false;                   ///< false: the ping was not wanted (setDemand), the lines hold an older ping
 };
 
 class SideScanSensor : public Sensor {
@@ -43,7 +47,11 @@ public:
   SideScanSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
 
   const SideScanPing& last() const { return last_; }
+  /// The waterfall: a ping not built adds a row of zeros.
   const Waterfall& waterfall() const { return waterfall_; }
+  /// Builds a ping (rays, echoes, receiver) only at samples where `wanted()` is true (e.g. one of its topics has a
+  /// subscriber); null: always.
+  void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
   std::size_t bins() const { return static_cast<std::size_t>(beams_.receiver().echo().params().nbins); }
   double rangeMin() const { return beams_.receiver().echo().params().range_min; }          ///< [m]
   double rangeMax() const { return beams_.receiver().echo().params().range_max; }          ///< [m]
@@ -64,6 +72,7 @@ private:
   Waterfall waterfall_{1, 1};
   BeamSet beams_;
   std::vector<raycast::Hit> hits_;
+  std::function<bool()> demand_;
 };
 
 }  // namespace sonar

@@ -16,10 +16,19 @@ void Waterfall::clear() {
   std::fill(rows_.begin(), rows_.end(), 0);
 }
 
-void Waterfall::add(const std::uint8_t* port, const std::uint8_t* starboard) {
+std::uint8_t* Waterfall::next() {
   newest_ = filled_ == 0 ? 0 : (newest_ + 1) % lines_;
   filled_ = std::min(lines_, filled_ + 1);
-  std::uint8_t* row = &rows_[newest_ * width()];
+  return &rows_[newest_ * width()];
+}
+
+void Waterfall::addBlank() {
+  std::uint8_t* row = next();
+  std::fill(row, row + width(), std::uint8_t{0});
+}
+
+void Waterfall::add(const std::uint8_t* port, const std::uint8_t* starboard) {
+  std::uint8_t* row = next();
   std::reverse_copy(port, port + bins_, row);
   std::copy(starboard, starboard + bins_, row + bins_);
 }

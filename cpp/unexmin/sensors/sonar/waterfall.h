@@ -1,7 +1,7 @@
 // The waterfall image of a side-scan sonar (docs/sonars.md "Side-scan sonar"): the latest pings' lines stacked,
 // row 0 the newest ping; each row is the port line reversed (its far range at column 0) followed by the starboard
-// line, so the nadir is the middle of the row and range grows outwards on both sides. Rows not yet filled are 0.
-// Knows no ROS.
+// line, so the nadir is the middle of the row and range grows outwards on both sides. Rows not yet filled, and
+// the rows of pings that were not built, are 0. Knows no ROS.
 #pragma once
 
 #include <cstddef>
@@ -24,10 +24,15 @@ public:
   void clear();
   /// Adds one ping: `port` and `starboard` of bins() codes each, bin 0 the nearest.
   void add(const std::uint8_t* port, const std::uint8_t* starboard);
+  /// Adds a ping with no lines (one that was not built): a row of zeros.
+  void addBlank();
   /// The image, row-major, lines() x width() (resized).
   void image(std::vector<std::uint8_t>& out) const;
 
 private:
+  /// The row of a new ping (the oldest dropped when full).
+  std::uint8_t* next();
+
   std::size_t lines_, bins_;
   std::size_t filled_ = 0;
   std::size_t newest_ = 0;          ///< ring index of the newest row
