@@ -16,6 +16,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -27,6 +28,40 @@ from unexmin.world_from_scan import sample_scan
 from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[1]
+STREAMED_SCAN = 8_000_000  # scans larger than this are written by triangle chunks (streamed_scan)
+
+
+def streamed_scan(path, tris, spacing, noise, holes, hole_radius, seed, chunk=100_000):
+    """Write a seeded scan of `tris` (T x 3 x 3 [m]) to the binary PLY `path` triangle chunk by triangle chunk,
+    so that memory holds one chunk's points whatever the size: sample_scan's model (area-uniform points, one per
+    spacing^2 on average, Gaussian noise of sd `noise` [m], `holes` missing patches of `hole_radius` [m]) with the
+    patches' centres drawn from a coarse seeded sample of the surface. Returns the point count."""
+    from scipy.spatial import cKDTree
+
+    from unexmin.worlds.meshes import sample_surface
+
+    coarse, _ = sample_surface(tris, 1.0, seed)
+    centres = coarse[np.random.default_rng(seed + 1).choice(len(coarse), holes, replace=False)]
+    far = cKDTree(centres)
+    body = path.with_suffix(".body")
+    count = 0
+    with open(body, "wb") as f:
+        for k, i in enumerate(range(0, len(tris), chunk)):
+            points, _ = sample_surface(tris[i : i + chunk], spacing, seed + 2 + k)
+            points += np.random.default_rng(seed + 1_000_003 + k).normal(0.0, noise, points.shape)
+            gone = far.query(points, distance_upper_bound=hole_radius)[0]
+            points = np.ascontiguousarray(points[~np.isfinite(gone)], dtype="<f8")
+            points.tofile(f)
+            count += len(points)
+    header = (
+        f"ply\nformat binary_little_endian 1.0\nelement vertex {count}\n"
+        "property double x\nproperty double y\nproperty double z\nend_header\n"
+    )
+    with open(path, "wb") as out, open(body, "rb") as f:
+        out.write(header.encode("ascii"))
+        shutil.copyfileobj(f, out, 64 << 20)
+    body.unlink()
+    return count
 
 
 def main():
@@ -56,7 +91,9 @@ def main():
     for n in args.points:
         resolution = args.resolution or round(1.25 * math.sqrt(area / n), 2)
         scan = out / f"mine_{n}.ply"
-        if not scan.exists():
+        if not scan.exists() and n > STREAMED_SCAN:
+            streamed_scan(scan, tris, math.sqrt(area / n), 0.02, 40, 0.5, n)
+        elif not scan.exists():
             points = sample_scan(tris, math.sqrt(area / n), 0.02, holes=40, hole_radius=0.5, seed=n)
             o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
             del points
