@@ -8,8 +8,10 @@ scripts/setup.sh) with noise sd 2 cm and 40 missing patches of 0.5 m, written as
 reused when it exists); then the tool runs in a child process once per --workers value. Prints points per
 second through the whole pipeline, the child's wall and CPU time, the peak resident memory of its
 largest process (wait4: the tool or one of its Dask workers) and the bound on all of them at once (the
-tool's peak plus each worker's), the tiles, the tool's stage times, the scan-to-mesh distances and the
-void volume against the generator's mesh, and the load average.
+tool's peak plus each worker's), the tiles, the tool's stage times, the tiles' CPU time (and the best
+speed-up two workers could have on them), the scan-to-mesh distances and the void volume against the
+generator's mesh, and the load average. Scans of more than 8M points are written triangle chunk by
+triangle chunk (streamed_scan), so that generating them holds one chunk in memory.
 """
 
 import argparse
@@ -143,6 +145,17 @@ def main():
             for b in tiles["built"]:
                 print(f"    tile {b['index']}: {b['points_used']:,} points, worker peak {b['peak_rss_mb']:,.0f} MB")
             print(f"  stages [s]: {rep['seconds']}")
+            cpu = [b["cpu_seconds"] for b in tiles["built"] if "cpu_seconds" in b]
+            if cpu:
+                # the tiles in the order Dask hands them to two free workers: the best two can do on these tiles
+                ends = [0.0, 0.0]
+                for c in cpu:
+                    ends[ends.index(min(ends))] += c
+                print(
+                    f"  tiles' CPU {sum(cpu):.1f} s (largest tile {max(cpu):.1f} s); two workers on them at best "
+                    f"{sum(cpu) / max(ends):.2f}x one; the rest of the run's CPU "
+                    f"{usage.ru_utime + usage.ru_stime - sum(cpu):.1f} s"
+                )
             vol = rep["volume"]
             err = f"{100 * (vol - true_volume) / true_volume:+.2f} %" if vol is not None else "n/a"
             print(

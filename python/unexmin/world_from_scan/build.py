@@ -370,6 +370,7 @@ def build_world(
                         "estimate": layout["tiles"][r["index"]]["estimate"],
                         "peak_rss_mb": r["peak_rss_mb"],
                         "seconds": r["seconds"],
+                        "cpu_seconds": r["cpu_seconds"],
                     }
                     for r in sorted(results.values(), key=lambda r: r["index"])
                 ],

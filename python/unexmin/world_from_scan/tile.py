@@ -23,6 +23,12 @@ from unexmin.world_from_scan.tiles import describe, load_tile
 SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
 
 
+def _cpu():
+    """[s] user and system CPU time of this process so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def manifold_edges(t):
     """True when no directed edge appears twice: every edge has at most two faces, wound consistently."""
     e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
@@ -44,13 +50,15 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threa
     """The tile's result (a dict): 'collision' and 'visual' (v, t) clipped to its core slab, facing out of
     the void; poisson_triangles (the fine surface in the core), points read and used, spacing [m], depth,
     decided (fraction of orientation samples that decided), a sample of oriented points (for spawns),
-    wall and bridged area [m^2], seconds per stage, peak_rss_mb of the worker. `threads`: threads of
-    Poisson and the k-d tree queries (1 on a Dask worker: the tiles are the parallelism). A ScanError
-    names the tile and its bounds when its points are not finite or too few."""
+    wall and bridged area [m^2], seconds per stage (wall), cpu_seconds (the process's CPU time over the
+    tile), peak_rss_mb of the worker. `threads`: threads of Poisson and the k-d tree queries (1 on a Dask
+    worker: the tiles are the parallelism). A ScanError names the tile and its bounds when its points are
+    not finite or too few."""
     from scipy.spatial import cKDTree
 
     name = describe(tile, layout["axis"])
     times = {}
+    cpu0 = _cpu()
     t0 = time.monotonic()
     raw, normals, _rgb = load_tile(tile, layout["normals"], layout["rgb"])  # _rgb: per-point colours, if any
     bad = int((~np.isfinite(raw).all(axis=1)).sum())
@@ -116,5 +124,6 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threa
         "wall_area": float(area[seen].sum()),
         "bridged_area": float(area[~seen].sum()),
         "seconds": {k: round(s, 2) for k, s in times.items()},
+        "cpu_seconds": round(_cpu() - cpu0, 2),
         "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
     }
