@@ -8,24 +8,28 @@ import numpy as np
 HULL_RADIUS = 0.3  # [m] the UX-1's sphere (docs/robot_description.md)
 
 
-def poisson_depth(points, resolution):
-    """Octree depth whose finest cell is about `resolution` over the scan's largest extent (x 1.1)."""
-    extent = float((points.max(axis=0) - points.min(axis=0)).max()) * 1.1
-    return int(np.clip(math.ceil(math.log2(max(extent / resolution, 2.0))), 5, 13))
+def poisson_octree(points, resolution):
+    """(depth, scale) of the Poisson octree whose finest cell is `resolution` [m]: the fewest levels (5..13) whose
+    cube holds the points' largest extent x 1.1, and the cube then grown to 2^depth resolutions (`scale`: its edge
+    over that extent, Open3D's scale), so that a tile's cell is neither finer than the data asked for (up to twice,
+    four times the triangles) nor coarser; past 13 levels the cube is the extent x 1.1 and the cell coarser."""
+    extent = max(float((points.max(axis=0) - points.min(axis=0)).max()), 1e-9)
+    depth = int(np.clip(math.ceil(math.log2(max(1.1 * extent / resolution, 2.0))), 5, 13))
+    return depth, max(1.1, 2.0**depth * resolution / extent)
 
 
-def reconstruct(points, normals, depth, threads=-1):
+def reconstruct(points, normals, depth, threads=-1, scale=1.1):
     """Screened Poisson (Open3D, Kazhdan & Hoppe 2013) of the void as the solid: `normals` face the void
     and are reversed, so the indicator's "inside" is the small void and its "outside" the rock that
     fills the rest of the octree (a small solid in a large empty box, Poisson's usual case). `threads`: Open3D's
-    n_threads (-1: every core). Returns vertices V x 3 and triangles T x 3 facing out of the void (build_world
-    turns them)."""
+    n_threads (-1: every core); `scale`: the octree's cube over the points' largest extent (poisson_octree).
+    Returns vertices V x 3 and triangles T x 3 facing out of the void (build_world turns them)."""
     import open3d as o3d
 
     cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
     cloud.normals = o3d.utility.Vector3dVector(-normals)
     mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(
-        cloud, depth=depth, scale=1.1, linear_fit=False, n_threads=threads
+        cloud, depth=depth, scale=scale, linear_fit=False, n_threads=threads
     )
     return np.asarray(mesh.vertices).copy(), np.asarray(mesh.triangles).astype(np.int64)
 

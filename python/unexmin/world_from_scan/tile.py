@@ -17,7 +17,7 @@ from unexmin.world_from_scan.scan import (
     point_spacing,
 )
 from unexmin.world_from_scan.stitch import clip_slab
-from unexmin.world_from_scan.surface import poisson_depth, reconstruct, simplify, trim_unsupported
+from unexmin.world_from_scan.surface import poisson_octree, reconstruct, simplify, trim_unsupported
 from unexmin.world_from_scan.tiles import describe, load_tile
 
 SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
@@ -83,8 +83,8 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threa
     )
     times["normals"] = time.monotonic() - t0
     t0 = time.monotonic()
-    depth = poisson_depth(points, max(resolution, spacing))
-    v, t = reconstruct(points, normals, depth, threads)
+    depth, scale = poisson_octree(points, max(resolution, spacing))
+    v, t = reconstruct(points, normals, depth, threads, scale)
     times["poisson"] = time.monotonic() - t0
     t0 = time.monotonic()
     v, t = trim_unsupported(v, t, points, max_gap, tree, threads)
