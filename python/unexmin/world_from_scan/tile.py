@@ -16,7 +16,7 @@ from unexmin.world_from_scan.scan import (
     orientation_samples,
     point_spacing,
 )
-from unexmin.world_from_scan.stitch import _compact, clip_slab
+from unexmin.world_from_scan.stitch import clip_slab
 from unexmin.world_from_scan.surface import poisson_octree, reconstruct, simplify, trim_unsupported
 from unexmin.world_from_scan.tiles import describe, load_tile
 
@@ -36,32 +36,14 @@ def manifold_edges(t):
     return len(np.unique(key)) == len(key)
 
 
-def manifold_part(t):
-    """The triangles `t` with each repeated face kept once and without the faces that still share a directed edge
-    with another (a fold or a fin left by a decimation): every directed edge then appears once, the dropped
-    faces leaving small holes (closed by close_holes with the rest)."""
-    r = np.argmin(t, axis=1)
-    rows = np.arange(len(t))
-    canon = np.column_stack([t[rows, r], t[rows, (r + 1) % 3], t[rows, (r + 2) % 3]])  # its rotation, same winding
-    _, first = np.unique(canon, axis=0, return_index=True)
-    t = t[np.sort(first)]
-    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
-    _, inverse, counts = np.unique(e[:, 0] * (int(t.max()) + 1) + e[:, 1], return_inverse=True, return_counts=True)
-    return t[~(counts[inverse] > 1).reshape(3, -1).any(axis=0)]
-
-
-def decimated(v, t, edge, max_dropped=2e-3):
-    """simplify() to `edge` [m] by fast-simplification, whose few folded faces (under `max_dropped` of the
-    triangles: a hole of a triangle or two each) are dropped by manifold_part; by Open3D's decimation when
-    more would be; or the surface as it was when that one breaks the surface's manifold edges too."""
-    dv, dt = simplify(v, t, edge, "fast")
-    if len(dt) and not manifold_edges(dt):
-        kept = manifold_part(dt)
-        dv, dt = _compact(dv, kept) if len(dt) - len(kept) <= max_dropped * len(dt) else (dv, dt[:0])
-    if len(dt) and manifold_edges(dt):
-        return dv, dt
-    dv, dt = simplify(v, t, edge, "open3d")
-    return (dv, dt) if len(dt) and manifold_edges(dt) else (v, t)
+def decimated(v, t, edge):
+    """simplify() to `edge` [m] (fast-simplification, or Open3D's decimation when that one broke the surface's
+    manifold edges), or the surface as it was when both broke them."""
+    for method in ("fast", "open3d"):
+        dv, dt = simplify(v, t, edge, method)
+        if len(dt) and manifold_edges(dt):
+            return dv, dt
+    return v, t
 
 
 def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threads=1):
