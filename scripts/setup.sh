@@ -50,6 +50,8 @@ pip_packages+=(clang-format==19.1.7)
 pip_packages+=(ruff==0.8.6)
 # Gymnasium environments of the UX-1's jobs (python/unexmin/gym, docs/gym.md)
 pip_packages+=(gymnasium==1.2.0)
+# quadric decimation of the scan worlds' tiles (python/unexmin/world_from_scan/surface.py)
+pip_packages+=(fast-simplification==0.2.0)
 
 missing=()
 for p in "${apt_packages[@]}"; do

@@ -26,6 +26,7 @@ from unexmin.world_from_scan.cluster import run_tiles
 from unexmin.world_from_scan.stitch import clip_slab, stitch
 from unexmin.world_from_scan.stream import iter_chunks
 from unexmin.world_from_scan.surface import close_holes
+from unexmin.world_from_scan.tile import decimated, manifold_edges
 from unexmin.world_from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
@@ -166,6 +167,14 @@ def test_zipping_two_tessellations_of_one_sphere_closes_it():
     assert mesh.is_watertight and mesh.is_winding_consistent and len(mesh.split(only_watertight=False)) == 1
     lo, hi = sorted([coarse.volume, fine.volume])
     assert lo - 1e-6 <= mesh.volume <= hi + 1e-6  # each half from its own sphere, the strip flat in the plane
+
+
+def test_decimation_keeps_a_sphere_manifold_and_on_its_radius():
+    sphere = trimesh.creation.icosphere(5, 3.0)  # 20 480 faces, edge about 0.12 m
+    v, t = decimated(np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64), 0.6)
+    area = 4.0 * math.pi * 3.0**2
+    assert manifold_edges(t) and len(t) <= 1.05 * max(1000, area / (0.6**2 * math.sqrt(3) / 4))
+    assert np.abs(np.linalg.norm(v, axis=1) - 3.0).max() < 0.03  # quadric decimation stays on the sphere
 
 
 def _colours(n, rng):

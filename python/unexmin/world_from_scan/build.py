@@ -220,6 +220,8 @@ def build_world(
             "edge": edge,
             "visual_edge": visual_edge,
             "seed": seed,
+            # a Dask worker runs one tile on one thread (the tiles are the parallelism); in this process: every core
+            "threads": 1 if local_workers or scheduler else -1,
         }
         per_worker = (memory_gb * 1e9 - DRIVER_BYTES) / max(1, local_workers)  # [B] each worker's limit
         t0 = time.monotonic()
@@ -368,6 +370,7 @@ def build_world(
                         "estimate": layout["tiles"][r["index"]]["estimate"],
                         "peak_rss_mb": r["peak_rss_mb"],
                         "seconds": r["seconds"],
+                        "cpu_seconds": r["cpu_seconds"],
                     }
                     for r in sorted(results.values(), key=lambda r: r["index"])
                 ],

@@ -139,12 +139,13 @@ def orientation_samples(count, spacing):
     return int(np.clip(count * spacing**2 / SAMPLE_AREA, 5000, 300000))
 
 
-def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, seed=0, progress=None):
+def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, seed=0, progress=None, threads=-1):
     """Turn each normal towards the void (the water): from a wall, the rays into the void meet the
     other walls, those into the rock meet nothing (or farther walls). A seeded sample of points casts
     a cone of rays both ways through a voxel grid of the scan; the side with more hits within `reach`
     [m] is the void. Every point then takes the side of its 8 nearest samples (weighted by how clear
-    their vote was). Returns the oriented normals and the fraction of samples that could decide."""
+    their vote was); `threads`: workers of that query. Returns the oriented normals and the fraction of
+    samples that could decide."""
     from scipy import ndimage
     from scipy.spatial import cKDTree
 
@@ -175,19 +176,21 @@ def orient_towards_void(points, normals, resolution, reach=REACH, samples=5000, 
     weight = np.abs(vote)
     tree = cKDTree(p)
     k = min(8, len(p))
-    _, nb = tree.query(points, k=k, workers=-1)
+    _, nb = tree.query(points, k=k, workers=threads)
     nb = nb.reshape(len(points), k)
     agree = np.einsum("ij,ikj->ik", normals, oriented[nb]) * weight[nb]
     side = np.where(agree.sum(axis=1) < 0.0, -1.0, 1.0)
     return normals * side[:, None], float(np.mean(weight > 0))
 
 
-def point_spacing(points, seed=0, k=8):
+def point_spacing(points, seed=0, k=8, tree=None):
     """[m] typical distance between neighbouring scan points, sqrt(1 / areal density): the density from
-    the radius r of the k nearest neighbours of up to 20 000 seeded samples, k / (pi r^2) (median)."""
+    the radius r of the k nearest neighbours of up to 20 000 seeded samples, k / (pi r^2) (median).
+    `tree`: a cKDTree of `points`, built when not given."""
     from scipy.spatial import cKDTree
 
     rng = np.random.default_rng(seed)
     probe = points[rng.choice(len(points), size=min(20000, len(points)), replace=False)]
-    r = cKDTree(points).query(probe, k=k + 1, workers=-1)[0][:, -1]
+    tree = cKDTree(points) if tree is None else tree
+    r = tree.query(probe, k=k + 1, workers=1)[0][:, -1]
     return float(np.median(r) * math.sqrt(math.pi / k))

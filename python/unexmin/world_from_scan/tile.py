@@ -17,10 +17,16 @@ from unexmin.world_from_scan.scan import (
     point_spacing,
 )
 from unexmin.world_from_scan.stitch import clip_slab
-from unexmin.world_from_scan.surface import poisson_depth, reconstruct, simplify, trim_unsupported
+from unexmin.world_from_scan.surface import poisson_octree, reconstruct, simplify, trim_unsupported
 from unexmin.world_from_scan.tiles import describe, load_tile
 
 SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
+
+
+def _cpu():
+    """[s] user and system CPU time of this process so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
 
 
 def manifold_edges(t):
@@ -31,21 +37,28 @@ def manifold_edges(t):
 
 
 def decimated(v, t, edge):
-    """simplify() to `edge` [m], or the surface as it was when the decimation broke its manifold edges."""
-    dv, dt = simplify(v, t, edge)
-    return (dv, dt) if len(dt) and manifold_edges(dt) else (v, t)
+    """simplify() to `edge` [m] (fast-simplification, or Open3D's decimation when that one broke the surface's
+    manifold edges), or the surface as it was when both broke them."""
+    for method in ("fast", "open3d"):
+        dv, dt = simplify(v, t, edge, method)
+        if len(dt) and manifold_edges(dt):
+            return dv, dt
+    return v, t
 
 
-def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed):
+def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threads=1):
     """The tile's result (a dict): 'collision' and 'visual' (v, t) clipped to its core slab, facing out of
     the void; poisson_triangles (the fine surface in the core), points read and used, spacing [m], depth,
     decided (fraction of orientation samples that decided), a sample of oriented points (for spawns),
-    wall and bridged area [m^2], seconds per stage, peak_rss_mb of the worker. A ScanError names the tile
-    and its bounds when its points are not finite or too few."""
+    wall and bridged area [m^2], seconds per stage (wall), cpu_seconds (the process's CPU time over the
+    tile), peak_rss_mb of the worker. `threads`: threads of Poisson and the k-d tree queries (1 on a Dask
+    worker: the tiles are the parallelism). A ScanError names the tile and its bounds when its points are
+    not finite or too few."""
     from scipy.spatial import cKDTree
 
     name = describe(tile, layout["axis"])
     times = {}
+    cpu0 = _cpu()
     t0 = time.monotonic()
     raw, normals, _rgb = load_tile(tile, layout["normals"], layout["rgb"])  # _rgb: per-point colours, if any
     bad = int((~np.isfinite(raw).all(axis=1)).sum())
@@ -61,33 +74,36 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed):
         )
     times["read"] = time.monotonic() - t0
     t0 = time.monotonic()
+    tree = cKDTree(points)  # one k-d tree of the tile's points: spacing, trimming, areas
     if normals is None:
         normals = estimate_normals(points, resolution)
-    spacing = point_spacing(points, seed)
+    spacing = point_spacing(points, seed, tree=tree)
     normals, decided = orient_towards_void(
-        points, normals, resolution, seed=seed, samples=orientation_samples(len(points), spacing)
+        points, normals, resolution, seed=seed, samples=orientation_samples(len(points), spacing), threads=threads
     )
     times["normals"] = time.monotonic() - t0
     t0 = time.monotonic()
-    depth = poisson_depth(points, max(resolution, spacing))
-    v, t = reconstruct(points, normals, depth)
+    depth, scale = poisson_octree(points, max(resolution, spacing))
+    v, t = reconstruct(points, normals, depth, threads, scale)
     times["poisson"] = time.monotonic() - t0
     t0 = time.monotonic()
-    v, t = trim_unsupported(v, t, points, max_gap)
+    v, t = trim_unsupported(v, t, points, max_gap, tree, threads)
     if len(t) == 0:
         raise ScanError(f"{name}: no usable surface: nothing of the reconstruction lies within --max-gap {max_gap} m")
     times["trim"] = time.monotonic() - t0
     t0 = time.monotonic()
     axis, (lo, hi) = layout["axis"], tile["core"]
-    cv, ct = clip_slab(*decimated(v, t, edge), axis, lo, hi)
-    vv, vt = clip_slab(*decimated(v, t, visual_edge), axis, lo, hi)
+    dv, dt = decimated(v, t, edge)
+    cv, ct = clip_slab(dv, dt, axis, lo, hi)
+    # the visual mesh from the collision one: a few times fewer triangles to decimate than the fine surface
+    vv, vt = clip_slab(*decimated(dv, dt, visual_edge), axis, lo, hi)
     fv, ft = clip_slab(v, t, axis, lo, hi)
-    del v, t
+    del v, t, dv, dt
     times["decimate"] = time.monotonic() - t0
     # areas of the fine surface in the core: near a scan point (walls seen) or not (gaps bridged)
     a, b, c = fv[ft[:, 0]], fv[ft[:, 1]], fv[ft[:, 2]]
     area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    d, _ = cKDTree(points).query((a + b + c) / 3.0, distance_upper_bound=3.0 * resolution, workers=1)
+    d, _ = tree.query((a + b + c) / 3.0, distance_upper_bound=3.0 * resolution, workers=threads)
     seen = np.isfinite(d)
     x = points[:, axis]
     core = (x >= lo) & (x < hi)
@@ -108,5 +124,6 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed):
         "wall_area": float(area[seen].sum()),
         "bridged_area": float(area[~seen].sum()),
         "seconds": {k: round(s, 2) for k, s in times.items()},
+        "cpu_seconds": round(_cpu() - cpu0, 2),
         "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
     }
