@@ -1,7 +1,7 @@
 #include <unexmin/sim/world.h>
 
-#include <unexmin/sim/spawn_placement.h>
 #include <unexmin/sim/collision_shape.h>
+#include <unexmin/sim/spawn_placement.h>
 
 #include <btBulletDynamicsCommon.h>
 
