@@ -59,7 +59,7 @@ def recall_of(centres, seen, tau):
 
     if not len(seen) or not len(centres):
         return 0.0
-    d_seen, _ = cKDTree(centres).query(seen)
+    d_seen, _ = cKDTree(centres).query(seen, distance_upper_bound=tau * (1.0 + 1e-9))
     return float(np.mean(d_seen <= tau))
 
 

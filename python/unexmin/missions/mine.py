@@ -137,17 +137,23 @@ def score_snapshots(snapshots, world_file, traj, tau, sensor_range=10.0):
     from unexmin.worlds.files import world_triangles
     from unexmin.worlds.meshes import sample_surface
 
+    from scipy.spatial import cKDTree
+
     tris = world_triangles(world_file)
     seen, _, _ = seen_surface(tris, tau, traj, sensor_range, 0)
+    maps = [(t, expand(*read_bt(path))[0]) for t, path in snapshots]
+    # One surface sample for every snapshot: a voxel's nearest surface within tau lies in the triangles near the
+    # union of the snapshots' voxels as surely as in those near its own snapshot's.
+    union = np.unique(np.concatenate([c for _, c in maps] + [np.empty((0, 3))]), axis=0)
+    wide = np.empty((0, 3))
+    if len(union):
+        wide, _ = sample_surface(tris[near_path(tris, union, 2.0 * tau + 1.0)], tau / 4.0, 0)
+    tree = cKDTree(wide) if len(wide) else None
     rows = []
-    for t, path in snapshots:
-        centres, _ = expand(*read_bt(path))
+    for t, centres in maps:
         precision = 0.0
-        if len(centres):
-            from scipy.spatial import cKDTree
-
-            wide, _ = sample_surface(tris[near_path(tris, centres, 2.0 * tau + 1.0)], tau / 4.0, 0)
-            d, _ = cKDTree(wide).query(centres) if len(wide) else (np.full(len(centres), np.inf), None)
+        if len(centres) and tree is not None:
+            d, _ = tree.query(centres, distance_upper_bound=tau * (1.0 + 1e-9))
             precision = float(np.mean(d <= tau))
         rows.append(
             {"t": t, "recall": recall_of(centres, seen, tau), "precision": precision, "occupied_voxels": len(centres)}
