@@ -135,6 +135,24 @@ def subscribed(master, topic, node):
 
 
 def run_rviz(display, tmp_path, launch_args, subscriptions, drawn, what, image):
+    """run_rviz_once, started again once when rviz itself crashed (a segfault in its software OpenGL under load,
+    seen about once in a full suite: rviz's, not the simulator's); a second crash fails the test naming it."""
+    stats = run_rviz_once(display, tmp_path, launch_args, subscriptions, drawn, what, image)
+    if drawn(stats) or not rviz_died(tmp_path):
+        return stats
+    retry = tmp_path / "after_rviz_crash"
+    retry.mkdir()
+    stats = run_rviz_once(display, retry, launch_args, subscriptions, drawn, what, image)
+    assert drawn(stats) or not rviz_died(retry), f"rviz crashed twice: see {retry / 'roslaunch.log'}"
+    return stats
+
+
+def rviz_died(tmp_path):
+    """Whether roslaunch reported the rviz process dead (log of run_rviz_once)."""
+    return any("[rviz-" in line and "process has died" in line for line in open(tmp_path / "roslaunch.log"))
+
+
+def run_rviz_once(display, tmp_path, launch_args, subscriptions, drawn, what, image):
     """`roslaunch unexmin mine_world.launch rviz:=true <launch_args>` on a private master; waits until the
     simulator runs and rviz is subscribed to every topic of `subscriptions` (its displays of the shipped
     config are live), then screenshots the root window until `drawn(stats)` or a timeout. Returns the
