@@ -132,12 +132,12 @@ def plot_coverage(coverage, surface_area, out_png):
 def score_snapshots(snapshots, world_file, traj, tau, sensor_range=10.0):
     """[{t, recall, precision, occupied_voxels}] of each saved map against the surface within range of the
     whole path (the final figure's denominator, so the curve ends at the final recall)."""
+    from scipy.spatial import cKDTree
+
     from unexmin.map_quality import expand, read_bt, recall_of, seen_surface
     from unexmin.map_quality.metrics import near_path
     from unexmin.worlds.files import world_triangles
     from unexmin.worlds.meshes import sample_surface
-
-    from scipy.spatial import cKDTree
 
     tris = world_triangles(world_file)
     seen, _, _ = seen_surface(tris, tau, traj, sensor_range, 0)
