@@ -24,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace py = pybind11;
@@ -205,18 +206,18 @@ void setThrusts(CoreWorld& w, const std::string& robot, const py::array_t<double
 /// Kept across reset(); the world file is not changed.
 void setCurrent(CoreWorld& w, double speed, double horizontal_angle, double vertical_angle, bool steady) {
   hydro::CurrentParams p = w.world().current().params();
-  const std::pair<hydro::GaussMarkovParams*, double> channels[] = {
-      {&p.speed, finiteCommand("speed", speed)},
-      {&p.horizontal_angle, finiteCommand("horizontal_angle", horizontal_angle)},
-      {&p.vertical_angle, finiteCommand("vertical_angle", vertical_angle)}};
+  const hydro::CurrentParams& file = w.world().config().current;  // the noise a call without `steady` restores
+  const std::tuple<hydro::GaussMarkovParams*, const hydro::GaussMarkovParams*, double> channels[] = {
+      {&p.speed, &file.speed, finiteCommand("speed", speed)},
+      {&p.horizontal_angle, &file.horizontal_angle, finiteCommand("horizontal_angle", horizontal_angle)},
+      {&p.vertical_angle, &file.vertical_angle, finiteCommand("vertical_angle", vertical_angle)}};
   if (speed < 0.0)
     badArgument("speed", formatNumber(speed), "a speed >= 0 m/s");
-  for (const auto& [channel, mean] : channels) {
+  for (const auto& [channel, in_file, mean] : channels) {
     channel->mean = mean;
     channel->min = std::min(channel->min, mean);
     channel->max = std::max(channel->max, mean);
-    if (steady)
-      channel->noise = 0.0;
+    channel->noise = steady ? 0.0 : in_file->noise;
   }
   w.world().current() = hydro::CurrentModel(p, w.world().seed());
 }

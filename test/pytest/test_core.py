@@ -292,6 +292,30 @@ def test_steady_current_and_no_sediment_in_the_tank(urdf):
     assert puffs["centre"].shape == (0, 3) and len(puffs["sigma"]) == 0
 
 
+def test_set_current_without_steady_restores_the_world_files_noise(tmp_path, urdf):
+    import yaml
+
+    from unexmin.worlds.files import PACKAGE_DIR, link_meshes
+
+    source = PACKAGE_DIR / "worlds" / "tank.world"
+    world = yaml.safe_load(source.read_text())
+    link_meshes(world["meshes"], str(source.parent), str(tmp_path))
+    world["current"]["speed"].update(mean=0.2, min=0.0, max=0.5, noise=0.05, mu=0.1)  # a noisy speed
+    path = tmp_path / "noisy.world"
+    path.write_text(yaml.safe_dump(world))
+    w = World(str(path), sensors="none", descriptions={"UX_1": urdf})
+    w.set_current(0.2, steady=True)
+    w.run_for(1.0)
+    assert np.linalg.norm(w.current) == pytest.approx(0.2, abs=1e-12), "steady: the mean, exactly"
+    w.set_current(0.2)  # the world file's noise again
+    speeds = []
+    for _ in range(20):
+        w.run_for(0.1)
+        speeds.append(np.linalg.norm(w.current))
+    # 0.05 m/s/sqrt(s) over 2 s: the speed wanders by about 0.07 m/s; steady it would not move at all
+    assert np.ptp(speeds) > 0.005, f"the speed stayed at the mean: {speeds}"
+
+
 def test_contacts_of_a_robot_pressed_on_a_wall(urdf):
     w = World("tank", sensors="none", descriptions={"UX_1": urdf})
     ux = w.robot("UX_1")
