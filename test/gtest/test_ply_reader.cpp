@@ -186,6 +186,28 @@ TEST(PlyReader, ACutFileOrAMissingVertexIsAnErrorNamingTheFile) {
   EXPECT_TRUE(contains(index_message, path + ": face 3 names vertex 7, expected [0, 5)")) << index_message;
 }
 
+TEST(PlyReader, AHeaderDeclaringMoreThanTheFileHoldsIsAnErrorNamingTheFileBeforeAnyAllocation) {
+  // 2^50 vertices (12 PiB of floats): reserving them would throw std::bad_alloc, not an error naming the file.
+  const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex ";
+  const std::string tail =
+      "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  const std::string huge = writeFile("ply_huge.ply", head + "1125899906842624" + tail + std::string(64, '\0'));
+  const std::string message = thrownMessage<ConfigError>([&] { sim::loadMesh(entry(huge)); });
+  EXPECT_TRUE(contains(message, huge + ": the PLY header declares 1125899906842624 vertices (12 bytes each) and 1 "
+                                       "faces: expected no more than the 64 bytes after the header hold"))
+      << message;
+  // Three vertices, and more faces than the bytes after them hold (a count byte each at least).
+  std::string faces = head + "3" + tail;
+  faces.replace(faces.find("element face 1"), 14, "element face 4000000000");
+  faces += std::string(36 + 13, '\0');
+  const std::string many = writeFile("ply_many_faces.ply", faces);
+  const std::string faces_message = thrownMessage<ConfigError>([&] { sim::loadMesh(entry(many)); });
+  EXPECT_TRUE(contains(faces_message, many + ": the PLY header declares 3 vertices (12 bytes each) and 4000000000 "
+                                             "faces: expected no more than the 49 bytes"))
+      << faces_message;
+}
+
 TEST(PlyReader, TheGeneratedMineReadsAsAssimpReadsIt) {
   const std::string file = "worlds/meshes/mine/mine_collision.ply";  // made by scripts/setup.sh
   ASSERT_TRUE(std::ifstream(file).good()) << file << " is missing: run scripts/setup.sh";

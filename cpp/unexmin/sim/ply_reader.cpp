@@ -1,9 +1,11 @@
 #include <unexmin/sim/ply_reader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -184,6 +186,23 @@ bool readBinaryPly(const MeshEntry& entry, TriangleMesh& out) {
   Layout layout;
   if (!readHeader(f.get(), layout))
     return false;
+  // The counts against the bytes after the header (every vertex record, at least a count per face) and against the
+  // int indices of TriangleMesh, before anything is allocated for them.
+  const long body = std::ftell(f.get());
+  if (body < 0 || std::fseek(f.get(), 0, SEEK_END) != 0)
+    throw ConfigError(entry.file + ": cannot seek in the PLY file");
+  const long end = std::ftell(f.get());
+  if (end < body || std::fseek(f.get(), body, SEEK_SET) != 0)
+    throw ConfigError(entry.file + ": cannot seek in the PLY file");
+  const std::size_t bytes = static_cast<std::size_t>(end - body);
+  const std::size_t max_int = static_cast<std::size_t>(std::numeric_limits<int>::max());
+  if (layout.vertices > bytes / layout.vertex_bytes || layout.faces > max_int / 3 ||
+      layout.faces > (bytes - layout.vertices * layout.vertex_bytes) / layout.count_bytes || layout.vertices > max_int)
+    throw ConfigError(entry.file + ": the PLY header declares " + std::to_string(layout.vertices) + " vertices (" +
+                      std::to_string(layout.vertex_bytes) + " bytes each) and " + std::to_string(layout.faces) +
+                      " faces: expected no more than the " + std::to_string(bytes) +
+                      " bytes after the header hold, and at most " + std::to_string(max_int) + " vertices and " +
+                      std::to_string(max_int / 3) + " faces");
   TriangleMesh mesh;
   mesh.name = entry.name;
   mesh.vertices.reserve(layout.vertices + 1);  // room for Embree's 16-byte load of the last vertex
@@ -206,7 +225,9 @@ bool readBinaryPly(const MeshEntry& entry, TriangleMesh& out) {
       mesh.colours.emplace_back(table[r[layout.rgb[0]]], table[r[layout.rgb[1]]], table[r[layout.rgb[2]]]);
   }
   chunks.naming("face");
-  mesh.indices.resize(3 * layout.faces);
+  // Room for the triangles the rest of the file can hold (a header may declare more: the file then ends early).
+  mesh.indices.reserve(3 * std::min(layout.faces, (bytes - layout.vertices * layout.vertex_bytes) /
+                                                      (layout.count_bytes + 3 * sizeof(std::uint32_t))));
   const std::size_t nv = layout.vertices;
   for (std::size_t t = 0; t < layout.faces; ++t) {
     const unsigned char* c = chunks.next(layout.count_bytes);
@@ -223,7 +244,7 @@ bool readBinaryPly(const MeshEntry& entry, TriangleMesh& out) {
         throw ConfigError(entry.file + ": face " + formatNumber(static_cast<double>(t)) + " names vertex " +
                           formatNumber(named) + ", expected [0, " + formatNumber(static_cast<double>(nv)) + ")");
       }
-      mesh.indices[3 * t + k] = static_cast<int>(i);
+      mesh.indices.push_back(static_cast<int>(i));
     }
   }
   out = std::move(mesh);

@@ -14,7 +14,9 @@ namespace sim {
 /// for corner (assimp also welds identical vertices, which changes the vertex numbers only). Returns false, `out`
 /// left empty, for any other file (ASCII or big-endian PLY, texture coordinates, other properties or elements, a
 /// polygon that is not a triangle, a file that cannot be opened or is no PLY): loadMesh then reads it with assimp.
-/// Throws ConfigError("<file>: ...") when the file is cut short or a face names a vertex the file has not.
+/// Throws ConfigError("<file>: ...") when the file is cut short, its header declares more vertices or faces than the
+/// bytes after it hold (or more than int indices number: 2^31 - 1 vertices, (2^31 - 1) / 3 faces), or a face names a
+/// vertex the file has not; nothing is allocated for a count the file cannot hold.
 bool readBinaryPly(const MeshEntry& entry, TriangleMesh& out);
 
 }  // namespace sim
