@@ -26,7 +26,7 @@ from unexmin.world_from_scan.cluster import run_tiles
 from unexmin.world_from_scan.stitch import clip_slab, stitch
 from unexmin.world_from_scan.stream import iter_chunks
 from unexmin.world_from_scan.surface import close_holes
-from unexmin.world_from_scan.tile import decimated, manifold_edges
+from unexmin.world_from_scan.tile import decimated, decimated_pair, manifold_edges
 from unexmin.world_from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
@@ -175,6 +175,18 @@ def test_decimation_keeps_a_sphere_manifold_and_on_its_radius():
     area = 4.0 * math.pi * 3.0**2
     assert manifold_edges(t) and len(t) <= 1.05 * max(1000, area / (0.6**2 * math.sqrt(3) / 4))
     assert np.abs(np.linalg.norm(v, axis=1) - 3.0).max() < 0.03  # quadric decimation stays on the sphere
+
+
+def test_a_visual_edge_finer_than_the_collision_edge_decimates_the_fine_surface():
+    sphere = trimesh.creation.icosphere(5, 3.0)  # 20 480 faces, edge about 0.12 m
+    v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
+    area = 4.0 * math.pi * 3.0**2
+    (_, ct), (_, vt) = decimated_pair(v, t, 0.6, 0.3)
+    assert len(ct) <= 1.05 * 1000  # at least 1000 (decimation_target)
+    wanted = area / (0.3**2 * math.sqrt(3) / 4)  # about 2 900 triangles of 0.3 m, not the collision mesh's 1 000
+    assert 0.9 * wanted <= len(vt) <= 1.05 * wanted and manifold_edges(vt)
+    (_, ct), (_, vt) = decimated_pair(v, t, 0.3, 0.6)  # the usual order: the visual one from the collision one
+    assert len(vt) <= 1.05 * 1000 < 0.9 * wanted <= len(ct)
 
 
 def _colours(n, rng):
