@@ -1,7 +1,9 @@
 // Bullet's shape of a static mesh and its BVH cache (cpp/unexmin/sim/collision_shape.h): a sphere's shape built, then
 // read from the cache, answers seeded rays from its centre at its radius and exactly as the built one; another mesh,
 // a damaged or cut cache file and a folder that cannot be written all build the BVH again with the same answers;
-// which meshes get a cache file.
+// which meshes get a cache file; a mesh of more triangles than one part of Bullet's BVH numbers answers on each of
+// them.
+#include <unexmin/raycast/bullet_ray_caster.h>
 #include <unexmin/sim/collision_shape.h>
 #include "mesh_fixture.h"
 #include "temp_dir.h"
@@ -145,6 +147,51 @@ TEST(CollisionShape, AFolderThatCannotBeWrittenKeepsNoCache) {
   EXPECT_FALSE(exists(cache));
   sim::MeshCollisionShape plain(mesh);
   expectSameAnswers(castRays(plain, kRays, kLength), castRays(shape, kRays, kLength));
+}
+
+TEST(CollisionShape, AMeshOfMoreThan2To21TrianglesAnswersOnEveryTriangle) {
+  // A flat grid of 1025 x 1025 cells of 1 cm at z = 0, two triangles per cell in row order: 2 101 250 triangles, more
+  // than Bullet's quantised BVH numbers within one part (2^21). A ray straight down through the middle of a triangle
+  // 1 m above it meets that triangle at 1 m, whatever its number: the first, the last of the first 2^21, the first and
+  // the last after them.
+  const int n = 1025;
+  const float h = 0.01f;
+  sim::TriangleMesh mesh;
+  mesh.name = "grid";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      mesh.vertices.emplace_back(h * static_cast<float>(i), h * static_cast<float>(j), 0.0f);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
+    }
+  ASSERT_GT(mesh.triangleCount(), sim::kBulletPartTriangles);
+  sim::MeshCollisionShape shape(mesh);
+  btCollisionObject object;
+  object.setCollisionShape(&shape.shape());
+  raycast::BulletTarget target;
+  target.object = &object;
+  target.index = 0;
+  target.mesh = &mesh;
+  raycast::BulletRayCaster caster({target});
+  const int last = static_cast<int>(mesh.triangleCount()) - 1, part = static_cast<int>(sim::kBulletPartTriangles);
+  for (const int t : {0, part - 1, part, part + 1, last}) {
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    for (int k = 0; k < 3; ++k)
+      centre += mesh.vertices[mesh.indices[3 * t + k]] / 3.0f;
+    raycast::Ray ray;
+    ray.origin = centre + Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+    ray.direction = Eigen::Vector3f(0.0f, 0.0f, -1.0f);
+    ray.max_range = 2.0f;
+    std::vector<raycast::Hit> hits;
+    caster.cast({ray}, hits);
+    ASSERT_TRUE(hits.at(0).hit()) << "triangle " << t;
+    EXPECT_EQ(hits[0].primitive, t);
+    EXPECT_NEAR(hits[0].range, 1.0f, 1e-5f) << "triangle " << t;
+    EXPECT_NEAR(hits[0].u, 1.0f / 3.0f, 1e-3f) << "triangle " << t;  // its middle
+    EXPECT_NEAR(hits[0].v, 1.0f / 3.0f, 1e-3f) << "triangle " << t;
+  }
 }
 
 TEST(CollisionShape, OnlyLargeMeshesGetACacheFile) {

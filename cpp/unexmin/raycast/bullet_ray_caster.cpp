@@ -28,7 +28,8 @@ struct ClosestTriangle : btCollisionWorld::ClosestRayResultCallback {
   using ClosestRayResultCallback::ClosestRayResultCallback;
   btScalar addSingleResult(btCollisionWorld::LocalRayResult& result, bool normal_in_world) override {
     const btScalar f = ClosestRayResultCallback::addSingleResult(result, normal_in_world);
-    triangle = result.m_localShapeInfo ? result.m_localShapeInfo->m_triangleIndex : -1;
+    const btCollisionWorld::LocalShapeInfo* info = result.m_localShapeInfo;
+    triangle = info ? sim::meshTriangle(info->m_shapePart, info->m_triangleIndex) : -1;
     return f;
   }
   int triangle = -1;

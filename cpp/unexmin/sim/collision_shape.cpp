@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -67,11 +68,20 @@ std::string bvhCacheFile(const MeshEntry& entry, const TriangleMesh& mesh) {
 
 MeshCollisionShape::MeshCollisionShape(const TriangleMesh& mesh, const std::string& cache_file) {
   static_assert(sizeof(btScalar) == sizeof(float), "Bullet must be built with float scalars");
-  array_ = std::make_unique<btTriangleIndexVertexArray>(
-      static_cast<int>(mesh.triangleCount()), const_cast<int*>(mesh.indices.data()), 3 * static_cast<int>(sizeof(int)),
-      static_cast<int>(mesh.vertices.size()),
-      const_cast<btScalar*>(reinterpret_cast<const btScalar*>(mesh.vertices.data())),
-      static_cast<int>(sizeof(Eigen::Vector3f)));
+  // Parts of kBulletPartTriangles triangles over the same vertices (one part, as Bullet's own constructor makes it,
+  // below that): a triangle past 2^21 - 1 in one part would be read back by the BVH as a part that does not exist.
+  array_ = std::make_unique<btTriangleIndexVertexArray>();
+  const std::size_t triangles = mesh.triangleCount();
+  for (std::size_t first = 0; first == 0 || first < triangles; first += kBulletPartTriangles) {
+    btIndexedMesh part;
+    part.m_numTriangles = static_cast<int>(std::min(kBulletPartTriangles, triangles - first));
+    part.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(mesh.indices.data() + 3 * first);
+    part.m_triangleIndexStride = 3 * static_cast<int>(sizeof(int));
+    part.m_numVertices = static_cast<int>(mesh.vertices.size());
+    part.m_vertexBase = reinterpret_cast<const unsigned char*>(mesh.vertices.data());
+    part.m_vertexStride = static_cast<int>(sizeof(Eigen::Vector3f));
+    array_->addIndexedMesh(part, PHY_INTEGER);
+  }
   // As btBvhTriangleMeshShape(array, true) builds it, with the BVH held here: read from or written to the cache.
   shape_ = std::make_unique<btBvhTriangleMeshShape>(array_.get(), true, false);
   const std::uint64_t hash = cache_file.empty() ? 0 : meshHash(mesh);

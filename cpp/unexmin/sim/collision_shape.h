@@ -20,12 +20,24 @@ namespace sim {
 /// well under a second.
 constexpr std::size_t kBvhCacheMinTriangles = 1000000;
 
+/// Triangles per part of a mesh as Bullet sees it. Bullet's quantised BVH keeps a triangle's part in the upper 10 bits
+/// and its number within the part in the lower 21 of one int (btQuantizedBvh.h, MAX_NUM_PARTS_IN_BITS): a mesh of
+/// more triangles is handed over in parts of this many, so that the leaf of triangle t names part t / 2^21 and
+/// triangle t % 2^21 of it, which is t itself (the BVH is the one of a single part, byte for byte).
+constexpr std::size_t kBulletPartTriangles = std::size_t(1) << 21;
+
+/// The mesh's triangle number of triangle `index` of part `part` as Bullet reports a hit (LocalShapeInfo).
+inline int meshTriangle(int part, int index) {
+  return part * static_cast<int>(kBulletPartTriangles) + index;
+}
+
 /// The cache file of Bullet's BVH of mesh entry `entry` loaded as `mesh`: "<entry.file>.bvh" when the mesh has at
 /// least kBvhCacheMinTriangles triangles, else "" (no cache).
 std::string bvhCacheFile(const MeshEntry& entry, const TriangleMesh& mesh);
 
 /// A static mesh as Bullet sees it: a btBvhTriangleMeshShape over the mesh's own vertex and index arrays (not copied;
-/// the mesh must outlive the shape), its BVH quantised (Bullet's compressed AABBs).
+/// the mesh must outlive the shape), in parts of kBulletPartTriangles triangles, its BVH quantised (Bullet's
+/// compressed AABBs). A hit reports its triangle as (part, index): meshTriangle() gives the mesh's number.
 class MeshCollisionShape {
 public:
   /// Builds the BVH, or reads it from `cache_file` when that file holds the BVH of exactly these triangles: the same
