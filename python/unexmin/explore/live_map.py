@@ -7,8 +7,7 @@ from unexmin.explore.grid import FREE, OCCUPIED, grid_from_leaves
 from unexmin.explore.octree import read_leaves
 from unexmin.explore.plan import ball_mask
 
-SLS_UNITS = 4
-CLOUDS_PER_S = 40 + 10 * SLS_UNITS  # per robot: the M3 at 40 Hz, each SLS unit at 10 Hz
+SLS_UNITS = 4  # per robot: the M3 sends 40 clouds a second, each SLS unit 10
 
 
 def caught_up(e, timeout=60.0):
