@@ -228,9 +228,10 @@ std::vector<double> finiteVector(const std::string& name, const py::array_t<doub
   if (values.ndim() != 1 || values.shape(0) != n)
     badArgument(name, std::to_string(values.size()) + " values in " + std::to_string(values.ndim()) + " dimension(s)",
                 std::to_string(n) + " numbers in one dimension (" + what + ")");
-  std::vector<double> v(values.data(), values.data() + n);
+  const auto r = values.unchecked<1>();  // by its strides: a column or a reversed view reads its own numbers
+  std::vector<double> v(static_cast<std::size_t>(n));
   for (py::ssize_t i = 0; i < n; ++i)
-    finiteCommand(name + "[" + std::to_string(i) + "]", v[i]);
+    v[static_cast<std::size_t>(i)] = finiteCommand(name + "[" + std::to_string(i) + "]", r(i));
   return v;
 }
 

@@ -264,6 +264,17 @@ def test_set_pose_teleports_at_rest_and_the_robot_falls_from_there(urdf):
     assert -1.0 - ux.state()["position"][2] == fall, "the same fall from the same rest"
 
 
+def test_set_pose_reads_strided_arrays_by_their_strides(urdf):
+    # A column of a table and a reversed view: numpy hands them over without copying, with strides.
+    w = World("tank", sensors="none", descriptions={"UX_1": urdf})
+    table = np.array([[0.5, 9.0], [-0.25, 9.0], [-1.0, 9.0]])
+    q = np.array([0.0, 0.0, math.sin(0.3), math.cos(0.3)])
+    w.robot("UX_1").set_pose(table[:, 0], np.array([q[3], q[2], q[1], q[0]])[::-1])
+    s = w.robot("UX_1").state()
+    np.testing.assert_allclose(s["position"], [0.5, -0.25, -1.0], atol=1e-12)
+    np.testing.assert_allclose(s["orientation"], q, atol=1e-12)
+
+
 def test_set_rendering_renders_only_the_frames_asked_for(urdf):
     w = World("tank", sensors="camera", mode="visual", descriptions={"UX_1": urdf})
     ux = w.robot("UX_1")
