@@ -25,8 +25,8 @@ from unexmin import world_from_scan as wfs
 from unexmin.world_from_scan.cluster import run_tiles
 from unexmin.world_from_scan.stitch import clip_slab, stitch
 from unexmin.world_from_scan.stream import iter_chunks
-from unexmin.world_from_scan.surface import close_holes
-from unexmin.world_from_scan.tile import decimated, manifold_edges
+from unexmin.world_from_scan.surface import boundary_loops, close_holes
+from unexmin.world_from_scan.tile import decimated, manifold_edges, mended
 from unexmin.world_from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
@@ -175,6 +175,23 @@ def test_decimation_keeps_a_sphere_manifold_and_on_its_radius():
     area = 4.0 * math.pi * 3.0**2
     assert manifold_edges(t) and len(t) <= 1.05 * max(1000, area / (0.6**2 * math.sqrt(3) / 4))
     assert np.abs(np.linalg.norm(v, axis=1) - 3.0).max() < 0.03  # quadric decimation stays on the sphere
+
+
+def test_a_fold_is_cut_out_and_patched_and_the_surfaces_own_rim_stays_open():
+    sphere = trimesh.creation.icosphere(3, 2.0)
+    v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
+    bowl = t[v[t].mean(axis=1)[:, 2] < 1.0]  # the sphere with its cap above z = 1 m cut off: one open rim
+    rim = boundary_loops(bowl)
+    folded = bowl.copy()
+    down = int(np.argmin(v[bowl].mean(axis=1)[:, 2]))  # the face at the bottom, far from the rim
+    folded[down] = folded[down][::-1]  # turned over: each of its edges now runs the same way as a neighbour's
+    assert not manifold_edges(folded)
+    mv, mt = mended(v, folded, fine=v)
+    assert manifold_edges(mt)
+    loops = boundary_loops(mt)
+    assert len(loops) == 1 and sorted(loops[0]) == sorted(rim[0])  # the rim, as it was; the fold's hole closed
+    assert len(mt) >= len(bowl) - 4  # only the fold and its neighbours were replaced
+    assert np.abs(np.linalg.norm(mv, axis=1) - 2.0).max() < 1e-9  # the patch's apex is a vertex of the surface
 
 
 def _colours(n, rng):

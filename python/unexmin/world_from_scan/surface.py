@@ -102,16 +102,17 @@ def boundary_loops(t):
     return loops
 
 
-def close_holes(v, t):
-    """Close every boundary loop with a fan from its centroid, wound against the loop's edges so the
-    surface stays consistently oriented. Returns (v, t, number of holes, area closed [m^2], the cap
-    triangles' mask)."""
-    loops = boundary_loops(t) if len(t) else []
+def close_holes(v, t, loops=None, centres=None):
+    """Close every boundary loop (or only `loops`, vertex lists) with a fan from its centroid (or from
+    `centres`, one point [m] per loop), wound against the loop's edges so the surface stays consistently
+    oriented. Returns (v, t, number of holes, area closed [m^2], the cap triangles' mask)."""
+    if loops is None:
+        loops = boundary_loops(t) if len(t) else []
     new_v, new_t = [v], [t]
     nv, area = len(v), 0.0
-    for loop in loops:
+    for k, loop in enumerate(loops):
         ring = np.asarray(loop)
-        centre = v[ring].mean(axis=0)
+        centre = v[ring].mean(axis=0) if centres is None else np.asarray(centres[k], dtype=float)
         a, b = ring, np.roll(ring, -1)
         fan = np.column_stack([b, a, np.full(len(ring), nv)])
         area += 0.5 * float(np.linalg.norm(np.cross(v[a] - centre, v[b] - centre), axis=1).sum())
