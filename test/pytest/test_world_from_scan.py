@@ -20,6 +20,7 @@ import yaml
 
 from unexmin import mine_generator as mg
 from unexmin import world_from_scan as wfs
+from unexmin.world_from_scan.surface import boundary_loops
 from unexmin.worlds.meshes import read_mesh, sample_surface
 
 REPO = Path(__file__).resolve().parents[2]
@@ -182,6 +183,21 @@ def test_holes_close_into_a_consistent_closed_surface():
     assert holes == 1 and cap.sum() == 4 and area == pytest.approx(2.0)
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert mesh.volume == pytest.approx(2.0)
+
+
+def test_two_holes_touching_at_a_vertex_are_two_loops_and_close():
+    # the walk along the boundary enters the shared vertex twice: it must come out as two simple loops
+    assert sorted(map(sorted, boundary_loops(np.array([[1, 2, 0], [3, 4, 0]])))) == [[0, 1, 2], [0, 3, 4]]
+    sphere = trimesh.creation.icosphere(1, 1.0)  # 42 vertices, 80 faces
+    faces = np.asarray(sphere.faces)
+    for p in range(len(sphere.vertices)):  # at each vertex, two of its faces that share only that vertex
+        around = np.where((faces == p).any(axis=1))[0]
+        pair = next((a, b) for a in around for b in around if a < b and len(set(faces[a]) & set(faces[b])) == 1)
+        t = np.delete(faces, pair, axis=0)
+        v, t2, holes, area, cap = wfs.close_holes(np.asarray(sphere.vertices), t)
+        mesh = trimesh.Trimesh(v, t2, process=False)
+        assert holes == 2 and mesh.is_watertight and mesh.is_winding_consistent, f"holes meeting at vertex {p}"
+        assert mesh.volume == pytest.approx(sphere.volume, rel=0.02)
 
 
 def test_readers_agree(tmp_path):

@@ -25,8 +25,8 @@ from unexmin import world_from_scan as wfs
 from unexmin.world_from_scan.cluster import run_tiles
 from unexmin.world_from_scan.stitch import clip_slab, stitch
 from unexmin.world_from_scan.stream import iter_chunks
-from unexmin.world_from_scan.surface import close_holes
-from unexmin.world_from_scan.tile import decimated, decimated_pair, manifold_edges
+from unexmin.world_from_scan.surface import boundary_loops, close_holes
+from unexmin.world_from_scan.tile import decimated, decimated_pair, manifold_edges, mended
 from unexmin.world_from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
@@ -187,6 +187,23 @@ def test_a_visual_edge_finer_than_the_collision_edge_decimates_the_fine_surface(
     assert 0.9 * wanted <= len(vt) <= 1.05 * wanted and manifold_edges(vt)
     (_, ct), (_, vt) = decimated_pair(v, t, 0.3, 0.6)  # the usual order: the visual one from the collision one
     assert len(vt) <= 1.05 * 1000 < 0.9 * wanted <= len(ct)
+
+
+def test_a_fold_is_cut_out_and_patched_and_the_surfaces_own_rim_stays_open():
+    sphere = trimesh.creation.icosphere(3, 2.0)
+    v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
+    bowl = t[v[t].mean(axis=1)[:, 2] < 1.0]  # the sphere with its cap above z = 1 m cut off: one open rim
+    rim = boundary_loops(bowl)
+    folded = bowl.copy()
+    down = int(np.argmin(v[bowl].mean(axis=1)[:, 2]))  # the face at the bottom, far from the rim
+    folded[down] = folded[down][::-1]  # turned over: each of its edges now runs the same way as a neighbour's
+    assert not manifold_edges(folded)
+    mv, mt = mended(v, folded, fine=v)
+    assert manifold_edges(mt)
+    loops = boundary_loops(mt)
+    assert len(loops) == 1 and sorted(loops[0]) == sorted(rim[0])  # the rim, as it was; the fold's hole closed
+    assert len(mt) >= len(bowl) - 4  # only the fold and its neighbours were replaced
+    assert np.abs(np.linalg.norm(mv, axis=1) - 2.0).max() < 1e-9  # the patch's apex is a vertex of the surface
 
 
 def _colours(n, rng):

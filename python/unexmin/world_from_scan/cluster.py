@@ -72,6 +72,7 @@ def run_tiles(layout, options, workers, memory_limit, scheduler=None, retries=1,
                 key=f"unexmin-tile-{tile['index']:04d}-{stamp}",
                 retries=retries,
                 pure=False,
+                priority=int(tile.get("estimate", 0)),  # the largest tiles first: no long one left for the end
             ): tile
             for tile in tiles
         }

@@ -59,8 +59,26 @@ def trim_unsupported(v, t, points, max_gap, tree=None, threads=-1):
     return v[used], remap[t]
 
 
+def _simple_cycles(walk):
+    """A closed walk of boundary edges (vertex list, back to its first) cut into simple cycles at the vertices
+    it passes twice: two holes that touch at one vertex (a pinch) are two loops, each visiting it once."""
+    cycles, path, at = [], [], {}
+    for x in walk + walk[:1]:
+        if x in at:
+            i = at[x]
+            cycles.append(path[i:])
+            for y in path[i + 1 :]:
+                del at[y]
+            path = path[: i + 1]
+        else:
+            at[x] = len(path)
+            path.append(x)
+    return cycles
+
+
 def boundary_loops(t):
-    """Closed loops of directed boundary edges (edges with no opposite half-edge), as vertex lists."""
+    """Closed loops of directed boundary edges (edges with no opposite half-edge), as vertex lists; each loop
+    passes a vertex once (walks through a pinch vertex are cut there into simple loops)."""
     e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
     n = int(t.max()) + 1
     key = e[:, 0] * n + e[:, 1]
@@ -80,21 +98,21 @@ def boundary_loops(t):
                 break
             loop.append(b)
             a = b
-        if len(loop) >= 3:
-            loops.append(loop)
+        loops += [c for c in _simple_cycles(loop) if len(c) >= 3]
     return loops
 
 
-def close_holes(v, t):
-    """Close every boundary loop with a fan from its centroid, wound against the loop's edges so the
-    surface stays consistently oriented. Returns (v, t, number of holes, area closed [m^2], the cap
-    triangles' mask)."""
-    loops = boundary_loops(t) if len(t) else []
+def close_holes(v, t, loops=None, centres=None):
+    """Close every boundary loop (or only `loops`, vertex lists) with a fan from its centroid (or from
+    `centres`, one point [m] per loop), wound against the loop's edges so the surface stays consistently
+    oriented. Returns (v, t, number of holes, area closed [m^2], the cap triangles' mask)."""
+    if loops is None:
+        loops = boundary_loops(t) if len(t) else []
     new_v, new_t = [v], [t]
     nv, area = len(v), 0.0
-    for loop in loops:
+    for k, loop in enumerate(loops):
         ring = np.asarray(loop)
-        centre = v[ring].mean(axis=0)
+        centre = v[ring].mean(axis=0) if centres is None else np.asarray(centres[k], dtype=float)
         a, b = ring, np.roll(ring, -1)
         fan = np.column_stack([b, a, np.full(len(ring), nv)])
         area += 0.5 * float(np.linalg.norm(np.cross(v[a] - centre, v[b] - centre), axis=1).sum())

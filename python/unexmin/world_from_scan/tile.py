@@ -17,7 +17,14 @@ from unexmin.world_from_scan.scan import (
     point_spacing,
 )
 from unexmin.world_from_scan.stitch import clip_slab
-from unexmin.world_from_scan.surface import poisson_octree, reconstruct, simplify, trim_unsupported
+from unexmin.world_from_scan.surface import (
+    boundary_loops,
+    close_holes,
+    poisson_octree,
+    reconstruct,
+    simplify,
+    trim_unsupported,
+)
 from unexmin.world_from_scan.tiles import describe, load_tile
 
 SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
@@ -36,13 +43,54 @@ def manifold_edges(t):
     return len(np.unique(key)) == len(key)
 
 
+def _directed_keys(t, n):
+    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]).astype(np.int64)
+    return e[:, 0] * n + e[:, 1], e[:, 1] * n + e[:, 0]
+
+
+def mended(v, t, fine=None):
+    """The surface (v, t) with its folds cut out and patched, or None when that does not make it manifold:
+    the faces on a directed edge used twice (a fold, where fast-simplification collapsed an edge across
+    another) are removed, then, if that is not enough, every face touching their vertices too; each hole this
+    opens (a boundary loop none of whose edges bounded the surface before) is closed by a fan from the vertex
+    of `fine` (the surface before decimation, N x 3 [m]) nearest its centroid, or from the centroid. The
+    surface's own boundaries (its trimmed edges) stay as they are."""
+    n = len(v)
+    key, opposite = _directed_keys(t, n)
+    _, inverse, count = np.unique(key, return_inverse=True, return_counts=True)
+    folded = (count[inverse] > 1).reshape(3, -1).any(axis=0)
+    if not folded.any():
+        return v, t
+    border = set(key[~np.isin(key, opposite)].tolist())  # the surface's own boundary edges
+    for cut in (folded, np.isin(t, np.unique(t[folded])).any(axis=1)):
+        kept = t[~cut]
+        fresh = [
+            loop
+            for loop in boundary_loops(kept)
+            if not any(a * n + b in border for a, b in zip(loop, loop[1:] + loop[:1]))
+        ]
+        centres = np.array([v[loop].mean(axis=0) for loop in fresh]).reshape(-1, 3)
+        if fine is not None and len(fresh):
+            from scipy.spatial import cKDTree
+
+            centres = fine[cKDTree(fine).query(centres)[1]]  # the fan's apex on the surface, not across the hole
+        mv, mt, _, _, _ = close_holes(v, kept, fresh, centres)
+        if manifold_edges(mt):
+            return mv, mt
+    return None
+
+
 def decimated(v, t, edge):
-    """simplify() to `edge` [m] (fast-simplification, or Open3D's decimation when that one broke the surface's
-    manifold edges), or the surface as it was when both broke them."""
-    for method in ("fast", "open3d"):
-        dv, dt = simplify(v, t, edge, method)
-        if len(dt) and manifold_edges(dt):
-            return dv, dt
+    """simplify() to `edge` [m]: fast-simplification, its few folds mended (mended()); Open3D's decimation
+    when the mended surface is still not manifold; the surface as it was when both fail."""
+    dv, dt = simplify(v, t, edge, "fast")
+    if len(dt):
+        m = mended(dv, dt, v)
+        if m is not None:
+            return m
+    dv, dt = simplify(v, t, edge, "open3d")
+    if len(dt) and manifold_edges(dt):
+        return dv, dt
     return v, t
 
 

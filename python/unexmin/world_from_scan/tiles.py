@@ -23,9 +23,10 @@ from unexmin.world_from_scan.stream import iter_chunks
 
 CELL_RES = 4.0  # survey cells: this many resolutions (at least 0.5 m)
 BITS = 21  # per axis in a packed cell key: +-2^20 cells around the scan's first point
-PER_POINT_BYTES = 5000.0  # a tile's peak memory per down-sampled point (docs/world_from_scan.md#memory)
+PER_POINT_BYTES = 3500.0  # a tile's peak memory per down-sampled point, with a margin (docs/world_from_scan.md#memory)
 TILE_BASE_BYTES = 0.45e9  # a tile worker's memory before its points (Python, NumPy, Open3D, Dask)
 SEAM_LAYERS = 2  # survey layers on each side of a seam in which no wall should run along it
+SEAM_FROM = 0.7  # a seam lies in the last 30 % of the widest slab the budget allows: tiles near their budget
 DRIVER_BYTES = 0.6e9  # the driving process while the tiles build (Dask's scheduler and nannies, the survey)
 
 
@@ -148,7 +149,7 @@ def plan(s, resolution, max_gap, max_points):
         if b >= n:
             seams.append(n)
             break
-        lo_b = max(a + min_width, a + int(0.25 * (b - a)))
+        lo_b = max(a + min_width, a + int(SEAM_FROM * (b - a)))
         cand = np.arange(lo_b, b + 1)
         # a wall running along the plane (a shaft's side, a gallery's end) fills one layer: a jump in the
         # cells per layer within SEAM_LAYERS of the seam; galleries crossing it keep the count even
