@@ -27,6 +27,8 @@ apt_packages=(
   # tests, viewer (rviz under Xvfb, screenshots with ImageMagick's import, teleop's test in tmux), Python
   libgtest-dev googletest rviz xvfb imagemagick tmux python3-venv python3-numpy python3-yaml
   build-essential cmake
+  # compiles through a cache in the workspace (below): test/pytest/test_own_workspace.py's fresh workspace reuses it
+  ccache
   # test/pytest/test_loopback.py: ss and ip netns (not in a minimal Debian 12 image)
   iproute2
   # teleop:=keyboard opens the keyboard teleop in a terminal window of its own (launch/teleop.launch)
@@ -80,13 +82,19 @@ PYTHONPATH="$repo/python" "$venv/bin/python" -m unexmin.mine_generator --seed 7 
 # The same way a user adds the package to their own workspace (README, "Your own workspace").
 bash "$repo/scripts/add_to_workspace.sh" --quiet "$ws"
 
+# Every compile goes through ccache, its cache in <ws>/ccache. Paths under the workspace are hashed relative to it
+# (CCACHE_BASEDIR), so another workspace of this repository (test_own_workspace.py's fresh one, given this cache)
+# takes the object of each compile whose source, headers and flags are byte-identical instead of compiling it again.
+ws_real=$(realpath "$ws")
+launcher="/usr/bin/env;CCACHE_DIR=$ws_real/ccache;CCACHE_BASEDIR=$ws_real;CCACHE_MAXSIZE=1G;ccache"
 echo "[setup] building workspace $ws"
 (
   set +u
   source /opt/ros/*/setup.bash 2>/dev/null || true
   cd "$ws"
   export PATH="$venv/bin:$PATH"
-  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j2 >"$ws/build.log" 2>&1 \
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_C_COMPILER_LAUNCHER="$launcher" -DCMAKE_CXX_COMPILER_LAUNCHER="$launcher" -j2 >"$ws/build.log" 2>&1 \
     || { tail -n 60 "$ws/build.log"; echo "[setup] build failed, full log: $ws/build.log" >&2; exit 1; }
 )
 echo "[setup] ready: source $repo/scripts/env.sh"

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-FUZZ = 20.0  # [s] of wall time
+FUZZ = 10.0  # [s] of wall time: every input gets each bad value a hundred times or more, over 10 throttle periods
 # roscpp's own line for a message that cannot be deserialised (a broken publisher): one per bad message,
 # not ours to throttle (docs/reliability.md)
 ROSCPP_DESERIALIZE = "Exception thrown when deserializing"

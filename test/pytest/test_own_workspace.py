@@ -6,6 +6,9 @@ simulator in a fresh workspace made that way, with an environment from which the
 workspace is removed (so nothing is found through it), starts `roslaunch unexmin tank_world.launch`
 from that workspace on a private master and waits for the simulation clock to advance, for UX_1's
 odometry and for every node of the launch file (the rospy nodes import the generated messages).
+The fresh workspace compiles through the project workspace's ccache (scripts/setup.sh): a compile whose source,
+headers (each where the fresh workspace finds it) and flags are byte-identical to one of set-up's takes that object,
+anything else is compiled; configuring, generating the messages and linking are all done in the fresh workspace.
 """
 
 import os
@@ -118,6 +121,13 @@ def clean_env(tmp_path):
     return env
 
 
+def compiler_launcher(ws):
+    """setup.sh's ccache launcher for workspace `ws`, reading and filling the cache of the project's workspace
+    (UNEXMIN_WS; paths under `ws` hashed relative to it, as setup.sh's are to its own)."""
+    cache = Path(os.environ["UNEXMIN_WS"]).resolve() / "ccache"
+    return f"/usr/bin/env;CCACHE_DIR={cache};CCACHE_BASEDIR={ws.resolve()};CCACHE_MAXSIZE=1G;ccache"
+
+
 def in_workspace(ws, command):
     """`command` (a list) in a shell that has sourced <ws>/devel/setup.bash."""
     return ["bash", "-c", 'source "$0/devel/setup.bash" && exec "$@"', str(ws), *command]
@@ -157,6 +167,7 @@ def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
     env = clean_env(tmp_path)
     out = subprocess.run(["bash", str(SCRIPT), "--quiet", str(ws)], env=env, capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
+    launcher = compiler_launcher(ws)
 
     # setup.sh's flags; only the simulator, the bind shim env.sh's roslaunch preloads and the messages the
     # launch file's Python nodes import
@@ -172,6 +183,8 @@ def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
                 "-DPython3_EXECUTABLE=/usr/bin/python3",
                 "-DCMAKE_BUILD_TYPE=Release",
                 "-DCATKIN_ENABLE_TESTING=OFF",
+                f"-DCMAKE_C_COMPILER_LAUNCHER={launcher}",
+                f"-DCMAKE_CXX_COMPILER_LAUNCHER={launcher}",
                 "-j2",
                 *targets,
             ],

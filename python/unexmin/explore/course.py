@@ -5,7 +5,7 @@ superellipse section with rough walls, their union, the same PLY), and a world f
 
 - `branch`: a level in miniature: a 26 m gallery along +x (4.0 m wide, 3.6 m high) with a 9 m crosscut to +y
   (3.4 m across) at x = 14 m and a dead-end stub of 5 m to -y at x = 6 m; centreline z = -10 m.
-- `dead_end`: one straight gallery, 18 m along +x, closed at both ends; centreline z = -10 m.
+- `dead_end`: one straight gallery, 10 m along +x, closed at both ends; centreline z = -10 m.
 The robots start 2 m from the gallery's closed west end (x = 2 m), on its axis, 1.5 m apart along +x.
 """
 
@@ -33,7 +33,7 @@ def layout(kind):
             mg.Tunnel("crosscut", [(6.0, 0.2, Z), (6.0, -5.0, Z)], a=1.7, b=1.6, c=1.7),
         ]
     elif kind == "dead_end":
-        tunnels = [mg.Tunnel("gallery", [(0.0, 0.0, Z), (18.0, 0.0, Z)], **g)]
+        tunnels = [mg.Tunnel("gallery", [(0.0, 0.0, Z), (10.0, 0.0, Z)], **g)]
     else:
         raise ValueError(f"course kind {kind!r}: expected one of {', '.join(KINDS)}")
     spawns = [(2.0 + 1.5 * i, 0.0, Z) for i in range(3)]

@@ -98,7 +98,8 @@ def main():
         sent = 0
         k = 0
         while time.monotonic() - t0 < fuzz_seconds:
-            v = bad[k % len(bad)]
+            # each input in turn, and at each of its turns the next bad value: every input gets every value
+            v = bad[(k // len(floats)) % len(bad)]
             floats[k % len(floats)].publish(Float64(v))
             if k % 10 == 0:
                 w = Wrench()
