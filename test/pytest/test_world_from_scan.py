@@ -200,6 +200,20 @@ def test_two_holes_touching_at_a_vertex_are_two_loops_and_close():
         assert mesh.volume == pytest.approx(sphere.volume, rel=0.02)
 
 
+def test_a_fold_in_the_stitched_surface_is_mended_into_a_closed_one():
+    from unexmin.world_from_scan.build import mend_folds
+
+    sphere = trimesh.creation.icosphere(3, 2.0)
+    v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
+    assert mend_folds(v, t)[2] == 0  # a closed surface is left as it is
+    folded = t.copy()
+    folded[7] = folded[7][::-1]  # one face turned over: its three edges each run the same way as a neighbour's
+    mv, mt, folds = mend_folds(v, folded)
+    mesh = trimesh.Trimesh(mv, mt, process=False)
+    assert folds == 3 and mesh.is_watertight and mesh.is_winding_consistent
+    assert mesh.volume == pytest.approx(sphere.volume, rel=0.01)
+
+
 def test_readers_agree(tmp_path):
     rng = np.random.default_rng(6)
     points = rng.uniform(-5, 5, size=(500, 3))

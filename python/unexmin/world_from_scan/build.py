@@ -38,6 +38,7 @@ from unexmin.world_from_scan.surface import (
     flooded_volume,
     raycasting_scene,
 )
+from unexmin.world_from_scan.tile import manifold_edges, mended
 from unexmin.world_from_scan.tiles import DRIVER_BYTES, bin_scan, plan, record_dtype, survey, tile_points_budget
 from unexmin.worlds.meshes import write_ply
 from unexmin.worlds.schema import read_world
@@ -76,6 +77,17 @@ def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, sourc
             f"{xyz[2]:.3f}], rpy: [0, 0, 0]}}   # clearance {room:.2f} m"
         )
     return "\n".join(lines) + "\n"
+
+
+def mend_folds(v, t):
+    """(v, t, folds): the stitched surface with any edge that zip strips or caps use the same way twice (folds)
+    cut out and closed again (tile.mended); as it was when it has none or when that does not make it manifold."""
+    if len(t) == 0 or manifold_edges(t):
+        return v, t, 0
+    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]).astype(np.int64)
+    _, count = np.unique(e[:, 0] * len(v) + e[:, 1], return_counts=True)
+    m = mended(v, t)
+    return (v, t, 0) if m is None else (m[0], m[1], int((count > 1).sum()))
 
 
 def split_parts(v, t, axis, seams):
@@ -254,9 +266,11 @@ def build_world(
             if len(t) == 0:
                 raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
             v, t, holes, hole_area, _ = close_holes(v, t)
+            v, t, folds = mend_folds(v, t)
             bar.update(1)
             vv, vt, _, _ = stitch([r and r["visual"] for r in order], axis, seams, 2.0 * visual_edge + resolution)
             vv, vt, _, _, _ = close_holes(vv, vt)
+            vv, vt, _ = mend_folds(vv, vt)
             bar.update(1)
         times["stitch"] = round(time.monotonic() - t0, 2)
         import trimesh
@@ -383,6 +397,7 @@ def build_world(
             "wall_area": round(sum(r["wall_area"] for r in results.values()), 3),
             "bridged_area": round(sum(r["bridged_area"] for r in results.values()), 3),
             "holes_closed": holes,
+            "seam_folds": folds,
             "holes_area": round(hole_area, 3),
             "scan_to_mesh": {
                 "mean": round(float(d.mean()), 4),
