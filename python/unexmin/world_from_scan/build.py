@@ -38,7 +38,7 @@ from unexmin.world_from_scan.surface import (
     flooded_volume,
     raycasting_scene,
 )
-from unexmin.world_from_scan.tile import manifold_edges, mended
+from unexmin.world_from_scan.tile import folded_edges, mended
 from unexmin.world_from_scan.tiles import DRIVER_BYTES, bin_scan, plan, record_dtype, survey, tile_points_budget
 from unexmin.worlds.meshes import write_ply
 from unexmin.worlds.schema import read_world
@@ -82,12 +82,9 @@ def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, sourc
 def mend_folds(v, t):
     """(v, t, folds): the stitched surface with any edge that zip strips or caps use the same way twice (folds)
     cut out and closed again (tile.mended); as it was when it has none or when that does not make it manifold."""
-    if len(t) == 0 or manifold_edges(t):
-        return v, t, 0
-    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]).astype(np.int64)
-    _, count = np.unique(e[:, 0] * len(v) + e[:, 1], return_counts=True)
-    m = mended(v, t)
-    return (v, t, 0) if m is None else (m[0], m[1], int((count > 1).sum()))
+    folds = folded_edges(t) if len(t) else 0
+    m = mended(v, t) if folds else None
+    return (v, t, 0) if m is None else (m[0], m[1], folds)
 
 
 def split_parts(v, t, axis, seams):

@@ -36,16 +36,21 @@ def _cpu():
     return usage.ru_utime + usage.ru_stime
 
 
-def manifold_edges(t):
-    """True when no directed edge appears twice: every edge has at most two faces, wound consistently."""
-    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
-    key = e[:, 0] * (int(t.max()) + 1) + e[:, 1]
-    return len(np.unique(key)) == len(key)
-
-
 def _directed_keys(t, n):
     e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]).astype(np.int64)
     return e[:, 0] * n + e[:, 1], e[:, 1] * n + e[:, 0]
+
+
+def folded_edges(t):
+    """How many directed edges of the faces `t` appear more than once (0: every edge has at most two faces,
+    wound consistently)."""
+    _, count = np.unique(_directed_keys(t, int(t.max()) + 1)[0], return_counts=True)
+    return int((count > 1).sum())
+
+
+def manifold_edges(t):
+    """True when no directed edge appears twice: every edge has at most two faces, wound consistently."""
+    return folded_edges(t) == 0
 
 
 def mended(v, t, fine=None):
