@@ -12,6 +12,7 @@ Run: python -m pytest test/pytest/test_world_from_scan_tiles.py -q -p no:cachepr
 
 import json
 import math
+import os
 import subprocess
 import sys
 
@@ -22,11 +23,12 @@ import yaml
 
 from unexmin import mine_generator as mg
 from unexmin import world_from_scan as wfs
-from unexmin.world_from_scan.cluster import run_tiles
+from unexmin.world_from_scan.cluster import _close, open_client, run_tiles
+from unexmin.world_from_scan.cores import cores_for
 from unexmin.world_from_scan.stitch import clip_slab, stitch
 from unexmin.world_from_scan.stream import iter_chunks
 from unexmin.world_from_scan.surface import boundary_loops, close_holes
-from unexmin.world_from_scan.tile import decimated, decimated_pair, manifold_edges, mended
+from unexmin.world_from_scan.tile import _nearest, decimated, decimated_pair, manifold_edges, mended
 from unexmin.world_from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
@@ -156,6 +158,40 @@ def test_corrupted_tiles_are_reported_with_their_bounds_and_the_others_build(til
     assert trimesh.Trimesh(v, t, process=False).is_watertight
 
 
+def _affinities():
+    """(this worker's threads' cores, the cores of a thread a task starts now)."""
+    import os
+    import threading
+
+    threads = {frozenset(os.sched_getaffinity(int(tid))) for tid in os.listdir("/proc/self/task")}
+    started = []
+    thread = threading.Thread(target=lambda: started.append(frozenset(os.sched_getaffinity(0))))
+    thread.start()
+    thread.join()
+    return threads, started[0]
+
+
+def test_local_workers_and_every_thread_they_start_keep_to_cores_of_their_own():
+    assert cores_for(1, {0, 1}) == [{0, 1}]  # one worker: every core
+    assert cores_for(2, {0, 1, 2, 3}) == [{0, 2}, {1, 3}]
+    assert cores_for(5, {3, 1}) == [{1}, {3}, {1}, {3}, {1}]  # more workers than cores: one core each, in turn
+    client, cluster = open_client(2, 1e9)
+    try:
+        found = client.run(_affinities)  # on each worker's event loop
+        workers = sorted(found)
+        in_task = client.gather([client.submit(_affinities, pure=False, workers=[w]) for w in workers])
+    finally:
+        _close(client, cluster)
+    assert len(workers) == 2
+    bound = []
+    for (threads, started), (in_threads, in_started) in zip((found[w] for w in workers), in_task):
+        assert len(threads) == 1 and in_threads == threads  # every thread of the worker on the same cores
+        assert started in threads and in_started in threads  # and the threads it starts, from a task or not
+        bound.append(set(next(iter(threads))))
+    expected = cores_for(2, os.sched_getaffinity(0))
+    assert sorted(map(sorted, bound)) == sorted(map(sorted, expected))  # two cores: one each, none shared
+
+
 def test_zipping_two_tessellations_of_one_sphere_closes_it():
     coarse, fine = trimesh.creation.icosphere(3, 2.0), trimesh.creation.icosphere(4, 2.0)
     left = clip_slab(coarse.vertices, coarse.faces, 0, -math.inf, 0.3)
@@ -204,6 +240,17 @@ def test_a_fold_is_cut_out_and_patched_and_the_surfaces_own_rim_stays_open():
     assert len(loops) == 1 and sorted(loops[0]) == sorted(rim[0])  # the rim, as it was; the fold's hole closed
     assert len(mt) >= len(bowl) - 4  # only the fold and its neighbours were replaced
     assert np.abs(np.linalg.norm(mv, axis=1) - 2.0).max() < 1e-9  # the patch's apex is a vertex of the surface
+
+
+def test_the_nearest_vertex_found_near_the_holes_is_the_nearest_of_all():
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(7)
+    points = rng.uniform(-50.0, 50.0, size=(20000, 3))
+    near = rng.uniform(-5.0, 5.0, size=(6, 3))
+    far = np.array([[500.0, 0.0, 0.0]])  # nothing within 1 m: the search falls back to every point
+    for queries, reach in ((near, 3.0), (near, 0.2), (np.vstack([near, far]), 1.0)):
+        assert np.array_equal(_nearest(points, queries, reach), cKDTree(points).query(queries)[1])
 
 
 def _colours(n, rng):

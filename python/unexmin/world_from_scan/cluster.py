@@ -28,6 +28,25 @@ def local_cluster(workers, memory_limit):
     return batch_cluster(workers, no_spill, memory_limit=int(memory_limit), silence_logs=logging.CRITICAL)
 
 
+def open_client(workers, memory_limit, scheduler=None):
+    """(client, cluster): a client of the scheduler at `scheduler`, cluster None; or of a new local cluster
+    (local_cluster) whose workers are each bound to cores of their own (cores.BindToCores)."""
+    from dask.distributed import Client
+
+    if scheduler:
+        return Client(scheduler, timeout=30), None
+    from unexmin.world_from_scan.cores import BindToCores, cores_for
+
+    cluster = local_cluster(workers, memory_limit)
+    client = Client(cluster)
+    try:
+        client.register_plugin(BindToCores(cores_for(workers)))
+    except BaseException:
+        _close(client, cluster)
+        raise
+    return client, cluster
+
+
 def _failure(tile, layout, error):
     return {"index": tile["index"], "tile": describe(tile, layout["axis"]), "error": error}
 
@@ -50,14 +69,9 @@ def run_tiles(layout, options, workers, memory_limit, scheduler=None, retries=1,
             if bar is not None:
                 bar.update(1)
         return results, failures
-    from dask.distributed import Client, as_completed
+    from dask.distributed import as_completed
 
-    cluster = None
-    if scheduler:
-        client = Client(scheduler, timeout=30)
-    else:
-        cluster = local_cluster(workers, memory_limit)
-        client = Client(cluster)
+    client, cluster = open_client(workers, memory_limit, scheduler)
     try:
         if log is not None:
             where = scheduler or f"a local cluster of {workers} workers of {memory_limit / 1e9:.2f} GB"

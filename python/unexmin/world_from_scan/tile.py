@@ -53,6 +53,26 @@ def manifold_edges(t):
     return folded_edges(t) == 0
 
 
+def _hole_reach(v, loops):
+    """[m] the largest distance of a loop's vertex from its loop's centroid."""
+    return max(float(np.linalg.norm(v[loop] - v[loop].mean(axis=0), axis=1).max()) for loop in loops)
+
+
+def _nearest(points, queries, reach):
+    """Index of the point of `points` (N x 3) nearest each of `queries` (M x 3): searched among the points
+    within `reach` [m] of the queries' bounds (a k-d tree of those few, not of the whole surface); the same
+    answer as a search of all of them, to which it falls back when one query's nearest is farther."""
+    from scipy.spatial import cKDTree
+
+    lo, hi = queries.min(axis=0) - reach, queries.max(axis=0) + reach
+    near = np.nonzero(((points >= lo) & (points <= hi)).all(axis=1))[0]
+    if len(near):
+        d, i = cKDTree(points[near]).query(queries)
+        if (d <= reach).all():  # each query's ball of `reach` lies within the bounds: nothing nearer outside
+            return near[i]
+    return cKDTree(points).query(queries)[1]
+
+
 def mended(v, t, fine=None):
     """The surface (v, t) with its folds cut out and patched, or None when that does not make it manifold:
     the faces on a directed edge used twice (a fold, where fast-simplification collapsed an edge across
@@ -76,9 +96,7 @@ def mended(v, t, fine=None):
         ]
         centres = np.array([v[loop].mean(axis=0) for loop in fresh]).reshape(-1, 3)
         if fine is not None and len(fresh):
-            from scipy.spatial import cKDTree
-
-            centres = fine[cKDTree(fine).query(centres)[1]]  # the fan's apex on the surface, not across the hole
+            centres = fine[_nearest(fine, centres, _hole_reach(v, fresh))]  # the apex on the surface
         mv, mt, _, _, _ = close_holes(v, kept, fresh, centres)
         if manifold_edges(mt):
             return mv, mt
