@@ -1,4 +1,4 @@
-"""Tiles built on Dask distributed (docs/world_from_scan.md#dask): a local cluster by default, any running
+"""Tiles built on Dask distributed (docs/world_from_scan.md#how, step 3): a local cluster by default, any running
 scheduler with `--scheduler` (as unexmin.batch). A tile that raises is retried, then reported with its
 bounds; the others still build."""
 

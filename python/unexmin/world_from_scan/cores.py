@@ -1,4 +1,4 @@
-"""Local Dask workers bound to cores of their own (docs/world_from_scan.md#dask)."""
+"""Local Dask workers bound to cores of their own (docs/world_from_scan.md#how, step 3)."""
 
 import os
 
