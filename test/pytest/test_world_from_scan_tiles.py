@@ -251,6 +251,9 @@ def test_the_nearest_vertex_found_near_the_holes_is_the_nearest_of_all():
     far = np.array([[500.0, 0.0, 0.0]])  # nothing within 1 m: the search falls back to every point
     for queries, reach in ((near, 3.0), (near, 0.2), (np.vstack([near, far]), 1.0)):
         assert np.array_equal(_nearest(points, queries, reach), cKDTree(points).query(queries)[1])
+    # the nearest point of the first query lies off the queries' bounds (y = 0.5), a farther one within them
+    points = np.array([[0.1, 0.5, 0.0], [1.0, 0.0, 0.0], [10.0, 0.0, 0.0]])
+    assert list(_nearest(points, np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]), 2.0)) == [0, 2]
 
 
 def _colours(n, rng):
