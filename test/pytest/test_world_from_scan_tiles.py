@@ -160,7 +160,6 @@ def test_corrupted_tiles_are_reported_with_their_bounds_and_the_others_build(til
 
 def _affinities():
     """(this worker's threads' cores, the cores of a thread a task starts now)."""
-    import os
     import threading
 
     threads = {frozenset(os.sched_getaffinity(int(tid))) for tid in os.listdir("/proc/self/task")}

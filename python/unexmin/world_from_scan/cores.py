@@ -18,10 +18,10 @@ def cores_for(workers, available=None):
 class BindToCores(WorkerPlugin):
     """A Dask worker plugin that binds every thread of a local worker's process, and so every thread it
     starts later, to its cores: `cores[name]` (a set) for the worker named `name` (an int, as LocalCluster
-    names them; a worker with another name is left free). Open3D's
-    Poisson starts and joins a short-lived thread per step of the octree (tens of thousands per tile, whatever
-    its n_threads); left free, such a thread may be queued behind the other worker on the other core while
-    its own core idles, waiting for it to be joined."""
+    names them; a worker with another name is left free). Open3D's Poisson starts and joins a short-lived
+    thread per slice of its octree (tens of thousands per tile, whatever its n_threads); left free, such a
+    thread may be queued behind the other worker on the other core while its own core idles, waiting for it
+    to be joined."""
 
     name = "unexmin-bind-to-cores"
 
