@@ -5,13 +5,14 @@ every process of a run inherits; every wait is on a condition."""
 
 import os
 import signal
+import socket
 import sys
 import time
 from pathlib import Path
 
 import pytest
 
-from unexmin.scripting.launcher import free_port, marked_processes, wait_for
+from unexmin.scripting.launcher import ephemeral_ports, free_port, marked_processes, wait_for
 
 
 def pids_of(marker, name):
@@ -24,6 +25,22 @@ def pids_of(marker, name):
         if any(c.endswith(name.encode()) for c in cmd[:2]):
             out.append(pid)
     return out
+
+
+def test_a_free_port_is_outside_the_ephemeral_range():
+    """roslaunch's own server and every outgoing connection take ports from the kernel's ephemeral range, so a
+    master port drawn from it can be handed out again before the master listens ("port already in use")."""
+    low, high = ephemeral_ports()
+    assert 1024 <= low < high <= 65535
+    for _ in range(100):
+        port = free_port()
+        assert not low <= port <= high, (port, low, high)
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+            s.bind(("127.0.0.1", port))  # and free
+    drawn = {free_port((20000, 60999)) for _ in range(100)}  # another machine's range
+    assert all(10000 <= p < 20000 or 61000 <= p <= 65535 for p in drawn), sorted(drawn)
+    with pytest.raises(RuntimeError, match="ephemeral range 1024-65000"):
+        free_port((1024, 65000))
 
 
 def world(runs, tmp, *args):

@@ -87,7 +87,8 @@ def test_malformed_sensor_parameter_stops_the_simulator_naming_sensor_and_parame
     """End to end: an overrides file puts the DVL beams at 95 deg; the simulator node must refuse to start
     and say which sensor and which parameter (through a real master, no launch file)."""
     import os
-    import socket
+
+    from unexmin.scripting.launcher import free_port
 
     node = None
     for ws in (os.environ.get("UNEXMIN_WS"), str(REPO.parent / (REPO.name + "_ws"))):
@@ -109,9 +110,7 @@ def test_malformed_sensor_parameter_stops_the_simulator_naming_sensor_and_parame
         text=True,
         check=True,
     ).stdout
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     env = dict(
         os.environ,
         ROS_MASTER_URI=f"http://127.0.0.1:{port}",

@@ -2,6 +2,7 @@
 
 import atexit
 import os
+import random
 import re
 import signal
 import socket
@@ -13,11 +14,39 @@ from pathlib import Path
 from unexmin.bind_shim import advertised_host, ros_environment
 
 
-def free_port():
-    """A TCP port on the loopback that nothing listens on now."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+def ephemeral_ports(path="/proc/sys/net/ipv4/ip_local_port_range"):
+    """The kernel's ephemeral port range (low, high): the ports it hands to bind(port 0) and to outgoing
+    connections. (32768, 60999), Linux's default, when `path` cannot be read."""
+    try:
+        low, high = (int(v) for v in Path(path).read_text().split())
+        return low, high
+    except (OSError, ValueError):
+        return 32768, 60999
+
+
+# Ports must differ between processes, forked ones too, and no result depends on which is drawn: the
+# system's generator, not a seeded one.
+_port_choice = random.SystemRandom()
+
+
+def free_port(ephemeral=None):
+    """A TCP port on the loopback that nothing listens on now, outside the kernel's ephemeral range
+    (`ephemeral`, default ephemeral_ports()). A port from bind(port 0) would be free only until the kernel
+    hands it out again: to roslaunch's own server, say, started before the master asked to listen on it."""
+    low, high = ephemeral or ephemeral_ports()
+    candidates = [r for r in ((10000, min(low, 30000)), (max(high + 1, 1024), 65536)) if r[1] - r[0] >= 1000]
+    if not candidates:
+        raise RuntimeError(f"no port outside the ephemeral range {low}-{high} to choose from")
+    for _ in range(200):
+        start, stop = _port_choice.choice(candidates)
+        port = _port_choice.randrange(start, stop)
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return port
+    raise RuntimeError(f"no free port outside the ephemeral range {low}-{high} after 200 tries")
 
 
 def private_master_env(port, home, **extra):
