@@ -27,7 +27,7 @@ from unexmin.world_from_scan.cluster import run_tiles
 from unexmin.world_from_scan.colours import streamed_vertex_colours
 from unexmin.world_from_scan.errors import ScanError
 from unexmin.world_from_scan.scan import MIN_POINTS
-from unexmin.world_from_scan.stitch import stitch
+from unexmin.world_from_scan.stitch import choose_seams, clip_parts, seam_shifts, stitch
 from unexmin.world_from_scan.stream import scan_size
 from unexmin.world_from_scan.surface import (
     HULL_RADIUS,
@@ -256,16 +256,20 @@ def build_world(
             )
         # 4. stitching: the seams zipped, the remaining holes closed, the surface turned to face the void
         t0 = time.monotonic()
-        axis, seams = layout["axis"], layout["seams"]
+        axis = layout["axis"]
         order = [results.get(t["index"]) for t in layout["tiles"]]
         with stage("stitch", 2) as bar:
-            v, t, zipped, left = stitch([r and r["collision"] for r in order], axis, seams, 2.0 * edge + resolution)
+            parts, tolerance = [r and r["collision"] for r in order], 2.0 * edge + resolution
+            # each seam where the two tiles' surfaces cross it in loops that pair up, the visual mesh's the same
+            seams = choose_seams(parts, axis, layout["seams"], tolerance, seam_shifts(layout["overlap"], resolution))
+            v, t, zipped, left = stitch(clip_parts(parts, axis, seams), axis, seams, tolerance)
             if len(t) == 0:
                 raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
             v, t, holes, hole_area, _ = close_holes(v, t)
             v, t, folds = mend_folds(v, t)
             bar.update(1)
-            vv, vt, _, _ = stitch([r and r["visual"] for r in order], axis, seams, 2.0 * visual_edge + resolution)
+            visual = clip_parts([r and r["visual"] for r in order], axis, seams)
+            vv, vt, _, _ = stitch(visual, axis, seams, 2.0 * visual_edge + resolution)
             vv, vt, _, _, _ = close_holes(vv, vt)
             vv, vt, _ = mend_folds(vv, vt)
             bar.update(1)

@@ -7,6 +7,8 @@ nearest, one to one) and joins each pair by a strip of triangles in the plane: n
 consistently wound surface. What no loop of the other side matches stays a hole for close_holes.
 """
 
+import math
+
 import numpy as np
 
 from unexmin.world_from_scan.surface import boundary_loops
@@ -129,6 +131,57 @@ def pair_rings(v, rings_a, rings_b, tolerance):
             used_a.add(i)
             used_b.add(j)
     return pairs
+
+
+def seam_shifts(overlap, resolution):
+    """[m] the offsets from its planned place at which a seam is tried, nearest first: 0, then +- steps of two
+    resolutions up to a quarter of the overlap (each tile's surface reaches that far past its core: build_tile),
+    well inside the part of the overlap where Poisson's fit is as close as in the core."""
+    step = 2.0 * resolution
+    shifts = [0.0]
+    for k in range(1, int(math.floor(0.25 * overlap / step + 1e-9)) + 1):
+        shifts += [k * step, -k * step]
+    return shifts
+
+
+def _left_open(a, b, axis, c, tolerance):
+    """Loops of the seam plane x[axis] = c that zip_seams would leave open between the surfaces a and b (each
+    (v, t) or None), a kept below the plane and b above."""
+    if a is None or b is None:
+        return 0
+    va, ta = clip_plane(a[0], a[1], axis, c, keep_above=False)
+    vb, tb = clip_plane(b[0], b[1], axis, c, keep_above=True)
+    rings_a, rings_b = plane_rings(va, ta, axis, c), plane_rings(vb, tb, axis, c)
+    v = np.concatenate([va, vb])
+    rings_b = [np.asarray(r) + len(va) for r in rings_b]
+    zipped = sum(
+        zip_rings(v, rings_a[i], rings_b[j], axis) is not None for i, j in pair_rings(v, rings_a, rings_b, tolerance)
+    )
+    return len(rings_a) + len(rings_b) - 2 * zipped
+
+
+def choose_seams(parts, axis, seams, tolerance, shifts):
+    """Each seam of `seams` [m] moved by the first offset of `shifts` [m] at which no loop of the plane is left
+    open between its two tiles' surfaces `parts` (each reaching past its core by the largest shift; None for a
+    failed tile), else by the one that leaves the fewest: a plane through a feature that the two surfaces end on
+    differently (a pillar, a gallery's section pinched on one side) is moved off it. Returns the seams [m]."""
+    chosen = []
+    for k, c in enumerate(seams):
+        best = None
+        for s in shifts:
+            left = _left_open(parts[k], parts[k + 1], axis, c + s, tolerance)
+            if best is None or left < best[0]:
+                best = (left, c + s)
+            if left == 0:
+                break
+        chosen.append(best[1])
+    return chosen
+
+
+def clip_parts(parts, axis, seams):
+    """Each part (v, t), or None, clipped to its slab between `seams` [m] (open at both ends)."""
+    bounds = [-math.inf] + list(seams) + [math.inf]
+    return [None if p is None else clip_slab(p[0], p[1], axis, bounds[k], bounds[k + 1]) for k, p in enumerate(parts)]
 
 
 def stitch(parts, axis, seams, tolerance):

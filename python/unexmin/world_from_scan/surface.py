@@ -2,6 +2,7 @@
 support, closing holes, simplification, ray casting against the result, spawn points and volumes. Units: [m]."""
 
 import math
+import os
 
 import numpy as np
 
@@ -131,6 +132,74 @@ def decimation_target(v, t, edge):
     return max(1000, int(area / (edge**2 * math.sqrt(3) / 4)))
 
 
+# fast-simplification's C++ keeps the mesh it decimated in global vectors that are cleared, never freed: a process
+# that has decimated a 2M-triangle surface holds ~0.6 GB more from then on, and more after each larger one. A child
+# process of its own gives every byte back when it exits (a Dask worker stays at one tile's peak).
+_FAST_CHILD = """
+import io, sys
+import numpy as np
+from numpy.lib import format as npy
+import fast_simplification
+i, o = io.BytesIO(sys.stdin.buffer.read()), io.BytesIO()
+v, t, target = npy.read_array(i), npy.read_array(i), int(npy.read_array(i))
+del i
+dv, dt = fast_simplification.simplify(v, t, target_count=target)
+npy.write_array(o, np.ascontiguousarray(dv, dtype=np.float64))
+npy.write_array(o, np.ascontiguousarray(dt, dtype=np.int32))
+hwm = [l for l in open("/proc/self/status") if l.startswith("VmHWM:")]
+npy.write_array(o, np.array(int(hwm[0].split()[1]) * 1024 if hwm else 0))
+sys.stdout.buffer.write(o.getbuffer())
+"""
+
+
+# [bytes] the most this process and a decimating child of it held at once (rss_with_children())
+_peak_with_children = 0
+
+
+def _rss():
+    """[bytes] this process's resident memory now."""
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+def rss_with_children():
+    """[bytes] the peak resident memory of this process, or of it and a decimating child at once when that was
+    more (the child's own peak, VmHWM, on top of this process's memory while it waited)."""
+    import resource
+
+    return max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, _peak_with_children)
+
+
+def fast_simplified(v, t, target):
+    """fast_simplification.simplify(v, t, target_count=target) in a child process of its own (the library's
+    buffers die with it): (vertices float64, triangles int32). A RuntimeError carries the child's error."""
+    global _peak_with_children
+    import io
+    import subprocess
+    import sys
+
+    from numpy.lib import format as npy
+
+    payload = io.BytesIO()
+    npy.write_array(payload, np.ascontiguousarray(v, dtype=np.float64))
+    npy.write_array(payload, np.ascontiguousarray(t, dtype=np.int32))
+    npy.write_array(payload, np.array(int(target)))
+    waiting = _rss()
+    done = subprocess.run(
+        [sys.executable, "-c", _FAST_CHILD], input=payload.getbuffer(), capture_output=True, check=False
+    )
+    if done.returncode != 0:
+        error = done.stderr.decode(errors="replace").strip().splitlines()
+        raise RuntimeError(
+            f"fast-simplification of {len(t)} triangles to {target} failed (exit {done.returncode}): "
+            f"{error[-1] if error else 'no message'}"
+        )
+    out = io.BytesIO(done.stdout)
+    dv, dt, child_peak = npy.read_array(out), npy.read_array(out), int(npy.read_array(out))
+    _peak_with_children = max(_peak_with_children, waiting + child_peak)
+    return dv, dt
+
+
 def simplify(v, t, edge, method="fast"):
     """Quadric-error decimation (Garland & Heckbert) to decimation_target(); the mesh as it is when it has
     fewer triangles already. `method`: "fast" (fast-simplification, Fast-Quadric-Mesh-Simplification: a
@@ -140,9 +209,7 @@ def simplify(v, t, edge, method="fast"):
     if target >= len(t):
         return v, t
     if method == "fast":
-        import fast_simplification
-
-        dv, dt = fast_simplification.simplify(v, t.astype(np.int32), target_count=target)
+        dv, dt = fast_simplified(v, t, target)
         keep = (dt[:, 0] != dt[:, 1]) & (dt[:, 1] != dt[:, 2]) & (dt[:, 2] != dt[:, 0])
         dt = dt[keep].astype(np.int64)
         used = np.unique(dt)

@@ -16,12 +16,13 @@ from unexmin.world_from_scan.scan import (
     orientation_samples,
     point_spacing,
 )
-from unexmin.world_from_scan.stitch import clip_slab
+from unexmin.world_from_scan.stitch import clip_slab, seam_shifts
 from unexmin.world_from_scan.surface import (
     boundary_loops,
     close_holes,
     poisson_octree,
     reconstruct,
+    rss_with_children,
     simplify,
     trim_unsupported,
 )
@@ -31,9 +32,23 @@ SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn searc
 
 
 def _cpu():
-    """[s] user and system CPU time of this process so far."""
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    return usage.ru_utime + usage.ru_stime
+    """[s] user and system CPU time of this process and of its children that have ended (the decimations)."""
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def release_memory():
+    """Give the memory this process has freed back to the system: the cyclic garbage (trimesh's meshes and their
+    caches) collected, and glibc's heaps trimmed (what Poisson's threads freed in arenas of their own is otherwise
+    kept, and a worker's next tile peaks above a fresh process's)."""
+    import ctypes
+    import gc
+
+    gc.collect()
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc: its allocator keeps what it keeps
+        pass
 
 
 def _directed_keys(t, n):
@@ -126,13 +141,25 @@ def decimated_pair(v, t, edge, visual_edge):
     return (dv, dt), (vv, vt)
 
 
+def _areas(v, t, tree, near, threads):
+    """[m^2] (seen, bridged): the area of the triangles (v, t) whose centroid lies within `near` [m] of a point of
+    `tree` (a wall the scan saw), and of the others (a gap bridged)."""
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    d, _ = tree.query((a + b + c) / 3.0, distance_upper_bound=near, workers=threads)
+    seen = np.isfinite(d)
+    return float(area[seen].sum()), float(area[~seen].sum())
+
+
 def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threads=1):
-    """The tile's result (a dict): 'collision' and 'visual' (v, t) clipped to its core slab, facing out of
-    the void; poisson_triangles (the fine surface in the core), points read and used, spacing [m], depth,
+    """The tile's result (a dict): 'collision' and 'visual' (v, t) clipped to its core slab widened by the
+    largest seam shift and a resolution on each side (stitch.seam_shifts), facing out of the void;
+    poisson_triangles (the fine surface in the core), points read and used, spacing [m], depth,
     decided (fraction of orientation samples that decided), a sample of oriented points (for spawns),
     wall and bridged area [m^2], seconds per stage (wall), cpu_seconds (the process's CPU time over the
-    tile), peak_rss_mb of the worker. `threads`: threads of Poisson and the k-d tree queries (1 on a Dask
-    worker: the tiles are the parallelism). A ScanError names the tile and its bounds when its points are
+    tile, its decimating children's included), peak_rss_mb of the worker (with a decimating child's on top
+    while it ran: surface.rss_with_children). `threads`: threads of Poisson and the k-d tree queries (1 on a
+    Dask worker: the tiles are the parallelism). A ScanError names the tile and its bounds when its points are
     not finite or too few."""
     from scipy.spatial import cKDTree
 
@@ -165,25 +192,29 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threa
     t0 = time.monotonic()
     depth, scale = poisson_octree(points, max(resolution, spacing))
     v, t = reconstruct(points, normals, depth, threads, scale)
+    release_memory()
     times["poisson"] = time.monotonic() - t0
     t0 = time.monotonic()
     v, t = trim_unsupported(v, t, points, max_gap, tree, threads)
+    release_memory()
     if len(t) == 0:
         raise ScanError(f"{name}: no usable surface: nothing of the reconstruction lies within --max-gap {max_gap} m")
     times["trim"] = time.monotonic() - t0
     t0 = time.monotonic()
     axis, (lo, hi) = layout["axis"], tile["core"]
     (dv, dt), (vv, vt) = decimated_pair(v, t, edge, visual_edge)
-    cv, ct = clip_slab(dv, dt, axis, lo, hi)
-    vv, vt = clip_slab(vv, vt, axis, lo, hi)
+    # the meshes reach past the core as far as a seam may move (stitch.choose_seams), the fine surface not
+    reach = max(seam_shifts(layout["overlap"], resolution)) + resolution
+    cv, ct = clip_slab(dv, dt, axis, lo - reach, hi + reach)
+    vv, vt = clip_slab(vv, vt, axis, lo - reach, hi + reach)
     fv, ft = clip_slab(v, t, axis, lo, hi)
     del v, t, dv, dt
+    release_memory()
     times["decimate"] = time.monotonic() - t0
-    # areas of the fine surface in the core: near a scan point (walls seen) or not (gaps bridged)
-    a, b, c = fv[ft[:, 0]], fv[ft[:, 1]], fv[ft[:, 2]]
-    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    d, _ = tree.query((a + b + c) / 3.0, distance_upper_bound=3.0 * resolution, workers=threads)
-    seen = np.isfinite(d)
+    wall_area, bridged_area = _areas(fv, ft, tree, 3.0 * resolution, threads)
+    fine_triangles = len(ft)
+    del fv, ft, tree
+    release_memory()
     x = points[:, axis]
     core = (x >= lo) & (x < hi)
     rng = np.random.default_rng(seed + tile["index"])
@@ -193,16 +224,16 @@ def build_tile(tile, layout, resolution, max_gap, edge, visual_edge, seed, threa
         "index": tile["index"],
         "collision": (cv, ct),
         "visual": (vv, vt),
-        "poisson_triangles": int(len(ft)),
+        "poisson_triangles": int(fine_triangles),
         "points_read": read,
         "points_used": int(core.sum()),
         "spacing": spacing,
         "depth": depth,
         "decided": decided,
         "samples": (points[pick], normals[pick]),
-        "wall_area": float(area[seen].sum()),
-        "bridged_area": float(area[~seen].sum()),
+        "wall_area": wall_area,
+        "bridged_area": bridged_area,
         "seconds": {k: round(s, 2) for k, s in times.items()},
         "cpu_seconds": round(_cpu() - cpu0, 2),
-        "peak_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
+        "peak_rss_mb": round(rss_with_children() / 2**20, 1),
     }

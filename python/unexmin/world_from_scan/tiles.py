@@ -23,7 +23,7 @@ from unexmin.world_from_scan.stream import iter_chunks
 
 CELL_RES = 4.0  # survey cells: this many resolutions (at least 0.5 m)
 BITS = 21  # per axis in a packed cell key: +-2^20 cells around the scan's first point
-PER_POINT_BYTES = 3500.0  # a tile's peak memory per down-sampled point, with a margin (docs/world_from_scan.md#memory)
+PER_POINT_BYTES = 1500.0  # a tile's peak memory per down-sampled point, with a margin (docs/world_from_scan.md#memory)
 TILE_BASE_BYTES = 0.45e9  # a tile worker's memory before its points (Python, NumPy, Open3D, Dask)
 SEAM_LAYERS = 2  # survey layers on each side of a seam in which no wall should run along it
 SEAM_FROM = 0.7  # a seam lies in the last 30 % of the widest slab the budget allows: tiles near their budget
