@@ -1,10 +1,12 @@
 """Tiles' surfaces cut at their seams and zipped into one (docs/world_from_scan.md#tiles). Units: [m].
 
-Each tile's surface is clipped exactly at the planes of its core slab (clip_slab: triangles across a
-plane are split, new vertices lie on it), so the two tiles of a seam both end on the same plane, each
-with boundary loops around the galleries it crosses. zip_seams() pairs the loops of the two sides (the
-nearest, one to one) and joins each pair by a strip of triangles in the plane: no gap, no overlap, one
-consistently wound surface. What no loop of the other side matches stays a hole for close_holes.
+Each tile's surface reaches a little past its core slab; choose_seams() moves a seam within that reach
+(seam_shifts) to where the two tiles' loops pair up, and clip_parts() clips every surface exactly at the
+seams (clip_slab: triangles across a plane are split, new vertices lie on it), so the two tiles of a seam
+both end on the same plane, each with boundary loops around the galleries it crosses. stitch() pairs the
+loops of the two sides (the nearest, one to one) and joins each pair by a strip of triangles in the plane:
+no gap, no overlap, one consistently wound surface. What no loop of the other side matches stays a hole for
+close_holes.
 """
 
 import math
@@ -145,7 +147,7 @@ def seam_shifts(overlap, resolution):
 
 
 def _left_open(a, b, axis, c, tolerance):
-    """Loops of the seam plane x[axis] = c that zip_seams would leave open between the surfaces a and b (each
+    """Loops of the seam plane x[axis] = c that stitch() would leave open between the surfaces a and b (each
     (v, t) or None), a kept below the plane and b above."""
     if a is None or b is None:
         return 0
