@@ -259,10 +259,11 @@ def build_world(
         axis = layout["axis"]
         order = [results.get(t["index"]) for t in layout["tiles"]]
         with stage("stitch", 2) as bar:
-            parts, tolerance = [r and r["collision"] for r in order], 2.0 * edge + resolution
+            collision, tolerance = [r and r["collision"] for r in order], 2.0 * edge + resolution
             # each seam where the two tiles' surfaces cross it in loops that pair up, the visual mesh's the same
-            seams = choose_seams(parts, axis, layout["seams"], tolerance, seam_shifts(layout["overlap"], resolution))
-            v, t, zipped, left = stitch(clip_parts(parts, axis, seams), axis, seams, tolerance)
+            shifts = seam_shifts(layout["overlap"], resolution)
+            seams = choose_seams(collision, axis, layout["seams"], tolerance, shifts)
+            v, t, zipped, left = stitch(clip_parts(collision, axis, seams), axis, seams, tolerance)
             if len(t) == 0:
                 raise ScanError(f"{scan}: no usable surface: nothing of the reconstruction lies within --max-gap")
             v, t, holes, hole_area, _ = close_holes(v, t)
