@@ -4,6 +4,7 @@
 // (raycast::makeRayCaster, Embree by default; own hull excluded).
 #pragma once
 
+#include <unexmin/engine/sensor_families.h>
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
@@ -74,21 +75,9 @@ inline std::string num(double v) {
   return o.str();
 }
 
-/// The core's models of the simulator's sensor families (the simulator registers the same ones, with their
-/// publishers, in cpp/unexmin/ros_layer/sensor_families.cpp).
+/// The models of the simulator's sensor families (engine/sensor_families.cpp; the simulator adds their publishers).
 inline const sensors::SensorFactory& coreModels() {
-  static const sensors::SensorFactory factory = [] {
-    sensors::SensorFactory f;
-    f.add<sensors::ImuSensor>("imu");
-    f.add<sensors::DvlSensor>("dvl");
-    f.add<sensors::PressureSensor>("pressure");
-    f.add<sensors::sonar::MsisSensor>("msis");
-    f.add<sensors::sonar::M3Sensor>("m3");
-    f.add<sensors::sonar::ImagingSonarSensor>("imaging_sonar");
-    f.add<sensors::sonar::SideScanSensor>("side_scan");
-    f.add<sensors::vision::SlsSensor>("sls");
-    return f;
-  }();
+  static const sensors::SensorFactory factory = engine::sensorFamilies();  // the simulator's one registration
   return factory;
 }
 

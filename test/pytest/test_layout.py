@@ -293,3 +293,32 @@ def test_the_core_is_the_root_namespace_and_every_other_folder_its_path():
     assert namespace_of("core") == ("unexmin",)
     assert namespace_of("sensors/sonar") == SONAR
     assert namespace_of("ros_layer") == ("unexmin", "ros_layer")
+
+
+# Libraries of ROS 1 (roscpp and what it brings, tf2, rosbag) as ldd names them.
+ROS_LIBRARY = re.compile(r"lib(roscpp|rosconsole|rosbag|rostime|cpp_common|xmlrpcpp|roslib|tf2|message_filters)\w*\.so")
+
+
+def test_the_python_module_includes_no_ros_header():
+    files = sorted((REPO / "cpp" / "python").glob("*.[ch]*"))
+    assert files, "cpp/python looks empty"
+    bad = [f"{p.relative_to(REPO)}: <{h}>" for p in files for _, h in includes(p) if is_ros_header(h)]
+    assert not bad, "ROS headers in the Python module:\n" + "\n".join(bad)
+
+
+def test_the_python_module_links_no_ros_library():
+    import subprocess
+
+    from unexmin import _core
+
+    out = subprocess.run(["ldd", _core.__file__], capture_output=True, text=True, check=True).stdout
+    assert "libunexmin_engine" in out or "libBullet" in out, f"ldd of {_core.__file__} lists nothing of ours:\n{out}"
+    ros = sorted({m.group(0) for m in ROS_LIBRARY.finditer(out)})
+    assert not ros, f"{_core.__file__} links ROS libraries {ros}:\n{out}"
+
+
+def test_the_ros_library_pattern_tells_ros_from_the_rest():
+    assert ROS_LIBRARY.search("libroscpp.so.1d => /usr/lib/x86_64-linux-gnu/libroscpp.so.1d")
+    assert ROS_LIBRARY.search("librosbag_storage.so.1d => /usr/lib/librosbag_storage.so.1d")
+    assert not ROS_LIBRARY.search("libBulletDynamics.so.3.24 => /usr/lib/libBulletDynamics.so.3.24")
+    assert not ROS_LIBRARY.search("libunexmin_engine.so => /ws/devel/lib/libunexmin_engine.so")

@@ -3,6 +3,16 @@
 namespace unexmin {
 namespace ros_layer {
 
+void SensorRegistry::check() const {
+  std::string missing;
+  for (const auto& type : models_.types())
+    if (publishers_.count(type) == 0)
+      missing += (missing.empty() ? "'" : ", '") + type + "'";
+  if (!missing.empty())
+    throw ConfigError("sensor families without a publisher: " + missing +
+                      " (register one with SensorRegistry::addPublisher, docs/adding_a_sensor.md)");
+}
+
 std::unique_ptr<SensorPublisher> SensorRegistry::publisher(sensors::Sensor& sensor, const PublisherContext& ctx) const {
   const auto it = publishers_.find(sensor.type());
   if (it == publishers_.end())

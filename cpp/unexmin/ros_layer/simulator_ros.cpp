@@ -23,36 +23,20 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
                            const hydro::ThrusterFactory& thrusters)
     : nh_(nh), pnh_(pnh), command_nh_(nh), registry_(std::move(registry)) {
   command_nh_.setCallbackQueue(&command_queue_);
+  registry_.check();
   loadParams();
 
-  sim::WorldConfig config = sim::loadWorldConfig(world_file_);
-  if (!visibility_.empty())
-    config.visibility = visibility_;  // before the world (and every sensor) sees it
-  if (!spawns_.empty()) {             // ~spawns: the world's robots to run, by name, in this order
-    sim::selectRobots(config, spawns_);
-    robot_count_ = static_cast<int>(spawns_.size());
-  }
-  if (robot_count_ > static_cast<int>(config.robots.size()))
-    badParam("robots", formatNumber(robot_count_),
-             "at most " + formatNumber(config.robots.size()) + " (spawn poses in " + world_file_ + ")");
-
   std::map<std::string, sim::RobotDescription> descriptions;
-  for (int i = 0; i < robot_count_; ++i) {
-    const std::string name = config.robots[i].name;
+  for (const std::string& name : plan_.robots) {
     const std::string param = "/" + name + "/robot_description";
     std::string xml;
     if (!nh_.getParam(param, xml))
       throw ConfigError("parameter " + param + " is not set: load the robot description (xacro) first");
     descriptions.emplace(name, sim::parseRobotDescription(xml, param, thrusters));
   }
-  engine::EngineOptions options;
-  options.dt = 1.0 / physics_rate_;
-  options.seed = static_cast<std::uint64_t>(seed_);
-  options.selection = sensors::SensorSelection::parse(sensors_param_, registry_.types(), "parameter ~sensors");
-  options.visual = visual_;
-  options.ray_caster_threads = ray_caster_threads_;
-  engine_ =
-      std::make_unique<engine::Engine>(config, descriptions, robot_count_, registry_.models(), options, world_file_);
+  const sim::WorldConfig& config = plan_.config;
+  engine_ = std::make_unique<engine::Engine>(config, descriptions, static_cast<int>(plan_.robots.size()),
+                                             registry_.models(), plan_.options, world_file_);
   world_ = &engine_->world();
   for (std::size_t i = 0; i < world_->robotCount(); ++i)
     robots_.push_back(std::make_unique<RobotRos>(*world_, world_->robot(i), engine_->suite(i), command_nh_, nh_, rates_,
@@ -97,39 +81,39 @@ SimulatorRos::SimulatorRos(ros::NodeHandle nh, ros::NodeHandle pnh, SensorRegist
 void SimulatorRos::loadParams() {
   if (!pnh_.getParam("world_file", world_file_) || world_file_.empty())
     badParam("world_file", "(unset)", "the path of a world file (YAML), e.g. $(find unexmin)/worlds/tank.world");
-  pnh_.param("robots", robot_count_, 1);
-  if (robot_count_ < 1 || robot_count_ > 3)
-    badParam("robots", formatNumber(robot_count_), "1, 2 or 3");
+  // The engine's settings (checked once, by engine::planEngine); /sim/mode is the one not in ~.
+  engine::EngineSettings settings;
+  settings.world_file = world_file_;
+  pnh_.param("robots", settings.robots, 1);
   std::string spawns;
   pnh_.param<std::string>("spawns", spawns, "");
   std::istringstream names(spawns);
   for (std::string name; std::getline(names, name, ',');)
     if (!name.empty())
-      spawns_.push_back(name);
+      settings.spawns.push_back(name);
   pnh_.param("realtime", realtime_, false);
   pnh_.param("realtime_factor", realtime_factor_, 1.0);
   if (!(realtime_factor_ > 0.0))
     badParam("realtime_factor", formatNumber(realtime_factor_), "> 0");
-  pnh_.param("seed", seed_, 0);
-  if (seed_ < 0)
-    badParam("seed", formatNumber(seed_), "a non-negative integer");
+  int seed = 0;
+  pnh_.param("seed", seed, 0);
+  settings.seed = seed;
   pnh_.param("paused", paused_, false);
-  pnh_.param<std::string>("sensors", sensors_param_, "all");
-  std::string mode;
-  nh_.param<std::string>("/sim/mode", mode, "operational");
-  if (mode != "operational" && mode != "visual")
-    throw ParameterError("parameter /sim/mode = '" + mode + "': expected operational|visual");
-  visual_ = mode == "visual";
-  pnh_.param<std::string>("visibility", visibility_, "");
-  if (!visibility_.empty() && visibility_ != "none" && visibility_ != "low" && visibility_ != "medium" &&
-      visibility_ != "high")
-    badParam("visibility", "'" + visibility_ + "'", "none|low|medium|high (or empty: the world file's level)");
-  pnh_.param("ray_caster_threads", ray_caster_threads_, 0);
-  if (ray_caster_threads_ < 0)
-    badParam("ray_caster_threads", formatNumber(ray_caster_threads_), ">= 0 (0 = every hardware thread)");
-  pnh_.param("physics_rate", physics_rate_, 500.0);
-  if (!(physics_rate_ >= 100.0 && physics_rate_ <= 20000.0))
-    badParam("physics_rate", formatNumber(physics_rate_), "[100, 20000] Hz");
+  pnh_.param<std::string>("sensors", settings.sensors, "all");
+  nh_.param<std::string>("/sim/mode", settings.mode, "operational");
+  pnh_.param<std::string>("visibility", settings.visibility, "");
+  pnh_.param("ray_caster_threads", settings.ray_caster_threads, 0);
+  pnh_.param("physics_rate", settings.physics_rate, 500.0);
+  try {
+    plan_ = engine::planEngine(settings, registry_.models(), [](const std::string& name) {
+      return name == "mode" ? std::string("parameter /sim/mode") : "parameter ~" + name;
+    });
+  } catch (const engine::SettingError& e) {
+    throw ParameterError(e.what());
+  }
+  physics_rate_ = settings.physics_rate;
+  seed_ = seed;
+  visual_ = plan_.options.visual;
   auto rate = [&](const std::string& name, double& value, double fallback) {
     pnh_.param(name, value, fallback);
     if (!std::isfinite(value) || value < 0.0 || value > physics_rate_)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <unexmin/engine/engine.h>
+#include <unexmin/engine/engine_settings.h>
 #include <unexmin/hydro/thruster_factory.h>
 #include <unexmin/ros_layer/bag_recorder.h>
 #include <unexmin/ros_layer/robot_ros.h>
@@ -55,8 +56,7 @@ private:
   ros::NodeHandle command_nh_;
 
   std::string world_file_;
-  int robot_count_ = 1;
-  std::vector<std::string> spawns_;  ///< ~spawns: robot names of the world to run (empty: the first robot_count_)
+  engine::EnginePlan plan_;  ///< the world file with the engine's settings applied (engine::planEngine)
   bool realtime_ = false;
   double realtime_factor_ = 1.0;
   int seed_ = 0;
@@ -69,10 +69,7 @@ private:
   PublishRates rates_;
 
   SensorRegistry registry_;
-  std::string sensors_param_ = "all";
-  bool visual_ = false;         ///< /sim/mode == visual: cameras render, lights and lasers on
-  std::string visibility_;      ///< ~visibility: overrides the world file's level (empty: keep it)
-  int ray_caster_threads_ = 0;  ///< ~ray_caster_threads: threads that cast rays (0 = every hardware thread)
+  bool visual_ = false;  ///< /sim/mode == visual: cameras render, lights and lasers on
   std::unique_ptr<engine::Engine> engine_;
   sim::World* world_ = nullptr;  ///< the engine's
   std::vector<std::unique_ptr<RobotRos>> robots_;

@@ -180,5 +180,24 @@ void DvlSensor::sample(const SensorContext& ctx) {
   out.pressure = std::max(0.0, pressure_noise_->apply(hydrostaticPressure(ctx.world, origin.z()), random()));
 }
 
+void DvlSensor::describeSample(SampleWriter& out) const {
+  out.flag("bottom_lock", last_.bottom_lock);
+  out.vector3("velocity", "m/s", last_.velocity);
+  out.scalar("altitude", "m", last_.altitude);
+  out.scalar("pressure", "Pa", last_.pressure);
+  out.scalar("temperature", "degC", last_.temperature);
+  out.scalar("sound_speed", "m/s", last_.sound_speed);
+  std::vector<double> range, velocity;
+  bool valid[4];
+  for (std::size_t i = 0; i < last_.beams.size(); ++i) {
+    range.push_back(last_.beams[i].range);
+    velocity.push_back(last_.beams[i].velocity);
+    valid[i] = last_.beams[i].valid;
+  }
+  out.array("beam_range", "m", range);
+  out.array("beam_velocity", "m/s", velocity);
+  out.flags("beam_valid", valid, last_.beams.size());
+}
+
 }  // namespace sensors
 }  // namespace unexmin

@@ -81,6 +81,7 @@ public:
 protected:
   void onReset() override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   double beam_angle_, beam_azimuth_0_, beam_width_, altitude_min_, altitude_max_;

@@ -93,5 +93,13 @@ void ImuSensor::sample(const SensorContext& ctx) {
   last_.pressure_variance = var(pressure_noise_);
 }
 
+void ImuSensor::describeSample(SampleWriter& out) const {
+  out.vector3("specific_force", "m/s^2", last_.specific_force);
+  out.vector3("angular_velocity", "rad/s", last_.angular_velocity);
+  out.vector3("magnetic_field", "mG", last_.magnetic_field);
+  out.scalar("temperature", "degC", last_.temperature);
+  out.scalar("pressure", "Pa", last_.pressure);
+}
+
 }  // namespace sensors
 }  // namespace unexmin

@@ -56,6 +56,7 @@ protected:
   void onReset() override;
   void track(const SensorContext& ctx) override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   using Channel = std::array<std::unique_ptr<NoiseModel>, 3>;

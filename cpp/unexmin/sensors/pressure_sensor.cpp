@@ -38,5 +38,9 @@ void PressureSensor::sample(const SensorContext& ctx) {
   last_.variance = noise_->whiteStd() * noise_->whiteStd();
 }
 
+void PressureSensor::describeSample(SampleWriter& out) const {
+  out.scalar("pressure", "Pa", last_.pressure);
+}
+
 }  // namespace sensors
 }  // namespace unexmin

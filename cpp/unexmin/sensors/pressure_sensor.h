@@ -35,6 +35,7 @@ public:
 protected:
   void onReset() override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   std::unique_ptr<NoiseModel> noise_;

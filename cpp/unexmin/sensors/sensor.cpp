@@ -37,6 +37,12 @@ bool Sensor::update(const SensorContext& ctx) {
   return true;
 }
 
+void Sensor::describe(SampleWriter& out) const {
+  out.scalar("time", "s", sample_time_);
+  out.count("count", samples_);
+  describeSample(out);
+}
+
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
                       raycast::Incidence incidence, raycast::SeenBy seen_by) {
   if (ctx.rays)

@@ -5,6 +5,7 @@
 
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/random.h>
+#include <unexmin/sensors/sample_fields.h>
 #include <unexmin/sim/robot.h>
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
@@ -67,6 +68,10 @@ public:
   std::uint64_t sampleCount() const { return samples_; }
   /// Appends the joints this sensor moves, with their state now (none by default).
   virtual void movedJoints(std::vector<MovedJoint>& /*out*/) const {}
+  /// The latest sample as named fields (sample_fields.h): "time" [s] (sampleTime()) and "count" (sampleCount()),
+  /// then the family's own (describeSample()). The one description of a sample that every reader but the family's
+  /// publisher reads.
+  void describe(SampleWriter& out) const;
 
 protected:
   /// Reset the model's state (turn-on biases are drawn here from random()).
@@ -75,6 +80,9 @@ protected:
   virtual void track(const SensorContext&) {}
   /// Take one sample at ctx.world.time().
   virtual void sample(const SensorContext& ctx) = 0;
+  /// The family's fields of its latest sample, each with its unit and shape, in the order its docs list them
+  /// (docs/python_api.md); none by default.
+  virtual void describeSample(SampleWriter& /*out*/) const {}
   Random& random() { return random_; }
   /// Casts `rays` through ctx.rays, the robot's own hull excluded; `hits` answers them one for one (all
   /// misses when the context has no caster). Incidence::skip: a model that needs the incidence of few hits

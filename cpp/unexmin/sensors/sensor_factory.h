@@ -1,6 +1,7 @@
-// Sensor models by family name (the type of a <sensor type="..."> element). Knows no built-in family: the
-// simulator's one registration point (ros/sensor_registry.h, docs/adding_a_sensor.md) fills it together with
-// each family's publisher; a core test or tool adds the models it needs with add<Model>("type").
+// Sensor models by family name (the type of a <sensor type="..."> element). Knows no family itself: the simulator's
+// are registered once, in engine/sensor_families.cpp (both front ends build from it, the ROS layer adding one
+// publisher per family on top, ros_layer/sensor_registry.h); a test or a user program adds its own families with
+// add<Model>("type"). docs/adding_a_sensor.md.
 #pragma once
 
 #include <unexmin/sensors/sensor.h>

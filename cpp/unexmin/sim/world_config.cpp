@@ -246,8 +246,13 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
     r.fail("'ray_caster' is empty, expected the name of a ray-casting back end (embree|bullet)");
   if (const YAML::Node vis = root["visibility"]) {
     w.visibility = r.text(vis, "level", "visibility.", "none");
-    if (w.visibility != "none" && w.visibility != "low" && w.visibility != "medium" && w.visibility != "high")
-      r.fail("'visibility.level' is '" + w.visibility + "', expected none|low|medium|high");
+    const auto& levels = visibilityLevels();
+    if (std::find(levels.begin(), levels.end(), w.visibility) == levels.end()) {
+      std::string choices;
+      for (const auto& l : levels)
+        choices += (choices.empty() ? "" : "|") + l;
+      r.fail("'visibility.level' is '" + w.visibility + "', expected " + choices);
+    }
     w.visibility_colour = r.vec3(vis, "colour", "visibility.", w.visibility_colour);
     if ((w.visibility_colour.array() <= 0.0).any() || (w.visibility_colour.array() > 1.0).any())
       r.fail("'visibility.colour' must be three numbers in (0, 1]");

@@ -98,6 +98,21 @@ const YAML::Node& worldSchema(const std::string& schema_file) {
   return cache.emplace(schema_file, node).first->second;
 }
 
+const std::vector<std::string>& visibilityLevels() {
+  static const std::vector<std::string> levels = [] {
+    const std::string file = worldSchemaFile();
+    std::vector<std::string> out;
+    const YAML::Node choices = worldSchema(file)["keys"]["visibility"]["keys"]["level"]["choices"];
+    if (choices && choices.IsSequence())
+      for (const auto& c : choices)
+        out.push_back(c.as<std::string>());
+    if (out.empty())
+      throw ConfigError(file + ": 'visibility.level' lists no choices");
+    return out;
+  }();
+  return levels;
+}
+
 double keySimilarity(const std::string& a, const std::string& b) {
   if (a.empty() && b.empty())
     return 1.0;

@@ -20,6 +20,10 @@ std::string worldSchemaFile();
 /// The parsed schema of `schema_file` (cached after the first read); ConfigError naming it when it cannot be read.
 const YAML::Node& worldSchema(const std::string& schema_file);
 
+/// The choices of the schema's visibility.level (none, low, medium, high), in the schema's order; ConfigError when the
+/// schema has none.
+const std::vector<std::string>& visibilityLevels();
+
 /// How alike two keys are, in [0, 1]: 2 M / (|a| + |b|), M the characters of the longest common blocks found as
 /// Python's difflib.SequenceMatcher(None, a, b).ratio() finds them.
 double keySimilarity(const std::string& a, const std::string& b);

@@ -16,6 +16,7 @@ import math
 import os
 
 from unexmin.identify.description import ROBOT_FILE, expand
+from unexmin.vehicles import description_file, team_names
 from unexmin.worlds.files import world_path
 
 try:
@@ -100,6 +101,11 @@ class Robot:
         """How many samples sensor `sensor` has taken since t = 0 (cheaper than sample(sensor)["count"])."""
         return self.world._core.sample_count(self.name, sensor)
 
+    def sample_fields(self, sensor):
+        """What a sample of sensor `sensor` holds, as its family describes it: one (name, unit, dtype, shape) per field
+        of sample(sensor) after name and type, in the family's order (shape () for a scalar)."""
+        return [(n, u, t, tuple(shape)) for n, u, t, shape in self.world._core.sample_fields(self.name, sensor)]
+
     def sample(self, sensor):
         """The newest sample of sensor `sensor` (a name of ``sensors``; KeyError listing them otherwise) as a dict
         (docs/python_api.md lists the keys of each family); ``time`` < 0 before its first sample."""
@@ -110,11 +116,13 @@ class World:
     """A world file with its robots, in this process (see the module's documentation).
 
     world: a shipped world's name (tank, mine, test_box) or a world file's path; robots: how many of the world's
-    robots to spawn (1..3); seed: the simulator's seed (>= 0); sensors: "all", "none" or families
-    "imu,dvl,..." (as ``sensors:=``); visibility: none|low|medium|high overrides the world file's ("": keep
-    it); mode: operational|visual (cameras render, lights and lasers on); physics_rate [Hz]; overrides:
-    {robot name: xacro overrides file} (as ``UX_k_overrides:=``); descriptions: {robot name: URDF text}
-    instead of expanding urdf/ux1.urdf.xacro; ray_caster_threads: 0 = every hardware thread.
+    robots to spawn (the first ones) or their names in order (["UX_1", "ROV_1"], as ``spawns:=``); vehicles: a team
+    of vehicle types instead (["ux1", "bluerov2_heavy"], as ``vehicles:=``: UX_1, ROV_1); seed: the simulator's seed;
+    sensors: "all", "none" or families "imu,dvl,..." (as ``sensors:=``); visibility: a level of the world schema
+    overriding the world file's ("": keep it); mode: operational|visual (cameras render, lights and lasers on);
+    physics_rate [Hz]; overrides: {robot name: xacro overrides file} (as ``UX_k_overrides:=``); descriptions:
+    {robot name: URDF text} instead of expanding each robot's shipped description (urdf/, by its name's prefix);
+    ray_caster_threads: 0 = every hardware thread. The engine checks every setting (ValueError naming it).
     """
 
     def __init__(
@@ -129,15 +137,20 @@ class World:
         overrides=None,
         descriptions=None,
         ray_caster_threads=0,
+        vehicles=None,
     ):
         path = world_path(world)
-        if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+        if isinstance(seed, bool) or int(seed) != seed:
             raise ValueError(f"seed = {seed!r}: expected a non-negative whole number")
-        if isinstance(robots, bool) or int(robots) != robots or not 1 <= robots <= 3:
-            raise ValueError(f"robots = {robots!r}: expected 1, 2 or 3")
+        spawns = team_names(vehicles) if vehicles is not None else []
+        if isinstance(robots, (list, tuple)):
+            spawns = [str(r) for r in robots]
+        elif isinstance(robots, bool) or int(robots) != robots:
+            raise ValueError(f"robots = {robots!r}: expected a count or a list of the world's robot names")
+        count = len(spawns) if spawns else int(robots)
         if not isinstance(physics_rate, (int, float)) or not math.isfinite(physics_rate):
-            raise ValueError(f"physics_rate = {physics_rate!r}: expected a finite number of Hz in [100, 20000]")
-        names = _core.robot_names(path)[: int(robots)]
+            raise ValueError(f"physics_rate = {physics_rate!r}: expected a finite number of Hz")
+        names = _core.spawned_robots(path, count, spawns)
         overrides = dict(overrides or {})
         for name, file in overrides.items():
             if name not in names:
@@ -145,11 +158,12 @@ class World:
             if file and not os.path.isfile(file):
                 raise FileNotFoundError(f"overrides['{name}'] = {file}: no such xacro file")
         if descriptions is None:
-            descriptions = {n: expand(ROBOT_FILE, n, overrides.get(n) or None) for n in names}
+            descriptions = {n: expand(ROBOT_FILE.parent / description_file(n), n, overrides.get(n) or None) for n in names}
         self._core = _core.World(
             path,
             dict(descriptions),
-            int(robots),
+            count,
+            spawns,
             int(seed),
             str(sensors),
             str(visibility),

@@ -62,6 +62,18 @@ void ImagingSonarSensor::sample(const SensorContext& ctx) {
   out.built = true;
 }
 
+void ImagingSonarSensor::describeSample(SampleWriter& out) const {
+  out.flag("built", last_.built);
+  out.array("polar", "-", last_.codes, {last_.bins, last_.beams});
+  std::vector<double> azimuths(beams()), ranges(bins());
+  for (std::size_t k = 0; k < azimuths.size(); ++k)
+    azimuths[k] = azimuth(k);
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    ranges[i] = binCenter(i);
+  out.array("beam_azimuths", "rad", azimuths);
+  out.array("bin_ranges", "m", ranges);
+}
+
 }  // namespace sonar
 }  // namespace sensors
 }  // namespace unexmin

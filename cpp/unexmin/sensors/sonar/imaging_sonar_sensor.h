@@ -70,6 +70,7 @@ public:
 protected:
   void onReset() override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   double fov_h_ = 0.0, fov_v_ = 0.0;

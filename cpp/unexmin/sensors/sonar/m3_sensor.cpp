@@ -199,6 +199,15 @@ void M3Sensor::directAndSurface(int k, double surface_z) {
   }
 }
 
+void M3Sensor::describeSample(SampleWriter& out) const {
+  out.array("ranges", "m", last_.ranges);
+  out.array("intensities", "-", last_.intensities);
+  std::vector<double> angles(beams());
+  for (std::size_t k = 0; k < angles.size(); ++k)
+    angles[k] = beamAngle(k);
+  out.array("beam_angles", "rad", angles);
+}
+
 }  // namespace sonar
 }  // namespace sensors
 }  // namespace unexmin

@@ -75,6 +75,7 @@ public:
 protected:
   void onReset() override;
   void sample(const sensors::SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   int beams_ = 256, rays_per_beam_ = 4;

@@ -303,6 +303,11 @@ void MsisSensor::sample(const sensors::SensorContext& ctx) {
   advance();
 }
 
+void MsisSensor::describeSample(SampleWriter& out) const {
+  out.scalar("angle", "rad", last_.angle);
+  out.array("intensity", "-", last_.intensity);
+}
+
 }  // namespace sonar
 }  // namespace sensors
 }  // namespace unexmin

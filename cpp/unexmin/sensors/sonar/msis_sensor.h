@@ -84,6 +84,7 @@ public:
 protected:
   void onReset() override;
   void sample(const sensors::SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   EchoLevel level(float intensity) const;

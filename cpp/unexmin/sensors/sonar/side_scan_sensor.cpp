@@ -61,6 +61,19 @@ void SideScanSensor::sample(const SensorContext& ctx) {
   last_.built = true;
 }
 
+void SideScanSensor::describeSample(SampleWriter& out) const {
+  out.flag("built", last_.built);
+  out.array("port", "-", last_.port);
+  out.array("starboard", "-", last_.starboard);
+  std::vector<std::uint8_t> image;
+  waterfall_.image(image);
+  out.array("waterfall", "-", image, {waterfall_.lines(), waterfall_.width()});
+  std::vector<double> ranges(last_.port.size());
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    ranges[i] = binCenter(i);
+  out.array("bin_ranges", "m", ranges);
+}
+
 }  // namespace sonar
 }  // namespace sensors
 }  // namespace unexmin

@@ -65,6 +65,7 @@ public:
 protected:
   void onReset() override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   double tilt_ = 0.0;

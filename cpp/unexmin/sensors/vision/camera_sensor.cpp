@@ -505,6 +505,18 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
   encode(n, pixel, radiance, seed, simd);
 }
 
+void CameraSensor::describeSample(SampleWriter& out) const {
+  out.flag("rendered", frame_.rendered);
+  // CameraInfo's numbers of the published image: K (3 x 3, row-major) and D (plumb_bob k1 k2 p1 p2 k3).
+  const auto k = model_.K();
+  out.array("K", "px", std::vector<double>(k.begin(), k.end()), {3, 3});
+  const auto& d = model_.distortion();
+  out.array("D", "-", std::vector<double>(d.begin(), d.end()));
+  if (frame_.rendered)  // rgb8; kept by the camera until its next sample
+    out.array("image", "-", frame_.rgb,
+              {static_cast<std::size_t>(frame_.height), static_cast<std::size_t>(frame_.width), 3}, true);
+}
+
 }  // namespace vision
 }  // namespace sensors
 }  // namespace unexmin

@@ -115,6 +115,7 @@ public:
 protected:
   void onReset() override;
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   /// Builds what rendering needs (once, and again when the world's water changes).

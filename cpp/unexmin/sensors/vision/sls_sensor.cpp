@@ -186,6 +186,17 @@ void SlsSensor::sample(const SensorContext& ctx) {
   }
 }
 
+void SlsSensor::describeSample(SampleWriter& out) const {
+  out.scalar("motor_angle", "rad", last_.motor_angle);
+  out.array("ranges", "m", last_.ranges);
+  std::vector<float> points;
+  points.reserve(3 * last_.points.size());
+  for (const auto& p : last_.points)
+    points.insert(points.end(), {p[0], p[1], p[2]});
+  out.array("points", "m", points, {last_.points.size(), 3});
+  out.array("intensity", "-", last_.intensity);
+}
+
 }  // namespace vision
 }  // namespace sensors
 }  // namespace unexmin

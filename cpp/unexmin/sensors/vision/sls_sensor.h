@@ -95,6 +95,7 @@ protected:
   void onReset() override { last_ = SlsScan(); }
   void track(const SensorContext& ctx) override { now_ = ctx.world.time(); }
   void sample(const SensorContext& ctx) override;
+  void describeSample(SampleWriter& out) const override;
 
 private:
   double fan_ = 0.0, range_min_ = 0.1, range_max_ = 5.0;

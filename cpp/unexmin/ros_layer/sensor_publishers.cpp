@@ -1,0 +1,33 @@
+// The publishers of the simulator's sensor families (engine/sensor_families.cpp): one line each, under the family's
+// type name. Adding a family: docs/adding_a_sensor.md.
+#include <unexmin/ros_layer/sensor_registry.h>
+
+#include <unexmin/ros_layer/camera_publisher.h>
+#include <unexmin/ros_layer/dvl_publisher.h>
+#include <unexmin/ros_layer/imaging_sonar_publisher.h>
+#include <unexmin/ros_layer/imu_publisher.h>
+#include <unexmin/ros_layer/m3_publisher.h>
+#include <unexmin/ros_layer/msis_publisher.h>
+#include <unexmin/ros_layer/pressure_publisher.h>
+#include <unexmin/ros_layer/side_scan_publisher.h>
+#include <unexmin/ros_layer/sls_publisher.h>
+
+namespace unexmin {
+namespace ros_layer {
+
+SensorRegistry SensorRegistry::builtin() {
+  SensorRegistry r(engine::sensorFamilies());
+  r.addPublisher<sensors::ImuSensor, ImuPublisher>("imu");                                     // docs/sensors.md
+  r.addPublisher<sensors::DvlSensor, DvlPublisher>("dvl");                                     // docs/sensors.md
+  r.addPublisher<sensors::PressureSensor, PressurePublisher>("pressure");                      // docs/sensors.md
+  r.addPublisher<sensors::sonar::MsisSensor, MsisPublisher>("msis");                           // docs/sonars.md
+  r.addPublisher<sensors::sonar::M3Sensor, M3Publisher>("m3");                                 // docs/sonars.md
+  r.addPublisher<sensors::sonar::ImagingSonarSensor, ImagingSonarPublisher>("imaging_sonar");  // docs/sonars.md
+  r.addPublisher<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
+  r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
+  r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
+  return r;
+}
+
+}  // namespace ros_layer
+}  // namespace unexmin
