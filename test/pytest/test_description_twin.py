@@ -249,6 +249,11 @@ def _thruster_outside_hull(root):
     next(j for j in root.findall("joint") if j.get("name") == joint).find("origin").set("xyz", "5 0 0")
 
 
+def _detached_sensor(root):
+    ElementTree.SubElement(root, "link", name="detached")
+    root.find("unexmin/sensor").set("link", "detached")
+
+
 def _heavy_pendulum(root):
     mass = root.find("unexmin/hydrodynamics/mass").get("value")
     root.find("unexmin/pendulum").set("mass", mass)
@@ -277,6 +282,7 @@ MALFORMED = {
     "sensor-rate-zero": ("ux1.urdf.xacro", _set("unexmin/sensor", "rate", "0")),
     "sensor-unknown-link": ("ux1.urdf.xacro", _set("unexmin/sensor", "link", "nowhere")),
     "sensor-twice": ("ux1.urdf.xacro", _duplicate_sensor),
+    "sensor-on-a-detached-link": ("ux1.urdf.xacro", _detached_sensor),
     "sensor-param-inf": ("ux1.urdf.xacro", _set("unexmin/sensor/param", "value", "1 inf")),
     "fin-no-rate": ("remus100.urdf.xacro", _remove("unexmin/fin", "rate")),
     "fin-no-model": ("remus100.urdf.xacro", _remove("unexmin/fin", "model")),

@@ -14,7 +14,6 @@ from xml.etree import ElementTree
 
 import numpy as np
 
-from unexmin.description.errors import DescriptionError
 from unexmin.description.reader import Reader, c_number, number_text, text_of
 from unexmin.description.records import (
     Fin,
@@ -99,23 +98,6 @@ def _joint(r, j, links):
             r.fail(f"{where}/axis has zero length")
         axis = axis / np.linalg.norm(axis)
     return Joint(name, text_of(j, "type"), parent, child, xyz, rpy_matrix(rpy), axis)
-
-
-def link_pose(source, joints, base_link, link):
-    """(position [m], rotation) of `link` in `base_link`'s frame through the joint origins (joints at zero)."""
-    p, rot = np.zeros(3), np.eye(3)
-    current = link
-    guard = 0
-    while current != base_link and guard <= len(joints):
-        j = next((j for j in joints if j.child == current), None)
-        if j is None:
-            raise DescriptionError(f"{source}: link '{link}' is not connected to '{base_link}'")
-        p, rot = j.rotation @ p + j.position, j.rotation @ rot
-        current = j.parent
-        guard += 1
-    if current != base_link:
-        raise DescriptionError(f"{source}: joint loop above link '{link}'")
-    return p, rot
 
 
 def _joint_frame(d, joint):

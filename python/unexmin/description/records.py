@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from unexmin.description.errors import DescriptionError
+
 
 @dataclass
 class Joint:
@@ -137,9 +139,19 @@ class RobotDescription:
     def link_pose(self, link):
         """(position [m], rotation 3 x 3) of `link` in the base link's frame through the joint origins, every joint
         at zero."""
-        from unexmin.description.parse import link_pose
-
-        return link_pose(self.source, self.joints, self.base_link, link)
+        p, rot = np.zeros(3), np.eye(3)
+        current = link
+        for _ in range(len(self.joints) + 1):
+            if current == self.base_link:
+                return p, rot
+            joint = next((j for j in self.joints if j.child == current), None)
+            if joint is None:
+                raise DescriptionError(f"{self.source}: link '{link}' is not connected to '{self.base_link}'")
+            p, rot = joint.rotation @ p + joint.position, joint.rotation @ rot
+            current = joint.parent
+        if current == self.base_link:
+            return p, rot
+        raise DescriptionError(f"{self.source}: joint loop above link '{link}'")
 
     def movable_joints(self):
         """Names of the non-fixed joints, in document order."""
