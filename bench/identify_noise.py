@@ -26,7 +26,8 @@ LEVELS = ((0.0, 0.0, 0.7), (0.0, 0.0, 5.0), (0.002, 0.05, 5.0), (0.005, 0.1, 5.0
 
 
 def main(argv=None):
-    from unexmin.identify import description, identify_bag, model
+    from unexmin import description
+    from unexmin.identify import identify_bag, model
     from unexmin.identify.model import DOF, INDEX
     from unexmin.replay import read_bag
 
@@ -43,7 +44,7 @@ def main(argv=None):
             tuple(float(v) * f for v, f in zip(level.split(":"), (1e-3, 1.0, 1.0))) for level in args.levels.split(",")
         ]
     )
-    truth = model.nominal_vector(description.load(overrides=args.truth))
+    truth = model.nominal_vector(description.load(description.ROBOT_FILE, overrides=args.truth))
     rows = []
     for sp, sa, window in levels:
         worst = {}

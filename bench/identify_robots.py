@@ -26,7 +26,8 @@ def main(argv=None):
     spec = importlib.util.spec_from_file_location("test_identify", REPO / "test" / "pytest" / "test_identify.py")
     t = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(t)
-    from unexmin.identify import description, model
+    from unexmin import description
+    from unexmin.identify import model
     from unexmin.identify.model import DOF, INDEX, PARAMS
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -57,7 +58,7 @@ def main(argv=None):
         w1 = time.monotonic()
         data = t.identify_bag(bag, out / f"{name}_id", progress=False)
         w2 = time.monotonic()
-        truth_physics = description.load(overrides=overrides)
+        truth_physics = description.load(description.ROBOT_FILE, overrides=overrides)
         truth = model.nominal_vector(truth_physics)
         got = t.got_values(data)
         worst = {}

@@ -27,15 +27,15 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
 
+    from unexmin import description
     from unexmin.control.allocation import ThrusterAllocator
     from unexmin.geometry import yaw_of
-    from unexmin.identify import description
     from unexmin.scripting.simulation import Simulation
     from unexmin.worlds.spawn import world_launch_file
 
-    physics = description.load(overrides=args.overrides)
-    inertia = physics.inertia[2] + physics.added_mass[5, 5]
-    d_q = physics.quadratic_damping[5]
+    physics = description.load(description.ROBOT_FILE, overrides=args.overrides)
+    inertia = physics.hydro.inertia[2] + physics.hydro.added_mass[5, 5]
+    d_q = physics.hydro.quadratic_damping[5]
     tmp = tempfile.mkdtemp(prefix="yaw_coast_")
     launch = world_launch_file(tmp, "tank", "UX_1", overrides=args.overrides) if args.overrides else None
     rows = []

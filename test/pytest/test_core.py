@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from unexmin.core import World
-from unexmin.identify.description import ROBOT_FILE, expand
+from unexmin.description import ROBOT_FILE, expand
 
 
 @pytest.fixture(scope="module")

@@ -127,8 +127,8 @@ def test_randomised_current_is_the_worlds():
 
 
 def test_buoyancy_offset_lifts_the_robot_as_the_closed_form():
+    from unexmin.description import parse
     from unexmin.gym.env import description
-    from unexmin.identify.description import parse
 
     env = StationKeepingEnv(randomise={"buoyancy_offset": 2.0, "current_speed": 0.0})
     env.reset(seed=0)
@@ -136,7 +136,7 @@ def test_buoyancy_offset_lifts_the_robot_as_the_closed_form():
     env.step(np.zeros(4))  # 0.1 s from rest: drag ~ v^2 is negligible
     z1 = env.robot.state()["position"][2]
     phys = parse(description())
-    mass, added = phys.mass - 2.0, phys.added_mass[2, 2]
+    mass, added = phys.hydro.mass - 2.0, phys.hydro.added_mass[2, 2]
     a = 2.0 * 9.81 / (mass + added)
     assert z1 - z0 == pytest.approx(0.5 * a * 0.1**2, rel=0.05)
     env.close()

@@ -29,8 +29,9 @@ import numpy as np
 import pytest
 import yaml
 
+from unexmin import description
 from unexmin.control.esc import MODE_RPM, EscConverter
-from unexmin.identify import description, model
+from unexmin.identify import model, vehicle
 from unexmin.identify.cli import identify_bag, overrides_xacro
 from unexmin.identify.model import DOF, INDEX, PARAMS
 from unexmin.replay import read_bag
@@ -38,6 +39,13 @@ from unexmin.replay import read_bag
 REPO = Path(__file__).resolve().parents[2]
 SAMPLE_BAG = REPO / "worlds" / "bags" / "ux1_tank_perturbed.bag"
 MAKER = REPO / "worlds" / "tools" / "make_sample_bag.py"
+
+
+def ux1(overrides=None):
+    """The UX-1's robot description (urdf/ux1.urdf.xacro with `overrides`)."""
+    return description.load(description.ROBOT_FILE, overrides=overrides)
+
+
 RHO_V = 1000.0 * 4.0 / 3.0 * math.pi * 0.3**3
 
 
@@ -53,12 +61,12 @@ def run(args, cwd, timeout=300):
 # ---------------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def nominal_physics():
-    return description.load()
+    return ux1()
 
 
 def test_thrust_history_is_the_first_order_step_and_the_watchdog_stops_it(nominal_physics):
     p = nominal_physics
-    tau = p.thrusters[0].tau
+    tau = vehicle.time_constant(p.thrusters[0])
     rpm = EscConverter().to_command(MODE_RPM, [10.0] * 8)
     thrust_10 = EscConverter().to_thrust(MODE_RPM, rpm)[0][0]
     times = np.array([tau, 2 * tau, 0.5, 0.9, 1.0 + 0.002 + 3 * tau])
@@ -77,13 +85,13 @@ def test_pendulum_turns_at_its_speed_and_locks_on_target(nominal_physics):
     times = np.array([1.0, 1.25, 1.5, 3.0])
     a = model.pendulum_history(p, [(1.0, target)], times)
     assert a[0] == 0.0
-    assert a[1] == pytest.approx(p.pendulum_speed * 0.25, abs=p.pendulum_speed * 0.002 + 1e-12)
-    assert a[2] == pytest.approx(min(target, p.pendulum_speed * 0.5), abs=p.pendulum_speed * 0.002 + 1e-12)
+    assert a[1] == pytest.approx(p.pendulum.speed * 0.25, abs=p.pendulum.speed * 0.002 + 1e-12)
+    assert a[2] == pytest.approx(min(target, p.pendulum.speed * 0.5), abs=p.pendulum.speed * 0.002 + 1e-12)
     assert a[3] == pytest.approx(target, abs=1e-12)
 
 
 def test_rest_attitude_of_the_thesis_prototype():
-    roll, pitch = description.rest_attitude(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    roll, pitch = vehicle.rest_attitude(ux1(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     assert math.degrees(roll) == pytest.approx(8.0, abs=1e-6)
     assert math.degrees(pitch) == pytest.approx(14.0, abs=1e-6)
 
@@ -107,7 +115,7 @@ def test_overrides_round_trip(tmp_path, nominal_physics):
     fit.x = x
     path = tmp_path / "ov.xacro"
     path.write_text(overrides_xacro(fit, nominal_physics, 1000.0))
-    back = model.nominal_vector(description.load(overrides=path))
+    back = model.nominal_vector(ux1(overrides=path))
     assert back == pytest.approx(x, rel=1e-7, abs=1e-9)
 
 
@@ -132,7 +140,7 @@ NOMINAL_COG_BASE = (0.0, 0.0, -0.02)  # urdf/properties.xacro cog_x, cog_y, cog_
 
 
 def robot_overrides(buoyancy, cog_offset, damping, gain_h, gain_v):
-    q = model.nominal_vector(description.load())
+    q = model.nominal_vector(ux1())
     lin = [q[INDEX[f"damping_linear_{d}"]] * damping for d in DOF]
     quad = [q[INDEX[f"damping_quadratic_{d}"]] * damping for d in DOF]
     cog = [c + o for c, o in zip(NOMINAL_COG_BASE, cog_offset)]
@@ -211,7 +219,7 @@ def bound_of(name, truth, truth_physics, data):
     if name.startswith("cog_"):
         return max(0.1 * abs(want), 0.002)
     if name.startswith("added_inertia"):
-        return 0.1 * (truth_physics.inertia[DOF.index(name.split("_")[-1]) - 3] + want)
+        return 0.1 * (truth_physics.hydro.inertia[DOF.index(name.split("_")[-1]) - 3] + want)
     if name.startswith("damping_linear"):
         # near zero (Stokes drag): 10 % of the damping force at the mission's RMS speed
         d = name.split("_")[-1]
@@ -247,7 +255,7 @@ def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
     assert np.all(np.abs(nav[:, 1]) <= 3.0 - clear) and np.all(np.abs(nav[:, 2]) <= 2.0 - clear)
     assert np.all(nav[:, 3] >= -3.0 + clear) and np.all(nav[:, 3] <= -clear)
     data = identify_bag(bag, tmp_path / "out", progress=False)
-    check_identified(data, description.load(overrides=overrides))
+    check_identified(data, ux1(overrides=overrides))
     # what the mission cannot excite is reported, not guessed: the rotational linear damping (no slow
     # turns), and a robot with its centre of gravity on the z axis never rolls (no roll moment from
     # any thruster, the weight or the pendulum): its roll damping has no support at all. (A tilted
@@ -270,7 +278,7 @@ def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
 
 def test_sample_bag_identify_then_replay(tmp_path):
     data = identify_bag(SAMPLE_BAG, tmp_path / "id", progress=False)
-    check_identified(data, description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    check_identified(data, ux1(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     for d in ("surge", "sway", "heave", "yaw"):
         assert f"damping_quadratic_{d}" not in data["unidentifiable"]
     out = run(
@@ -311,7 +319,7 @@ def test_noisy_navigation_degrades_gracefully(tmp_path):
     assert not {"buoyancy_kg", "cog_x", "cog_y", "thrust_gain_horizontal", "thrust_gain_vertical"} & set(
         data["unidentifiable"]
     )
-    truth = model.nominal_vector(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    truth = model.nominal_vector(ux1(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     assert data["buoyancy_kg"]["value"] == pytest.approx(truth[INDEX["buoyancy_kg"]], abs=0.02)
     assert data["cog_m"]["value"] == pytest.approx(list(truth[INDEX["cog_x"] : INDEX["cog_z"] + 1]), abs=0.002)
     for g in ("horizontal", "vertical"):
@@ -396,8 +404,8 @@ def test_dead_reckoning_navigation_degrades_gracefully(tmp_path):
     data = yaml.safe_load((out / "identified.yaml").read_text())
     assert data["fit"]["navigation"]["source"] == "dead-reckoning"
     assert data["fit"]["navigation"]["topics"]["dead_reckoning_dvl"] == "/UX_1/dvl_twist"
-    got = check_identified(data, description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
-    truth = model.nominal_vector(description.load(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    got = check_identified(data, ux1(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
+    truth = model.nominal_vector(ux1(overrides=REPO / "urdf" / "ux1_perturbed.xacro"))
     kept = {"buoyancy_kg", "cog_x", "cog_y", "thrust_gain_horizontal"}
     assert not kept & set(data["unidentifiable"])
     assert abs(got["buoyancy_kg"] - truth[INDEX["buoyancy_kg"]]) < 0.002

@@ -11,7 +11,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from unexmin.identify.description import ROBOT_FILE, expand
+from unexmin.description import ROBOT_FILE, expand
 
 ENV_KEYS = ("ROS_MASTER_URI", "ROS_IP", "ROS_LOG_DIR")
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")  # rospy's own

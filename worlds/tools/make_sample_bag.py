@@ -98,7 +98,8 @@ def perturbed_world_files(tmp, overrides=None, spawn_xyz=None):
     from unexmin.worlds.spawn import world_launch_file
 
     if overrides:
-        from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
+        from unexmin.description import ROBOT_FILE, load
+        from unexmin.identify.vehicle import rest_attitude
 
         return world_launch_file(
             tmp,
@@ -160,7 +161,8 @@ def record(
         lead = runner.lead_steps / runner.rate  # mission time 0 is sim time `lead`
         level_rp = None
         if level:
-            from unexmin.identify.description import ROBOT_FILE, load, rest_attitude
+            from unexmin.description import ROBOT_FILE, load
+            from unexmin.identify.vehicle import rest_attitude
 
             level_rp = rest_attitude(load(ROBOT_FILE, "UX_1", overrides))
         events = mission_events(duration, vbs_trim, level_rp)

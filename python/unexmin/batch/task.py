@@ -166,7 +166,7 @@ _descriptions = {}  # (description file, robot, overrides text) -> URDF text: xa
 def mission_descriptions(spec, world_file, overrides, folder):
     """{robot: URDF file in `folder`} of the mission's robots (each robot's description of the world file, with the
     mission's overrides), expanded by xacro once per worker process for each distinct overrides text."""
-    from unexmin.identify.description import expand
+    from unexmin.description import expand
     from unexmin.worlds.files import PACKAGE_DIR
     from unexmin.worlds.schema import read_world
 

@@ -1,7 +1,8 @@
 """Allocation from a vehicle's own description: body wrench -> thruster commands and fin angles. Pure maths, no ROS.
 
-The description's actuators (unexmin.control.actuators) give the configuration matrix B (6 x n, rows X Y Z K M N:
-body force [N] and moment about the body origin [N m]; body frame x forward, y left, z up):
+The description's actuators (unexmin.description; their inverse families in unexmin.control.actuators) give the
+configuration matrix B (6 x n, rows X Y Z K M N: body force [N] and moment about the body origin [N m]; body frame
+x forward, y left, z up):
 
 - a thruster's column is its wrench per newton of thrust, [d; p x d] (d its unit axis, p its position);
 - a movable fin's column is its wrench per radian of fin angle at the current surge speed u [m/s]: the
@@ -26,8 +27,9 @@ import math
 
 import numpy as np
 
-from unexmin.control.actuators import DescriptionError, conversion_of, lift_slope_of, read_actuators
+from unexmin.control.actuators import conversion_of, lift_slope_of
 from unexmin.control.allocation import DOF, AllocationError
+from unexmin.description import DescriptionError, parse
 
 #: [m/s] default surge speed below which the fins are not used.
 DEFAULT_FIN_MIN_SPEED = 0.2
@@ -82,7 +84,8 @@ class VehicleAllocator:
         source="robot_description",
     ):
         try:
-            self.thrusters, fins = read_actuators(xml, source)
+            robot = parse(xml, source)
+            self.thrusters, fins = robot.thrusters, robot.fins
             self.conversions = [conversion_of(t) for t in self.thrusters]
             for t, conv in zip(self.thrusters, self.conversions):
                 conv[0](t, 0.0)  # the inverse's parameters are checked once, here
@@ -107,10 +110,10 @@ class VehicleAllocator:
             raise AllocationError(str(e)) from None
         # [N] thrust each thruster can give: its thrust range within what its command range converts to
         self.thrust_low = np.array(
-            [max(t.thrust_min, conv[1](t, t.command_min)) for t, conv in zip(self.thrusters, self.conversions)]
+            [max(t.min_thrust, conv[1](t, t.min_command)) for t, conv in zip(self.thrusters, self.conversions)]
         )
         self.thrust_high = np.array(
-            [min(t.thrust_max, conv[1](t, t.command_max)) for t, conv in zip(self.thrusters, self.conversions)]
+            [min(t.max_thrust, conv[1](t, t.max_command)) for t, conv in zip(self.thrusters, self.conversions)]
         )
 
     def matrix(self, surge_speed=0.0):
@@ -136,14 +139,14 @@ class VehicleAllocator:
                 scale = min(scale, max(hi, 0.0) / t)
             elif t < lo < 0.0 or (t < 0.0 and lo >= 0.0):
                 scale = min(scale, min(lo, 0.0) / t)
-        lo_angles = np.array([f.angle_min for f in self.fins])
-        hi_angles = np.array([f.angle_max for f in self.fins])
+        lo_angles = np.array([f.min_angle for f in self.fins])
+        hi_angles = np.array([f.max_angle for f in self.fins])
         return thrusts * scale, np.clip(angles, lo_angles, hi_angles), scale
 
     def commands(self, thrusts):
         """Each thruster's command (its own unit, within its command range) for the thrusts [N]."""
         return [
-            float(min(max(conv[0](t, float(f)), t.command_min), t.command_max))
+            float(min(max(conv[0](t, float(f)), t.min_command), t.max_command))
             for t, conv, f in zip(self.thrusters, self.conversions, thrusts)
         ]
 

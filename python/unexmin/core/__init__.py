@@ -15,7 +15,7 @@ world file, seed and commands give the same trajectory and sensor samples as the
 import math
 import os
 
-from unexmin.identify.description import ROBOT_FILE, expand
+from unexmin.description import ROBOT_FILE, expand
 from unexmin.vehicles import description_file, team_names
 from unexmin.worlds.files import world_path
 

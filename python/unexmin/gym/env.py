@@ -29,7 +29,7 @@ _descriptions = {}  # robot description text by (file, name): xacro runs once pe
 
 def description(name=ROBOT):
     """The robot's URDF text (urdf/ux1.urdf.xacro expanded by xacro, as the launch files do), cached."""
-    from unexmin.identify.description import ROBOT_FILE, expand
+    from unexmin.description import ROBOT_FILE, expand
 
     key = (str(ROBOT_FILE), name)
     if key not in _descriptions:

@@ -2,7 +2,7 @@
 
     python -m unexmin.identify BAG --out DIR [--robot UX_1] [--motors-topic ...] [--nav-topic ...]
 
-description: the robot description's physics (xacro expanded, the <unexmin> block); model: the
+vehicle: what the fit derives from the robot description (unexmin.description); model: the
 simulator's Fossen model as an equation error, linear in the parameters, on Savitzky-Golay
 derivatives of the navigation and the commands integrated at the physics rate; fit:
 scipy.optimize.least_squares, 1-sigma from the Jacobian, flat directions fixed at the description's

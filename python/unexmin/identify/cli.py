@@ -10,6 +10,7 @@ import numpy as np
 import yaml
 
 from unexmin.identify.model import DOF, INDEX, PARAMS
+from unexmin.identify.vehicle import thruster_groups
 from unexmin.replay.bag_io import MOTORS_TOPIC, read_bag
 from unexmin.replay.errors import ReplayError, print_summary
 
@@ -38,7 +39,7 @@ def results(fit, nominal, physics, signals, bag, robot, fixed):
         return {"value": v[0], "sigma": s[0]} if len(names) == 1 else {"value": v, "sigma": s}
 
     gains = one(["thrust_gain_horizontal", "thrust_gain_vertical"])
-    groups = physics.groups()
+    groups = thruster_groups(physics)
     return {
         "bag": str(Path(bag).resolve()),
         "robot": robot,
@@ -88,10 +89,10 @@ def overrides_xacro(fit, physics, water_density):
     """Text of a xacro overrides file (urdf/properties.xacro names) that makes the simulated robot the
     identified one; unidentifiable and fixed parameters keep the values of the description."""
     X = dict(zip(PARAMS, fit.x))
-    m = water_density * physics.volume - X["buoyancy_kg"]
-    c_whole = np.array([X["cog_x"], X["cog_y"], X["cog_z"]]) + physics.cob
-    cog_base = (m * c_whole - physics.pendulum_mass * np.array([0.0, 0.0, -physics.pendulum_arm])) / (
-        m - physics.pendulum_mass
+    m = water_density * physics.hydro.volume - X["buoyancy_kg"]
+    c_whole = np.array([X["cog_x"], X["cog_y"], X["cog_z"]]) + physics.hydro.center_of_buoyancy
+    cog_base = (m * c_whole - physics.pendulum.mass * np.array([0.0, 0.0, -physics.pendulum.arm])) / (
+        m - physics.pendulum.mass
     )
     ma, ia = X["added_mass"], [X[f"added_inertia_{d}"] for d in DOF[3:]]
     matrix = np.diag([ma, ma, ma, *ia])
@@ -107,7 +108,7 @@ def overrides_xacro(fit, physics, water_density):
   <!-- [kg] net buoyancy {X['buoyancy_kg']:.6g} kg: vehicle mass = rho V - buoyancy -->
   <xacro:property name="vehicle_mass" value="${{water_density * hull_volume - {X['buoyancy_kg']:.9g}}}"/>
   <!-- [m] centre of gravity of the vehicle less the pendulum, body frame (whole vehicle relative to the
-       centre of buoyancy: {fmt(c_whole - physics.cob)}) -->
+       centre of buoyancy: {fmt(c_whole - physics.hydro.center_of_buoyancy)}) -->
   <xacro:property name="cog_x" value="{cog_base[0]:.9g}"/>
   <xacro:property name="cog_y" value="{cog_base[1]:.9g}"/>
   <xacro:property name="cog_z" value="{cog_base[2]:.9g}"/>
@@ -140,9 +141,9 @@ DR_DEFAULTS = {
 def dead_reckoning_nav(bag, mission, robot, overrides, water_density, surface_z, options=None):
     """Navigation rows (t, x, y, z, roll, pitch, yaw) of the bag's IMU, DVL and pressure messages by dead
     reckoning (unexmin.identify.dead_reckoning) on a uniform grid of options['period'] [s]."""
+    from unexmin import description
     from unexmin.bag import BagError, read_messages, topic_types
     from unexmin.identify import dead_reckoning as dr
-    from unexmin.identify import description
     from unexmin.replay.bag_io import pick_topic
 
     o = dict(DR_DEFAULTS, **(options or {}))
@@ -206,7 +207,8 @@ def identify_bag(
     identified_overrides.xacro and report.md (+ plots) into out_dir. Returns the identified.yaml dict.
     nav_source: "odometry" (the bag's navigation topic) or "dead-reckoning" (its IMU, DVL and pressure
     messages; `dead_reckoning`: options of DR_DEFAULTS)."""
-    from unexmin.identify import description, fit, model, report
+    from unexmin import description
+    from unexmin.identify import fit, model, report
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -223,11 +225,11 @@ def identify_bag(
         if name not in INDEX:
             raise ReplayError(f"--fix {name}: unknown parameter (one of {', '.join(PARAMS)})")
     try:
-        physics = description.load(name=robot, overrides=overrides)
+        physics = description.load(description.ROBOT_FILE, robot, overrides)
     except description.DescriptionError as e:
         raise ReplayError(str(e)) from None
     nominal = model.nominal_vector(physics)
-    nominal[INDEX["buoyancy_kg"]] = water_density * physics.volume - physics.mass
+    nominal[INDEX["buoyancy_kg"]] = water_density * physics.hydro.volume - physics.hydro.mass
     bar = None
     if progress:
         from tqdm import tqdm

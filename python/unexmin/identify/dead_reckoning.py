@@ -21,11 +21,11 @@ description. Pure numpy/scipy: no ROS needed.
 """
 
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
 import numpy as np
 
+from unexmin.description import parse
 from unexmin.geometry import rpy_matrix
 
 IMU_TYPE = "sensor_msgs/msg/Imu"
@@ -46,27 +46,21 @@ class Mounts:
 
 
 def mounts_from_urdf(urdf, name="UX_1", imu_link="imu_link", dvl_link="dvl_link", pressure_link="pressure_link"):
-    """Mounts of an expanded URDF (text): the chain of fixed joints from each link to <name>/base_link."""
-    root = ET.fromstring(urdf)
-    parent_of = {}
-    for j in root.findall("joint"):
-        o = j.find("origin")
-        xyz = np.array([float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()])
-        rpy = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
-        parent_of[j.find("child").get("link")] = (j.find("parent").get("link"), xyz, rpy_matrix(rpy), j.get("type"))
-    base = f"{name}/base_link"
+    """Mounts of an expanded URDF (text): each link <name>/<link> on a chain of fixed joints to the base link (the
+    poses composed by unexmin.description)."""
+    robot = parse(urdf, f"robot description of {name}")
 
     def pose(link):
         full = f"{name}/{link}"
-        R, r = np.eye(3), np.zeros(3)
-        while full != base:
-            if full not in parent_of:
-                raise ValueError(f"the description has no fixed chain from {name}/{link} to {base}")
-            parent, xyz, Rj, kind = parent_of[full]
-            if kind != "fixed":
-                raise ValueError(f"{full} hangs on a {kind} joint: a sensor mount must be fixed")
-            R, r = Rj @ R, Rj @ r + xyz
-            full = parent
+        current = full
+        while current != robot.base_link:
+            joint = next((j for j in robot.joints if j.child == current), None)
+            if joint is None:
+                break  # link_pose names the missing connection
+            if joint.type != "fixed":
+                raise ValueError(f"{full} hangs on a {joint.type} joint: a sensor mount must be fixed")
+            current = joint.parent
+        r, R = robot.link_pose(full)
         return R, r
 
     imu_R, _ = pose(imu_link)

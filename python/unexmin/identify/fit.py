@@ -41,17 +41,17 @@ def tolerance(name, value, nominal, physics, signals):
     if name.startswith("thrust_gain"):
         return 0.05 * max(abs(value), abs(nominal))
     if name == "added_mass":
-        return 0.05 * (physics.mass + max(value, nominal))  # of the mass the engine integrates
+        return 0.05 * (physics.hydro.mass + max(value, nominal))  # of the mass the engine integrates
     if name.startswith("added_inertia"):
         k = DOF.index(name.split("_")[-1]) - 3
-        return 0.05 * (physics.inertia[k] + max(value, nominal))
+        return 0.05 * (physics.hydro.inertia[k] + max(value, nominal))
     k = DOF.index(name.split("_")[-1])
     if name.startswith("damping_quadratic"):
         return 0.05 * max(abs(value), abs(nominal))
     # linear damping: 5 % of the damping felt at the mission's RMS speed in that DOF (linear + quadratic)
     speed = signals.v[:, k] if k < 3 else signals.w[:, k - 3]
     rms = float(np.sqrt(np.mean(speed**2)))
-    return 0.05 * max(abs(value), abs(nominal), physics.quadratic_damping[k] * rms)
+    return 0.05 * max(abs(value), abs(nominal), physics.hydro.quadratic_damping[k] * rms)
 
 
 class Fit:

@@ -23,6 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import savgol_filter
 
+from unexmin.identify.vehicle import thrust_gain, thruster_groups, time_constant, whole_cog
+
 GRAVITY = 9.81  # [m/s^2] of the shipped worlds (worlds/*.world)
 DOF = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
@@ -40,18 +42,19 @@ INDEX = {name: i for i, name in enumerate(PARAMS)}
 
 
 def nominal_vector(physics):
-    """Parameter vector of a robot description (RobotPhysics): its values are the prior."""
+    """Parameter vector of a robot description (unexmin.description.RobotDescription): its values are the prior."""
     x = np.zeros(len(PARAMS))
-    x[INDEX["buoyancy_kg"]] = 1000.0 * physics.volume - physics.mass  # water density set by Signals
-    x[INDEX["added_mass"]] = float(np.mean(np.diag(physics.added_mass)[:3]))
+    x[INDEX["buoyancy_kg"]] = 1000.0 * physics.hydro.volume - physics.hydro.mass  # water density set by Signals
+    x[INDEX["added_mass"]] = float(np.mean(np.diag(physics.hydro.added_mass)[:3]))
     for k, d in enumerate(DOF[3:]):
-        x[INDEX[f"added_inertia_{d}"]] = physics.added_mass[3 + k, 3 + k]
-    for name, ids in physics.groups().items():
-        x[INDEX[f"thrust_gain_{name}"]] = float(np.mean([physics.thrusters[i].gain for i in ids])) if ids else 1.0
+        x[INDEX[f"added_inertia_{d}"]] = physics.hydro.added_mass[3 + k, 3 + k]
+    for name, ids in thruster_groups(physics).items():
+        gains = [thrust_gain(physics.thrusters[i]) for i in ids]
+        x[INDEX[f"thrust_gain_{name}"]] = float(np.mean(gains)) if ids else 1.0
     for k, d in enumerate(DOF):
-        x[INDEX[f"damping_linear_{d}"]] = physics.linear_damping[k]
-        x[INDEX[f"damping_quadratic_{d}"]] = physics.quadratic_damping[k]
-    x[INDEX["cog_x"] : INDEX["cog_z"] + 1] = physics.cog - physics.cob
+        x[INDEX[f"damping_linear_{d}"]] = physics.hydro.linear_damping[k]
+        x[INDEX[f"damping_quadratic_{d}"]] = physics.hydro.quadratic_damping[k]
+    x[INDEX["cog_x"] : INDEX["cog_z"] + 1] = whole_cog(physics) - physics.hydro.center_of_buoyancy
     return x
 
 
@@ -106,9 +109,10 @@ def thrust_history(physics, motors, times, rate=500.0, converter=None):
     n_steps = int(math.ceil(max(times[-1], motors[-1][0]) * rate)) + 2
     cmd_steps = [(round(t * rate), converter.to_thrust(mode, values)[0]) for t, mode, values in motors]
     th = physics.thrusters
-    lo = np.array([t.command_min for t in th])
-    hi = np.array([t.command_max for t in th])
-    alpha = np.array([1.0 - math.exp(-dt / t.tau) if t.tau > 0 else 1.0 for t in th])
+    lo = np.array([t.min_command for t in th])
+    hi = np.array([t.max_command for t in th])
+    taus = [time_constant(t) for t in th]
+    alpha = np.array([1.0 - math.exp(-dt / tau) if tau > 0 else 1.0 for tau in taus])
     timeout_steps = np.array([t.timeout * rate if t.timeout > 0 else np.inf for t in th])
     state = np.zeros(len(th))
     command = np.zeros(len(th))
@@ -140,8 +144,9 @@ def step_signal(events, times, initial, lo, hi):
 def pendulum_history(physics, events, times, rate=500.0):
     """Pendulum angle [rad] at `times`: starts at 0 and turns at its constant speed to each target."""
     n_steps = int(math.ceil(max(times[-1], max([t for t, _ in events], default=0.0)) * rate)) + 2
-    ev = sorted((round(t * rate), min(max(v, physics.pendulum_min), physics.pendulum_max)) for t, v in events)
-    angle, target, k, step_max = 0.0, 0.0, 0, physics.pendulum_speed / rate
+    lo, hi = physics.pendulum.min_angle, physics.pendulum.max_angle
+    ev = sorted((round(t * rate), min(max(v, lo), hi)) for t, v in events)
+    angle, target, k, step_max = 0.0, 0.0, 0, physics.pendulum.speed / rate
     out = np.zeros(n_steps + 1)
     for step in range(n_steps + 1):
         while k < len(ev) and ev[k][0] < step:
@@ -228,11 +233,11 @@ def prepare(mission, physics, window_s=0.7, water_density=1000.0, surface_z=0.0,
     keep[win : len(t) - win] = True
     # at the free surface the buoyancy changes by rho g pi R^2 per metre of z: a few mm of navigation
     # error would be newtons of force; such samples are left out (the hull must be 1 cm under)
-    keep &= sg(pos, 0)[:, 2] + physics.radius < surface_z - 0.01
+    keep &= sg(pos, 0)[:, 2] + physics.hydro.radius < surface_z - 0.01
     if keep.sum() < 2 * win:
         raise ValueError(
             f"{mission.path}: only {int(keep.sum())} navigation samples with the robot submerged "
-            f"(centre more than {physics.radius + 0.01:.2f} m below the surface z = {surface_z} m)"
+            f"(centre more than {physics.hydro.radius + 0.01:.2f} m below the surface z = {surface_z} m)"
         )
     return Signals(
         t=t,
@@ -248,8 +253,8 @@ def prepare(mission, physics, window_s=0.7, water_density=1000.0, surface_z=0.0,
         zh=np.interp(th, t, sg(pos, 0)[:, 2]),
         thrust=thrust_history(physics, mission.motors, th, rate),
         pendulum=pendulum_history(physics, mission.pendulum, th, rate),
-        vbs=step_signal(mission.vbs, th, 0.0, physics.vbs_min, physics.vbs_max),
-        vbs_nav=step_signal(mission.vbs, t, 0.0, physics.vbs_min, physics.vbs_max),
+        vbs=step_signal(mission.vbs, th, 0.0, physics.vbs.min_mass, physics.vbs.max_mass),
+        vbs_nav=step_signal(mission.vbs, t, 0.0, physics.vbs.min_mass, physics.vbs.max_mass),
         water_density=water_density,
         surface_z=surface_z,
         window=win,
@@ -277,7 +282,7 @@ class EquationError:
         self.s, self.p = s, p
         dt_h = s.th[1] - s.th[0]
         g = GRAVITY
-        rhoV = s.water_density * p.volume
+        rhoV = s.water_density * p.hydro.volume
         n, k = len(s.t), len(PARAMS)
         idx = np.clip(np.round((s.t - s.th[0]) / dt_h).astype(int), 0, len(s.th) - 1)
 
@@ -290,9 +295,9 @@ class EquationError:
             ii = cumulative_trapezoid(hw, dx=dt_h, axis=0, initial=0)
             return np.einsum("nji,nj->ni", s.R, s.d1(ii[idx]))
 
-        groups = p.groups()
-        dirs = np.array([t.direction for t in p.thrusters])
-        moms = np.array([np.cross(t.position, t.direction) for t in p.thrusters])
+        groups = thruster_groups(p)
+        dirs = np.array([t.axis for t in p.thrusters])
+        moms = np.array([np.cross(t.position, t.axis) for t in p.thrusters])
         A = np.zeros((n, 6, k))
         c = np.zeros((n, 6))
         ez = np.array([0.0, 0.0, 1.0])
@@ -302,7 +307,7 @@ class EquationError:
         for name, ids in groups.items():
             A[:, :3, INDEX[f"thrust_gain_{name}"]] = -T(np.einsum("nij,nj->ni", s.Rh, s.thrust[:, ids] @ dirs[ids]))
             A[:, 3:, INDEX[f"thrust_gain_{name}"]] = -U(s.thrust[:, ids] @ moms[ids])
-        f_sub = submerged_fraction(s.zh, s.surface_z, p.radius)
+        f_sub = submerged_fraction(s.zh, s.surface_z, p.hydro.radius)
         for j in range(3):
             col = s.Rh[:, :, j]
             A[:, :3, INDEX[f"damping_linear_{DOF[j]}"]] = T(col * s.vh[:, j : j + 1])
@@ -315,15 +320,15 @@ class EquationError:
             A[:, 3:, INDEX[f"damping_linear_{DOF[3 + j]}"]] = U(e_j * s.wh[:, j : j + 1])
             A[:, 3:, INDEX[f"damping_quadratic_{DOF[3 + j]}"]] = U(e_j * (np.abs(s.wh[:, j]) * s.wh[:, j])[:, None])
         down = np.einsum("nji,j->ni", s.Rh, np.array([0.0, 0.0, -g]))  # R^T (0, 0, -g)
-        m_nom = p.mass
+        m_nom = p.hydro.mass
         for j, name in enumerate(("cog_x", "cog_y", "cog_z")):
             A[:, 3:, INDEX[name]] = -U(m_nom * np.cross(np.eye(3)[j], down))
-        arm = p.pendulum_arm
+        arm = p.pendulum.arm
         r_p = np.stack([arm * np.sin(s.pendulum), np.zeros_like(s.pendulum), -arm * np.cos(s.pendulum)], -1)
-        shift = p.pendulum_mass * (r_p - np.array([0.0, 0.0, -arm])) + s.vbs[:, None] * p.vbs_position
+        shift = p.pendulum.mass * (r_p - np.array([0.0, 0.0, -arm])) + s.vbs[:, None] * p.vbs.position
         buoy = -(rhoV * f_sub)[:, None] * down
-        known = np.cross(m_nom * p.cob + shift, down) + np.cross(p.cob, buoy)
-        c[:, 3:] = p.inertia * s.dw - U(known)
+        known = np.cross(m_nom * p.hydro.center_of_buoyancy + shift, down) + np.cross(p.hydro.center_of_buoyancy, buoy)
+        c[:, 3:] = p.hydro.inertia * s.dw - U(known)
         self.A, self.c = A[s.keep], c[s.keep]
 
     def residual(self, x):

@@ -12,8 +12,8 @@ def inertial_terms(fit, x):
     """Measured side of each equation with parameters x: (m + m_VBS + m_A) D2[x] [N] (world frame)
     and (I + I_A) dw [N m] (body frame), m = rho V - buoyancy."""
     s, p = fit.problem.s, fit.problem.p
-    mass = s.water_density * p.volume - x[INDEX["buoyancy_kg"]] + x[INDEX["added_mass"]] + s.vbs_nav[s.keep]
-    inertia = p.inertia + np.array([x[INDEX[f"added_inertia_{d}"]] for d in DOF[3:]])
+    mass = s.water_density * p.hydro.volume - x[INDEX["buoyancy_kg"]] + x[INDEX["added_mass"]] + s.vbs_nav[s.keep]
+    inertia = p.hydro.inertia + np.array([x[INDEX[f"added_inertia_{d}"]] for d in DOF[3:]])
     return np.hstack([mass[:, None] * s.acc[s.keep], inertia * s.dw[s.keep]])
 
 
