@@ -1,4 +1,4 @@
-"""The main job's survey (python/unexmin/missions/survey.py, missions/mine.py) on a mine it was not made for: a
+"""The main job's survey (python/unexmin/missions/survey.py, missions/mine/) on a mine it was not made for: a
 `small` mine of another seed of the generator (SEED), not the shipped one (seed 7).
 
 - the plan (no ROS), in clear water and in the world's murk (closer to the walls, the gallery flown four times):

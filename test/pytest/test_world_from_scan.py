@@ -201,7 +201,7 @@ def test_two_holes_touching_at_a_vertex_are_two_loops_and_close():
 
 
 def test_a_fold_in_the_stitched_surface_is_mended_into_a_closed_one():
-    from unexmin.world_from_scan.build import mend_folds
+    from unexmin.world_from_scan.stages.stitching import mend_folds
 
     sphere = trimesh.creation.icosphere(3, 2.0)
     v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)

@@ -153,7 +153,7 @@ def test_the_world_written_by_world_from_scan_passes(tmp_path):
     import trimesh
 
     from unexmin import world_from_scan as wfs
-    from unexmin.world_from_scan.build import world_yaml
+    from unexmin.world_from_scan.stages.files import world_yaml
 
     mesh = trimesh.load(str(REPO / "worlds" / "meshes" / "tank.stl"), force="mesh")
     c = mesh.triangles_center  # the floor and the inner walls below the rim (docs/worlds.md: 6 x 4 m, 3 m deep)

@@ -75,7 +75,7 @@ def tank_survey(sim, params):
 def station_keeping(sim, params):
     """Hold the spawn position for params['duration'] s (against the world's current) with the mine
     mission's controller; errors are measured after a settling time of min(5 s, duration / 2)."""
-    from unexmin.missions.mine import controller
+    from unexmin.missions.waypoints import controller
 
     ux = sim.robot(ROBOT, streams="none")
     allocator = ThrusterAllocator()
@@ -111,7 +111,7 @@ def station_keeping(sim, params):
 def gallery_traverse(sim, params):
     """The mine mission's path (shaft, then params.get('gallery', 20) m of the first level's gallery) flown
     with its waypoint controller for at most params['duration'] s (world: mine)."""
-    from unexmin.missions.mine import TOLERANCE, controller, waypoints
+    from unexmin.missions.waypoints import TOLERANCE, controller, waypoints
 
     ux = sim.robot(ROBOT, streams="none")
     allocator = ThrusterAllocator()

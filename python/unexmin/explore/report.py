@@ -21,7 +21,7 @@ def write(explorer):
     q = quality(e.map_path, e.world_file, out, trajectory=traj_csv)
     coverage = []
     if e.snapshots:
-        from unexmin.missions.mine import score_snapshots
+        from unexmin.missions.mine.scoring import score_snapshots
 
         coverage = score_snapshots(e.snapshots, e.world_file, np.array(rows)[:, 1:4], q["tau_m"])
         coverage.append({"t": e.sim_time, "recall": q["recall"], "precision": q["precision"]})

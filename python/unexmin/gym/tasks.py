@@ -60,7 +60,7 @@ class GalleryTransitEnv(UnexminEnv):
     TASK_FEATURES = ("next_x", "next_y", "next_z", "yaw_error", "remaining")
 
     def __init__(self, gallery=20.0, **kwargs):
-        from unexmin.missions.mine import waypoints
+        from unexmin.missions.waypoints import waypoints
 
         if not (isinstance(gallery, (int, float)) and 8.0 <= gallery <= 60.0):
             raise ValueError(f"gallery = {gallery!r}: expected a length in [8, 60] m")

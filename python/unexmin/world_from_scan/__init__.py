@@ -1,9 +1,11 @@
 """A surveyed point cloud of a mine to a simulator world (docs/world_from_scan.md):
-`python -m unexmin.world_from_scan SCAN --out DIR`. stream.py: reading in chunks; tiles.py: the survey
-pass, the tile plan, the tile files; tile.py: one tile's surface (a Dask task; scan.py: down-sampling,
-normals and their orientation; surface.py: Poisson, trimming, decimation); cluster.py: the tiles on
-Dask; stitch.py: clipping and zipping the tiles into one surface; build.py: build_world (hole closing,
-spawns, evaluation, the world files, the report), the command line."""
+`python -m unexmin.world_from_scan SCAN --out DIR`. build.py: build_world (the stages in order) and the
+command line; record.py: the build record the stages pass along; stages/: one module per stage (survey,
+tiling, tiles, stitching, spawns, evaluation, files, report). What the stages call: stream.py: reading in
+chunks; tiles.py: the survey pass, the tile plan, the tile files; tile.py: one tile's surface (a Dask task;
+scan.py: down-sampling, normals and their orientation; surface.py: Poisson, trimming, decimation, hole
+closing, spawn points); cluster.py: the tiles on Dask; stitch.py: clipping and zipping the tiles into one
+surface; colours.py: the scan's colours onto the visual mesh."""
 
 from unexmin.world_from_scan.build import build_world, main
 from unexmin.world_from_scan.errors import ScanError
