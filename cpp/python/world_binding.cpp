@@ -420,10 +420,15 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
       "spawned_robots",
       [families](const std::string& world_file, int robots, const std::vector<std::string>& spawns) {
         engine::EngineSettings s = settingsOf(world_file, robots, spawns, 0, "none", "", 500.0, "operational", 0);
-        return engine::planEngine(s, families()).robots;
+        const engine::EnginePlan plan = engine::planEngine(s, families());
+        std::vector<std::pair<std::string, std::string>> out;  // (name, description file), as the world file gives
+        for (std::size_t i = 0; i < plan.robots.size(); ++i)
+          out.emplace_back(plan.robots[i], plan.config.robots[i].description);
+        return out;
       },
       py::arg("world_file"), py::arg("robots"), py::arg("spawns"),
-      "The names of the robots a world runs with `robots` (the first ones) or `spawns` (these, in this order).");
+      "(name, description file in urdf/) of the robots a world runs with `robots` (the first ones) or `spawns` "
+      "(these, in this order).");
   py::class_<CoreWorld>(m, "World", py::module_local())
       .def(py::init([families](const std::string& world_file, const std::map<std::string, std::string>& descriptions,
                                int robots, const std::vector<std::string>& spawns, std::int64_t seed,

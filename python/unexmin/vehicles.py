@@ -31,13 +31,3 @@ def team_names(vehicles):
     types = parse_vehicles(vehicles)
     return [f"{VEHICLE_TYPES[v][0]}_{types[: i + 1].count(v)}" for i, v in enumerate(types)]
 
-
-def description_file(robot):
-    """The description file name (in urdf/) of robot `robot` by its name's prefix (UX_2 -> ux1.urdf.xacro); ValueError
-    naming the robot and the known prefixes for another name."""
-    prefix = str(robot).rsplit("_", 1)[0]
-    for name_prefix, file in VEHICLE_TYPES.values():
-        if prefix == name_prefix:
-            return file
-    prefixes = ", ".join(f"{p}_k" for p, _ in VEHICLE_TYPES.values())
-    raise ValueError(f"robot {robot!r}: no shipped vehicle is named so (expected {prefixes}); pass its description")

@@ -8,12 +8,10 @@ drive the robot forward, turn it, dive, and a pendulum angle). Every odometry fi
 intensity must be equal, not close: the two run the same C++ code in the same order.
 """
 
-import os
-
 import numpy as np
 import pytest
+from lockstep_pairs import odometry_row, ros_environment_kept, state_row
 
-ENV_KEYS = ("ROS_MASTER_URI", "ROS_IP", "ROS_LOG_DIR")
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")  # rospy's own
 SEED = 5
 CHUNK = 10  # physics steps per step call (50 Hz of odometry at 500 Hz)
@@ -33,16 +31,10 @@ def commands(second):
     return schedule[second % len(schedule)]
 
 
-def odometry_row(o):
-    p, q, v, w = o.pose.pose.position, o.pose.pose.orientation, o.twist.twist.linear, o.twist.twist.angular
-    return [p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z]
-
-
 def run_ros(log_dir):
     from unexmin import Simulation
 
-    saved = {k: os.environ.get(k) for k in ENV_KEYS}
-    try:
+    with ros_environment_kept():
         with Simulation.launch("tank", robots=1, seed=SEED, log_dir=log_dir) as sim:
             steps_per_second = round(sim.physics_rate)
             ux = sim.robot("UX_1", streams=["m3/scan"])
@@ -59,12 +51,6 @@ def run_ros(log_dir):
                 (s.header.stamp.to_sec(), np.array(s.ranges, np.float32), np.array(s.intensities, np.float32))
                 for s in scans.messages
             ]
-    finally:
-        for k, v in saved.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
     return np.array(rows), m3
 
 
@@ -86,7 +72,7 @@ def run_core():
                 if s["count"] > len(m3):
                     m3.append((s["time"], s["ranges"], s["intensities"]))
             st = ux.state()
-            rows.append([w.time, *st["position"], *st["orientation"], *st["linear_velocity"], *st["angular_velocity"]])
+            rows.append([w.time, *state_row(st)])
     return np.array(rows), m3
 
 

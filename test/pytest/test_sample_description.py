@@ -26,7 +26,7 @@ SENSOR = (
 )
 
 
-def test_family_module():
+def family_module():
     """The engine's binding built with one family more (CMakeLists.txt's tests section)."""
     for ws in (os.environ.get("UNEXMIN_WS"), str(REPO.parent / (REPO.name + "_ws"))):
         found = sorted(Path(ws).glob("devel/lib/unexmin/_test_family_core*.so")) if ws else []
@@ -44,7 +44,7 @@ def with_altimeter(urdf):
 
 
 def test_a_family_defined_only_in_a_test_reaches_python_with_its_fields():
-    core = test_family_module()
+    core = family_module()
     assert "test_altimeter" in core.families() and "camera" in core.families()
     world_file = str(REPO / "worlds" / "test_box.world")
     urdf = with_altimeter(expand(name="UX_1"))
@@ -57,8 +57,9 @@ def test_a_family_defined_only_in_a_test_reaches_python_with_its_fields():
         ("depth", "m", "float64"),
         ("bottom_seen", "", "uint64"),
     ]
-    assert fields[2][3] == [2]
+    assert fields[2][3] == [0], "no ranges before the first sample"
     w.step(50, True)  # 0.1 s: the first sample at t = 0.1 s
+    assert w.sample_fields("UX_1", "alt")[2][3] == [2]
     s = w.sample("UX_1", "alt")
     assert s["name"] == "alt" and s["type"] == "test_altimeter"
     assert s["count"] == 1 and s["time"] == pytest.approx(0.1)
@@ -74,12 +75,12 @@ def test_every_builtin_family_lists_the_fields_its_samples_hold():
     ux = w.robot("UX_1")
     w.step(250)
     seen = set()
-    for name, family in ux.sensors:
+    for name, family in ux.sensors.items():
         fields = ux.sample_fields(name)
         s = ux.sample(name)
         listed = {f[0] for f in fields}
         assert set(s) - {"name", "type"} == listed, f"{name} ({family}): sample {sorted(s)} vs fields {sorted(listed)}"
-        for key, unit, dtype, shape in fields:
+        for key, _unit, dtype, shape in fields:
             value = s[key]
             if shape == ():
                 assert np.isscalar(value), f"{name}.{key}: {value!r} is not a scalar"
@@ -91,11 +92,11 @@ def test_every_builtin_family_lists_the_fields_its_samples_hold():
 
 def test_the_imaging_sonar_and_the_side_scan_give_their_images_in_process():
     team = ["ux1", "bluerov2_heavy", "remus100"]
-    w = World("tank", vehicles=team, sensors="imaging_sonar,side_scan", seed=2)
+    w = World("tank_team", vehicles=team, sensors="imaging_sonar,side_scan", seed=2)
     assert w.robots == team_names(team)
     rov, auv = w.robot("ROV_1"), w.robot("AUV_1")
-    sonar = next(n for n, f in rov.sensors if f == "imaging_sonar")
-    side = next(n for n, f in auv.sensors if f == "side_scan")
+    sonar = next(n for n, f in rov.sensors.items() if f == "imaging_sonar")
+    side = next(n for n, f in auv.sensors.items() if f == "side_scan")
     w.run_for(1.0)
     polar = rov.sample(sonar)
     assert polar["built"] and polar["count"] >= 1

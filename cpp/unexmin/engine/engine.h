@@ -1,7 +1,7 @@
 // The simulator's engine, without ROS: one World, the ray caster every ray sensor casts through and every robot's
 // sensor suite, composed in one place and stepped in one order (the world, the caster, every robot's sensors). Both
 // front ends run it: the simulator node (ros_layer::SimulatorRos adds its parameters, the messages and the pacing)
-// and the in-process unexmin.core (cpp/python/core_module.cpp adds the Python arguments and conversions), so the
+// and the in-process unexmin.core (cpp/python/world_binding.cpp adds the Python arguments and conversions), so the
 // two give the same trajectory and sensor samples for the same world, seed and commands.
 #pragma once
 

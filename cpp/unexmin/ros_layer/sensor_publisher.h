@@ -1,5 +1,5 @@
 // ROS face of one simulated sensor: publishes its latest sample. One implementation per sensor family,
-// registered with its model in one place (SensorRegistry, ros/sensor_families.cpp) and constructed as
+// registered under its model's family name (SensorRegistry, ros_layer/sensor_publishers.cpp) and constructed as
 // Publisher(const Model& sensor, const PublisherContext& ctx).
 #pragma once
 

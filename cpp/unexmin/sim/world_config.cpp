@@ -209,8 +209,12 @@ Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector
   return pose;
 }
 
-WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file) {
-  Reader r(path);
+namespace {
+
+// The stages of loadWorldConfig, one per block of the world file, each reading `root` into `w` (errors through `r`).
+
+/// The parsed file, checked against the schema.
+YAML::Node readRoot(Reader& r, const std::string& path, const std::string& schema_file) {
   std::ifstream in(path);
   if (!in)
     r.fail("cannot open the world file");
@@ -224,8 +228,11 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
     r.fail("the world file must be a YAML map (name, gravity, water, meshes, robots, ...)");
   checkWorldKeys(root, path, schema_file.empty() ? worldSchemaFile() : schema_file);
 
-  WorldConfig w;
-  w.file = path;
+  return root;
+}
+
+/// name, gravity, water, atmospheric_pressure, ray_caster, visibility, magnetic_field.
+void readEnvironment(Reader& r, const YAML::Node& root, WorldConfig& w) {
   w.name = r.text(root, "name", "", "world");
   w.gravity = r.number(root, "gravity", "", 9.81);
   if (w.gravity <= 0.0)
@@ -258,6 +265,11 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
       r.fail("'visibility.colour' must be three numbers in (0, 1]");
   }
 
+  w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+}
+
+/// sediment (off unless given).
+void readSediment(Reader& r, const YAML::Node& root, const std::string& path, WorldConfig& w) {
   if (const YAML::Node sed = root["sediment"]) {
     if (!sed.IsMap())
       r.fail("'sediment' must be a map of enabled/settling_speed/raise/reach/puff_size/diffusivity/interval/max_puffs");
@@ -275,8 +287,10 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
     s.max_puffs = static_cast<int>(puffs);
     validate(s, path);
   }
-  w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+}
 
+/// current: the three Gauss-Markov channels.
+void readCurrent(Reader& r, const YAML::Node& root, WorldConfig& w) {
   hydro::GaussMarkovParams zero;
   hydro::GaussMarkovParams h_angle;
   h_angle.min = -M_PI;
@@ -296,7 +310,10 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
   } catch (const ParameterError& e) {
     r.fail(e.what());
   }
+}
 
+/// meshes, their files relative to the world file's folder.
+void readMeshes(Reader& r, const YAML::Node& root, const std::string& path, WorldConfig& w) {
   const std::string base = dirOf(path);
   if (const YAML::Node meshes = root["meshes"]) {
     if (!meshes.IsSequence())
@@ -333,7 +350,10 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
       w.meshes.push_back(e);
     }
   }
+}
 
+/// robots: the spawns, named once each.
+void readRobots(Reader& r, const YAML::Node& root, WorldConfig& w) {
   const YAML::Node robots = root["robots"];
   if (!robots || !robots.IsSequence() || robots.size() == 0)
     r.fail("'robots' must be a non-empty list of {name, description, xyz, rpy}");
@@ -352,6 +372,20 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
         r.fail("robot name '" + s.name + "' appears twice");
     w.robots.push_back(s);
   }
+}
+
+}  // namespace
+
+WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_file) {
+  Reader r(path);
+  const YAML::Node root = readRoot(r, path, schema_file);
+  WorldConfig w;
+  w.file = path;
+  readEnvironment(r, root, w);
+  readSediment(r, root, path, w);
+  readCurrent(r, root, w);
+  readMeshes(r, root, path, w);
+  readRobots(r, root, w);
   return w;
 }
 

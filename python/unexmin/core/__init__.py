@@ -16,7 +16,7 @@ import math
 import os
 
 from unexmin.description import ROBOT_FILE, expand
-from unexmin.vehicles import description_file, team_names
+from unexmin.vehicles import team_names
 from unexmin.worlds.files import world_path
 
 try:
@@ -121,7 +121,7 @@ class World:
     sensors: "all", "none" or families "imu,dvl,..." (as ``sensors:=``); visibility: a level of the world schema
     overriding the world file's ("": keep it); mode: operational|visual (cameras render, lights and lasers on);
     physics_rate [Hz]; overrides: {robot name: xacro overrides file} (as ``UX_k_overrides:=``); descriptions:
-    {robot name: URDF text} instead of expanding each robot's shipped description (urdf/, by its name's prefix);
+    {robot name: URDF text} instead of expanding the description file the world file names for each robot (urdf/);
     ray_caster_threads: 0 = every hardware thread. The engine checks every setting (ValueError naming it).
     """
 
@@ -150,7 +150,8 @@ class World:
         count = len(spawns) if spawns else int(robots)
         if not isinstance(physics_rate, (int, float)) or not math.isfinite(physics_rate):
             raise ValueError(f"physics_rate = {physics_rate!r}: expected a finite number of Hz")
-        names = _core.spawned_robots(path, count, spawns)
+        spawned = dict(_core.spawned_robots(path, count, spawns))  # name -> description file, as the world file says
+        names = list(spawned)
         overrides = dict(overrides or {})
         for name, file in overrides.items():
             if name not in names:
@@ -158,7 +159,9 @@ class World:
             if file and not os.path.isfile(file):
                 raise FileNotFoundError(f"overrides['{name}'] = {file}: no such xacro file")
         if descriptions is None:
-            descriptions = {n: expand(ROBOT_FILE.parent / description_file(n), n, overrides.get(n) or None) for n in names}
+            descriptions = {
+                n: expand(ROBOT_FILE.parent / file, n, overrides.get(n) or None) for n, file in spawned.items()
+            }
         self._core = _core.World(
             path,
             dict(descriptions),

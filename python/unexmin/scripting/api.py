@@ -13,8 +13,6 @@ import math
 #: Arguments of Simulation.launch that configure the world (the launch files' arguments of the same names).
 LAUNCH_ARGUMENTS = ("mode", "visibility", "sensors", "mapping", "map_file", "overrides", "record")
 BACKENDS = ("ros", "core")
-MODES = ("operational", "visual")
-VISIBILITIES = ("", "none", "low", "medium", "high")
 
 
 def finite(name, value):
@@ -26,15 +24,17 @@ def finite(name, value):
 
 
 def check_launch_arguments(mode, visibility, sensors, mapping, map_file, overrides, record):
-    """ValueError naming the first launch argument out of its domain (both back ends check the same way)."""
-    if mode not in MODES:
-        raise ValueError(f"mode = {mode!r}: expected one of {', '.join(MODES)}")
-    if visibility not in VISIBILITIES:
-        raise ValueError(f"visibility = {visibility!r}: expected none|low|medium|high or '' (the world file's)")
+    """ValueError naming the first launch argument out of its domain (both back ends check the same way: mode,
+    visibility and sensors by the engine's own rules, unexmin._core.check_settings)."""
+    from unexmin import _core
+
     if isinstance(sensors, (list, tuple)):
         sensors = ",".join(sensors)
     if not isinstance(sensors, str) or not sensors:
         raise ValueError(f"sensors = {sensors!r}: expected 'all', 'none' or families such as 'imu,dvl,m3'")
+    if not isinstance(mode, str) or not isinstance(visibility, str):
+        raise ValueError(f"mode = {mode!r}, visibility = {visibility!r}: expected text")
+    _core.check_settings(sensors=sensors, visibility=visibility, mode=mode)
     if not isinstance(mapping, bool):
         raise ValueError(f"mapping = {mapping!r}: expected True or False")
     if not isinstance(map_file, str) or not isinstance(record, str):

@@ -336,7 +336,7 @@ class Simulation(SimulationApi):
         lockstep; it gets none of the launch arguments). mode, visibility, sensors, mapping, map_file,
         overrides ({robot: xacro file}, as `<robot>_overrides:=`) and record: the launch file's arguments
         of the same names. vehicles: a mixed team instead of `robots` UX-1s, vehicle types in order (e.g.
-        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles; ROS back end only).
+        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles; both back ends).
         kwargs go to Simulation() (node_name).
         backend: "ros" (this) or "core": the engine in-process, no ROS (scripting/core_backend.py; kwargs
         then go to CoreSimulation: descriptions, physics_rate, ray_caster_threads).
@@ -350,11 +350,7 @@ class Simulation(SimulationApi):
             from unexmin.scripting.core_backend import CoreSimulation
 
             if vehicles:
-                raise ValueError(
-                    f"vehicles = {vehicles!r}: the core back end spawns the world file's first robots only: "
-                    'use backend="ros"'
-                )
-
+                kwargs["vehicles"] = parse_vehicles(vehicles)
             if log_dir is not None:
                 kwargs["log_dir"] = log_dir
             if launch_file is not None:
