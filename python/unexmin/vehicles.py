@@ -30,4 +30,3 @@ def team_names(vehicles):
     """Robot names of the team `vehicles` (types, in order): ['ux1', 'remus100', 'ux1'] -> UX_1, AUV_1, UX_2."""
     types = parse_vehicles(vehicles)
     return [f"{VEHICLE_TYPES[v][0]}_{types[: i + 1].count(v)}" for i, v in enumerate(types)]
-
