@@ -2,30 +2,30 @@
 
 Comments read: C++ `//` and `/* */` comments (.h, .cpp, .c); Python `#` comments and docstrings (module, class and
 function docstrings of .py files and of the extensionless Python scripts in nodes/); `#` comments of CMake, shell,
-YAML (config/, worlds/*.world), msg/srv and TOML files; `<!-- -->` comments of XML (.launch, .xacro, .test, .xml).
-A file is read when git tracks it (the test falls back to a walk of the tree outside a git checkout).
+YAML (config/, worlds/*.world, .rviz), msg/srv and TOML files; `<!-- -->` comments of XML (.launch, .xacro, .test,
+.xml). A file is read when git tracks it (outside a git checkout, every file of the tree).
 
-A word of a comment is a repository path when
+A word of a comment (what lies between blanks, quotes, brackets, commas and semicolons) names a repository path when
 - it holds a `/` and either its first component is a folder tracked at the top of the repository (cpp/, python/,
-  docs/, test/, launch/, ...), a library folder of cpp/unexmin (core/, hydro/, ros_layer/, ...) or a package folder
-  of python/unexmin (explore/, scripting/, ...), or it ends in a suffix of the repository's own sources that other
-  packages' names do not carry (.h, .cpp, .py, .md, .launch, .xacro, .test, .world: `ros/sensor_families.cpp` is
-  read although no folder ros/ exists; a header the system's /usr/include holds, `linux/joystick.h` or
-  `octomap/OcTree.h`, is another library's and is accepted); `unexmin/` (the include and import prefix) counts when a library, a package or a
-  file name follows it (`unexmin/sim/robot.h`), not before a type or an id (`unexmin/Dvl`, `unexmin/_core`,
-  `unexmin/StationKeeping-v0`); and
+  docs/, test/, launch/, ...), a library folder of cpp/unexmin (core/, hydro/, ros_layer/, ...) or a package of
+  python/unexmin (explore/, scripting/, ...), or it ends in a suffix of the repository's own sources (.h, .cpp,
+  .py, .md, .launch, .xacro, .test, .world), so that `ros/sensor_families.cpp` is read although no folder ros/
+  exists; `unexmin/` (the include and import prefix) counts when a library, a package or a file name follows it
+  (`unexmin/sim/robot.h`), not before a type or an id (`unexmin/Dvl`, `unexmin/_core`, `unexmin/StationKeeping-v0`);
 - it is not a URL (`://`), an absolute path (`/usr/...`, a topic `/ux1/dvl`) or a pattern: a word with `<`, `>`,
   `*`, `{`, `}`, `$`, `%`, `|`, `=`, `@` or `...` (`<family>_sensor.h`, `worlds/*.world`, `$(find unexmin)/x`)
   is a placeholder and is skipped.
-Trailing punctuation (`.,;:`) and a `:<line>` or `#anchor` suffix are dropped first.
+Trailing punctuation (`.,;:`), a `:<line>` suffix and a `#anchor` are dropped first.
 
-It exists when the file or folder is found relative to one of: the repository root, the commenting file's folder,
-cpp/ (`unexmin/sim/robot.h`), cpp/unexmin/ (`sim/robot.h`), python/ (`unexmin/bag.py`) or python/unexmin/
-(`explore/plan.py`); a program is found by its source (`bench/camera_fps` is built from bench/camera_fps.cpp). A path under a folder the repository's .gitignore anchors at its root (`/build/`, `/devel/`,
-`/mission_output/`, `/worlds/meshes/mine/`) is generated and accepted without a look. Words whose first component
-names no folder of the repository and that end in none of those suffixes (`sensor_msgs/Image`,
-`dvl_nortek/DvlBottomWaterTrack`) are other packages' names, and a bare file name (no `/`) is not read: neither is
-checked."""
+It exists when the file (or, for a word ending in `/`, the folder) is found relative to one of: the repository
+root, the commenting file's folder, cpp/ (`unexmin/sim/robot.h`), cpp/unexmin/ (`sim/robot.h`), python/
+(`unexmin/bag.py`) or python/unexmin/ (`explore/plan.py`). A program is found by its source (`bench/camera_fps` is
+built from bench/camera_fps.cpp). A header the system's /usr/include holds (`linux/joystick.h`, `octomap/OcTree.h`)
+is another library's. A path under a folder the repository's .gitignore anchors at its root (`/build/`, `/devel/`,
+`/mission_output/`, `/worlds/meshes/mine/`) is generated and accepted without a look.
+
+Not read: words whose first component names no folder of the repository and that end in none of those suffixes
+(`sensor_msgs/Image`, `dvl_nortek/DvlBottomWaterTrack`: other packages' names) and bare file names (no `/`)."""
 
 import ast
 import io
