@@ -1,6 +1,6 @@
-// Test fixture for the sonars (cpp/sonar/msis_sensor.h, m3_sensor.h): the sphere robot of sphere_fixture.h
-// with an MSIS head (base on the hull top, head on a continuous joint about z) and an M3 link, worlds of STL
-// meshes written by the test (icosphere, boxes) or shipped world files, and the robot's SensorSuite casting
+// Test fixture for the sonars (cpp/unexmin/sensors/sonar/msis_sensor.h, m3_sensor.h): the sphere robot of
+// sphere_fixture.h with an MSIS head (base on the hull top, head on a continuous joint about z) and an M3 link, worlds
+// of STL meshes written by the test (icosphere, boxes) or shipped world files, and the robot's SensorSuite casting
 // through the world's Embree caster (the simulator's default).
 #pragma once
 

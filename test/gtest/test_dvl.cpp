@@ -1,4 +1,4 @@
-// DVL model (cpp/sensors/dvl_sensor.h) in the laboratory tank (worlds/tank.world, floor at z = -3 m):
+// DVL model (cpp/unexmin/sensors/dvl_sensor.h) in the laboratory tank (worlds/tank.world, floor at z = -3 m):
 // beam ranges against the analytic distance to the floor, velocity against the set robot velocity,
 // velocity_z1/z2 each from its own beam pair (heave while moving and turning; one beam out of the window),
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.

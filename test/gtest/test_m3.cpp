@@ -1,8 +1,8 @@
-// M3 multibeam model (cpp/sonar/m3_sensor.h) in the 4 m test box (worlds/test_box.world, walls at +-2 m):
-// every beam's range against the analytic distance to the walls (+-1 cm) along the beam's closed-form
-// direction (beam k at -fov_h/2 + k fov_h / (beams - 1), beam 0 to the right, REP-103), beam order and
-// angle_min < angle_max with the robot off-centre, the REP-117 markers beyond range_max and inside range_min,
-// Gaussian range noise, seeds, the 40 Hz schedule and start-up errors.
+// M3 multibeam model (cpp/unexmin/sensors/sonar/m3_sensor.h) in the 4 m test box (worlds/test_box.world, walls
+// at +-2 m): every beam's range against the analytic distance to the walls (+-1 cm) along the beam's closed-form
+// direction (beam k at -fov_h/2 + k fov_h / (beams - 1), beam 0 to the right, REP-103), beam order and angle_min <
+// angle_max with the robot off-centre, the REP-117 markers beyond range_max and inside range_min, Gaussian range noise,
+// seeds, the 40 Hz schedule and start-up errors.
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include "sonar_fixture.h"
 

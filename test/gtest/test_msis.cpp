@@ -1,5 +1,5 @@
-// MSIS model (cpp/sonar/msis_sensor.h, echo_model.h) against closed-form answers computed here: bin lines
-// inside a sphere centred on the head and in a 4 m box, the cos^n law on a plate tilted at known angles, the
+// MSIS model (cpp/unexmin/sensors/sonar/msis_sensor.h, echo_model.h) against closed-form answers computed here: bin
+// lines inside a sphere centred on the head and in a 4 m box, the cos^n law on a plate tilted at known angles, the
 // head's step schedule, each noise model on and off, seeds, a 360 deg sweep in the shipped tank (walls and
 // anchor), and start-up errors naming the parameter.
 #include <unexmin/sensors/sonar/msis_sensor.h>

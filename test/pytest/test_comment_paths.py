@@ -2,15 +2,15 @@
 
 Comments read: C++ `//` and `/* */` comments (.h, .cpp, .c); Python `#` comments and docstrings (module, class and
 function docstrings of .py files and of the extensionless Python scripts in nodes/); `#` comments of CMake, shell,
-YAML (config/, worlds/*.world, .rviz), msg/srv and TOML files; `<!-- -->` comments of XML (.launch, .xacro, .test,
+YAML (config/, worlds/*.world, .rviz), msg, srv and TOML files; `<!-- -->` comments of XML (.launch, .xacro, .test,
 .xml). A file is read when git tracks it (outside a git checkout, every file of the tree).
 
 A word of a comment (what lies between blanks, quotes, brackets, commas and semicolons) names a repository path when
 - it holds a `/` and either its first component is a folder tracked at the top of the repository (cpp/, python/,
   docs/, test/, launch/, ...), a library folder of cpp/unexmin (core/, hydro/, ros_layer/, ...) or a package of
   python/unexmin (explore/, scripting/, ...), or it ends in a suffix of the repository's own sources (.h, .cpp,
-  .py, .md, .launch, .xacro, .test, .world), so that `ros/sensor_families.cpp` is read although no folder ros/
-  exists; `unexmin/` (the include and import prefix) counts when a library, a package or a file name follows it
+  .py, .md, .launch, .xacro, .test, .world), so that a source named in a folder that does not exist (`gone/...`)
+  is read; `unexmin/` (the include and import prefix) counts when a library, a package or a file name follows it
   (`unexmin/sim/robot.h`), not before a type or an id (`unexmin/Dvl`, `unexmin/_core`, `unexmin/StationKeeping-v0`);
 - it is not a URL (`://`), an absolute path (`/usr/...`, a topic `/ux1/dvl`) or a pattern: a word with `<`, `>`,
   `*`, `{`, `}`, `$`, `%`, `|`, `=`, `@` or `...` (`<family>_sensor.h`, `worlds/*.world`, `$(find unexmin)/x`)

@@ -1,6 +1,6 @@
 """The simulator's C++ M3 and DVL translations (cpp/unexmin/ros_layer/m3_cloud.cpp, dvl_water_track.cpp) against the
 rospy translators they replace in simulation (python/unexmin/translators/m3.py scan_to_cloud,
-dvl_translator.py dvl_to_water_track): the simulator records its own m3/scan, m3/points, dvl and
+dvl.py dvl_to_water_track): the simulator records its own m3/scan, m3/points, dvl and
 dvl_water_track while the robot moves (record:=, every message kept); each C++ output must equal the Python
 translation of the input message of the same stamp, field by field, and the rospy nodes do not run."""
 

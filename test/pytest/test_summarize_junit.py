@@ -103,7 +103,7 @@ def test_all_green_with_allowed_skip_exits_zero(tmp_path, capsys):
 
 
 def test_missing_and_unreadable_files_and_nothing_run(tmp_path, capsys):
-    # catkin's placeholder for a test that wrote no result (catkin/test_results.py)
+    # catkin's placeholder for a test that wrote no result (the Python module catkin.test_results)
     (tmp_path / "MISSING-rostest-test_world.xml").write_text(
         '<?xml version="1.0" encoding="UTF-8"?>\n<testsuite tests="1" failures="1" time="1" errors="0" '
         'name="rostest-test_world.xml">\n  <testcase name="test_ran" status="run" time="1" classname="Results">\n'

@@ -6,8 +6,8 @@
 //   twist_topic  (default <name>_twist)   geometry_msgs/TwistWithCovarianceStamped, DVL frame; only with
 //                                         bottom lock; the angular part is not measured (zero, variance 1e6)
 //   water_track_topic (default <name>_water_track)  dvl_nortek/DvlBottomWaterTrack, the translation of
-//                                         python/unexmin/dvl_translator.py (dvl_water_track.h), built here when the
-//                                         robot's parameter dvl_from_simulator is true (default)
+//                                         python/unexmin/translators/dvl.py (dvl_water_track.h), built here when
+//                                         the robot's parameter dvl_from_simulator is true (default)
 #pragma once
 
 #include <unexmin/ros_layer/sensor_publisher.h>

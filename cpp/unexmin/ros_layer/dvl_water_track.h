@@ -1,4 +1,4 @@
-// The DVL translation of python/unexmin/dvl_translator.py (dvl_to_water_track), in C++ so that it keeps up in
+// The DVL translation of python/unexmin/translators/dvl.py (dvl_to_water_track), in C++ so that it keeps up in
 // lockstep: unexmin/Dvl (one simulated ping) -> dvl_nortek/DvlBottomWaterTrack (the UX-1 driver's bottom-track
 // record). Same conventions, field by field (docs/translators.md); test/pytest/test_cpp_translations.py compares
 // the two on the simulator's own messages.

@@ -93,7 +93,7 @@ void ImuPublisher::publish() {
     emit(raw_, m);
   }
   if (kvh_ && wanted(kvh_)) {
-    // Same conversion as python/unexmin/kvh_translator.py (checked by test/rostest/sensors.py).
+    // Same conversion as python/unexmin/translators/kvh.py (checked by test/rostest/sensors.py).
     kvh_1775::ImuRawKvh m;
     m.header = header;
     setRaw({m.accelerometer, m.gyroscope, m.magnetometer, m.temperature_imu, m.pressure, m.temperature_pressure}, s,

@@ -4,7 +4,7 @@
 // beams at once), scan_time = 1 / rate, range_min/max, ranges [m] (REP-117: +inf no return within
 // range_max, -inf nearer than range_min), intensities = cos(incidence)^n of the return (0: none).
 // `points_topic` (default m3/points): sensor_msgs/PointCloud2 x y z, the translation of
-// python/unexmin/m3_translator.py (m3_cloud.h), built here when the robot's parameter m3_from_simulator is
+// python/unexmin/translators/m3.py (m3_cloud.h), built here when the robot's parameter m3_from_simulator is
 // true (default); the rospy translator stays for the real robot (sensors.launch m3_translator:=true).
 #pragma once
 

@@ -26,7 +26,7 @@ inline std::uint64_t every(double physics_rate, double rate) {
 /// Outgoing queue per subscriber of a stream published at `rate` [Hz of sim time] (a sensor topic, odometry,
 /// joint states, thrust): 20 s of sim time, at least 1000 messages, so that a subscriber (a rosbag recorder) can
 /// stall for 0.4 s of wall time at a real-time factor of 50, or a script step the world in bursts
-/// (python/unexmin/simulation.py), without a message being dropped here.
+/// (python/unexmin/scripting/simulation.py), without a message being dropped here.
 inline int queueSize(double rate) {
   return static_cast<int>(std::max(1000.0, 20.0 * rate));
 }
