@@ -2,7 +2,7 @@
 // read again and Bullet's BVH of every collision mesh), the ray caster built (Embree's scene); for each stage its wall
 // time, its CPU time (every thread of the process; the figure to compare on a loaded machine) and the peak resident
 // memory of the process during it (a mesh's Bullet BVH comes from its cache file when there is one: run twice).
-// --compare then adds the ways these stages went before, on top of the memory above: the BVH built, the triangles
+// --compare then adds the alternatives to these stages, on top of the memory above: the BVH built, the triangles
 // copied into Embree's own buffers (and the same rays cast by both Embree scenes), every file read by assimp.
 // Not a test: results go to docs/benchmarks.md.
 //   world_load <world file> [--compare]
