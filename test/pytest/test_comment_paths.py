@@ -14,7 +14,7 @@ A word of a comment (what lies between blanks, quotes, brackets, commas and semi
   (`unexmin/sim/robot.h`), not before a type or an id (`unexmin/Dvl`, `unexmin/_core`, `unexmin/StationKeeping-v0`);
 - it is not a URL (`://`), an absolute path (`/usr/...`, a topic `/ux1/dvl`) or a pattern: a word with `<`, `>`,
   `*`, `{`, `}`, `$`, `%`, `|`, `=`, `@` or `...` (`<family>_sensor.h`, `worlds/*.world`, `$(find unexmin)/x`)
-  is a placeholder and is skipped.
+  is a placeholder and is skipped, and so is a source under a folder in capitals (`OUT/NAME.world`, `M/x.ply`).
 Trailing punctuation (`.,;:`), a `:<line>` suffix and a `#anchor` are dropped first.
 
 It exists when the file (or, for a word ending in `/`, the folder) is found relative to one of: the repository
@@ -40,6 +40,7 @@ CPP_SUFFIXES = {".h", ".cpp", ".c"}
 HASH_SUFFIXES = {".cmake", ".sh", ".yaml", ".yml", ".world", ".msg", ".srv", ".toml", ".rviz"}
 HASH_NAMES = {"CMakeLists.txt"}
 XML_SUFFIXES = {".launch", ".xacro", ".test", ".xml", ".urdf"}
+PLACEHOLDER_FOLDER = re.compile(r"[A-Z][A-Z0-9_]*$")  # OUT/, DIR/, M/: a folder the reader names
 PLACEHOLDER = re.compile(r"[<>*{}$%|=@]|\.\.\.|…")
 OWN_SUFFIXES = {".h", ".cpp", ".py", ".md", ".launch", ".xacro", ".test", ".world"}
 SYSTEM_INCLUDE = Path("/usr/include")
@@ -213,7 +214,9 @@ def path_words(text, roots, folders):
             continue
         if parts[0] == "unexmin" and (parts[1] in folders or "." in parts[1]):
             yield word
-        elif parts[0] in roots or Path(parts[-1]).suffix in OWN_SUFFIXES:
+        elif parts[0] in roots:
+            yield word
+        elif Path(parts[-1]).suffix in OWN_SUFFIXES and not PLACEHOLDER_FOLDER.match(parts[0]):
             yield word
 
 
@@ -267,7 +270,8 @@ def test_the_reader_finds_each_kind_of_comment():
 def test_the_reader_tells_a_path_from_other_words():
     words = path_words(
         "see docs/a.md:12, (sim/robot.h) https://x.org/docs/y.md /ux1/dvl cpp/<family>_sensor.h docs/*.md"
-        " sensor_msgs/Image octomap/OcTree.h ros/gone.cpp docs/b.md#anchor sim/ unexmin/Dvl unexmin/sim/x.h",
+        " sensor_msgs/Image octomap/OcTree.h ros/gone.cpp docs/b.md#anchor sim/ unexmin/Dvl unexmin/sim/x.h"
+        " OUT/NAME.world",
         roots={"cpp", "docs", "sim"},
         folders={"sim"},
     )
