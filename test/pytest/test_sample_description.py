@@ -106,3 +106,14 @@ def test_the_imaging_sonar_and_the_side_scan_give_their_images_in_process():
     ping = auv.sample(side)
     assert ping["built"] and ping["waterfall"].shape[1] == 2 * ping["port"].size
     assert ping["waterfall"].shape[0] >= 1 and ping["waterfall"].dtype == np.uint8
+
+
+def test_a_team_longer_than_three_runs_in_process():
+    """Any team list the launch files allow (mine_team_any.test's), a robot the world does not list placed by it."""
+    team = ["bluerov2_heavy", "ux1", "bluerov2_heavy", "remus100"]
+    w = World("mine", vehicles=team, sensors="none", seed=4)
+    assert w.robots == ["ROV_1", "UX_1", "ROV_2", "AUV_1"]
+    assert w.step(10) == pytest.approx(10 * w.dt)
+    positions = [w.robot(n).state()["position"] for n in w.robots]
+    gaps = [np.linalg.norm(a - b) for i, a in enumerate(positions) for b in positions[i + 1 :]]
+    assert min(gaps) > 0.5, f"two robots spawned on top of each other: {gaps}"

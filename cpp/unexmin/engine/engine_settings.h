@@ -39,7 +39,7 @@ struct EngineSettings {
   int ray_caster_threads = 0;        ///< >= 0 (0 = every hardware thread)
 };
 
-constexpr int kMaxRobots = 3;                ///< robots one engine runs at most
+constexpr int kMaxRobots = 3;                ///< robots `robots` may ask for (a `spawns` list may name more)
 constexpr double kMinPhysicsRate = 100.0;    ///< [Hz]
 constexpr double kMaxPhysicsRate = 20000.0;  ///< [Hz]
 
