@@ -51,7 +51,8 @@ std::vector<std::pair<std::string, std::string>> settingRules(const sensors::Sen
           {"ray_caster_threads", ">= 0 (0 = every hardware thread)"}};
 }
 
-void checkSettings(const EngineSettings& s, const sensors::SensorFactory& models, const SettingSpelling& spelling) {
+sensors::SensorSelection checkSettings(const EngineSettings& s, const sensors::SensorFactory& models,
+                                       const SettingSpelling& spelling) {
   const auto rules = settingRules(models);
   const auto rule = [&](const std::string& name) {
     return std::find_if(rules.begin(), rules.end(), [&](const auto& r) { return r.first == name; })->second;
@@ -72,19 +73,19 @@ void checkSettings(const EngineSettings& s, const sensors::SensorFactory& models
     throw bad("visibility", "'" + s.visibility + "'", rule("visibility"));
   if (s.ray_caster_threads < 0)
     throw bad("ray_caster_threads", std::to_string(s.ray_caster_threads), rule("ray_caster_threads"));
-  sensors::SensorSelection::parse(s.sensors, models.types(), (spelling ? spelling("sensors") : std::string("sensors")));
+  return sensors::SensorSelection::parse(s.sensors, models.types(),
+                                         spelling ? spelling("sensors") : std::string("sensors"));
 }
 
 EnginePlan planEngine(const EngineSettings& s, const sensors::SensorFactory& models, const SettingSpelling& spelling) {
-  checkSettings(s, models, spelling);
+  const sensors::SensorSelection selection = checkSettings(s, models, spelling);
   const auto bad = [&](const std::string& name, const std::string& value, const std::string& expected) {
     return settingError(spelling, name, value, expected);
   };
   EnginePlan plan;
   plan.options.dt = 1.0 / s.physics_rate;
   plan.options.seed = static_cast<std::uint64_t>(s.seed);
-  plan.options.selection = sensors::SensorSelection::parse(s.sensors, models.types(),
-                                                           (spelling ? spelling("sensors") : std::string("sensors")));
+  plan.options.selection = selection;
   plan.options.visual = s.mode == "visual";
   plan.options.ray_caster_threads = s.ray_caster_threads;
 

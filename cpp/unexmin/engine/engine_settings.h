@@ -62,9 +62,9 @@ struct EnginePlan {
 using SettingSpelling = std::function<std::string(const std::string& name)>;
 
 /// Checks every setting but the world file's (SettingError naming the first one out of its domain as `spelling` writes
-/// it; the robot count against the world's spawns is planEngine's).
-void checkSettings(const EngineSettings& settings, const sensors::SensorFactory& models,
-                   const SettingSpelling& spelling = nullptr);
+/// it; the robot count against the world's spawns is planEngine's). Returns the sensor families `sensors` selects.
+sensors::SensorSelection checkSettings(const EngineSettings& settings, const sensors::SensorFactory& models,
+                                       const SettingSpelling& spelling = nullptr);
 
 /// Checks every setting (SettingError naming the first one out of its domain as `spelling` writes it), loads the world
 /// file (ConfigError naming it) and applies them. `models`: the sensor families `sensors` may name.

@@ -21,6 +21,15 @@ const char* fieldTypeName(FieldType t) {
   return "?";
 }
 
+namespace {
+
+/// `shape`, or one dimension of `n` when it is empty.
+std::vector<std::size_t> orFlat(std::vector<std::size_t> shape, std::size_t n) {
+  return shape.empty() ? std::vector<std::size_t>{n} : shape;
+}
+
+}  // namespace
+
 std::size_t SampleField::size() const {
   std::size_t n = 1;
   for (const std::size_t d : shape)
@@ -37,8 +46,6 @@ void SampleWriter::put(const std::string& name, const std::string& unit, FieldTy
   f.shape = std::move(shape);
   f.data = data;
   f.kept = kept;
-  if (f.shape.empty() && elements != 1)
-    f.shape = {elements};
   if (f.size() != elements)
     throw ConfigError("sample field '" + name + "': a shape of " + std::to_string(f.size()) + " elements for " +
                       std::to_string(elements) + " values");
@@ -63,20 +70,17 @@ void SampleWriter::vector3(const std::string& name, const std::string& unit, con
 
 void SampleWriter::array(const std::string& name, const std::string& unit, const std::vector<double>& v,
                          std::vector<std::size_t> shape) {
-  put(name, unit, FieldType::float64, shape.empty() ? std::vector<std::size_t>{v.size()} : std::move(shape), v.data(),
-      v.size(), false);
+  put(name, unit, FieldType::float64, orFlat(std::move(shape), v.size()), v.data(), v.size(), false);
 }
 
 void SampleWriter::array(const std::string& name, const std::string& unit, const std::vector<float>& v,
                          std::vector<std::size_t> shape) {
-  put(name, unit, FieldType::float32, shape.empty() ? std::vector<std::size_t>{v.size()} : std::move(shape), v.data(),
-      v.size(), false);
+  put(name, unit, FieldType::float32, orFlat(std::move(shape), v.size()), v.data(), v.size(), false);
 }
 
 void SampleWriter::array(const std::string& name, const std::string& unit, const std::vector<std::uint8_t>& v,
                          std::vector<std::size_t> shape, bool kept) {
-  put(name, unit, FieldType::uint8, shape.empty() ? std::vector<std::size_t>{v.size()} : std::move(shape), v.data(),
-      v.size(), kept);
+  put(name, unit, FieldType::uint8, orFlat(std::move(shape), v.size()), v.data(), v.size(), kept);
 }
 
 void SampleWriter::flags(const std::string& name, const bool* v, std::size_t n) {

@@ -65,6 +65,23 @@ std::vector<T> reordered(const std::vector<T>& items, const std::vector<std::siz
   return out;
 }
 
+/// Every <`tag`> child of `ext`, read by `read(element, joint name out)`, appended to `params` with its joint's name
+/// in `joints`, then both ordered by id (idOrder: the ids 0 .. n-1, each once).
+template <class Params, class Read>
+void readActuators(const DescriptionReader& r, const tinyxml2::XMLElement* ext, const char* tag, Read read,
+                   std::vector<Params>& params, std::vector<std::string>& joints) {
+  std::vector<int> ids;
+  for (const auto* e = ext->FirstChildElement(tag); e; e = e->NextSiblingElement(tag)) {
+    std::string joint;
+    params.push_back(read(e, joint));
+    joints.push_back(joint);
+    ids.push_back(params.back().id);
+  }
+  const auto order = idOrder(r, ids, tag);
+  params = reordered(params, order);
+  joints = reordered(joints, order);
+}
+
 }  // namespace description
 }  // namespace sim
 }  // namespace unexmin

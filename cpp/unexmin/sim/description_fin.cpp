@@ -56,16 +56,9 @@ hydro::FinParams readFin(const DescriptionReader& r, const tinyxml2::XMLElement*
 }  // namespace
 
 void parseFins(const DescriptionReader& r, const tinyxml2::XMLElement* ext, RobotDescription& d) {
-  std::vector<int> ids;
-  for (const auto* f = ext->FirstChildElement("fin"); f; f = f->NextSiblingElement("fin")) {
-    std::string joint;
-    d.fins.push_back(readFin(r, f, d, joint));
-    d.fin_joints.push_back(joint);
-    ids.push_back(d.fins.back().id);
-  }
-  const auto order = idOrder(r, ids, "fin");
-  d.fins = reordered(d.fins, order);
-  d.fin_joints = reordered(d.fin_joints, order);
+  readActuators(
+      r, ext, "fin", [&](const tinyxml2::XMLElement* e, std::string& joint) { return readFin(r, e, d, joint); }, d.fins,
+      d.fin_joints);
 }
 
 }  // namespace description

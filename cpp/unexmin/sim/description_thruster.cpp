@@ -47,16 +47,10 @@ hydro::ThrusterParams readThruster(const DescriptionReader& r, const tinyxml2::X
 }  // namespace
 
 void parseThrusters(const DescriptionReader& r, const tinyxml2::XMLElement* ext, RobotDescription& d) {
-  std::vector<int> ids;
-  for (const auto* t = ext->FirstChildElement("thruster"); t; t = t->NextSiblingElement("thruster")) {
-    std::string joint;
-    d.thrusters.push_back(readThruster(r, t, d, joint));
-    d.thruster_joints.push_back(joint);
-    ids.push_back(d.thrusters.back().id);
-  }
-  const auto order = idOrder(r, ids, "thruster");
-  d.thrusters = reordered(d.thrusters, order);
-  d.thruster_joints = reordered(d.thruster_joints, order);
+  readActuators(
+      r, ext, "thruster",
+      [&](const tinyxml2::XMLElement* e, std::string& joint) { return readThruster(r, e, d, joint); }, d.thrusters,
+      d.thruster_joints);
 }
 
 }  // namespace description
