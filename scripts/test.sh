@@ -12,23 +12,40 @@ tmp=$(mktemp -d)
 export ROS_HOME="$tmp/ros_home" ROS_LOG_DIR="$tmp/ros_log"
 results="$UNEXMIN_WS/build/test_results"
 rm -rf "$results"
-mkdir -p "$results/unexmin"
+mkdir -p "$results/unexmin" "$results/pytest"
 
 cd "$UNEXMIN_WS"
 echo "[test] building tests"
 catkin_make -j2 tests >"$tmp/build_tests.log" 2>&1 || { tail -n 60 "$tmp/build_tests.log"; exit 1; }
-echo "[test] gtest + rostest (catkin_make run_tests)"
-# run_tests exits 0 even when a test fails: the verdict comes from catkin_test_results below.
-catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true
-grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/run_tests.log" | grep -v "^\[       OK \]" || true
-echo "[test] pytest"
+# The catkin tests (gtest, rostest: each rostest its own master on a port of its own) run beside pytest's workers:
+# most of the time of either is spent waiting on start-ups. run_tests exits 0 even when a test fails: the verdict
+# comes from catkin_test_results below.
+echo "[test] gtest + rostest (catkin_make run_tests), beside pytest"
+(ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true) &
+catkin_pid=$!
+# pytest: files in parallel, one worker each (--dist loadfile keeps a file's module fixtures in one process);
+# files with a `long` test are handed out first. The `alone` tests assert a wall-clock speed: they run after
+# everything else has finished, by themselves.
+workers=${UNEXMIN_TEST_WORKERS:-3}
+echo "[test] pytest ($workers workers)"
 set +e
-(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider --junitxml="$results/unexmin/pytest-unexmin.xml")
+(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -n "$workers" --dist loadfile -m "not alone" \
+  --junitxml="$results/pytest/pytest-unexmin.xml")
 pytest_rc=$?
 set -e
-if [ "$pytest_rc" -ne 0 ] && [ "$pytest_rc" -ne 1 ]; then
-  echo "[test] pytest could not run (exit $pytest_rc)" >&2
-fi
+wait "$catkin_pid"
+grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/run_tests.log" | grep -v "^\[       OK \]" || true
+echo "[test] pytest, the tests that run alone"
+set +e
+(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -m alone \
+  --junitxml="$results/pytest/pytest-unexmin-alone.xml")
+alone_rc=$?
+set -e
+for rc in "$pytest_rc" "$alone_rc"; do
+  if [ "$rc" -ne 0 ] && [ "$rc" -ne 1 ]; then
+    echo "[test] pytest could not run (exit $rc)" >&2
+  fi
+done
 
 echo "[test] results"
 set +e
@@ -38,4 +55,4 @@ set -e
 grep -vE "^(Skipping|$)" "$tmp/results.txt" | tail -n 40
 python "$repo/scripts/summarize_junit.py" "$results"
 summary_rc=$?
-[ "$results_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$summary_rc" -eq 0 ]
+[ "$results_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$alone_rc" -eq 0 ] && [ "$summary_rc" -eq 0 ]

@@ -17,6 +17,23 @@ if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers",
+        "alone: asserts a wall-clock speed (a rate, faster than real time): scripts/test.sh runs it after the others,"
+        " with no test beside it",
+    )
+    config.addinivalue_line(
+        "markers", "long: takes minutes: its file is handed to a worker first, so that it does not finish the run alone"
+    )
+
+
+def pytest_collection_modifyitems(config, items):
+    """Files holding a `long` test first (a stable sort: the order inside each file is kept)."""
+    long_files = {item.path for item in items if item.get_closest_marker("long")}
+    items.sort(key=lambda item: item.path not in long_files)
+
+
 class MarkedRuns:
     """Processes a test starts, each in a session of its own with a fresh UNEXMIN_RUN marker in its
     environment: every process it starts inherits the marker, so the whole run can be found

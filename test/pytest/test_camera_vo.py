@@ -28,6 +28,7 @@ import math
 
 import cv2
 import numpy as np
+import pytest
 from camera_views import REPO, SIZE, angle_of, camera_0, camera_pose, world_file
 
 from unexmin.control.allocation import ThrusterAllocator
@@ -101,6 +102,7 @@ def rotation_errors(frames, rotations, K, D):
     return np.array(out)
 
 
+@pytest.mark.long
 def test_vo_follows_the_turn_in_clear_water(tmp_path):
     frames, rotations, K, D = turning_sequence(tmp_path, "none")
     assert len(frames) == round(SECONDS * 10) and frames[0].shape == (SIZE[1], SIZE[0])

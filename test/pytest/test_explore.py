@@ -40,6 +40,7 @@ def explore(runs, tmp_path, kind, time_s, timeout):
     return out, json.loads((out / "summary.json").read_text())
 
 
+@pytest.mark.long
 def test_explores_a_branching_level_and_comes_home(runs, tmp_path):
     out, s = explore(runs, tmp_path, "branch", BRANCH_BUDGET, 600)
     r = s["robot"]["UX_1"]

@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 HERE = Path(__file__).resolve().parent
 FUZZ = 10.0  # [s] of wall time: every input gets each bad value a hundred times or more, over 10 throttle periods
 # roscpp's own line for a message that cannot be deserialised (a broken publisher): one per bad message,
@@ -17,6 +19,7 @@ FUZZ = 10.0  # [s] of wall time: every input gets each bad value a hundred times
 ROSCPP_DESERIALIZE = "Exception thrown when deserializing"
 
 
+@pytest.mark.alone
 def test_fuzzed_inputs_and_services(tmp_path):
     out = subprocess.run(
         [sys.executable, str(HERE / "clients" / "fuzz_run.py"), str(tmp_path / "log"), str(FUZZ)],

@@ -245,6 +245,7 @@ def check_identified(data, truth_physics):
     return got
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("name", sorted(ROBOTS))
 def test_identifies_robots_of_known_parameters(bag_dir, tmp_path, name):
     bag, overrides = make_bag(bag_dir, name)

@@ -160,6 +160,7 @@ def test_bad_survey_options_are_named():
     assert options_for("none", 0.565).standoff == SurveyOptions().standoff
 
 
+@pytest.mark.long
 def test_the_survey_maps_another_mine(mine, tmp_path, runs):
     out = tmp_path / "survey"
     args = [sys.executable, "-m", "unexmin.missions.mine", "--out", str(out), "--world-file", str(mine)]

@@ -162,6 +162,7 @@ print(f"clock {seen['t0']:.3f} -> {seen['t1']:.3f} s, UX_1 at z = {seen['odom'].
 """
 
 
+@pytest.mark.long
 def test_builds_and_runs_in_a_fresh_workspace(tmp_path):
     ws = tmp_path / "catkin_ws"
     env = clean_env(tmp_path)

@@ -103,6 +103,7 @@ def own_recording(tmp_path_factory):
     return bag, res
 
 
+@pytest.mark.alone
 def test_own_recorder_keeps_every_message_at_full_lockstep_speed(own_recording):
     bag, res = own_recording
     assert_indexed(bag)
@@ -124,6 +125,7 @@ def test_own_recorder_keeps_every_message_at_full_lockstep_speed(own_recording):
     assert res["wall"] < SECONDS, res
 
 
+@pytest.mark.alone
 def test_record_service_starts_and_stops_a_bag(own_recording):
     """The recorder started by record:= and stopped through /sim/record (an empty path) at t = SECONDS + 1 s: its
     bag closed and indexed (the same run as the test above)."""
@@ -133,6 +135,7 @@ def test_record_service_starts_and_stops_a_bag(own_recording):
     assert_indexed(bag)
 
 
+@pytest.mark.long
 def test_stock_rosbag_record_gets_everything_with_lockstep_wait_subscribers(tmp_path):
     topics = sorted(SIM_PUBLISHED)
     stock = tmp_path / "stock.bag"

@@ -209,6 +209,7 @@ def replay_report(bag, tmp_path, *extra):
     return report, out
 
 
+@pytest.mark.alone
 def test_nominal_bag_replays_to_the_recorded_trajectory(nominal_bag, tmp_path):
     report, out = replay_report(nominal_bag, tmp_path)
     e = report["errors"]

@@ -70,6 +70,7 @@ def test_a_family_defined_only_in_a_test_reaches_python_with_its_fields():
     assert s["bottom_seen"] == 1
 
 
+@pytest.mark.long
 def test_every_builtin_family_lists_the_fields_its_samples_hold():
     w = World("tank", sensors="all", mode="visual", seed=1)
     ux = w.robot("UX_1")

@@ -74,6 +74,7 @@ def tiled(tmp_path_factory):
     return out, rep, v[t], trimesh.Trimesh(v, t, process=False), peak_mb
 
 
+@pytest.mark.long
 def test_the_scan_is_cut_into_several_tiles_and_every_seam_is_zipped(tiled):
     _, rep, _, _, _ = tiled
     tiles = rep["tiles"]
