@@ -53,7 +53,7 @@ class Explorer:
 
     def run(self):
         from unexmin.scripting.launcher import WorldProcess
-        from unexmin.scripting.simulation import Simulation
+        from unexmin.scripting.ros_backend import RosSimulation
         from unexmin.worlds.schema import read_world
 
         world_cfg = read_world(self.world_file)
@@ -90,7 +90,7 @@ class Explorer:
         self.stats = {}
         stats_sub = None
         try:
-            sim = Simulation(timeout=120.0, world=world, node_name="unexmin_explore")
+            sim = RosSimulation(timeout=120.0, world=world, node_name="unexmin_explore")
             import rospy
 
             from unexmin.msg import MapperStats
