@@ -1,8 +1,8 @@
 """The ROS-free path (docs/python_api.md, "Back ends"): `from unexmin import Simulation`, a script of
 `Simulation.launch(..., backend="core")`, `unexmin.core` and `unexmin.gym` run in a Python where no ROS module can be
 imported. Each case runs in a child Python whose first import finder refuses rospy, rosgraph, genpy, the other ROS
-client libraries and every message package (ours in message_packages/, unexmin's own msg/srv, any *_msgs or *_srvs):
-the case fails if the code tries to import one (even an import it would survive) or finds one in sys.modules.
+client libraries and every message package (ours in message_packages/, unexmin.msg and unexmin.srv, any *_msgs or
+*_srvs): the case fails if the code tries to import one (even an import it would survive) or finds one in sys.modules.
 The ROS back end is imported only when chosen: choosing it in such a Python fails on its first ROS import.
 """
 
