@@ -115,7 +115,7 @@ def test_a_typo_in_a_batch_world_stops_the_batch_before_its_missions(tmp_path):
     typo = tmp_path / "tank.world"
     typo.write_text((REPO / "worlds" / "tank.world").read_text().replace("gravity:", "gravty:"))
     spec_file = tmp_path / "spec.yaml"
-    spec_file.write_text(f"world: {typo}\nmission: unexmin.batch.missions:tank_survey\n")
+    spec_file.write_text(f"world: {typo}\nmission: unexmin.missions.batch:tank_survey\n")
     with pytest.raises(SpecError, match=re.escape(f"world: {typo}: unknown key 'gravty'")):
         check_spec(yaml.safe_load(spec_file.read_text()), str(spec_file))
 
@@ -125,7 +125,7 @@ def test_the_batch_runners_mission_world_passes(tmp_path):
 
     spec_file = tmp_path / "spec.yaml"
     spec_file.write_text(
-        "world: mine\nmission: unexmin.batch.missions:tank_survey\n"
+        "world: mine\nmission: unexmin.missions.batch:tank_survey\n"
         "params: {current_speed: 0.7, current_angle: 1.2, current_vertical_angle: 0.1, visibility: high}\n"
     )
     spec = check_spec(yaml.safe_load(spec_file.read_text()), str(spec_file))

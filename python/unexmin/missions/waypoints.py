@@ -1,6 +1,6 @@
 """A straight route through the shipped mine and a waypoint controller (no ROS): the shaft's axis, then the first
 level's gallery's centreline, flown by a velocity command along the error. The batch missions' gallery_traverse
-and station_keeping (batch/missions.py) and the gym's gallery task (gym/tasks.py) use them; the main job flies the
+and station_keeping (missions/batch.py) and the gym's gallery task (gym/tasks.py) use them; the main job flies the
 survey of survey.py instead."""
 
 import math

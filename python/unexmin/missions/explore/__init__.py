@@ -1,4 +1,4 @@
-"""The explorer (docs/explore.md): `python -m unexmin.explore`.
+"""The explorer (docs/explore.md): `python -m unexmin.missions.explore`.
 
 octree.py reads the mapper's .bt; grid.py turns it into a coarse unknown/free/occupied grid; plan.py finds
 frontiers, goals and paths; navigation.py dead-reckons from the IMU, DVL and pressure; budget.py says when to turn

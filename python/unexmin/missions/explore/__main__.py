@@ -1,7 +1,7 @@
-"""python -m unexmin.explore ... (docs/explore.md)."""
+"""python -m unexmin.missions.explore ... (docs/explore.md)."""
 
 import sys
 
-from unexmin.explore.cli import main
+from unexmin.missions.explore.cli import main
 
 sys.exit(main())

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from unexmin.explore.navigation import DeadReckoning
+from unexmin.missions.explore.navigation import DeadReckoning
 
 
 @dataclass

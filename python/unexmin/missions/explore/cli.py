@@ -1,6 +1,6 @@
-"""python -m unexmin.explore: frontier exploration of a mine by one to three robots (docs/explore.md).
+"""python -m unexmin.missions.explore: frontier exploration of a mine by one to three robots (docs/explore.md).
 
-python -m unexmin.explore --out DIR [--world-file FILE] [--robots 1|2|3] [--time S] [--energy J]
+python -m unexmin.missions.explore --out DIR [--world-file FILE] [--robots 1|2|3] [--time S] [--energy J]
                           [--bounds X0 Y0 Z0 X1 Y1 Z1] [--visibility none|low|medium|high] [--speed M/S] ...
 """
 
@@ -8,13 +8,13 @@ import argparse
 import math
 import sys
 
-from unexmin.explore.budget import Budget
-from unexmin.explore.plan import PlanOptions
-from unexmin.explore.runner import ExploreOptions, Explorer
+from unexmin.missions.explore.budget import Budget
+from unexmin.missions.explore.plan import PlanOptions
+from unexmin.missions.explore.runner import ExploreOptions, Explorer
 
 
 def parser():
-    p = argparse.ArgumentParser(prog="python -m unexmin.explore", description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(prog="python -m unexmin.missions.explore", description=__doc__.splitlines()[0])
     p.add_argument("--out", default="explore_output", help="output folder (created)")
     p.add_argument("--world-file", help="a mine's world file (default: the shipped mine, worlds/mine.world)")
     p.add_argument("--robots", type=int, default=1, help="robots exploring together, 1..3 (default 1)")
@@ -43,7 +43,7 @@ def parser():
 
 def main(argv=None):
     args = parser().parse_args(argv)
-    from unexmin.explore.report import write
+    from unexmin.missions.explore.report import write
     from unexmin.worlds.files import world_path
 
     options = ExploreOptions(

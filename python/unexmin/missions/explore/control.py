@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from unexmin.explore.budget import power
+from unexmin.missions.explore.budget import power
 
 
 def sense(e, a, sim):

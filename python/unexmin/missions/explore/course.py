@@ -1,7 +1,7 @@
 """Small mines for the explorer's tests and bench, built with the mine generator's own construction (capsules of
 superellipse section with rough walls, their union, the same PLY), and a world file for each (no ROS).
 
-    python -m unexmin.explore.course --kind branch|dead_end --out DIR
+    python -m unexmin.missions.explore.course --kind branch|dead_end --out DIR
 
 - `branch`: a level in miniature: a 26 m gallery along +x (4.0 m wide, 3.6 m high) with a 9 m crosscut to +y
   (3.4 m across) at x = 14 m and a dead-end stub of 5 m to -y at x = 6 m; centreline z = -10 m.
@@ -73,7 +73,9 @@ def bounds(kind):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m unexmin.explore.course", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m unexmin.missions.explore.course", description=__doc__.splitlines()[0]
+    )
     parser.add_argument("--kind", choices=KINDS, default="branch")
     parser.add_argument("--out", required=True, help="output folder (created)")
     parser.add_argument("--seed", type=int, default=1, help="wall noise seed")

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from unexmin.explore.octree import KEY_OFFSET
+from unexmin.missions.explore.octree import KEY_OFFSET
 
 UNKNOWN, FREE, OCCUPIED = 0, 1, 2
 

@@ -3,9 +3,9 @@ map, read it into the coarse grid."""
 
 import numpy as np
 
-from unexmin.explore.grid import FREE, OCCUPIED, grid_from_leaves
-from unexmin.explore.octree import read_leaves
-from unexmin.explore.plan import ball_mask
+from unexmin.missions.explore.grid import FREE, OCCUPIED, grid_from_leaves
+from unexmin.missions.explore.octree import read_leaves
+from unexmin.missions.explore.plan import ball_mask
 
 SLS_UNITS = 4  # per robot: the M3 sends 40 clouds a second, each SLS unit 10
 

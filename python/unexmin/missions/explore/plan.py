@@ -18,7 +18,7 @@ import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse.csgraph import dijkstra
 
-from unexmin.explore.grid import FREE, OCCUPIED, UNKNOWN
+from unexmin.missions.explore.grid import FREE, OCCUPIED, UNKNOWN
 
 _OFFSETS = np.array([(i, j, k) for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1) if (i, j, k) > (0, 0, 0)])
 

@@ -3,7 +3,7 @@
 
 import numpy as np
 
-from unexmin.explore.plan import Graph, ball_mask, choose_goals, frontiers, gain_map, path_to, traversable
+from unexmin.missions.explore.plan import Graph, ball_mask, choose_goals, frontiers, gain_map, path_to, traversable
 
 
 def replan(e, t):

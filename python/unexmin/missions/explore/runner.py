@@ -15,16 +15,16 @@ import time
 
 import numpy as np
 
-from unexmin.explore import live_map
-from unexmin.explore.agent import Agent
-from unexmin.explore.budget import Budget
-from unexmin.explore.control import control, sense
-from unexmin.explore.grid import empty_grid
-from unexmin.explore.navigation import DeadReckoning, quat_matrix, sensor_joint
-from unexmin.explore.options import ExploreOptions, default_bounds
-from unexmin.explore.plan import PlanOptions
-from unexmin.explore.replan import replan
-from unexmin.explore.scoring import print_progress, record_coverage, track_truth
+from unexmin.missions.explore import live_map
+from unexmin.missions.explore.agent import Agent
+from unexmin.missions.explore.budget import Budget
+from unexmin.missions.explore.control import control, sense
+from unexmin.missions.explore.grid import empty_grid
+from unexmin.missions.explore.navigation import DeadReckoning, quat_matrix, sensor_joint
+from unexmin.missions.explore.options import ExploreOptions, default_bounds
+from unexmin.missions.explore.plan import PlanOptions
+from unexmin.missions.explore.replan import replan
+from unexmin.missions.explore.scoring import print_progress, record_coverage, track_truth
 
 STREAMS = ["imu", "dvl", "pressure", "m3/scan"]
 
@@ -123,7 +123,7 @@ class Explorer:
         import rospy
 
         from unexmin.control.allocation import ThrusterAllocator
-        from unexmin.explore.truth import Truth
+        from unexmin.missions.explore.truth import Truth
         from unexmin.worlds.files import world_triangles
 
         self.allocator = ThrusterAllocator()
