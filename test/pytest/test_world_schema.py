@@ -148,12 +148,12 @@ def test_the_replays_spawn_world_passes(tmp_path, world_name):
 
 
 def test_the_world_written_by_world_from_scan_passes(tmp_path):
-    """python -m unexmin.world_from_scan on a scan of the tank's inside, then its text for other options."""
+    """python -m unexmin.worlds.from_scan on a scan of the tank's inside, then its text for other options."""
     import numpy as np
     import trimesh
 
-    from unexmin import world_from_scan as wfs
-    from unexmin.world_from_scan.stages.files import world_yaml
+    from unexmin.worlds import from_scan as wfs
+    from unexmin.worlds.from_scan.stages.files import world_yaml
 
     mesh = trimesh.load(str(REPO / "worlds" / "meshes" / "tank.stl"), force="mesh")
     c = mesh.triangles_center  # the floor and the inner walls below the rim (docs/worlds.md: 6 x 4 m, 3 m deep)

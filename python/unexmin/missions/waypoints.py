@@ -16,7 +16,7 @@ TOLERANCE = 0.5  # [m] a waypoint is reached within this distance
 def waypoints(gallery_length):
     """A straight path [m, world frame] (the batch missions'): the shaft's axis from the spawn depth down to the
     first level's gallery, then that gallery's centreline (from the mine generator's layout, seed 7)."""
-    from unexmin.mine_generator.generator import PRESETS, make_layout, point_on
+    from unexmin.worlds.generator.generator import PRESETS, make_layout, point_on
 
     layout = make_layout(PRESETS["full"], 7)
     sx, sy = layout.shaft_xy

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from unexmin.mine_generator import generator as mg
+from unexmin.worlds.generator import generator as mg
 from unexmin.worlds.meshes import write_ply
 
 Z = -10.0  # [m] centreline of the course
@@ -24,7 +24,7 @@ KINDS = ("branch", "dead_end")
 
 
 def layout(kind):
-    """The tunnels of a course (mine_generator.Tunnel) and the robots' start points [m]."""
+    """The tunnels of a course (unexmin.worlds.generator's Tunnel) and the robots' start points [m]."""
     g = dict(a=2.0, b=1.8, c=2.0)
     if kind == "branch":
         tunnels = [

@@ -3,7 +3,7 @@
 
 import numpy as np
 
-from unexmin.world_from_scan.colours import streamed_vertex_colours
+from unexmin.worlds.from_scan.colours import streamed_vertex_colours
 from unexmin.worlds.meshes import write_ply
 from unexmin.worlds.schema import read_world
 
@@ -11,7 +11,7 @@ from unexmin.worlds.schema import read_world
 def world_yaml(name, surface_z, visibility, current_speed, meshes, spawns, source):
     """The world file's text; `meshes`: (entry name, file, collision, visual, extra keys) per mesh."""
     lines = [
-        f"# World made from the scan {source} by python -m unexmin.world_from_scan (docs/world_from_scan.md).",
+        f"# World made from the scan {source} by python -m unexmin.worlds.from_scan (docs/world_from_scan.md).",
         "# Schema: docs/worlds.md. Units: SI; world frame = the scan's frame (ENU, z up).",
         f"name: {name}",
         "gravity: 9.81                                 # [m/s^2]",

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from unexmin.world_from_scan.surface import boundary_loops
+from unexmin.worlds.from_scan.surface import boundary_loops
 
 SNAP = 1e-6  # [m] a vertex this close to a cutting plane is moved onto it
 

@@ -1,7 +1,7 @@
 """A surveyed point cloud of a mine (laser, sonar, the robots' own maps) to a simulator world in one
 command (docs/world_from_scan.md): what the thesis did by hand for Kaatiala (5.2) with MeshLab.
 
-    python -m unexmin.world_from_scan SCAN --out DIR [--resolution 0.1] [--memory-gb 8] [--scheduler ADDR]
+    python -m unexmin.worlds.from_scan SCAN --out DIR [--resolution 0.1] [--memory-gb 8] [--scheduler ADDR]
 
 build_world passes one build record (record.Build) through the stages of stages/, in this order: survey (one
 streaming pass: bounds, extent of the surface), tiling (overlapping slabs sized by the memory budget; a second pass
@@ -21,16 +21,16 @@ from contextlib import contextmanager
 from dataclasses import fields
 from pathlib import Path
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.record import Build, Options, Progress
-from unexmin.world_from_scan.stages.evaluation import evaluate
-from unexmin.world_from_scan.stages.files import write_meshes, write_worlds
-from unexmin.world_from_scan.stages.report import write_report
-from unexmin.world_from_scan.stages.spawns import place_spawns
-from unexmin.world_from_scan.stages.stitching import orient_surface, stitch_tiles
-from unexmin.world_from_scan.stages.survey import survey_scan
-from unexmin.world_from_scan.stages.tiles import build_tiles
-from unexmin.world_from_scan.stages.tiling import bin_tiles, plan_tiles, remove_tiles
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.record import Build, Options, Progress
+from unexmin.worlds.from_scan.stages.evaluation import evaluate
+from unexmin.worlds.from_scan.stages.files import write_meshes, write_worlds
+from unexmin.worlds.from_scan.stages.report import write_report
+from unexmin.worlds.from_scan.stages.spawns import place_spawns
+from unexmin.worlds.from_scan.stages.stitching import orient_surface, stitch_tiles
+from unexmin.worlds.from_scan.stages.survey import survey_scan
+from unexmin.worlds.from_scan.stages.tiles import build_tiles
+from unexmin.worlds.from_scan.stages.tiling import bin_tiles, plan_tiles, remove_tiles
 
 # the stages that write into the output folder: a run that stops in one of them leaves no tile files, no empty folder
 WRITING_STAGES = (
@@ -120,7 +120,7 @@ def report(rep):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m unexmin.world_from_scan", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m unexmin.worlds.from_scan", description=__doc__.split("\n\n")[0])
     ap.add_argument("scan", help="point cloud: .ply .pcd .xyz .xyzn .xyzrgb .pts .txt .asc .csv .las .laz [m]")
     ap.add_argument("--out", required=True, help="output folder (created)")
     ap.add_argument("--name", help="world and file name prefix (default: the scan's file name)")

@@ -52,7 +52,7 @@ def streamed_vertex_colours(path, vertices, chunk=None):
     size: each vertex keeps the colour of the nearest point over all chunks. None when the scan carries no colours."""
     from scipy.spatial import cKDTree
 
-    from unexmin.world_from_scan.stream import CHUNK, iter_chunks
+    from unexmin.worlds.from_scan.stream import CHUNK, iter_chunks
 
     vertices = np.asarray(vertices, dtype=np.float64)
     best = np.full(len(vertices), np.inf)

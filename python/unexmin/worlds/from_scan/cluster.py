@@ -7,8 +7,8 @@ import os
 import time
 import traceback
 
-from unexmin.world_from_scan.tile import build_tile
-from unexmin.world_from_scan.tiles import describe
+from unexmin.worlds.from_scan.tile import build_tile
+from unexmin.worlds.from_scan.tiles import describe
 
 CLOSE_TIMEOUT = 60  # [s] for the client and the local cluster to close
 
@@ -35,7 +35,7 @@ def open_client(workers, memory_limit, scheduler=None):
 
     if scheduler:
         return Client(scheduler, timeout=30), None
-    from unexmin.world_from_scan.cores import BindToCores, cores_for
+    from unexmin.worlds.from_scan.cores import BindToCores, cores_for
 
     cluster = local_cluster(workers, memory_limit)
     client = Client(cluster)

@@ -7,8 +7,8 @@ import time
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.scan import (
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.scan import (
     MIN_POINTS,
     downsample,
     estimate_normals,
@@ -16,8 +16,8 @@ from unexmin.world_from_scan.scan import (
     orientation_samples,
     point_spacing,
 )
-from unexmin.world_from_scan.stitch import clip_slab, seam_shifts
-from unexmin.world_from_scan.surface import (
+from unexmin.worlds.from_scan.stitch import clip_slab, seam_shifts
+from unexmin.worlds.from_scan.surface import (
     boundary_loops,
     close_holes,
     poisson_octree,
@@ -26,7 +26,7 @@ from unexmin.world_from_scan.surface import (
     simplify,
     trim_unsupported,
 )
-from unexmin.world_from_scan.tiles import describe, load_tile
+from unexmin.worlds.from_scan.tiles import describe, load_tile
 
 SPAWN_SAMPLES = 4000  # oriented points per tile handed back for the spawn search
 

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.surface import find_spawns, raycasting_scene
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.surface import find_spawns, raycasting_scene
 
 
 def place_spawns(b):

@@ -4,9 +4,9 @@ process for a single tile (cluster.run_tiles, tile.py)."""
 import resource
 import sys
 
-from unexmin.world_from_scan.cluster import run_tiles
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.tiles import DRIVER_BYTES
+from unexmin.worlds.from_scan.cluster import run_tiles
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.tiles import DRIVER_BYTES
 
 
 def build_tiles(b):

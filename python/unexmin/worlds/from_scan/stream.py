@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
+from unexmin.worlds.from_scan.errors import ScanError
 
 CHUNK = 1_000_000  # points per chunk: about 60 MB with normals and colours
 

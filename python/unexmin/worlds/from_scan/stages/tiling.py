@@ -4,7 +4,7 @@ end."""
 
 import shutil
 
-from unexmin.world_from_scan.tiles import bin_scan, plan, tile_points_budget
+from unexmin.worlds.from_scan.tiles import bin_scan, plan, tile_points_budget
 
 
 def plan_tiles(b):

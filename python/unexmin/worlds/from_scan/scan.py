@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
+from unexmin.worlds.from_scan.errors import ScanError
 from unexmin.worlds.meshes import sample_surface
 
 MIN_POINTS = 200  # fewer points after down-sampling: no surface to speak of
@@ -24,7 +24,7 @@ CONE = ((0.0, 1), (math.radians(30.0), 6), (math.radians(60.0), 6))  # orientati
 def read_scan(path):
     """(points N x 3 [m] float64, normals N x 3 or None) of a whole cloud (stream.py's formats), for small
     scans and tests: the tool itself streams (tiles.py). Rows with a non-finite coordinate are dropped."""
-    from unexmin.world_from_scan.stream import iter_chunks
+    from unexmin.worlds.from_scan.stream import iter_chunks
 
     points, normals, complete = [], [], True
     for c in iter_chunks(path):

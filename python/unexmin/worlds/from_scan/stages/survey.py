@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.scan import MIN_POINTS
-from unexmin.world_from_scan.stream import scan_size
-from unexmin.world_from_scan.tiles import survey
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.scan import MIN_POINTS
+from unexmin.worlds.from_scan.stream import scan_size
+from unexmin.worlds.from_scan.tiles import survey
 
 
 def survey_scan(b):

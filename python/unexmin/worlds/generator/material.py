@@ -1,11 +1,11 @@
 """Rock material of a generated mine (docs/worlds.md "material", docs/vision.md "Materials").
 
-    python -m unexmin.mine_generator.material --seed 7           # prints the `material:` of worlds/mine.world's mesh
+    python -m unexmin.worlds.generator.material --seed 7           # prints the `material:` of worlds/mine.world's mesh
 
 The walls of a mine of seed S get the `rock` material drawn from S: its albedo (greyish brown), the
 scales of its grains, cracks, strata and stains [m], contrast, relief and a tint that changes with a
 region size of about half the level spacing, so that levels and chambers look different. The mine
-generator writes its meshes from the same seed (`python -m unexmin.mine_generator --seed S`). Every
+generator writes its meshes from the same seed (`python -m unexmin.worlds.generator --seed S`). Every
 number is assumed (chosen to look like weathered rock at 1-3 m), not measured.
 """
 
@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-from unexmin.mine_generator import PRESETS
+from unexmin.worlds.generator import PRESETS
 
 
 def material(seed, preset="full"):
@@ -50,7 +50,9 @@ def flow(seed, preset="full"):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m unexmin.mine_generator.material", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(
+        prog="python -m unexmin.worlds.generator.material", description=__doc__.split("\n\n")[0]
+    )
     ap.add_argument("--seed", type=int, default=7, help="the mine's seed (default 7, the shipped mine.world)")
     ap.add_argument("--preset", choices=sorted(PRESETS), default="full")
     args = ap.parse_args(argv)

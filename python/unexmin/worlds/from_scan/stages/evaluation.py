@@ -5,8 +5,8 @@ import os
 
 import numpy as np
 
-from unexmin.world_from_scan.surface import distances, flooded_volume
-from unexmin.world_from_scan.tiles import record_dtype
+from unexmin.worlds.from_scan.surface import distances, flooded_volume
+from unexmin.worlds.from_scan.tiles import record_dtype
 
 EVAL_POINTS = 1_000_000  # scan points measured against the collision mesh at most
 

@@ -4,10 +4,10 @@ its faces point into the void."""
 
 import math
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.stitch import choose_seams, clip_parts, seam_shifts, stitch
-from unexmin.world_from_scan.surface import HULL_RADIUS, close_holes, closed_surface
-from unexmin.world_from_scan.tile import folded_edges, mended
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.stitch import choose_seams, clip_parts, seam_shifts, stitch
+from unexmin.worlds.from_scan.surface import HULL_RADIUS, close_holes, closed_surface
+from unexmin.worlds.from_scan.tile import folded_edges, mended
 
 
 def mend_folds(v, t):

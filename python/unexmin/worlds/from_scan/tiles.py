@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.world_from_scan.errors import ScanError
-from unexmin.world_from_scan.stream import iter_chunks
+from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.from_scan.stream import iter_chunks
 
 CELL_RES = 4.0  # survey cells: this many resolutions (at least 0.5 m)
 BITS = 21  # per axis in a packed cell key: +-2^20 cells around the scan's first point

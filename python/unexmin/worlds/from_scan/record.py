@@ -7,7 +7,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from unexmin.world_from_scan.errors import ScanError
+from unexmin.worlds.from_scan.errors import ScanError
 
 VISIBILITY = ("none", "low", "medium", "high")
 
