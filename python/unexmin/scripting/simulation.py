@@ -31,23 +31,35 @@ class Simulation:
         return RosSimulation(node_name=node_name, timeout=timeout)
 
     @staticmethod
-    def launch(world="tank", robots=1, seed=0, backend="ros", vehicles=None, **kwargs):
+    def launch(
+        world="tank",
+        robots=1,
+        seed=0,
+        log_dir=None,
+        timeout=60.0,
+        launch_file=None,
+        vehicles=None,
+        backend="ros",
+        **kwargs,
+    ):
         """Start a world paused and connect to it; returns the back end's Simulation (a context manager).
 
         backend: "ros" (a headless lockstep world of the ROS simulator on a private master:
         ros_backend.RosSimulation.launch, which documents the arguments) or "core" (the engine in this process, no
         ROS: core_backend.CoreSimulation.launch; the arguments it cannot honour raise ValueError naming them).
         world: a world name (tank, mine, test_box); robots: how many of the world's robots to spawn; seed: the
-        simulator's seed; vehicles: a mixed team instead of `robots` UX-1s, vehicle types in order (e.g.
-        "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1, AUV_1: unexmin.vehicles); kwargs: the back
-        end's other arguments (timeout, log_dir, launch_file, mode, visibility, sensors, mapping, map_file,
-        overrides, record, node_name; for "core" also descriptions, physics_rate, ray_caster_threads).
+        simulator's seed; log_dir: folder for the ROS world's logs; timeout [s] of wall time for the world to start;
+        launch_file: a launch file of the caller's instead of the world's (ROS only); vehicles: a mixed team instead
+        of `robots` UX-1s, vehicle types in order (e.g. "ux1,bluerov2_heavy,remus100" or a list; robots UX_1, ROV_1,
+        AUV_1: unexmin.vehicles); kwargs: the back end's other arguments (mode, visibility, sensors, mapping,
+        map_file, overrides, record, node_name; for "core" also descriptions, physics_rate, ray_caster_threads).
         ValueError for another backend, before anything starts.
         """
         if backend not in BACKENDS:
             raise ValueError(f"backend = {backend!r}: expected one of {', '.join(BACKENDS)}")
         if vehicles:
             kwargs["vehicles"] = parse_vehicles(vehicles)
+        kwargs.update(log_dir=log_dir, timeout=timeout, launch_file=launch_file)
         if backend == "core":
             from unexmin.scripting.core_backend import CoreSimulation
 
