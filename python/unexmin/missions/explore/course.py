@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from unexmin.worlds.files import world_path
 from unexmin.worlds.generator import generator as mg
 from unexmin.worlds.meshes import write_ply
 
@@ -52,8 +53,7 @@ def build(kind, out, seed=1):
         v, t = mg.canonical_mesh(mg.build_solid(lay, edge, walls, cut))
         v, _ = mg.separate_pinches(v, t)
         write_ply(out / f"course_{key}.ply", v, t, f"unexmin explore course {kind} seed {seed} {key}")
-    repo = Path(__file__).resolve().parents[3]
-    world = yaml.safe_load((repo / "worlds" / "mine.world").read_text())
+    world = yaml.safe_load(Path(world_path("mine")).read_text())
     world["name"] = f"course_{kind}"
     world["meshes"][0]["file"] = "course_collision.ply"
     world["meshes"][1]["file"] = "course_visual.ply"
