@@ -6,7 +6,7 @@
                    [--visibility none|medium] [--skip-survey] [--world-file FILE --bounds X0 Y0 Z0 X1 Y1 Z1]
 
 Runs, one after the other: the main job's survey in the shipped mine (python -m unexmin.missions.mine), then the
-explorer (python -m unexmin.explore) with UX_1 alone and with UX_1..UX_3, in the shipped mine or --world-file,
+explorer (python -m unexmin.missions.explore) with UX_1 alone and with UX_1..UX_3, in the shipped mine or --world-file,
 same budget and box, maps saved every --snapshot s and scored. Prints per run the F-score (precision and recall
 of unexmin.map_quality against that run's own path) at each snapshot, the final coverage of the reachable
 volume, the RTF while stepping and the load, and the three-robot speed-up: the one robot's sim time to explore --share
@@ -50,7 +50,7 @@ def main(argv=None):
     p.add_argument("--skip-survey", action="store_true")
     p.add_argument("--share", type=float, default=0.9, help="explored share of the reachable volume for the speed-up")
     p.add_argument("--world-file", help="the explorers' world (default: the shipped mine; the survey always flies it)")
-    p.add_argument("--bounds", nargs=6, help="the explorers' box [m] (python -m unexmin.explore --bounds)")
+    p.add_argument("--bounds", nargs=6, help="the explorers' box [m] (python -m unexmin.missions.explore --bounds)")
     a = p.parse_args(argv)
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
@@ -60,7 +60,7 @@ def main(argv=None):
         runs["survey"] = [py, "-m", "unexmin.missions.mine", "--out", f"{out}/survey", "--visibility", a.visibility]
         runs["survey"] += ["--snapshot", str(a.snapshot)]
     for n in (1, 3):
-        runs[f"explore_{n}"] = [py, "-m", "unexmin.explore", "--out", f"{out}/explore_{n}", "--robots", str(n)]
+        runs[f"explore_{n}"] = [py, "-m", "unexmin.missions.explore", "--out", f"{out}/explore_{n}", "--robots", str(n)]
         runs[f"explore_{n}"] += ["--time", str(a.time), "--visibility", a.visibility, "--snapshot", str(a.snapshot)]
         runs[f"explore_{n}"] += (["--world-file", a.world_file] if a.world_file else []) + (
             ["--bounds", *a.bounds] if a.bounds else []

@@ -14,7 +14,7 @@ import rospy
 from unexmin.control.allocation import ThrusterAllocator
 from unexmin.msg import MapperStats
 from unexmin.scripting.launcher import WorldProcess, wait_for
-from unexmin.scripting.simulation import Simulation
+from unexmin.scripting.ros_backend import RosSimulation
 
 
 def main():
@@ -23,7 +23,7 @@ def main():
     ap.add_argument("--seconds", type=float, default=100.0)
     args = ap.parse_args()
     world = WorldProcess(world="mine", robots=1, log_dir="/tmp/unexmin_mapper_rtf", extra_args=("mapping:=true",))
-    sim = Simulation(world=world, timeout=120.0, node_name="mapper_rtf")
+    sim = RosSimulation(world=world, timeout=120.0, node_name="mapper_rtf")
     stats = {}
     rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(m=m), queue_size=10)
     wait_for(lambda: "m" in stats, 120.0, "/mapper/stats")

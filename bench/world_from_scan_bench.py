@@ -1,4 +1,4 @@
-"""Throughput of python -m unexmin.world_from_scan on scans of the Kaatiala-size mine (docs/benchmarks.md).
+"""Throughput of python -m unexmin.worlds.from_scan on scans of the Kaatiala-size mine (docs/benchmarks.md).
 
     python bench/world_from_scan_bench.py --points 4000000 --memory-gb 4 --out /tmp/wfs_bench
     python bench/world_from_scan_bench.py --points 50000000 --resolution 0.1 --memory-gb 8 --workers 1 2
@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from unexmin.world_from_scan import sample_scan
+from unexmin.worlds.from_scan import sample_scan
 from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[1]
@@ -108,7 +108,7 @@ def main():
                 [
                     sys.executable,
                     "-m",
-                    "unexmin.world_from_scan",
+                    "unexmin.worlds.from_scan",
                     str(scan),
                     "--out",
                     str(world),

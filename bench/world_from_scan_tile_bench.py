@@ -24,16 +24,16 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # one thread, as on a Dask worker
 
 import numpy as np  # noqa: E402
 
-from unexmin.world_from_scan import sample_scan  # noqa: E402
-from unexmin.world_from_scan.scan import (  # noqa: E402
+from unexmin.worlds.from_scan import sample_scan  # noqa: E402
+from unexmin.worlds.from_scan.scan import (  # noqa: E402
     downsample,
     estimate_normals,
     orient_towards_void,
     orientation_samples,
     point_spacing,
 )
-from unexmin.world_from_scan.stitch import clip_slab  # noqa: E402
-from unexmin.world_from_scan.surface import (  # noqa: E402
+from unexmin.worlds.from_scan.stitch import clip_slab  # noqa: E402
+from unexmin.worlds.from_scan.surface import (  # noqa: E402
     distances,
     poisson_octree,
     raycasting_scene,
@@ -41,8 +41,8 @@ from unexmin.world_from_scan.surface import (  # noqa: E402
     simplify,
     trim_unsupported,
 )
-from unexmin.world_from_scan.tile import decimated  # noqa: E402
-from unexmin.world_from_scan.tiles import overlap  # noqa: E402
+from unexmin.worlds.from_scan.tile import decimated  # noqa: E402
+from unexmin.worlds.from_scan.tiles import overlap  # noqa: E402
 from unexmin.worlds.meshes import read_mesh  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Add this repository to a catkin workspace: link the package (the repository root) and each message
-# package in msgs/ into <ws>/src. catkin does not look for packages inside a package, so a plain
+# package in message_packages/ into <ws>/src. catkin does not look for packages inside a package, so a plain
 # `git clone` into <ws>/src finds `unexmin` but not ux1_msgs, dvl_nortek or kvh_1775.
 #
 #   bash scripts/add_to_workspace.sh [--quiet] <ws>     # --quiet: print only the changes it makes
@@ -37,7 +37,7 @@ case "$repo/" in
   "$src/"*) say "the repository is already inside $src: linking only its msg packages" ;;
   *) names+=(unexmin); targets+=("$repo") ;;
 esac
-for m in "$repo"/msgs/*/; do
+for m in "$repo"/message_packages/*/; do
   [ -f "$m/package.xml" ] || continue
   names+=("$(basename "$m")"); targets+=("${m%/}")
 done

@@ -52,7 +52,7 @@ pip_packages+=(clang-format==19.1.7)
 pip_packages+=(ruff==0.8.6)
 # Gymnasium environments of the UX-1's jobs (python/unexmin/gym, docs/gym.md)
 pip_packages+=(gymnasium==1.2.0)
-# quadric decimation of the scan worlds' tiles (python/unexmin/world_from_scan/surface.py)
+# quadric decimation of the scan worlds' tiles (python/unexmin/worlds/from_scan/surface.py)
 pip_packages+=(fast-simplification==0.2.0)
 
 missing=()
@@ -76,7 +76,7 @@ fi
 
 # The flooded mine's meshes (docs/mine_world.md): generated here (about 15 s), not committed; skipped
 # when worlds/meshes/mine/ already holds the output of this seed and generator version.
-PYTHONPATH="$repo/python" "$venv/bin/python" -m unexmin.mine_generator --seed 7 --quiet \
+PYTHONPATH="$repo/python" "$venv/bin/python" -m unexmin.worlds.generator --seed 7 --quiet \
   --out "$repo/worlds/meshes/mine" | sed 's/^/[setup] /'
 
 # The same way a user adds the package to their own workspace (README, "Your own workspace").

@@ -1,7 +1,8 @@
 """UNEXMIN UX-1 simulator: Python tools and the scripting API.
 
-``from unexmin import Simulation`` gives the "pybind-style" API over ROS 1 (see docs/python_api.md).
-Submodules that need no ROS (allocation maths, bag analysis) import without a running master.
+``from unexmin import Simulation`` gives the "pybind-style" API over the ROS 1 simulator or the engine in-process
+(see docs/python_api.md); it imports no ROS module until the ROS back end is chosen. Submodules that need no ROS
+(unexmin.core, unexmin.gym, allocation maths, bag analysis) import where ROS is not installed.
 """
 
 from pkgutil import extend_path
@@ -13,7 +14,7 @@ __all__ = ["Simulation"]
 
 
 def __getattr__(name):
-    # Lazy so that ``import unexmin.<pure module>`` does not pull in rospy.
+    # Lazy so that ``import unexmin.<module>`` does not load the scripting API it does not use.
     if name == "Simulation":
         from unexmin.scripting.simulation import Simulation
 

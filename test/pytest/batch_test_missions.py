@@ -4,7 +4,7 @@ mission can fail, and one that reports which Dask worker process ran it."""
 import os
 import time
 
-from unexmin.batch.missions import tank_survey
+from unexmin.missions.batch import tank_survey
 
 
 def flaky(sim, params):

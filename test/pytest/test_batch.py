@@ -45,7 +45,7 @@ def spec_of(text, folder):
 
 def test_expansion_is_a_function_of_the_spec(tmp_path):
     text = """
-        mission: unexmin.batch.missions:tank_survey
+        mission: unexmin.missions.batch:tank_survey
         seeds: {start: 5, count: 3}
         sweep: {visibility: [none, high], current_angle: [0.0, 1.0]}
         sample: {current_speed: {uniform: [0.1, 0.3]}, sensor_noise_scale: {choice: [0.5, 2.0]}}
@@ -75,7 +75,7 @@ def test_expansion_is_a_function_of_the_spec(tmp_path):
 def test_sampled_values_follow_their_distribution(tmp_path):
     spec = spec_of(
         """
-        mission: unexmin.batch.missions:tank_survey
+        mission: unexmin.missions.batch:tank_survey
         seeds: 2000
         sample: {buoyancy_offset: {normal: [0.2, 0.5]}, n: {integers: [1, 3]}, v: {loguniform: [0.01, 1.0]}}
     """,
@@ -114,7 +114,7 @@ def test_mission_files_carry_the_parameters(tmp_path):
 
     spec = spec_of(
         """
-        mission: unexmin.batch.missions:tank_survey
+        mission: unexmin.missions.batch:tank_survey
         params: {current_speed: 0.7, current_angle: 1.2, visibility: low, buoyancy_offset: 0.5,
                  sensor_noise_scale: 2.0}
     """,
@@ -152,7 +152,7 @@ def test_mission_files_carry_the_parameters(tmp_path):
         assert new == pytest.approx(2.0 * ref, rel=1e-12), name
 
 
-def six_missions(folder, mission="unexmin.batch.missions:tank_survey", extra=""):
+def six_missions(folder, mission="unexmin.missions.batch:tank_survey", extra=""):
     return spec_of(
         f"""
         world: tank

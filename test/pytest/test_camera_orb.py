@@ -125,10 +125,10 @@ def test_plain_walls_give_orb_nothing(urdf, plain_mine, tmp_path, view):
 
 
 def test_the_mine_world_has_its_seeds_rock():
-    """worlds/mine.world's walls carry the material unexmin.mine_generator.material draws from the mine's seed (7)."""
+    """worlds/mine.world's walls carry the material unexmin.worlds.generator.material draws from the mine's seed (7)."""
     import yaml
 
-    from unexmin.mine_generator import material as mine_material
+    from unexmin.worlds.generator import material as mine_material
 
     world = yaml.safe_load(MINE.read_text())
     walls = next(m for m in world["meshes"] if m["name"] == "mine")

@@ -41,9 +41,10 @@ def test_the_docs_name_commands():
         "unexmin.batch",
         "unexmin.identify",
         "unexmin.map_quality",
-        "unexmin.mine_generator",
+        "unexmin.missions.explore",
+        "unexmin.worlds.generator",
         "unexmin.replay",
-        "unexmin.world_from_scan",
+        "unexmin.worlds.from_scan",
     } <= set(MODULES)
     assert set(ROSRUN) <= set(NODES), f"documented but not in nodes/: {set(ROSRUN) - set(NODES)}"
     assert len(NODES) >= 9

@@ -8,7 +8,7 @@ YAML (config/, worlds/*.world, .rviz), msg, srv and TOML files; `<!-- -->` comme
 A word of a comment (what lies between blanks, quotes, brackets, commas and semicolons) names a repository path when
 - it holds a `/` and either its first component is a folder tracked at the top of the repository (cpp/, python/,
   docs/, test/, launch/, ...), a library folder of cpp/unexmin (core/, hydro/, ros_layer/, ...) or a package of
-  python/unexmin (explore/, scripting/, ...), or it ends in a suffix of the repository's own sources (.h, .cpp,
+  python/unexmin (missions/, scripting/, ...), or it ends in a suffix of the repository's own sources (.h, .cpp,
   .py, .md, .launch, .xacro, .test, .world), so that a source named in a folder that does not exist (`gone/...`)
   is read; `unexmin/` (the include and import prefix) counts when a library, a package or a file name follows it
   (`unexmin/sim/robot.h`), not before a type or an id (`unexmin/Dvl`, `unexmin/_core`, `unexmin/StationKeeping-v0`);
@@ -19,10 +19,11 @@ Trailing punctuation (`.,;:`), a `:<line>` suffix and a `#anchor` are dropped fi
 
 It exists when the file (or, for a word ending in `/`, the folder) is found relative to one of: the repository
 root, the commenting file's folder, cpp/ (`unexmin/sim/robot.h`), cpp/unexmin/ (`sim/robot.h`), python/
-(`unexmin/bag.py`) or python/unexmin/ (`explore/plan.py`). A program is found by its source (`bench/camera_fps` is
-built from bench/camera_fps.cpp). A header the system's /usr/include holds (`linux/joystick.h`, `octomap/OcTree.h`)
-is another library's. A path under a folder the repository's .gitignore anchors at its root (`/build/`, `/devel/`,
-`/mission_output/`, `/worlds/meshes/mine/`) is generated and accepted without a look.
+(`unexmin/bag.py`) or python/unexmin/ (`missions/explore/plan.py`). A program is found by its source
+(`bench/camera_fps` is built from bench/camera_fps.cpp). A header the system's /usr/include holds
+(`linux/joystick.h`, `octomap/OcTree.h`) is another library's. A path under a folder the repository's .gitignore
+anchors at its root (`/build/`, `/devel/`, `/mission_output/`, `/worlds/meshes/mine/`) is generated and accepted
+without a look.
 
 Not read: words whose first component names no folder of the repository and that end in none of those suffixes
 (`sensor_msgs/Image`, `dvl_nortek/DvlBottomWaterTrack`: other packages' names) and bare file names (no `/`)."""
@@ -292,7 +293,7 @@ def test_a_missing_path_is_reported():
     assert exists("conftest.py/", here, generated) is False  # a file is no folder
     assert exists("sim/robot.h", here, generated)
     assert exists("unexmin/sim/robot.h", here, generated)
-    assert exists("explore/plan.py", here, generated)
+    assert exists("missions/explore/plan.py", here, generated)
     assert exists("bench/camera_fps", here, generated)
     assert exists("devel/lib/unexmin/simulator_node", here, generated)
     assert exists("linux/joystick.h", here, generated)

@@ -1,5 +1,5 @@
-"""The explorer (python -m unexmin.explore; docs/explore.md) through the simulator, lockstep, on two small mines
-built with the mine generator's construction (unexmin.explore.course):
+"""The explorer (python -m unexmin.missions.explore; docs/explore.md) through the simulator, lockstep, on two small
+mines built with the mine generator's construction (unexmin.missions.explore.course):
 
 - `branch` (a 26 m gallery with a crosscut and a stub): within its time budget (BRANCH_BUDGET: it turns for home
   on the budget, not for want of frontiers) the robot knows >= 80 % of the volume its hull's centre can reach
@@ -19,9 +19,9 @@ import sys
 import numpy as np
 import pytest
 
-from unexmin.explore import course
-from unexmin.explore.octree import leaf_centres, read_leaves
 from unexmin.map_quality import read_bt
+from unexmin.missions.explore import course
+from unexmin.missions.explore.octree import leaf_centres, read_leaves
 
 HULL_RADIUS = 0.3  # [m]
 # [s] of sim time: the robot knows 80 % of the course at about 100 s and 89 % at 150 s, when from the far end the way
@@ -33,7 +33,7 @@ def explore(runs, tmp_path, kind, time_s, timeout):
     world = course.build(kind, tmp_path / "course")
     lo, hi = course.bounds(kind)
     out = tmp_path / "out"
-    args = [sys.executable, "-m", "unexmin.explore", "--out", str(out), "--world-file", str(world)]
+    args = [sys.executable, "-m", "unexmin.missions.explore", "--out", str(out), "--world-file", str(world)]
     args += ["--time", str(time_s), "--visibility", "none", "--bounds", *map(str, [*lo, *hi])]
     proc, _ = runs.start(args, tmp_path)
     assert proc.wait(timeout=timeout) == 0, (tmp_path / "out.log").read_text()[-3000:]

@@ -1,4 +1,4 @@
-"""The explorer's ROS-free parts (python/unexmin/explore; docs/explore.md) against closed forms: the OctoMap
+"""The explorer's ROS-free parts (python/unexmin/missions/explore; docs/explore.md) against closed forms: the OctoMap
 stream decoder on hand-made trees, the grid made of its leaves, frontiers and paths in a corridor of known shape,
 dead reckoning of a circle, the budget's turn-for-home rule. A few seconds, no ROS.
 
@@ -10,12 +10,12 @@ import math
 import numpy as np
 import pytest
 
-from unexmin.explore.budget import Budget, power
-from unexmin.explore.grid import FREE, OCCUPIED, UNKNOWN, Grid, empty_grid, grid_from_leaves
-from unexmin.explore.navigation import DeadReckoning
-from unexmin.explore.octree import KEY_OFFSET, leaf_centres, leaves, read_bt
-from unexmin.explore.plan import Graph, PlanOptions, choose_goals, frontiers, gain_map, path_to, traversable
 from unexmin.geometry import rpy_matrix
+from unexmin.missions.explore.budget import Budget, power
+from unexmin.missions.explore.grid import FREE, OCCUPIED, UNKNOWN, Grid, empty_grid, grid_from_leaves
+from unexmin.missions.explore.navigation import DeadReckoning
+from unexmin.missions.explore.octree import KEY_OFFSET, leaf_centres, leaves, read_bt
+from unexmin.missions.explore.plan import Graph, PlanOptions, choose_goals, frontiers, gain_map, path_to, traversable
 
 HALF = 1 << 15  # a child of the root spans 32768 keys
 

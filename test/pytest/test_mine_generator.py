@@ -1,4 +1,4 @@
-"""The mine generator (python/unexmin/mine_generator/) and the mine world (worlds/mine.world).
+"""The mine generator (python/unexmin/worlds/generator/) and the mine world (worlds/mine.world).
 
 Expected values come from geometry written here (capsule and superellipse volumes, the hull radius,
 the Kaatiala figures of thesis 6.3), and trimesh (an independent library) reads back what the
@@ -19,7 +19,7 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin.mine_generator import generator as mg
+from unexmin.worlds.generator import generator as mg
 
 REPO = Path(__file__).resolve().parents[2]
 MINE_WORLD = REPO / "worlds" / "mine.world"
@@ -45,8 +45,8 @@ def small(tmp_path_factory):
 
 
 def test_generator_reports_the_rock_of_its_seed(small):
-    """The report names the walls' material drawn from the mine's seed (unexmin.mine_generator.material)."""
-    from unexmin.mine_generator import material as mine_material
+    """The report names the walls' material drawn from the mine's seed (unexmin.worlds.generator.material)."""
+    from unexmin.worlds.generator import material as mine_material
 
     assert small[1]["material"] == mine_material.material(SEED, "small")
     assert small[1]["material"]["seed"] == SEED and small[1]["material"]["kind"] == "rock"

@@ -21,7 +21,6 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin.mine_generator import generator as mg
 from unexmin.missions.survey import (
     CLEARANCE,
     CORNER_SHARE,
@@ -35,6 +34,7 @@ from unexmin.missions.survey import (
     plan,
     section_offsets,
 )
+from unexmin.worlds.generator import generator as mg
 
 REPO = Path(__file__).resolve().parents[2]
 SEED = 5

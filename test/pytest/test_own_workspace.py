@@ -25,7 +25,7 @@ from unexmin.scripting.launcher import free_port, stop_process_group, wait_for
 REPO = Path(__file__).resolve().parents[2]
 REAL = REPO.resolve()
 SCRIPT = REPO / "scripts" / "add_to_workspace.sh"
-MSGS = sorted(p.name for p in (REPO / "msgs").iterdir() if (p / "package.xml").is_file())
+MSGS = sorted(p.name for p in (REPO / "message_packages").iterdir() if (p / "package.xml").is_file())
 # What a workspace-sourced shell has set (scripts/env.sh, <ws>/devel/setup.bash).
 WORKSPACE_VARS = (
     "CMAKE_PREFIX_PATH",
@@ -48,7 +48,7 @@ def links(src):
 
 
 def expected_links(repo):
-    return {"unexmin": str(repo), **{m: str(repo / "msgs" / m) for m in MSGS}}
+    return {"unexmin": str(repo), **{m: str(repo / "message_packages" / m) for m in MSGS}}
 
 
 def test_links_the_package_and_its_msg_packages_idempotently(tmp_path):
@@ -66,7 +66,7 @@ def test_links_the_package_and_its_msg_packages_idempotently(tmp_path):
 def test_removes_only_the_stale_links_it_made(tmp_path):
     src = tmp_path / "ws" / "src"
     src.mkdir(parents=True)
-    (src / "old_msgs").symlink_to(REAL / "msgs" / "old_msgs")  # a msg package since removed
+    (src / "old_msgs").symlink_to(REAL / "message_packages" / "old_msgs")  # a msg package since removed
     (src / "unexmin").symlink_to(tmp_path)  # an older link to another copy
     (src / "theirs").symlink_to(tmp_path / "elsewhere")  # the user's own (broken) link
     (src / "CMakeLists.txt").symlink_to("/usr/share/catkin/cmake/toplevel.cmake")
@@ -104,11 +104,11 @@ def test_a_clone_inside_src_gets_only_its_msg_packages_beside_it(tmp_path):
     (clone / "scripts").mkdir(parents=True)
     shutil.copy2(SCRIPT, clone / "scripts")
     shutil.copy2(REPO / "package.xml", clone)
-    shutil.copytree(REPO / "msgs", clone / "msgs")
+    shutil.copytree(REPO / "message_packages", clone / "message_packages")
     out = add(tmp_path / "ws", script=clone / "scripts" / "add_to_workspace.sh")
     assert out.returncode == 0, out.stderr
     assert "already inside" in out.stdout
-    assert links(clone.parent) == {m: str(clone.resolve() / "msgs" / m) for m in MSGS}
+    assert links(clone.parent) == {m: str(clone.resolve() / "message_packages" / m) for m in MSGS}
 
 
 def clean_env(tmp_path):

@@ -1,4 +1,5 @@
-"""The scripting API's life cycle (python/unexmin/scripting/simulation.py), in this process as a script uses it.
+"""The scripting API's life cycle (python/unexmin/scripting/simulation.py, python/unexmin/scripting/ros_backend.py),
+in this process as a script uses it.
 
 - `with Simulation.launch(...) as sim:` stops the launched world (roslaunch, master, simulator) when
   the block raises, whatever it raises, and when it ends normally: every process of the world

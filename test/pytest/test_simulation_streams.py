@@ -1,4 +1,4 @@
-"""Sensor data as a script expects it (python/unexmin/scripting/simulation.py, python/unexmin/scripting/streams.py).
+"""Sensor data as a script expects it (python/unexmin/scripting/ros_backend.py, python/unexmin/scripting/streams.py).
 
 One lockstep tank world in this process. Expected values are closed forms of the sensor rates
 written in the robot description (`<sensor rate=...>` of /UX_1/robot_description): sample k of a

@@ -74,7 +74,7 @@ def test_batch_on_the_core_gives_the_ros_table(tmp_path, monkeypatch):
         path.write_text(
             textwrap.dedent(f"""
             world: tank
-            mission: unexmin.batch.missions:tank_survey
+            mission: unexmin.missions.batch:tank_survey
             duration: 3.0
             timeout: 90
             sensors: none

@@ -51,7 +51,7 @@ def test_the_launch_names_the_team_as_the_python_helper(tmp_path):
 
 def spec_file(tmp_path, extra):
     path = tmp_path / "spec.yaml"
-    path.write_text("mission: unexmin.batch.missions:tank_survey\nworld: mine\n" + extra)
+    path.write_text("mission: unexmin.missions.batch:tank_survey\nworld: mine\n" + extra)
     return check_spec(yaml.safe_load(path.read_text()), str(path))
 
 

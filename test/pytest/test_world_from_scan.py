@@ -1,4 +1,4 @@
-"""Worlds from scans (python/unexmin/world_from_scan/, docs/world_from_scan.md).
+"""Worlds from scans (python/unexmin/worlds/from_scan/, docs/world_from_scan.md).
 
 Known answers: point clouds are sampled here from meshes whose geometry is known (the tank's inner
 walls, a section of a generated mine, a sphere, a box), with noise (sd 2 cm) and missing patches; the
@@ -18,9 +18,9 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin import mine_generator as mg
-from unexmin import world_from_scan as wfs
-from unexmin.world_from_scan.surface import boundary_loops
+from unexmin.worlds import from_scan as wfs
+from unexmin.worlds import generator as mg
+from unexmin.worlds.from_scan.surface import boundary_loops
 from unexmin.worlds.meshes import read_mesh, sample_surface
 
 REPO = Path(__file__).resolve().parents[2]
@@ -201,7 +201,7 @@ def test_two_holes_touching_at_a_vertex_are_two_loops_and_close():
 
 
 def test_a_fold_in_the_stitched_surface_is_mended_into_a_closed_one():
-    from unexmin.world_from_scan.stages.stitching import mend_folds
+    from unexmin.worlds.from_scan.stages.stitching import mend_folds
 
     sphere = trimesh.creation.icosphere(3, 2.0)
     v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
@@ -254,7 +254,7 @@ def test_a_cloud_with_no_usable_surface_is_one_clear_error_line(tmp_path, case):
     scan = tmp_path / f"{case}.xyz"
     wfs.write_xyz(scan, points)
     run = subprocess.run(
-        [sys.executable, "-m", "unexmin.world_from_scan", str(scan), "--out", str(tmp_path / "o"), "--quiet"],
+        [sys.executable, "-m", "unexmin.worlds.from_scan", str(scan), "--out", str(tmp_path / "o"), "--quiet"],
         capture_output=True,
         text=True,
         timeout=120,

@@ -10,8 +10,8 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin import world_from_scan as wfs
-from unexmin.world_from_scan.colours import read_scan_colours, streamed_vertex_colours, vertex_colours
+from unexmin.worlds import from_scan as wfs
+from unexmin.worlds.from_scan.colours import read_scan_colours, streamed_vertex_colours, vertex_colours
 from unexmin.worlds.meshes import read_mesh
 
 RED, BLUE = (200, 30, 30), (30, 60, 200)

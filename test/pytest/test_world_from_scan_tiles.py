@@ -1,4 +1,4 @@
-"""Worlds from scans in tiles (python/unexmin/world_from_scan/, docs/world_from_scan.md#tiles).
+"""Worlds from scans in tiles (python/unexmin/worlds/from_scan/, docs/world_from_scan.md#tiles).
 
 Known answers: a small generated mine (seed 3) scanned (one point per 0.2 m, noise sd 2 cm, missing
 patches) and built under a memory budget that cuts it into several tiles: the stitched surface against
@@ -21,15 +21,15 @@ import pytest
 import trimesh
 import yaml
 
-from unexmin import mine_generator as mg
-from unexmin import world_from_scan as wfs
-from unexmin.world_from_scan.cluster import _close, open_client, run_tiles
-from unexmin.world_from_scan.cores import cores_for
-from unexmin.world_from_scan.stitch import choose_seams, clip_parts, clip_slab, seam_shifts, stitch
-from unexmin.world_from_scan.stream import iter_chunks
-from unexmin.world_from_scan.surface import boundary_loops, close_holes
-from unexmin.world_from_scan.tile import _nearest, decimated, decimated_pair, manifold_edges, mended
-from unexmin.world_from_scan.tiles import record_dtype
+from unexmin.worlds import from_scan as wfs
+from unexmin.worlds import generator as mg
+from unexmin.worlds.from_scan.cluster import _close, open_client, run_tiles
+from unexmin.worlds.from_scan.cores import cores_for
+from unexmin.worlds.from_scan.stitch import choose_seams, clip_parts, clip_slab, seam_shifts, stitch
+from unexmin.worlds.from_scan.stream import iter_chunks
+from unexmin.worlds.from_scan.surface import boundary_loops, close_holes
+from unexmin.worlds.from_scan.tile import _nearest, decimated, decimated_pair, manifold_edges, mended
+from unexmin.worlds.from_scan.tiles import record_dtype
 from unexmin.worlds.meshes import read_mesh, sample_surface
 from unexmin.worlds.schema import read_world
 
@@ -65,7 +65,7 @@ def tiled(tmp_path_factory):
     scan = tmp / "mine_scan.ply"
     assert o3d.io.write_point_cloud(str(scan), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points)))
     out = tmp / "world"
-    cmd = [sys.executable, "-m", "unexmin.world_from_scan", str(scan), "--out", str(out), "--quiet"]
+    cmd = [sys.executable, "-m", "unexmin.worlds.from_scan", str(scan), "--out", str(out), "--quiet"]
     cmd += ["--resolution", str(RESOLUTION), "--water-level", "0", "--memory-gb", str(MEMORY_GB)]
     cmd += ["--workers", "2", "--keep-tiles"]
     code, err, peak_mb = peak_rss_of(cmd)
@@ -286,7 +286,7 @@ def test_the_nearest_vertex_found_near_the_holes_is_the_nearest_of_all():
 DECIMATE_AND_MEASURE = """
 import gc, json
 import numpy as np, trimesh
-from unexmin.world_from_scan import surface
+from unexmin.worlds.from_scan import surface
 sphere = trimesh.creation.icosphere(8, 20.0)  # 1.3M faces
 v, t = np.asarray(sphere.vertices), np.asarray(sphere.faces, dtype=np.int64)
 del sphere

@@ -115,7 +115,7 @@ def test_a_typo_in_a_batch_world_stops_the_batch_before_its_missions(tmp_path):
     typo = tmp_path / "tank.world"
     typo.write_text((REPO / "worlds" / "tank.world").read_text().replace("gravity:", "gravty:"))
     spec_file = tmp_path / "spec.yaml"
-    spec_file.write_text(f"world: {typo}\nmission: unexmin.batch.missions:tank_survey\n")
+    spec_file.write_text(f"world: {typo}\nmission: unexmin.missions.batch:tank_survey\n")
     with pytest.raises(SpecError, match=re.escape(f"world: {typo}: unknown key 'gravty'")):
         check_spec(yaml.safe_load(spec_file.read_text()), str(spec_file))
 
@@ -125,7 +125,7 @@ def test_the_batch_runners_mission_world_passes(tmp_path):
 
     spec_file = tmp_path / "spec.yaml"
     spec_file.write_text(
-        "world: mine\nmission: unexmin.batch.missions:tank_survey\n"
+        "world: mine\nmission: unexmin.missions.batch:tank_survey\n"
         "params: {current_speed: 0.7, current_angle: 1.2, current_vertical_angle: 0.1, visibility: high}\n"
     )
     spec = check_spec(yaml.safe_load(spec_file.read_text()), str(spec_file))
@@ -148,12 +148,12 @@ def test_the_replays_spawn_world_passes(tmp_path, world_name):
 
 
 def test_the_world_written_by_world_from_scan_passes(tmp_path):
-    """python -m unexmin.world_from_scan on a scan of the tank's inside, then its text for other options."""
+    """python -m unexmin.worlds.from_scan on a scan of the tank's inside, then its text for other options."""
     import numpy as np
     import trimesh
 
-    from unexmin import world_from_scan as wfs
-    from unexmin.world_from_scan.stages.files import world_yaml
+    from unexmin.worlds import from_scan as wfs
+    from unexmin.worlds.from_scan.stages.files import world_yaml
 
     mesh = trimesh.load(str(REPO / "worlds" / "meshes" / "tank.stl"), force="mesh")
     c = mesh.triangles_center  # the floor and the inner walls below the rim (docs/worlds.md: 6 x 4 m, 3 m deep)

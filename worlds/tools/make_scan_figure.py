@@ -1,5 +1,5 @@
 """docs/images/world_from_scan.png: a scan of the shipped mine's entry shaft and first level (noise 2 cm,
-missing patches), the world python -m unexmin.world_from_scan makes of it, and UX_1 in that world in rviz.
+missing patches), the world python -m unexmin.worlds.from_scan makes of it, and UX_1 in that world in rviz.
 
     python worlds/tools/make_scan_figure.py [--out docs/images/world_from_scan.png] [--work /tmp/scan_figure]
 
@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from unexmin.scripting.launcher import WorldProcess, wait_for
-from unexmin.world_from_scan import build_world, sample_scan
+from unexmin.worlds.from_scan import build_world, sample_scan
 from unexmin.worlds.meshes import read_mesh
 
 REPO = Path(__file__).resolve().parents[2]

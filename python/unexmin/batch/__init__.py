@@ -2,7 +2,8 @@
 
 spec.py: read, check and expand a SPEC.yaml, write one mission's world, overrides and launch file;
 task.py: one mission as a Dask task (a process with its own ROS master); run.py: the batch, its results
-table and plots, the command line; missions.py: the shipped mission functions (`mission: module:function`).
+table and plots, the command line. The shipped mission functions (`mission: module:function`) are in
+unexmin.missions.batch.
 """
 
 from unexmin.batch.run import main, plot_summary, run_batch, run_sequential, write_results

@@ -27,7 +27,7 @@ def local_cluster(workers, config=None, **options):
     """A Dask LocalCluster of `workers` single-threaded worker processes on the loopback. Its scheduler
     (in this process) hands a worker a mission only when the worker is free (worker-saturation 1.0): a
     mission lasts seconds to minutes, so none waits behind another on a busy worker while one is idle.
-    `config`: more Dask settings; `options`: more LocalCluster arguments (world_from_scan's memory limit)."""
+    `config`: more Dask settings; `options`: more LocalCluster arguments (unexmin.worlds.from_scan's memory limit)."""
     import dask
     from dask.distributed import LocalCluster
 

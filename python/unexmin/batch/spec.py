@@ -154,7 +154,7 @@ def check_spec(raw, path="<spec>"):
     mission = raw.get("mission")
     if not isinstance(mission, str) or mission.count(":") != 1 or not all(mission.split(":")):
         raise SpecError(
-            f"{path}: mission: expected 'module:function' (e.g. unexmin.batch.missions:tank_survey), "
+            f"{path}: mission: expected 'module:function' (e.g. unexmin.missions.batch:tank_survey), "
             f"got {mission!r}"
         )
     spec["mission"] = mission

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-#: MotorCommand.mode values (msgs/ux1_msgs/msg/MotorCommand.msg).
+#: MotorCommand.mode values (message_packages/ux1_msgs/msg/MotorCommand.msg).
 MODE_RPM = 0
 MODE_DUTY_CYCLE = 1
 MODE_NAMES = {MODE_RPM: "rpm", MODE_DUTY_CYCLE: "duty_cycle"}

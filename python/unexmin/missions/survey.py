@@ -101,8 +101,8 @@ def options_for(visibility, wall_noise, gallery=40.0):
 
 def mine_layout(world_file):
     """(layout, preset) of the generated mine of a world file: the generator report beside its collision mesh."""
-    from unexmin.mine_generator.generator import PRESETS, make_layout
     from unexmin.worlds.files import load_world
+    from unexmin.worlds.generator.generator import PRESETS, make_layout
 
     world = load_world(world_file)
     meshes = [m for m in world["meshes"] if m["collision"]]
@@ -113,7 +113,7 @@ def mine_layout(world_file):
         raise ValueError(f"{world_file}: collision mesh {mesh} is not a mine generator's <name>_collision.ply")
     report = mesh[: -len("_collision.ply")] + ".json"
     if not os.path.exists(report):
-        raise FileNotFoundError(f"{report}: the mine generator's report of {mesh} (python -m unexmin.mine_generator)")
+        raise FileNotFoundError(f"{report}: the mine generator's report of {mesh} (python -m unexmin.worlds.generator)")
     with open(report) as f:
         r = json.load(f)
     preset = PRESETS[r["preset"]["name"]]

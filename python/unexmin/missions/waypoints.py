@@ -1,6 +1,6 @@
 """A straight route through the shipped mine and a waypoint controller (no ROS): the shaft's axis, then the first
 level's gallery's centreline, flown by a velocity command along the error. The batch missions' gallery_traverse
-and station_keeping (batch/missions.py) and the gym's gallery task (gym/tasks.py) use them; the main job flies the
+and station_keeping (missions/batch.py) and the gym's gallery task (gym/tasks.py) use them; the main job flies the
 survey of survey.py instead."""
 
 import math
@@ -16,7 +16,7 @@ TOLERANCE = 0.5  # [m] a waypoint is reached within this distance
 def waypoints(gallery_length):
     """A straight path [m, world frame] (the batch missions'): the shaft's axis from the spawn depth down to the
     first level's gallery, then that gallery's centreline (from the mine generator's layout, seed 7)."""
-    from unexmin.mine_generator.generator import PRESETS, make_layout, point_on
+    from unexmin.worlds.generator.generator import PRESETS, make_layout, point_on
 
     layout = make_layout(PRESETS["full"], 7)
     sx, sy = layout.shaft_xy

@@ -1,10 +1,11 @@
 """The scripting API's back-end protocol (docs/python_api.md, "Back ends").
 
-`Simulation.launch(..., backend="ros")` (python/unexmin/scripting/simulation.py) drives the ROS simulator through
+`Simulation.launch(..., backend="ros")` (python/unexmin/scripting/ros_backend.py) drives the ROS simulator through
 a private master; `backend="core"` (python/unexmin/scripting/core_backend.py) drives the engine in-process
-(unexmin.core). Both implement the calls below with the same meaning, units and errors; the messages differ in
-kind (ROS messages on one side, the engine's sample dicts on the other), the odometry does not
-(nav_msgs/Odometry from `odom()` on both). Pure Python: importing it needs no ROS.
+(unexmin.core); python/unexmin/scripting/simulation.py chooses between them. Both implement the calls below with
+the same meaning, units and errors; the messages differ in kind (ROS messages on one side, the engine's sample
+dicts on the other), the odometry does not (nav_msgs/Odometry from `odom()` on both). Pure Python: importing it
+needs no ROS.
 """
 
 import abc

@@ -123,13 +123,20 @@ class CoreRobot(RobotApi):
 
     def odom(self):
         """Ground truth as nav_msgs/Odometry (frame `world`, child the base link; twist in the body frame), as
-        the simulator's /<robot>/odom at sim.time."""
-        import rospy
-        from nav_msgs.msg import Odometry
+        the simulator's /<robot>/odom at sim.time. The one call of this back end that needs a ROS package: the
+        message classes of nav_msgs (and genpy under them), no rospy; state() gives the same numbers without."""
+        try:
+            import genpy
+            from nav_msgs.msg import Odometry
+        except ImportError as e:
+            raise ImportError(
+                f"odom() builds a nav_msgs/Odometry and needs the nav_msgs message package ({e}): use state() for "
+                "the same ground truth as numpy arrays"
+            ) from e
 
         s = self._robot.state()
         o = Odometry()
-        o.header.stamp = rospy.Time.from_sec(s["time"])
+        o.header.stamp = genpy.Time.from_sec(s["time"])
         o.header.frame_id = "world"
         o.child_frame_id = self._base_link
         p, q = o.pose.pose.position, o.pose.pose.orientation

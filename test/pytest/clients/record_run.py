@@ -30,14 +30,14 @@ def main():
     import rosgraph
     import rospy
 
-    from unexmin import Simulation
     from unexmin.scripting.launcher import WorldProcess, stop_process_group, wait_for
+    from unexmin.scripting.ros_backend import RosSimulation
     from unexmin.srv import Record
 
     world = WorldProcess(world=world_name, paused=True, log_dir=log_dir, extra_args=launch_args)
     recorder = None
     try:
-        sim = Simulation(world=world, timeout=60.0)
+        sim = RosSimulation(world=world, timeout=60.0)
         if rosbag_bag:
             recorder = subprocess.Popen(
                 ["rosbag", "record", "--lz4", "-O", rosbag_bag, *rosbag_topics],

@@ -123,9 +123,9 @@ class MineRunner:
 
     def _start(self, world):
         """The simulation, the mapper's stats and save_map service, the recorder connected; one step taken."""
-        from unexmin.scripting.simulation import Simulation
+        from unexmin.scripting.ros_backend import RosSimulation
 
-        self.sim = sim = Simulation(timeout=120.0, world=world, node_name="unexmin_mine_mission")
+        self.sim = sim = RosSimulation(timeout=120.0, world=world, node_name="unexmin_mine_mission")
         import rosgraph
         import rospy
 

@@ -1,6 +1,0 @@
-"""The procedural flooded mine (docs/mine_world.md): `python -m unexmin.mine_generator --out DIR`.
-The layout, the solid, the files and the command line are in generator.py."""
-
-from unexmin.mine_generator.generator import PRESETS, generate, main, make_layout, point_on
-
-__all__ = ["PRESETS", "generate", "main", "make_layout", "point_on"]

@@ -1,7 +1,0 @@
-"""python -m unexmin.world_from_scan SCAN --out DIR ... (docs/world_from_scan.md)."""
-
-import sys
-
-from unexmin.world_from_scan.build import main
-
-sys.exit(main())
