@@ -1,14 +1,14 @@
 // The cost of the geology and water-column queries (geo/geology.h, water/water_column.h): nanoseconds per query at
 // random points of a 100 m cube, for a geology of a host and `bodies` bodies (the four kinds in turn, half of them
-// bounded), and for the water column's at() and densityAt(). Not a test: results go to docs/benchmarks.md.
+// bounded), and for the water column's at() and densityAt(), in CPU time. Not a test: results go to docs/benchmarks.md.
 //   geology_query [bodies (default 12)] [queries (default 2000000)]
 #include <unexmin/geo/geology.h>
 #include <unexmin/sim/world_geology.h>
 #include <unexmin/water/water_column.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <random>
 #include <vector>
 
@@ -17,8 +17,11 @@ namespace water = unexmin::water;
 
 namespace {
 
+/// CPU time of this (single-threaded) process [s]: on a shared machine the figure that does not depend on the load.
 double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace

@@ -37,7 +37,12 @@ def world(top="", water="", speed="", mesh="", material="", robot=""):
 TYPOS = [
     (world(top="gravty: 9.81\n"), "gravty", TOP, "gravity"),
     (world(top="visiblity: {level: high}\n"), "visiblity", TOP, "visibility"),
-    (world(water=", densty: 1025"), "water.densty", "density, surface_z, profile, interpolation, boundary, regions", "density"),
+    (
+        world(water=", densty: 1025"),
+        "water.densty",
+        "density, surface_z, profile, interpolation, boundary, regions",
+        "density",
+    ),
     (world(speed=", meen: 0.2"), "current.speed.meen", "mean, min, max, noise, mu", "mean"),
     (
         world(mesh=", albdo: [0.1, 0.1, 0.1]"),
