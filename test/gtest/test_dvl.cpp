@@ -3,6 +3,8 @@
 // velocity_z1/z2 each from its own beam pair (heave while moving and turning; one beam out of the window),
 // bottom lock against the altitude window, the 3-beam solution, the ping schedule and start-up errors.
 #include <unexmin/sensors/dvl_sensor.h>
+#include <unexmin/water/seawater.h>
+#include <unexmin/water/water_column.h>
 #include "mesh_fixture.h"
 #include "sensor_fixture.h"
 
@@ -360,6 +362,40 @@ TEST(Dvl, ABeamThatMeetsTheFreeSurfaceFirstReportsNoBottomAndSaysSo) {
     EXPECT_EQ(dvl.last().bottom_lock, surface_z != 0.0);
     EXPECT_EQ(std::isnan(dvl.last().altitude), surface_z == 0.0);
   }
+}
+
+TEST(Dvl, InAWaterColumnRangesAndVelocitiesScaleByTheAssumedOverTheTrueSoundSpeed) {
+  // fresh water at 6 degC; the DVL left at salinity 35 assumes Medwin's sea-water sound speed: it reads its ranges
+  // and beam velocities c_assumed / c_water long (about 3 %), and takes the water's temperature from the column
+  const SphereSpec s = undampedSphere();
+  sim::WorldConfig config = tank();
+  water::Profile cold;
+  cold.rows.resize(1);
+  cold.rows[0].temperature = 6.0;
+  water::checkProfile(cold, "water.profile");
+  config.water_column =
+      std::make_shared<const water::WaterColumn>(cold, std::vector<water::Region>{}, config.surface_z, config.gravity);
+  SensorWorld w(config, dvlUrdf(s, 500.0, {{"noise", "none"}, {"salinity", "35"}}));
+  const Eigen::Vector3d v_world(0.12, -0.05, 0.0);
+  const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-1.5, 1.0, -1.2), Eigen::Vector3d(0, 0, 0.3));
+  w.place(pose, v_world);
+  w.step();
+  auto& dvl = w.sensor<sensors::DvlSensor>("dvl");
+  const Eigen::Isometry3d at = dvlPose(w.robot().state().pose);
+  const double depth = config.surface_z - at.translation().z();
+  const double assumed = sensors::soundSpeedMedwin(6.0, 35.0, depth);
+  const double truth = water::soundSpeed(0.0, 6.0, 1e-4 * 1000.0 * config.gravity * depth);
+  const double k = assumed / truth;
+  ASSERT_GT(k, 1.025);  // a model that ignored the water would be 3 % off: far beyond the tolerances below
+  EXPECT_NEAR(dvl.last().sound_speed, assumed, 1e-9);
+  EXPECT_NEAR(dvl.last().temperature, 6.0, 1e-12);
+  ASSERT_TRUE(dvl.last().bottom_lock);
+  const Eigen::Vector3d v = at.linear().transpose() * w.robot().state().linear_velocity;
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(dvl.last().beams[i].range, k * floorRange(at, i), 0.002) << "beam " << i;
+    EXPECT_NEAR(dvl.last().beams[i].velocity, k * beam(i).dot(v), 1e-6) << "beam " << i;
+  }
+  EXPECT_NEAR((dvl.last().velocity - k * v).norm(), 0.0, 1e-6);
 }
 
 }  // namespace

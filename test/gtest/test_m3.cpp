@@ -2,8 +2,10 @@
 // at +-2 m): every beam's range against the analytic distance to the walls (+-1 cm) along the beam's closed-form
 // direction (beam k at -fov_h/2 + k fov_h / (beams - 1), beam 0 to the right, REP-103), beam order and angle_min <
 // angle_max with the robot off-centre, the REP-117 markers beyond range_max and inside range_min, Gaussian range noise,
-// seeds, the 40 Hz schedule and start-up errors.
+// seeds, the 40 Hz schedule, ranges timed at the water column's sound speed and start-up errors.
 #include <unexmin/sensors/sonar/m3_sensor.h>
+#include <unexmin/water/seawater.h>
+#include <unexmin/water/water_column.h>
 #include "sonar_fixture.h"
 
 #include <gtest/gtest.h>
@@ -506,6 +508,40 @@ TEST(M3, BadParametersNameTheSensorAndTheParameter) {
       EXPECT_NE(m.find("'" + key + "'"), std::string::npos) << m;
     }
   }
+}
+
+TEST(M3, InColdFreshWaterASonarSetToFifteenHundredReadsEveryRangeLong) {
+  // the box filled with fresh water at 8 degC: sound at ~1440 m/s, so a sonar that assumes 1500 m/s reads each
+  // range 1500 / c times the true one (about 4 % long); set to the water's own speed, it reads the truth
+  sim::WorldConfig box = testBox();
+  water::Profile cold;
+  cold.rows.resize(1);
+  cold.rows[0].temperature = 8.0;
+  water::checkProfile(cold, "water.profile");
+  box.water_column =
+      std::make_shared<const water::WaterColumn>(cold, std::vector<water::Region>{}, box.surface_z, box.gravity);
+  const Eigen::Isometry3d pose = sim::poseFromXyzRpy(Eigen::Vector3d(-0.4, 0.3, 0.2), Eigen::Vector3d(0.1, -0.15, 0.3));
+  SonarWorld w(box, m3Urdf({}));
+  auto& m3 = w.sensor<M3Sensor>("m3");
+  w.place(pose);
+  w.samples(m3, 1);
+  const Eigen::Isometry3d sonar = sonarPose(w);
+  const double depth = box.surface_z - sonar.translation().z();
+  const double c = water::soundSpeed(0.0, 8.0, 1e-4 * 1000.0 * box.gravity * depth);  // at the sonar
+  ASSERT_NEAR(c, 1439.1 + 0.0163 * depth, 0.3);  // Chen & Millero's pure water plus ~0.016 m/s per dbar
+  int long_by_4cm = 0;
+  for (int k = 0; k < 256; ++k) {
+    const double truth = analytic(sonar, k);
+    EXPECT_NEAR(m3.last().ranges[k], truth * 1500.0 / c, 0.01) << "beam " << k;
+    long_by_4cm += m3.last().ranges[k] - truth > 0.04;
+  }
+  EXPECT_GT(long_by_4cm, 200);  // the stretch is far beyond the resolution: a model that ignores it fails
+  SonarWorld tuned(box, m3Urdf({{"sound_speed", num(c)}}));
+  auto& right = tuned.sensor<M3Sensor>("m3");
+  tuned.place(pose);
+  tuned.samples(right, 1);
+  for (int k = 0; k < 256; ++k)
+    EXPECT_NEAR(right.last().ranges[k], analytic(sonar, k), 0.01) << "beam " << k;
 }
 
 }  // namespace

@@ -51,13 +51,14 @@ TEST(WorldSchema, TypoAtEachLevelIsRefusedWithItsPathAndTheNearestKey) {
   const std::vector<Case> cases = {
       {world("gravty: 9.81\n", "", "", "", "", ""), "gravty",
        "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, magnetic_field, current, meshes, "
-       "robots",
+       "geology, robots",
        "gravity"},
       {world("visiblity: {level: high}\n", "", "", "", "", ""), "visiblity",
        "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, magnetic_field, current, meshes, "
-       "robots",
+       "geology, robots",
        "visibility"},
-      {world("", ", densty: 1025", "", "", "", ""), "water.densty", "density, surface_z", "density"},
+      {world("", ", densty: 1025", "", "", "", ""), "water.densty",
+       "density, surface_z, profile, interpolation, boundary, regions", "density"},
       {world("", "", ", meen: 0.2", "", "", ""), "current.speed.meen", "mean, min, max, noise, mu", "mean"},
       {world("", "", "", ", albdo: [0.1, 0.1, 0.1]", "", ""), "meshes[1].albdo",
        "name, file, scale, xyz, rpy, collision, visual, seen_by, albedo, material", "albedo"},
@@ -85,7 +86,7 @@ TEST(WorldSchema, NoSuggestionWhenNoKeyIsClose) {
   EXPECT_EQ(message, path +
                          ": unknown key 'zzz' (accepted: name, gravity, water, atmospheric_pressure, visibility, "
                          "sediment, ray_caster, "
-                         "magnetic_field, current, meshes, robots)");
+                         "magnetic_field, current, meshes, geology, robots)");
 }
 
 TEST(WorldSchema, NearestKeyAgreesWithPythonsDifflib) {
@@ -170,6 +171,35 @@ YAML::Node at(YAML::Node root, const std::string& path) {
   return node;
 }
 
+/// Gives the test world what the key at `path` is read with: a water profile (and its boundary, its region) for the
+/// water column's keys, a host rock and a body of the kind the key belongs to for the geology's.
+void withContext(YAML::Node& w, const std::string& path) {
+  const auto starts = [&](const std::string& prefix) { return path.rfind(prefix, 0) == 0; };
+  const std::string boundary = "{depth: 10, amplitude: 1, period: 60}";
+  if (starts("water.profile") || starts("water.boundary") || starts("water.regions")) {
+    w["water"].remove("density");
+    w["water"]["profile"] = YAML::Load(starts("water.boundary") ? "[{depth: 0}, {depth: 50}]" : "[{depth: 0}]");
+    if (starts("water.boundary"))
+      w["water"]["boundary"] = YAML::Load(boundary);
+    if (starts("water.regions"))
+      w["water"]["regions"] = YAML::Load(
+          starts("water.regions[0].boundary")
+              ? "[{min: [-1, -1, -1], max: [1, 1, 1], profile: [{depth: 0}, {depth: 50}], boundary: " + boundary + "}]"
+              : "[{min: [-1, -1, -1], max: [1, 1, 1], profile: [{depth: 0}]}]");
+  }
+  if (starts("geology")) {
+    const std::string kind = starts("geology.bodies[0].size") ? "box"
+                             : starts("geology.bodies[0].thickness") || starts("geology.bodies[0].extent")
+                                 ? "vein"
+                                 : "ellipsoid";
+    const std::string shape = kind == "box"    ? "size: [1, 1, 1]"
+                              : kind == "vein" ? "normal: [0, 0, 1], thickness: 1"
+                                               : "radii: [1, 1, 1]";
+    w["geology"] = YAML::Load("{host: [{mineral: granite, fraction: 1}], bodies: [{name: b, kind: " + kind + ", " +
+                              shape + ", minerals: [{mineral: quartz, fraction: 1}]}]}");
+  }
+}
+
 }  // namespace
 
 TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
@@ -208,6 +238,7 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
     }
     for (const auto& bad : bad_values) {
       YAML::Node w = YAML::LoadFile(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+      withContext(w, path);
       at(w, path) = bad;
       const std::string file = (dir / "bad.world").string();
       std::ofstream(file) << YAML::Dump(w);
@@ -219,6 +250,8 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
     }
   }
   // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2, the seven sediment
-  // numbers x2
-  EXPECT_EQ(checked, 30);
+  // numbers x2; the water column's (a profile row's depth and seven fields x2, the interpolation, the boundary's
+  // depth and period, the same again in a region) and the geology's (fractions x2 twice, kind, radii, size,
+  // thickness, extent)
+  EXPECT_EQ(checked, 75);
 }

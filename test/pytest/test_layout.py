@@ -1,5 +1,5 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
-in the order core -> mapping (needs only core and OctoMap) -> hydro -> sim -> raycast -> sensors (-> its
+in the order core -> mapping (needs only core and OctoMap) -> hydro -> water -> geo -> sim -> raycast -> sensors (-> its
 sub-folders sonar, vision) -> engine -> ros_layer. No folder includes a folder above it (the sub-folders of
 sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS
 library, and every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing
@@ -21,6 +21,8 @@ LAYERS = [
     "core",
     "mapping",
     "hydro",
+    "water",
+    "geo",
     "sim",
     "raycast",
     "sensors",

@@ -17,7 +17,7 @@ from unexmin.worlds.schema import WorldFileError, check_world, read_world
 REPO = Path(__file__).resolve().parents[2]
 TOP = (
     "name, gravity, water, atmospheric_pressure, visibility, sediment, ray_caster, "
-    "magnetic_field, current, meshes, robots"
+    "magnetic_field, current, meshes, geology, robots"
 )
 
 
@@ -37,7 +37,12 @@ def world(top="", water="", speed="", mesh="", material="", robot=""):
 TYPOS = [
     (world(top="gravty: 9.81\n"), "gravty", TOP, "gravity"),
     (world(top="visiblity: {level: high}\n"), "visiblity", TOP, "visibility"),
-    (world(water=", densty: 1025"), "water.densty", "density, surface_z", "density"),
+    (
+        world(water=", densty: 1025"),
+        "water.densty",
+        "density, surface_z, profile, interpolation, boundary, regions",
+        "density",
+    ),
     (world(speed=", meen: 0.2"), "current.speed.meen", "mean, min, max, noise, mu", "mean"),
     (
         world(mesh=", albdo: [0.1, 0.1, 0.1]"),

@@ -105,6 +105,14 @@ void DvlSensor::sample(const SensorContext& ctx) {
   const Eigen::Vector3d origin = dvl.translation();
   const double cos_a = std::cos(beam_angle_);
   const double surface_z = ctx.world.water().surface_z;
+  // The sound speed it assumes (Medwin, from its thermistor's water temperature: the world's water column's there,
+  // else its water_temperature; and its configured salinity) against the water's own: ranges and Doppler
+  // velocities come out scaled by assumed / actual (sensor.h's apparentRangeFactor)
+  const double depth = std::max(0.0, surface_z - origin.z());
+  const auto& column = ctx.world.config().water_column;
+  const double temperature = column ? column->at(origin, ctx.world.time()).temperature : water_temperature_;
+  const double assumed = soundSpeedMedwin(temperature, salinity_, depth);
+  const double k = apparentRangeFactor(ctx.world, origin, assumed);
   std::array<double, 4> to_surface;
   for (std::size_t i = 0; i < 4; ++i) {
     const Eigen::Vector3d d = (R * directions_[i]).normalized();
@@ -112,7 +120,7 @@ void DvlSensor::sample(const SensorContext& ctx) {
     rays_[i].direction = d.cast<float>();
     // Sound stops at the free surface: a beam that reaches it before any bottom hears the surface, not a bottom.
     to_surface[i] = d.z() > 1e-9 ? (surface_z - origin.z()) / d.z() : kInf;
-    rays_[i].max_range = static_cast<float>(std::clamp(to_surface[i], 0.0, altitude_max_ / cos_a));
+    rays_[i].max_range = static_cast<float>(std::clamp(to_surface[i], 0.0, altitude_max_ / cos_a / std::min(1.0, k)));
   }
   castRays(ctx, rays_, hits_);
 
@@ -129,9 +137,9 @@ void DvlSensor::sample(const SensorContext& ctx) {
     b.direction = directions_[i];
     b.velocity_std = velocity_noise_[i]->whiteStd();
     // Draw both noises on every beam, valid or not, so the stream does not depend on the geometry.
-    const double hit_range = hits_[i].range;  // +inf on no hit
+    const double hit_range = k * hits_[i].range;  // +inf on no hit
     const double range = range_noise_[i]->apply(hit_range, random());
-    const double velocity = velocity_noise_[i]->apply(scale * directions_[i].dot(v), random());
+    const double velocity = velocity_noise_[i]->apply(k * scale * directions_[i].dot(v), random());
     const double along_z = hit_range * cos_a;
     b.surface = !hits_[i].hit() && to_surface[i] <= altitude_max_ / cos_a;
     b.valid = hits_[i].hit() && along_z >= altitude_min_ && along_z <= altitude_max_;
@@ -174,9 +182,8 @@ void DvlSensor::sample(const SensorContext& ctx) {
     out.altitude = kNaN;
   }
 
-  const double depth = std::max(0.0, ctx.world.water().surface_z - origin.z());
-  out.sound_speed = soundSpeedMedwin(water_temperature_, salinity_, depth);
-  out.temperature = temperature_noise_->apply(water_temperature_, random());
+  out.sound_speed = assumed;
+  out.temperature = temperature_noise_->apply(temperature, random());
   out.pressure = std::max(0.0, pressure_noise_->apply(hydrostaticPressure(ctx.world, origin.z()), random()));
 }
 

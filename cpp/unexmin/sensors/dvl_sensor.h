@@ -10,7 +10,9 @@
 //   - with >= 3 valid beams (bottom lock) the velocity is the least-squares solution of
 //     B v = u over the valid beams, covariance s_b^2 (B^T B)^-1 + diag((s_e v)^2); z1 from beams 0
 //     and 2, z2 from beams 1 and 3 ((u_i + u_j) / (2 cos a)); altitude = mean of range cos a.
-// Sound speed: Medwin (1975) from the water temperature, salinity and depth.
+// Sound speed: Medwin (1975) from the water temperature (the world's water column's at the DVL, else the
+// water_temperature parameter), the configured salinity and depth: the speed the DVL assumes. Where the world has a
+// water column, its ranges and beam velocities are scaled by assumed / the column's sound speed (sensor.h).
 //
 // Parameters (optional, defaults in brackets):
 //   noise                 gaussian | none                                           (gaussian)

@@ -43,6 +43,11 @@ void Sensor::describe(SampleWriter& out) const {
   describeSample(out);
 }
 
+double apparentRangeFactor(const sim::World& world, const Eigen::Vector3d& point, double configured) {
+  const auto& column = world.config().water_column;
+  return column ? configured / column->soundSpeedAt(point, world.time()) : 1.0;
+}
+
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
                       raycast::Incidence incidence, raycast::SeenBy seen_by) {
   if (ctx.rays)

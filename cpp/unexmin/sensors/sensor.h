@@ -26,6 +26,12 @@ struct SensorContext {
   int robot_index;                 ///< the robot's index in the world: its own hull is invisible to its rays
 };
 
+/// The acoustic sensors' apparent-range factor at `point` (world frame [m]): c_configured / c_water, with c_water the
+/// sound speed of the world's water column there now (docs/worlds.md, "Water column"). A sonar times its echoes in
+/// the water's sound but turns the time into a range with its own configured speed `configured` [m/s], so it reports
+/// factor x the true range. 1 in a world without a water column (its water is at every sensor's configured speed).
+double apparentRangeFactor(const sim::World& world, const Eigen::Vector3d& point, double configured);
+
 /// A joint a sensor moves (the MSIS head, an SLS motor), as joint_states reports it.
 struct MovedJoint {
   std::string name;       ///< URDF joint name

@@ -21,7 +21,7 @@ namespace sim {
 
 /// What the water is doing where the robot is.
 struct WaterState {
-  double density = 1000.0;                 ///< [kg/m^3]
+  double density = 1000.0;                 ///< [kg/m^3] at the robot (its world's water column there, if any)
   double gravity = 9.81;                   ///< [m/s^2]
   double surface_z = 0.0;                  ///< [m]
   Eigen::Vector3d current{0, 0, 0};        ///< Water velocity, world frame [m/s].

@@ -163,8 +163,16 @@ void World::step() {
   current_.update(dt_);
   water_.current = current_.velocity();
   water_.current_accel = current_.acceleration();
-  for (auto& r : robots_)
-    r->applyForces(time_, dt_, water_);
+  for (auto& r : robots_) {
+    if (!config_.water_column) {
+      r->applyForces(time_, dt_, water_);
+      continue;
+    }
+    WaterState local = water_;  // buoyancy in the water where the robot is
+    const btVector3 at = r->body()->getCenterOfMassPosition();
+    local.density = config_.water_column->densityAt(Eigen::Vector3d(at.x(), at.y(), at.z()), time_);
+    r->applyForces(time_, dt_, local);
+  }
   dynamics_->stepSimulation(static_cast<btScalar>(dt_), 0);
   for (auto& r : robots_)
     r->afterStep(dt_);

@@ -3,12 +3,15 @@
 
 #include <unexmin/core/error.h>
 
+#include <unexmin/geo/geology.h>
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/material.h>
 #include <unexmin/sim/sediment.h>
+#include <unexmin/water/water_column.h>
 
 #include <Eigen/Geometry>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,8 +50,14 @@ struct RobotSpawn {
 struct WorldConfig {
   std::string file;  ///< Where it was loaded from.
   std::string name;
-  double gravity = 9.81;                              ///< [m/s^2], along world -z.
-  double water_density = 1000.0;                      ///< [kg/m^3]
+  double gravity = 9.81;  ///< [m/s^2], along world -z.
+  /// [kg/m^3] of uniform water; with a `water_column` its density at the surface (the column's is used).
+  double water_density = 1000.0;
+  /// Keys `water.profile`, `water.regions`, ...: the water's temperature, chemistry, density and sound speed by depth
+  /// (docs/worlds.md, "Water column"); nullptr: uniform water of `water_density`, sound at the sensors' own speed.
+  std::shared_ptr<const water::WaterColumn> water_column;
+  /// Key `geology:`: the host rock and bodies of ore (docs/worlds.md, "Geology"); nullptr when the world has none.
+  std::shared_ptr<const geo::Geology> geology;
   double surface_z = 0.0;                             ///< World z of the free surface [m].
   double atmospheric_pressure = 101325.0;             ///< [Pa]
   std::string visibility = "none";                    ///< none|low|medium|high

@@ -63,21 +63,24 @@ void checkKeys(const YAML::Node& spec, const YAML::Node& value, const std::strin
 
 }  // namespace
 
-std::string worldSchemaFile() {
+std::string packageConfigFile(const std::string& name, const char* variable, const std::string& what) {
   std::vector<std::string> places;
-  if (const char* env = std::getenv("UNEXMIN_WORLD_SCHEMA"); env && *env) {
+  if (const char* env = std::getenv(variable); env && *env) {
     places.push_back(env);
   } else {
     // the package's source folder, then its installed share folder (CMakeLists.txt)
     for (const char* dir : {UNEXMIN_SCHEMA_SOURCE_DIR, UNEXMIN_SCHEMA_SHARE_DIR})
-      places.push_back(std::string(dir) + "/world_schema.yaml");
+      places.push_back(std::string(dir) + "/" + name);
   }
   for (const auto& p : places)
     if (std::ifstream(p))
       return p;
-  throw ConfigError("world-file schema not found at " + joined(places) +
-                    ": expected the unexmin package's config/world_schema.yaml (or a file named by "
-                    "$UNEXMIN_WORLD_SCHEMA)");
+  throw ConfigError(what + " not found at " + joined(places) + ": expected the unexmin package's config/" + name +
+                    " (or a file named by $" + variable + ")");
+}
+
+std::string worldSchemaFile() {
+  return packageConfigFile("world_schema.yaml", "UNEXMIN_WORLD_SCHEMA", "world-file schema");
 }
 
 const YAML::Node& worldSchema(const std::string& schema_file) {

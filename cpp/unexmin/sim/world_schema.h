@@ -17,6 +17,11 @@ namespace sim {
 /// looked at when there is none.
 std::string worldSchemaFile();
 
+/// The package's configuration file `name` (e.g. "minerals.yaml"): $<variable> if set, else config/<name> of the
+/// package's source folder or of its installed share folder, the first that exists; ConfigError naming the places
+/// looked at when there is none ("<what> not found at ...").
+std::string packageConfigFile(const std::string& name, const char* variable, const std::string& what);
+
 /// The parsed schema of `schema_file` (cached after the first read); ConfigError naming it when it cannot be read.
 const YAML::Node& worldSchema(const std::string& schema_file);
 

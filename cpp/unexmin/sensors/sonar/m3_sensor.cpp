@@ -36,6 +36,7 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   if (!(range_max_ > range_min_))
     p.fail("range_max", formatNumber(range_max_), "more than range_min");
   resolution_ = p.number("range_resolution", 0.01, 1e-6, 10.0, "m");
+  sound_speed_ = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
   if (!noise)
     range_noise_ = 0.0;
@@ -82,14 +83,18 @@ void M3Sensor::sample(const sensors::SensorContext& ctx) {
   const Eigen::Vector3d origin = sonar.translation();
   const double surface_z = ctx.world.water().surface_z;
   const bool multipath = reflector_.multipath && origin.z() < surface_z;
+  // ranges as the sonar reports them: the path in the water times c_configured / c_water; in faster water it hears
+  // range_max from farther away
+  scale_ = apparentRangeFactor(ctx.world, origin, sound_speed_);
+  reach_ = range_max_ / std::min(1.0, scale_);
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
     const Eigen::Vector3d d = (R * dirs_[i]).normalized();
     rays_[i].origin = origin.cast<float>();
     rays_[i].direction = d.cast<float>();
     // Sound does not cross the free surface: a ray stops there (its echo and reflection below, with multipath).
-    const double to_surface = d.z() > 1e-9 ? (surface_z - origin.z()) / d.z() : range_max_;
-    rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 1e-6, range_max_));
-    surface_[i] = multipath && d.z() > 1e-9 && to_surface < range_max_ ? to_surface : -1.0;
+    const double to_surface = d.z() > 1e-9 ? (surface_z - origin.z()) / d.z() : reach_;
+    rays_[i].max_range = static_cast<float>(std::clamp(to_surface, 1e-6, reach_));
+    surface_[i] = multipath && d.z() > 1e-9 && to_surface < reach_ ? to_surface : -1.0;
   }
   castRays(ctx, rays_, hits_, raycast::Incidence::skip);  // the incidence of the few echoes that need it
 
@@ -125,7 +130,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx) {
     const Return& first = first_[k];
     if (!std::isfinite(first.range))
       continue;
-    const double r = std::round((first.range + n) / resolution_) * resolution_;
+    const double r = std::round((scale_ * first.range + n) / resolution_) * resolution_;
     if (r > range_max_)
       continue;  // +inf: no detection within range
     if (r < range_min_) {
@@ -191,7 +196,7 @@ void M3Sensor::directAndSurface(int k, double surface_z) {
     const double s = surface_[i];
     if (s < 0.0 || hits_[i].hit() || s >= best.range)
       continue;
-    const double reach = std::min(range_max_, best.range) - s;
+    const double reach = std::min(reach_, best.range) - s;
     if (reach <= 1e-6)
       continue;
     mirrored_.push_back(reflectedRay(rays_[i], rays_[i].origin.cast<double>(), s, surface_z, reach));

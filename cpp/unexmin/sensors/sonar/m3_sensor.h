@@ -14,7 +14,9 @@
 //     from the surface for the rest of the range: what it meets at r2 is a ghost at the unfolded range s + r2
 //     (out and back the same way), 40 log10 |surface_reflection| weaker than a direct echo from there;
 //   - the beam's range is its first detection (the nearest detected echo of its rays: direct, surface or
-//     ghost), plus Gaussian noise (range_noise, 1 sigma; noise = none: off), rounded to range_resolution;
+//     ghost) as the sonar times it: the path times sound_speed / c_water, c_water the world's water column's sound
+//     speed at the sonar (docs/worlds.md "Water column"; sound_speed itself without a column), plus Gaussian noise
+//     (range_noise, 1 sigma; noise = none: off), rounded to range_resolution;
 //   - REP-117: +inf when nothing is detected within range_max (or the noisy range exceeds it), -inf when the
 //     detection is nearer than range_min;
 //   - intensity of the beam: its detection's echo level with receiver gain, TVG and 8-bit quantisation,
@@ -25,7 +27,7 @@
 // source_level [dB re 1 uPa at 1 m] (210), backscatter_strength [dB] (-20), absorption [dB/m] (0.1),
 // tvg_spreading [dB/decade] (20), display_min [dB re 1 uPa] (125), display_span [dB] (80),
 // noise_level [dB re 1 uPa] (72), detection_threshold [dB] (10), multipath (true), surface_reflection [-] (0.9),
-// surface_backscatter [dB] (-30).
+// surface_backscatter [dB] (-30), sound_speed [m/s] (1500).
 #pragma once
 
 #include <unexmin/sensors/sensor.h>
@@ -80,6 +82,9 @@ protected:
 private:
   int beams_ = 256, rays_per_beam_ = 4;
   double fov_h_ = 0.0, fov_v_ = 0.0, range_min_ = 0.0, range_max_ = 0.0, resolution_ = 0.0;
+  double sound_speed_ = 1500.0;  ///< [m/s] the speed it turns echo times into ranges with
+  double scale_ = 1.0;           ///< this ping's apparent-range factor (sensor.h)
+  double reach_ = 0.0;           ///< [m] this ping's farthest path in the water it can report
   double range_noise_ = 0.0;
   /// One echo that a beam may report: where from, and its echo for the level.
   struct Return {
