@@ -1,5 +1,7 @@
 #include <unexmin/sensors/sensor.h>
 
+#include <unexmin/core/error.h>
+
 #include <cmath>
 #include <sstream>
 
@@ -41,6 +43,11 @@ void Sensor::describe(SampleWriter& out) const {
   out.scalar("time", "s", sample_time_);
   out.count("count", samples_);
   describeSample(out);
+}
+
+void Sensor::setRendering(bool /*on*/) {
+  throw ParameterError(robot_ + "/" + name() + " (family " + type() +
+                       ") renders no images: expected a sensor that renders images (a camera)");
 }
 
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,

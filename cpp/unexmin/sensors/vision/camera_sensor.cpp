@@ -142,7 +142,7 @@ void CameraSensor::sample(const SensorContext& ctx) {
   frame_.rendered = false;
   // One draw per sample, rendered or not: the stream does not depend on who watches.
   const auto seed = static_cast<std::uint64_t>(random().uniform() * 9007199254740992.0);
-  if (!visual_ || (demand_ && !demand_()))
+  if (!visual_ || !rendering_ || (demand_ && !demand_()))
     return;
   prepare(ctx);
   render(ctx, seed);

@@ -84,6 +84,8 @@ public:
   const CameraFrame& last() const { return frame_; }
   /// Renders only at samples where `wanted()` is true (e.g. the image topic has a subscriber); null: always.
   void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
+  /// Off: renders no frame whatever setDemand says (on by default; kept across reset()).
+  void setRendering(bool on) override { rendering_ = on; }
 
   double clipFar() const { return clip_far_; }   ///< [m]
   double exposure() const { return exposure_; }  ///< [m^2 sr / W] (the parameter; the start of auto-exposure)
@@ -164,6 +166,7 @@ private:
   std::vector<LedLight> lights_;
   std::unique_ptr<LaserLine> laser_;
   std::function<bool()> demand_;
+  bool rendering_ = true;  ///< setRendering
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;
