@@ -11,7 +11,11 @@ but forward declarations. The one root is core: cpp/unexmin/core is namespace un
 and formatNumber every library shares, as grid_map_core is namespace grid_map).
 
 No include loops: within a library, the modules (a header and its source, foo.h with foo.cpp) include one another
-without a cycle, so that each can be read, tested and replaced from the bottom up."""
+without a cycle, so that each can be read, tested and replaced from the bottom up.
+
+roscpp's internals in one place: roscpp installs headers of its managers and connections that are not its user API
+(ros/topic_manager.h, ros/connection_manager.h, ros/publication.h, ...); only cpp/unexmin/ros_layer/roscpp_internals.cpp
+includes them, and its header says which calls are used, why, and which roscpp versions they were checked against."""
 
 import re
 from pathlib import Path
@@ -441,3 +445,67 @@ def test_no_include_loop_within_a_library():
 )
 def test_the_loop_finder_tells_loops_from_layers(graph, loops):
     assert sorted(include_cycles(graph)) == loops
+
+
+# ---------------------------------------------------------------- roscpp's internals in one file
+
+# roscpp's installed headers that are not its user API: its managers, connections and links.
+ROSCPP_INTERNALS = {
+    f"ros/{name}.h"
+    for name in (
+        "topic_manager",
+        "connection_manager",
+        "poll_manager",
+        "poll_set",
+        "publication",
+        "subscription",
+        "subscription_queue",
+        "service_manager",
+        "service_publication",
+        "service_client_link",
+        "service_server_link",
+        "xmlrpc_manager",
+        "connection",
+        "publisher_link",
+        "subscriber_link",
+        "transport_publisher_link",
+        "transport_subscriber_link",
+        "intraprocess_publisher_link",
+        "intraprocess_subscriber_link",
+        "internal_timer_manager",
+        "timer_manager",
+    )
+}
+ROSCPP_INTERNALS_FILES = {"cpp/unexmin/ros_layer/roscpp_internals.h", "cpp/unexmin/ros_layer/roscpp_internals.cpp"}
+
+
+def is_roscpp_internal(header):
+    return header in ROSCPP_INTERNALS or header.startswith("ros/transport/")
+
+
+def test_only_roscpp_internals_includes_roscpps_internal_headers():
+    files = sorted(p for folder in ("cpp", "test", "bench", "docs/tools") for p in (REPO / folder).rglob("*.[ch]*"))
+    assert all((REPO / f).exists() for f in ROSCPP_INTERNALS_FILES), f"{sorted(ROSCPP_INTERNALS_FILES)} are missing"
+    bad = [
+        f"{p.relative_to(REPO)}: <{h}>"
+        for p in files
+        if p.suffix in (".h", ".cpp") and p.relative_to(REPO).as_posix() not in ROSCPP_INTERNALS_FILES
+        for _, h in includes(p)
+        if is_roscpp_internal(h)
+    ]
+    assert not bad, "roscpp internals outside ros_layer/roscpp_internals.{h,cpp} (add a function there):\n" + "\n".join(
+        bad
+    )
+
+
+def test_roscpp_internals_says_what_it_uses_and_the_versions_checked():
+    header = (REPO / "cpp/unexmin/ros_layer/roscpp_internals.h").read_text()
+    comment = header[: header.index("#pragma once")]
+    used = sorted(
+        {h for _, h in includes(REPO / "cpp/unexmin/ros_layer/roscpp_internals.cpp") if is_roscpp_internal(h)}
+    )
+    assert used, "roscpp_internals.cpp includes no roscpp internal header"
+    for h in used:
+        manager = "".join(part.capitalize() for part in Path(h).stem.split("_"))
+        assert f"ros::{manager}" in comment, f"roscpp_internals.h's comment does not say what of <{h}> it uses"
+    assert re.search(r"roscpp 1\.\d+\.\d+", comment), "roscpp_internals.h's comment names no roscpp version"
