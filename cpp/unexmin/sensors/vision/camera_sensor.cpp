@@ -367,13 +367,12 @@ struct CameraSensor::Tile {
   float pu[raycast::kBlock], pv[raycast::kBlock];  ///< pixel coordinates [px]
   raycast::Ray rays[raycast::kBlock];
   raycast::Hit hits[raycast::kBlock];
-  unsigned lit[raycast::kBlock];  ///< bit k: light k reaches the pixel's surface point
-  /// The textured mesh each pixel sees, or kNone; how many see one, and whether all see the same one.
-  static constexpr std::size_t kNone = ~std::size_t(0);
-  std::size_t material_of[raycast::kBlock];
-  int textured = 0;
-  bool one_mesh = true;
-  PixelBatch batch;
+  unsigned lit[raycast::kBlock];                         ///< bit k: light k reaches the pixel's surface point
+  static constexpr std::size_t kNone = ~std::size_t(0);  ///< material_of: no textured mesh
+  std::size_t material_of[raycast::kBlock];              ///< the textured mesh each pixel sees, or kNone
+  int textured = 0;                                      ///< pixels that see a textured mesh
+  bool one_mesh = true;                                  ///< all of them see the same one
+  PixelBatch batch;                                      ///< what the shading kernels read and write
 };
 
 void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
