@@ -14,6 +14,7 @@
 // `valgrind --tool=callgrind` counts a frame's instructions, whatever else the machine is doing.
 // --size may be given more than once (default: 640x480 and 2054x1544).
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 
 #include <sys/resource.h>

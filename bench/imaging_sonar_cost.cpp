@@ -6,6 +6,7 @@
 //   imaging_sonar_cost <expanded URDF with an imaging_sonar> <world> [seconds of sim time, 10] [caster threads, 1]
 // e.g. with test/rostest/sonar_images.urdf.xacro expanded for name:=UX_1 and worlds/mine.world.
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/sensor_selection.h>
 #include <unexmin/sensors/sensor_suite.h>

@@ -9,6 +9,7 @@
 // Besides wall time per step it prints the process's CPU time per step (every thread: the caster's workers too),
 // which moves less than wall time on a machine other jobs load.
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
 

@@ -7,6 +7,7 @@
 // Not a test: results go to docs/benchmarks.md.
 //   world_load <world file> [--compare]
 #include <unexmin/raycast/embree_ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sim/collision_shape.h>
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/world.h>

@@ -6,7 +6,6 @@
 
 #include <unexmin/engine/engine.h>
 #include <unexmin/engine/engine_settings.h>
-#include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sim/contacts.h>
 #include <unexmin/sim/world_schema.h>
 
@@ -241,15 +240,6 @@ void setPose(CoreWorld& w, const std::string& robot, const py::array_t<double, p
   pose.linear() = quat.normalized().toRotationMatrix();
   pose.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
   r.setPose(pose);
-}
-
-/// Whether camera `name` renders its frames in visual mode: off, its samples only move the schedule (as when nobody
-/// subscribes to its image topic), on (the default) it renders every sample.
-void setRendering(CoreWorld& w, const std::string& robot, const std::string& name, bool on) {
-  auto* cam = dynamic_cast<sensors::vision::CameraSensor*>(&w.sensor(robot, name));
-  if (cam == nullptr)
-    badArgument("sensor", "'" + name + "' (family " + w.sensor(robot, name).type() + ")", "a camera");
-  cam->setDemand(on ? std::function<bool()>() : [] { return false; });
 }
 
 /// The silt the thrusters raised: one row per puff (sim/sediment.h).
@@ -494,7 +484,12 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
            })
       .def("state", &state, py::arg("robot"))
       .def("set_pose", &setPose, py::arg("robot"), py::arg("position"), py::arg("orientation"))
-      .def("set_rendering", &setRendering, py::arg("robot"), py::arg("sensor"), py::arg("on"))
+      .def(
+          "set_rendering",
+          [](CoreWorld& w, const std::string& r, const std::string& name, bool on) {
+            w.sensor(r, name).setRendering(on);
+          },
+          py::arg("robot"), py::arg("sensor"), py::arg("on"))
       .def("contacts", &contacts, py::arg("robot"))
       .def("sensor_names",
            [](CoreWorld& w, const std::string& r) {

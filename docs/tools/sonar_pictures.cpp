@@ -9,6 +9,7 @@
 // m3_surface_shallow.png, m3_surface_deep.png (the robot pitched 5 deg up, the fan 0.4 and 2 m deep: surface
 // multipath).
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/ros_layer/sensor_registry.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>

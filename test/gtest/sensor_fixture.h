@@ -6,6 +6,7 @@
 
 #include <unexmin/engine/sensor_families.h>
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>

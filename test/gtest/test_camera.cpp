@@ -4,6 +4,7 @@
 // patch falling with turbidity, shadows, the SLS laser line on the wall (position and strength), sensor noise
 // statistics, seeds, modes, demand, vignetting, auto-exposure and parameter errors.
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>

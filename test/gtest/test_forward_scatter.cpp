@@ -4,6 +4,7 @@
 // run on a ray caster's worker threads gives the image it gives on one thread, bit for bit.
 #include <unexmin/core/error.h>
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/vision/forward_scatter.h>
 #include "sensor_fixture.h"
 

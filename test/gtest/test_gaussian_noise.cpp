@@ -1,7 +1,7 @@
 // The "gaussian" and "none" noise families (cpp/unexmin/sensors/gaussian_noise.h, noise_model.h): white
 // noise standard deviation, bias random-walk growth K^2 t, turn-on bias spread, exact "none", errors.
 #include <unexmin/sensors/gaussian_noise.h>
-#include <unexmin/sensors/noise_model.h>
+#include <unexmin/sensors/noise_factory.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // Image textures and vertex colours of world meshes (docs/worlds.md "Image textures and vertex colours", docs/vision.md
 // "Materials"): bilinear sampling in linear light against values written out here, a textured and a coloured plate in
 // a camera image with the channel ratios of their colours, and the start-up errors naming the world file and key.
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/surface_materials.h>
 #include <unexmin/sim/texture_image.h>

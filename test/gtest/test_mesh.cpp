@@ -3,6 +3,7 @@
 // (docs/worlds.md), computed here; the same mesh loaded by a world file and seen by the world's ray caster at
 // the closed-form distances; and unreadable, empty or triangle-less files -> ConfigError naming the file.
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sim/mesh.h>
 #include "mesh_fixture.h"
 #include "sphere_fixture.h"

@@ -4,6 +4,7 @@
 // Every geometry goes through a World built from STL files written by the test (the path sensors use).
 #include <unexmin/raycast/embree_ray_caster.h>
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include "mesh_fixture.h"
 #include "sphere_fixture.h"
 

@@ -3,6 +3,7 @@
 // the image; entries of one file share one mesh; a bad `seen_by` stops start-up naming its key.
 #include <unexmin/raycast/bullet_ray_caster.h>
 #include <unexmin/raycast/embree_ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>
 #include "expect_error.h"

@@ -1,6 +1,7 @@
 // Sensors on the world's ray caster (cpp/unexmin/raycast, built by the simulator from the world file): the
 // DVL's beam ranges in the tank through Embree equal the analytic floor distances and those through the
 // Bullet back end within 2 mm; a sensor's own hull is invisible to it, another robot's is seen where it is now.
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include "sonar_fixture.h"

@@ -3,6 +3,7 @@
 // fall; once the thruster stops and the silt has settled (its puffs sunk below the floor) the contrast is back to what
 // it was. The same thrust 2 m above the floor raises nothing. The SLS laser line on the floor fades in the silt too.
 #include <unexmin/raycast/ray_caster.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 #include <unexmin/sensors/sensor_suite.h>
 #include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/sls_sensor.h>

@@ -205,7 +205,7 @@ TEST(ThrusterFactories, AParameterTheFamilyDoesNotReadIsRejected) {
 TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne) {
   ThrusterFactory f = ThrusterFactory::builtin();
   // "scaled": the basic law k w |w| under another name, k in [0, 2]: a family registered by a creator.
-  f.conversion.add("scaled", [](ThrusterFamilyParams& p) -> std::unique_ptr<ThrustConversion> {
+  f.conversion.add("scaled", [](ActuatorFamilyParams& p) -> std::unique_ptr<ThrustConversion> {
     return std::make_unique<BasicConversion>(p.scalar("k", 0.0, 2.0, "[N per unit]"));
   });
   EXPECT_EQ(f.conversion.types(), (std::vector<std::string>{"basic", "identity", "scaled", "table"}));
@@ -220,9 +220,9 @@ TEST(ThrusterFactories, AnAddedFamilyIsBuiltByNameAndMayReplaceABuiltinOne) {
   EXPECT_EQ(ThrusterFactory::builtin().dynamics.create("first_order", {{"tau", {0.1}}})->update(3.0, 0.0), 0.0)
       << "a copy's registrations leave builtin() as it is";
 
-  EXPECT_THROW(f.dynamics.add("", [](ThrusterFamilyParams&) { return std::make_unique<ZeroOrderDynamics>(); }),
+  EXPECT_THROW(f.dynamics.add("", [](ActuatorFamilyParams&) { return std::make_unique<ZeroOrderDynamics>(); }),
                ConfigError);
-  EXPECT_THROW(f.dynamics.add("none", ThrusterFamilyFactory<ThrusterDynamics>::Creator()), ConfigError);
+  EXPECT_THROW(f.dynamics.add("none", ActuatorFamilyFactory<ThrusterDynamics>::Creator()), ConfigError);
 }
 
 TEST(RequireScalar, ReturnsTheValueOrNamesTheKey) {

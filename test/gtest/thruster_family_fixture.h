@@ -17,7 +17,7 @@ namespace test {
 /// x += clamp(u - x, -rate dt, +rate dt).
 class SlewDynamics : public hydro::ThrusterDynamics {
 public:
-  explicit SlewDynamics(hydro::ThrusterFamilyParams& params) : rate_(params.scalar("rate", 1e-6, 1e6, "[unit/s]")) {}
+  explicit SlewDynamics(hydro::ActuatorFamilyParams& params) : rate_(params.scalar("rate", 1e-6, 1e6, "[unit/s]")) {}
   double update(double command, double dt) override {
     state_ += std::clamp(command - state_, -rate_ * dt, rate_ * dt);
     return state_;
@@ -34,7 +34,7 @@ private:
 /// T = gain (x - width sign(x)).
 class DeadbandConversion : public hydro::ThrustConversion {
 public:
-  explicit DeadbandConversion(hydro::ThrusterFamilyParams& params)
+  explicit DeadbandConversion(hydro::ActuatorFamilyParams& params)
       : gain_(params.scalar("gain", -1e3, 1e3, "[N per unit]")), width_(params.scalar("width", 0.0, 1e3, "[unit]")) {}
   double thrust(double x) const override {
     return std::abs(x) <= width_ ? 0.0 : gain_ * (x - std::copysign(width_, x));

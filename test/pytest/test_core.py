@@ -134,7 +134,11 @@ def test_sensor_selection_and_visibility_of_the_world_file(urdf):
             r"orientation = a quaternion of norm 2",
         ),
         (lambda w: w.robot("UX_1").set_pose([0, 0, -1], [0, math.inf, 0, 1]), ValueError, r"orientation\[1\] = inf"),
-        (lambda w: w.robot("UX_1").set_rendering("dvl", False), ValueError, r"sensor = 'dvl' \(family dvl\).*a camera"),
+        (
+            lambda w: w.robot("UX_1").set_rendering("dvl", False),
+            ValueError,
+            r"UX_1/dvl \(family dvl\) renders no images: expected .*a camera",
+        ),
         (lambda w: w.robot("UX_1").set_rendering("camera_9", False), KeyError, r"sensor = 'camera_9'"),
         (lambda w: w.set_current(math.nan, steady=True), ValueError, r"speed = nan"),
     ],

@@ -8,7 +8,14 @@ collides with roscpp's <ros/...>.
 Names follow folders: every file of cpp/unexmin/<a>/<b> declares its code in namespace unexmin::<a>::<b> (or in
 namespaces nested inside it: anonymous ones, detail helpers such as vision::shading), and opens no other namespace
 but forward declarations. The one root is core: cpp/unexmin/core is namespace unexmin itself (the error types
-and formatNumber every library shares, as grid_map_core is namespace grid_map)."""
+and formatNumber every library shares, as grid_map_core is namespace grid_map).
+
+No include loops: within a library, the modules (a header and its source, foo.h with foo.cpp) include one another
+without a cycle, so that each can be read, tested and replaced from the bottom up.
+
+roscpp's internals in one place: roscpp installs headers of its managers and connections that are not its user API
+(ros/topic_manager.h, ros/connection_manager.h, ros/publication.h, ...); only cpp/unexmin/ros_layer/roscpp_internals.cpp
+includes them, and its header says which calls are used, why, and which roscpp versions they were checked against."""
 
 import re
 from pathlib import Path
@@ -324,3 +331,183 @@ def test_the_ros_library_pattern_tells_ros_from_the_rest():
     assert ROS_LIBRARY.search("librosbag_storage.so.1d => /usr/lib/librosbag_storage.so.1d")
     assert not ROS_LIBRARY.search("libBulletDynamics.so.3.24 => /usr/lib/libBulletDynamics.so.3.24")
     assert not ROS_LIBRARY.search("libunexmin_engine.so => /ws/devel/lib/libunexmin_engine.so")
+
+
+# ---------------------------------------------------------------- no include loops within a library
+
+PROJECT_INCLUDE = re.compile(r"^\s*#\s*include\s*<(unexmin/[^>]+)>", re.M)
+
+
+def module_of(path):
+    """The module of a file under cpp/: its path without the suffix (foo.h and foo.cpp are one module)."""
+    return path.relative_to(REPO / "cpp").with_suffix("").as_posix()
+
+
+def library_of(path):
+    """The library a file under cpp/ belongs to: its layer folder, or "python" for the module under cpp/python."""
+    return "python" if path.is_relative_to(REPO / "cpp" / "python") else folder_of(path)
+
+
+def module_graph():
+    """{module: {included module: (file that includes it, header)}} over the #include <unexmin/...> lines of cpp/,
+    an edge only between two modules of the same library."""
+    files = sources() + sorted((REPO / "cpp" / "python").glob("*.[ch]*"))
+    graph = {}
+    for path in files:
+        source = module_of(path)
+        for header in PROJECT_INCLUDE.findall(path.read_text()):
+            target = REPO / "cpp" / header
+            if is_ros_header(header) or not target.exists() or module_of(target) == source:
+                continue
+            if library_of(target) == library_of(path):
+                graph.setdefault(source, {})[module_of(target)] = (path.relative_to(REPO).as_posix(), header)
+    return graph
+
+
+def include_cycles(graph):
+    """The cycles of `graph` ({node: {successor: label}}), one per strongly connected component of two or more
+    nodes, each as the list of its nodes in order (the first again at the end)."""
+    index, low, stack, on_stack, components = {}, {}, [], set(), []
+
+    def connect(v):  # Tarjan's algorithm
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph.get(v, {})):
+            if w not in index:
+                connect(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = set()
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.add(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                components.append(component)
+
+    for v in sorted(set(graph) | {w for succ in graph.values() for w in succ}):
+        if v not in index:
+            connect(v)
+    return [cycle_through(min(c), c, graph) for c in components]
+
+
+def cycle_through(start, component, graph):
+    """A shortest cycle from `start` back to it inside `component` (breadth first), as a list of nodes."""
+    previous, frontier = {}, [start]
+    while frontier:
+        following = []
+        for v in frontier:
+            for w in sorted(graph.get(v, {})):
+                if w == start:
+                    path = [v]
+                    while path[-1] != start:
+                        path.append(previous[path[-1]])
+                    return path[::-1] + [start]
+                if w in component and w not in previous:
+                    previous[w] = v
+                    following.append(w)
+        frontier = following
+    raise AssertionError(f"no cycle through {start} in {sorted(component)}")
+
+
+def describe_cycle(cycle, graph):
+    return (
+        " -> ".join(cycle)
+        + "\n"
+        + "\n".join(f"    {graph[a][b][0]} includes <{graph[a][b][1]}>" for a, b in zip(cycle, cycle[1:]))
+    )
+
+
+def test_no_include_loop_within_a_library():
+    graph = module_graph()
+    assert sum(len(v) for v in graph.values()) > 50, "the include graph looks empty: the check would check nothing"
+    cycles = include_cycles(graph)
+    assert not cycles, "include loops (a module is a header with its source):\n" + "\n".join(
+        describe_cycle(c, graph) for c in cycles
+    )
+
+
+@pytest.mark.parametrize(
+    "graph,loops",
+    [
+        ({"a": {"b": 0}, "b": {"c": 0}}, []),
+        ({"a": {"b": 0, "c": 0}, "b": {"c": 0}}, []),
+        ({"a": {"b": 0}, "b": {"a": 0}}, [["a", "b", "a"]]),
+        ({"r": {"w": 0}, "w": {"s": 0}, "s": {"r": 0}, "x": {"r": 0}}, [["r", "w", "s", "r"]]),
+        (
+            {"a": {"b": 0}, "b": {"a": 0}, "c": {"d": 0}, "d": {"e": 0}, "e": {"c": 0}},
+            [["a", "b", "a"], ["c", "d", "e", "c"]],
+        ),
+    ],
+)
+def test_the_loop_finder_tells_loops_from_layers(graph, loops):
+    assert sorted(include_cycles(graph)) == loops
+
+
+# ---------------------------------------------------------------- roscpp's internals in one file
+
+# roscpp's installed headers that are not its user API: its managers, connections and links.
+ROSCPP_INTERNALS = {
+    f"ros/{name}.h"
+    for name in (
+        "topic_manager",
+        "connection_manager",
+        "poll_manager",
+        "poll_set",
+        "publication",
+        "subscription",
+        "subscription_queue",
+        "service_manager",
+        "service_publication",
+        "service_client_link",
+        "service_server_link",
+        "xmlrpc_manager",
+        "connection",
+        "publisher_link",
+        "subscriber_link",
+        "transport_publisher_link",
+        "transport_subscriber_link",
+        "intraprocess_publisher_link",
+        "intraprocess_subscriber_link",
+        "internal_timer_manager",
+        "timer_manager",
+    )
+}
+ROSCPP_INTERNALS_FILES = {"cpp/unexmin/ros_layer/roscpp_internals.h", "cpp/unexmin/ros_layer/roscpp_internals.cpp"}
+
+
+def is_roscpp_internal(header):
+    return header in ROSCPP_INTERNALS or header.startswith("ros/transport/")
+
+
+def test_only_roscpp_internals_includes_roscpps_internal_headers():
+    files = sorted(p for folder in ("cpp", "test", "bench", "docs/tools") for p in (REPO / folder).rglob("*.[ch]*"))
+    assert all((REPO / f).exists() for f in ROSCPP_INTERNALS_FILES), f"{sorted(ROSCPP_INTERNALS_FILES)} are missing"
+    bad = [
+        f"{p.relative_to(REPO)}: <{h}>"
+        for p in files
+        if p.suffix in (".h", ".cpp") and p.relative_to(REPO).as_posix() not in ROSCPP_INTERNALS_FILES
+        for _, h in includes(p)
+        if is_roscpp_internal(h)
+    ]
+    assert not bad, "roscpp internals outside ros_layer/roscpp_internals.{h,cpp} (add a function there):\n" + "\n".join(
+        bad
+    )
+
+
+def test_roscpp_internals_says_what_it_uses_and_the_versions_checked():
+    header = (REPO / "cpp/unexmin/ros_layer/roscpp_internals.h").read_text()
+    comment = header[: header.index("#pragma once")]
+    used = sorted(
+        {h for _, h in includes(REPO / "cpp/unexmin/ros_layer/roscpp_internals.cpp") if is_roscpp_internal(h)}
+    )
+    assert used, "roscpp_internals.cpp includes no roscpp internal header"
+    for h in used:
+        manager = "".join(part.capitalize() for part in Path(h).stem.split("_"))
+        assert f"ros::{manager}" in comment, f"roscpp_internals.h's comment does not say what of <{h}> it uses"
+    assert re.search(r"roscpp 1\.\d+\.\d+", comment), "roscpp_internals.h's comment names no roscpp version"

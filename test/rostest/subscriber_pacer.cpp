@@ -2,11 +2,11 @@
 // on how roscpp's poll thread moves messages and on sock_diag's byte counters, and these tests fail (they never
 // skip) when either behaves otherwise. The subscriber is a raw TCPROS client in this process that reads exactly
 // when the test tells it to, so what "taken" means is known to the byte.
+#include <unexmin/ros_layer/roscpp_internals.h>
 #include <unexmin/ros_layer/stream.h>
 #include <unexmin/ros_layer/subscriber_pacer.h>
 #include <unexmin/ros_layer/tcp_port_view.h>
 
-#include <ros/connection_manager.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
 
@@ -39,7 +39,7 @@ public:
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in to{};
     to.sin_family = AF_INET;
-    to.sin_port = htons(static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort()));
+    to.sin_port = htons(ros_layer::tcprosPort());
     to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     if (fd_ < 0 || ::connect(fd_, reinterpret_cast<sockaddr*>(&to), sizeof(to)) != 0)
       throw std::runtime_error("cannot connect to this process's TCPROS port: " + std::string(std::strerror(errno)));
@@ -129,7 +129,7 @@ struct Connected {
 };
 
 TEST(SubscriberPacer, KernelReportsThisProcesssConnectionsWithTheirByteCounters) {
-  const auto port = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
+  const std::uint16_t port = ros_layer::tcprosPort();
   ASSERT_TRUE(ros_layer::viewTcpPort(port).ok)
       << "sock_diag with tcp_info cannot be read: lockstep_wait_subscribers cannot work here";
   Connected c("/pacer_test/kernel");

@@ -1,4 +1,5 @@
 #include <unexmin/engine/engine.h>
+#include <unexmin/raycast/ray_caster_factory.h>
 
 namespace unexmin {
 namespace engine {

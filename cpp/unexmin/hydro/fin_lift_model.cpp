@@ -24,7 +24,7 @@ LinearLift::LinearLift(double lift_slope, double drag0, double induced)
   requireNonNegative("induced", induced, "[-]");
 }
 
-LinearLift::LinearLift(ThrusterFamilyParams& params)
+LinearLift::LinearLift(ActuatorFamilyParams& params)
     : LinearLift(params.scalar("lift_slope"), params.scalar("drag0"), params.scalar("induced")) {}
 
 double LinearLift::drag(double alpha) const {

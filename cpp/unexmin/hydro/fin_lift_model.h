@@ -2,7 +2,7 @@
 // robot description (<fin><model type="linear_lift">), built by a FinFactory (fin_factory.h).
 #pragma once
 
-#include <unexmin/hydro/thruster_family_params.h>
+#include <unexmin/hydro/actuator_family_params.h>
 
 namespace unexmin {
 namespace hydro {
@@ -21,7 +21,7 @@ public:
 class LinearLift : public FinLiftModel {
 public:
   LinearLift(double lift_slope, double drag0, double induced);
-  explicit LinearLift(ThrusterFamilyParams& params);
+  explicit LinearLift(ActuatorFamilyParams& params);
   double lift(double alpha) const override { return lift_slope_ * alpha; }
   double drag(double alpha) const override;
 

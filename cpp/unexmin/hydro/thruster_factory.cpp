@@ -5,13 +5,6 @@
 namespace unexmin {
 namespace hydro {
 
-void throwUnknownFamily(const std::string& kind, const std::string& type, const std::vector<std::string>& known) {
-  std::string list;
-  for (const auto& t : known)
-    list += (list.empty() ? "" : ", ") + t;
-  throw ParameterError(kind + ": unknown type '" + type + "'; expected one of: " + (list.empty() ? "none" : list));
-}
-
 ThrusterFactory ThrusterFactory::builtin() {
   ThrusterFactory f;
   f.dynamics.add<ZeroOrderDynamics>("zero_order");

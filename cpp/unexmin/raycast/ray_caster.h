@@ -204,14 +204,5 @@ private:
   std::unique_ptr<WorkerPool> pool_;
 };
 
-/// Back ends makeRayCaster() accepts: {"embree", "bullet"}.
-const std::vector<std::string>& rayCasterBackends();
-
-/// Builds the back end named `backend` ("" = "embree") on `world`: its meshes, each seen by the sensors its world
-/// file's `seen_by:` names (MeshEntry), and its robots' spheres. The world must outlive the caster. Throws
-/// RayCasterError on an unknown name, listing the accepted ones.
-std::unique_ptr<RayCaster> makeRayCaster(const std::string& backend, sim::World& world,
-                                         const RayCasterOptions& options = RayCasterOptions());
-
 }  // namespace raycast
 }  // namespace unexmin

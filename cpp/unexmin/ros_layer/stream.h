@@ -1,12 +1,10 @@
 // One outgoing topic of the simulator: its ros::Publisher and roscpp's publication behind it, so that the
-// subscriber count is read directly. ros::Publisher::getNumSubscribers() looks the topic up by name among every
-// topic the node advertises (a lock and a string comparison per topic: about 130 topics with 3 robots), and the
-// simulator asks before building each message of every stream, thousands of times per second of sim time.
+// subscriber count is read directly (RoscppPublication, roscpp_internals.h, says why).
 #pragma once
 
-#include <ros/publication.h>
+#include <unexmin/ros_layer/roscpp_internals.h>
+
 #include <ros/ros.h>
-#include <ros/topic_manager.h>
 
 #include <algorithm>
 #include <atomic>
@@ -41,13 +39,13 @@ public:
     if (!pub_)
       return;
     topic_ = pub_.getTopic();
-    publication_ = ros::TopicManager::instance()->lookupPublication(topic_);
+    publication_ = RoscppPublication(topic_);
   }
 
   /// Subscribers now: what ros::Publisher::getNumSubscribers() answers (0 for an empty stream).
   std::uint32_t subscribers() const {
     if (publication_)
-      return publication_->getNumSubscribers();
+      return publication_.subscribers();
     return pub_ ? pub_.getNumSubscribers() : 0;
   }
   /// Resolved topic name ("" for an empty stream).
@@ -67,7 +65,7 @@ public:
 private:
   ros::Publisher pub_;
   std::string topic_;
-  ros::PublicationPtr publication_;
+  RoscppPublication publication_;
   static inline std::atomic<std::uint64_t> sent_{0};
 };
 

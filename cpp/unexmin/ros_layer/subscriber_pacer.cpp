@@ -1,41 +1,26 @@
+#include <unexmin/ros_layer/roscpp_internals.h>
 #include <unexmin/ros_layer/stream.h>
 #include <unexmin/ros_layer/subscriber_pacer.h>
 
-#include <ros/connection_manager.h>
-#include <ros/poll_manager.h>
 #include <ros/ros.h>
-#include <ros/topic_manager.h>
 
 #include <chrono>
 
 namespace unexmin {
 namespace ros_layer {
-namespace {
-
-void wakePollThread() {
-  ros::PollManager::instance()->getPollSet().signal();
-}  // else it sleeps up to 100 ms
-
-}  // namespace
-
 SubscriberPacer::~SubscriberPacer() {
-  // Under the poll manager's lock: once this returns, the listener is not running and will not run again.
+  // Once this returns, the listener is not running and will not run again.
   if (listener_.connected())
-    ros::PollManager::instance()->removePollThreadListener(listener_);
+    removePollTurnListener(listener_);
 }
 
 void SubscriberPacer::refresh() {
-  publications_.clear();
-  std::vector<std::string> topics;
-  ros::TopicManager::instance()->getAdvertisedTopics(topics);
-  for (const auto& t : topics)
-    if (ros::PublicationPtr p = ros::TopicManager::instance()->lookupPublication(t))
-      publications_.push_back(p);
+  publications_ = advertisedPublications();
 }
 
 bool SubscriberPacer::anySubscriber() const {
   for (const auto& p : publications_)
-    if (p->getNumSubscribers() > 0)
+    if (p.subscribers() > 0)
       return true;
   return false;
 }
@@ -97,8 +82,8 @@ bool SubscriberPacer::waitDrained(double stall_timeout) {
   if (drained_ && sent == drained_at_)
     return true;
   if (!listener_.connected()) {
-    port_ = static_cast<std::uint16_t>(ros::ConnectionManager::instance()->getTCPPort());
-    listener_ = ros::PollManager::instance()->addPollThreadListener([this] { onPollTurn(); });
+    port_ = tcprosPort();
+    listener_ = addPollTurnListener([this] { onPollTurn(); });
   }
   std::unique_lock<std::mutex> lock(mutex_);
   state_ = State::kWaiting;

@@ -4,11 +4,12 @@
 //
 // roscpp's user API cannot tell that a message has left: ros::Publisher counts subscribers, a
 // SubscriberStatusCallback sees connects and disconnects, and a subscriber link's statistics count messages queued,
-// not written. This class (with the kernel's side in tcp_port_view.h) is the one place that works around it, with
-// public calls only (no private member, no dependence on roscpp's object layout) and two behaviours, which
-// test/rostest/subscriber_pacer.cpp checks against the installed roscpp and kernel:
+// not written. This class (with the kernel's side in tcp_port_view.h) works around it through roscpp's poll thread
+// and managers, reached only through roscpp_internals.h (which lists the calls, why, and the roscpp versions they
+// were checked against), and relies on two behaviours, which test/rostest/subscriber_pacer.cpp checks against the
+// installed roscpp and kernel:
 //  * roscpp's poll thread does the I/O of every TCPROS connection: at each turn it first calls its listeners
-//    (ros::PollManager::addPollThreadListener; roscpp's own hands every publication's queue to its connections), then
+//    (addPollTurnListener; roscpp's own hands every publication's queue to its connections), then
 //    writes what the connections hold while their sockets take it. Two turns after publish() returned, a message is
 //    in a connection's queue or written; a whole turn that writes nothing into sockets that hold nothing means the
 //    connections' queues are empty. The pacer's own listener does the looking, in that thread, between its turns.
@@ -17,9 +18,9 @@
 //    IPv4), bytes received and not yet read by it.
 #pragma once
 
+#include <unexmin/ros_layer/roscpp_internals.h>
 #include <unexmin/ros_layer/tcp_port_view.h>
 
-#include <ros/publication.h>
 #include <ros/time.h>
 
 #include <boost/signals2/connection.hpp>
@@ -60,7 +61,7 @@ private:
   void onPollTurn();
   void finish(State state);
 
-  std::vector<ros::PublicationPtr> publications_;
+  std::vector<RoscppPublication> publications_;
   std::size_t calls_ = 0;
   boost::signals2::connection listener_;
   std::uint16_t port_ = 0;        ///< this process's TCPROS port

@@ -1,5 +1,6 @@
 #include <unexmin/sensors/imu_sensor.h>
 
+#include <unexmin/sensors/noise_factory.h>
 #include <unexmin/sensors/pressure_sensor.h>
 #include <unexmin/sensors/sensor_params.h>
 

@@ -1,7 +1,5 @@
-// Noise families, chosen by name in the robot description (<param name="noise" value="gaussian"/>):
-//   gaussian  white noise + bias random walk + turn-on bias (the usual inertial-sensor model)
-//   none      the true value, exactly
-// One NoiseModel instance corrupts one scalar channel (one axis) sampled at a fixed interval.
+// A noise model of one scalar channel (one axis) sampled at a fixed interval; the families that implement it are
+// chosen by name in the robot description (sensors/noise_factory.h).
 #pragma once
 
 #include <unexmin/core/error.h>
@@ -35,13 +33,6 @@ public:
   /// Per-sample standard deviation of the white part [u] (what a message's covariance reports).
   virtual double whiteStd() const = 0;
 };
-
-/// Names of the families, for messages and documentation.
-const std::vector<std::string>& noiseFamilies();
-
-/// The model `family` with `params`; throws ParameterError for an unknown family or a
-/// negative figure (the message names the family or the figure).
-std::unique_ptr<NoiseModel> createNoise(const std::string& family, const NoiseParams& params);
 
 }  // namespace sensors
 }  // namespace unexmin

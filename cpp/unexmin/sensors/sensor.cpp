@@ -1,5 +1,7 @@
 #include <unexmin/sensors/sensor.h>
 
+#include <unexmin/core/error.h>
+
 #include <cmath>
 #include <sstream>
 
@@ -46,6 +48,11 @@ void Sensor::describe(SampleWriter& out) const {
 double apparentRangeFactor(const sim::World& world, const Eigen::Vector3d& point, double configured) {
   const auto& column = world.config().water_column;
   return column ? configured / column->soundSpeedAt(point, world.time()) : 1.0;
+}
+
+void Sensor::setRendering(bool /*on*/) {
+  throw ParameterError(robot_ + "/" + name() + " (family " + type() +
+                       ") renders no images: expected a sensor that renders images (a camera)");
 }
 
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,

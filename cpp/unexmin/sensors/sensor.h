@@ -78,6 +78,10 @@ public:
   /// then the family's own (describeSample()). The one description of a sample that every reader but the family's
   /// publisher reads.
   void describe(SampleWriter& out) const;
+  /// Visual mode: whether the sensor renders the images of its samples (on by default, kept across reset()); off, a
+  /// sample only moves its schedule, as when nobody wants its images. A family that renders images (the camera)
+  /// overrides it; the others throw ParameterError naming the robot, the sensor and its family.
+  virtual void setRendering(bool on);
 
 protected:
   /// Reset the model's state (turn-on biases are drawn here from random()).

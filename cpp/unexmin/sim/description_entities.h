@@ -5,7 +5,7 @@
 #pragma once
 
 #include <unexmin/sim/description_reader.h>
-#include <unexmin/sim/robot_description.h>
+#include <unexmin/sim/description_types.h>
 
 #include <tinyxml2.h>
 

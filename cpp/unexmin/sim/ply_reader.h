@@ -2,7 +2,8 @@
 // million triangles reads in a fraction of assimp's time and memory (docs/worlds.md, "Mesh files").
 #pragma once
 
-#include <unexmin/sim/mesh.h>
+#include <unexmin/sim/triangle_mesh.h>
+#include <unexmin/sim/world_config.h>
 
 namespace unexmin {
 namespace sim {

@@ -8,7 +8,7 @@
 #include <unexmin/hydro/pendulum.h>
 #include <unexmin/hydro/thruster.h>
 #include <unexmin/sim/robot_description.h>
-#include <unexmin/sim/world_config.h>
+#include <unexmin/sim/robot_spawn.h>
 
 #include <memory>
 

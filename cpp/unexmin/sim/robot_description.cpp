@@ -1,13 +1,11 @@
 // parseRobotDescription: the XML document, the links and joint tree, then one parser per entity
-// (sim/description_entities.h). Also the joint-tree queries of RobotDescription.
+// (sim/description_entities.h).
 #include <unexmin/sim/robot_description.h>
 
 #include <unexmin/sim/description_entities.h>
-#include <unexmin/sim/world_config.h>
+#include <unexmin/sim/pose.h>
 
 #include <tinyxml2.h>
-
-#include <algorithm>
 
 namespace unexmin {
 namespace sim {
@@ -59,29 +57,6 @@ void parseJoints(const DescriptionReader& r, const tinyxml2::XMLElement* robot, 
 }
 
 }  // namespace description
-
-Eigen::Isometry3d RobotDescription::linkPose(const std::string& link) const {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  std::string current = link;
-  for (std::size_t guard = 0; current != base_link && guard <= joints.size(); ++guard) {
-    const auto it = std::find_if(joints.begin(), joints.end(), [&](const JointInfo& j) { return j.child == current; });
-    if (it == joints.end())
-      throw ConfigError(source + ": link '" + link + "' is not connected to '" + base_link + "'");
-    pose = it->origin * pose;
-    current = it->parent;
-  }
-  if (current != base_link)
-    throw ConfigError(source + ": joint loop above link '" + link + "'");
-  return pose;
-}
-
-std::vector<std::string> RobotDescription::movableJoints() const {
-  std::vector<std::string> out;
-  for (const auto& j : joints)
-    if (j.type != "fixed")
-      out.push_back(j.name);
-  return out;
-}
 
 RobotDescription parseRobotDescription(const std::string& xml, const std::string& source) {
   return parseRobotDescription(xml, source, hydro::ThrusterFactory::builtin());

@@ -1,72 +1,15 @@
-// The simulator's view of a robot description (URDF, expanded from xacro): joint tree for the
-// actuator poses plus the <unexmin> element with the hydrodynamic, thruster, pendulum and VBS
-// parameters. See docs/robot_description.md for the schema.
+// The simulator's view of a robot description (URDF, expanded from xacro): parseRobotDescription reads the joint
+// tree for the actuator poses plus the <unexmin> element with the hydrodynamic, thruster, pendulum and VBS
+// parameters into a RobotDescription (sim/description_types.h). See docs/robot_description.md for the schema.
 #pragma once
 
-#include <unexmin/hydro/fin.h>
-#include <unexmin/hydro/fossen_model.h>
-#include <unexmin/hydro/pendulum.h>
-#include <unexmin/hydro/thruster.h>
 #include <unexmin/hydro/thruster_factory.h>
+#include <unexmin/sim/description_types.h>
 
-#include <map>
 #include <string>
-#include <vector>
 
 namespace unexmin {
 namespace sim {
-
-struct JointInfo {
-  std::string name;
-  std::string type;                                          ///< URDF joint type (fixed, continuous, revolute, ...).
-  std::string parent;                                        ///< Parent link.
-  std::string child;                                         ///< Child link.
-  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< Child frame in parent frame.
-  Eigen::Vector3d axis{1, 0, 0};                             ///< In the joint frame.
-};
-
-/// A sensor as written in the robot description:
-///   <sensor name="imu" type="imu" link="UX_1/imu_link" rate="500">
-///     <param name="gyro_noise_density" value="1.2e-5"/>  <param name="model" value="kvh_1775"/>
-///   </sensor>
-/// The sensor factory of each type checks its parameters.
-struct SensorSpec {
-  std::string name;  ///< Unique within the robot; also the topic base name.
-  std::string type;  ///< Family name, e.g. "imu", "dvl", "pressure".
-  std::string link;  ///< URDF link of the sensor frame (frame_id of its messages).
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< link in the base link frame
-  double rate = 0.0;                                       ///< Update rate [Hz of sim time] > 0.
-  hydro::ParamMap params;                                  ///< numeric parameters
-  std::map<std::string, std::string> text;                 ///< non-numeric parameters (model names, ...)
-};
-
-struct RobotDescription {
-  std::string source;     ///< File or parameter it came from (for messages).
-  std::string name;       ///< <robot name="...">
-  std::string base_link;  ///< Link carrying the hydrodynamics (the rigid body).
-  hydro::HydroParams hydro;
-  std::vector<hydro::ThrusterParams> thrusters;  ///< Sorted by id 0..n-1.
-  std::vector<std::string> thruster_joints;      ///< Same order as `thrusters`.
-  /// The families that know the thrusters' <dynamics type> and <conversion type> (the parser's), and build them.
-  hydro::ThrusterFactory thruster_families = hydro::ThrusterFactory::builtin();
-  std::vector<hydro::FinParams> fins;   ///< Control surfaces, sorted by id 0..n-1 (none on the UX-1).
-  std::vector<std::string> fin_joints;  ///< Same order as `fins`.
-  /// The families that know the fins' <model type> (the parser's), and build them.
-  hydro::FinFactory fin_families = hydro::FinFactory::builtin();
-  /// Length, width, height of the hull's box centred on the body origin [m] (<bounding_box size>); zero when the
-  /// description gives none, the actuators must then lie within the hull radius.
-  Eigen::Vector3d hull_box{0, 0, 0};
-  hydro::PendulumParams pendulum;
-  std::string pendulum_joint;  ///< Empty when the robot has no pendulum.
-  hydro::VbsParams vbs;
-  std::vector<JointInfo> joints;
-  std::vector<SensorSpec> sensors;
-
-  /// Pose of `link` in the base link's frame, through fixed joint origins (moving joints at zero).
-  Eigen::Isometry3d linkPose(const std::string& link) const;
-  /// Movable (non-fixed) joints, in document order.
-  std::vector<std::string> movableJoints() const;
-};
 
 /// Parses URDF XML; throws ConfigError("<source>: <problem>") naming the element and attribute. The thrusters'
 /// families are looked up in `thruster_families` (ThrusterFactory::builtin() unless given).

@@ -6,6 +6,8 @@
 #include <unexmin/geo/geology.h>
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/material.h>
+#include <unexmin/sim/pose.h>
+#include <unexmin/sim/robot_spawn.h>
 #include <unexmin/sim/sediment.h>
 #include <unexmin/water/water_column.h>
 
@@ -36,15 +38,6 @@ struct MeshEntry {
   Eigen::Vector3d albedo{0.3, 0.3, 0.3};
   /// Key `material:` (docs/worlds.md): kind, texture and relief; its albedo is `albedo` above. Default: plain.
   Material material;
-};
-
-struct RobotSpawn {
-  std::string name;         ///< Robot namespace, e.g. "UX_1".
-  std::string description;  ///< Robot description file name in the package's urdf/ folder.
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< base_link in the world frame.
-  /// False for a robot the world file does not list (a team's extra vehicle): the world places it by the rule of
-  /// sim/spawn_placement.h, and `pose` holds its anchor's pose until then.
-  bool placed = true;
 };
 
 struct WorldConfig {
@@ -84,9 +77,6 @@ WorldConfig loadWorldConfig(const std::string& path, const std::string& schema_f
 /// <prefix>_<j> becomes an unplaced spawn anchored at that robot (docs/worlds.md, "Robots the world does not list").
 /// Throws ConfigError naming any other unknown name, or one given twice.
 void selectRobots(WorldConfig& config, const std::vector<std::string>& names);
-
-/// Pose from xyz [m] and roll-pitch-yaw [rad] (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)).
-Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 
 }  // namespace sim
 }  // namespace unexmin

@@ -189,36 +189,50 @@ EchoLevel MsisSensor::level(float i) const {
 }
 
 void MsisSensor::sample(const sensors::SensorContext& ctx) {
+  Ping ping;
+  aim(ctx, ping);
+  castRays(ctx, rays_, hits_);
+  castReflections(ctx, ping);
+  depositEchoes();
+  shadowBins(ping);
+  addReceiverNoise();
+  writeLine(ctx, ping);
+  advance();
+}
+
+void MsisSensor::aim(const sensors::SensorContext& ctx, Ping& ping) {
   const Eigen::Isometry3d head = ctx.state.pose * headPose(angle_);
   const Eigen::Matrix3d R = head.linear();
   const EchoParams& e = echo_.params();
-  const double surface_z = ctx.world.water().surface_z;
-  const Eigen::Vector3d origin = head.translation();
-  const bool submerged = origin.z() < surface_z;
+  ping.surface_z = ctx.world.water().surface_z;
+  ping.origin = head.translation();
+  const bool submerged = ping.origin.z() < ping.surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
     const Eigen::Vector3d d = (R * dirs_[i]).normalized();
-    rays_[i].origin = origin.cast<float>();
+    rays_[i].origin = ping.origin.cast<float>();
     rays_[i].direction = d.cast<float>();
     rays_[i].max_range = static_cast<float>(e.range_max);
     // A ray that reaches the free surface within range stops there (the surface echo, and its reflection).
     surface_[i] = -1.0;
     if (reflector_.multipath && submerged && d.z() > 1e-9) {
-      const double s = (surface_z - origin.z()) / d.z();
+      const double s = (ping.surface_z - ping.origin.z()) / d.z();
       if (s < e.range_max) {
         surface_[i] = s;
         rays_[i].max_range = static_cast<float>(s);
       }
     }
   }
-  castRays(ctx, rays_, hits_);
+}
 
+void MsisSensor::castReflections(const sensors::SensorContext& ctx, const Ping& ping) {
   // The reflected rays, only for the rays that reached the surface: mirrored about it, for the rest of the range.
+  const double range_max = echo_.params().range_max;
   mirrored_.clear();
   mirror_of_.clear();
   for (std::size_t i = 0; i < rays_.size(); ++i) {
     if (surface_[i] < 0.0 || hits_[i].hit())
       continue;
-    mirrored_.push_back(reflectedRay(rays_[i], origin, surface_[i], surface_z, e.range_max - surface_[i]));
+    mirrored_.push_back(reflectedRay(rays_[i], ping.origin, surface_[i], ping.surface_z, range_max - surface_[i]));
     mirror_of_.push_back(i);
   }
   if (!mirrored_.empty())
@@ -226,8 +240,10 @@ void MsisSensor::sample(const sensors::SensorContext& ctx) {
   ghost_.assign(rays_.size(), -1);
   for (std::size_t k = 0; k < mirror_of_.size(); ++k)
     ghost_[mirror_of_[k]] = static_cast<long>(k);
+}
 
-  energy_.assign(e.nbins, 0.0);
+void MsisSensor::depositEchoes() {
+  energy_.assign(echo_.params().nbins, 0.0);
   const std::size_t n = rays_.size();
   const auto noisy = [&](double r) {
     return std::max(0.0, r + (range_noise_ > 0.0 ? range_noise_ * random().gauss() : 0.0));
@@ -261,25 +277,29 @@ void MsisSensor::sample(const sensors::SensorContext& ctx) {
     if (artifacts_)
       echo_.spread(column_, n, artifacts_gap_, energy_);
   }
+}
 
-  MsisLine& out = last_;
-  out.time = ctx.world.time();
-  out.angle = angle_;
-  out.level.assign(e.nbins, EchoLevel::none);
-  std::vector<char> shadowed(e.nbins, 0);
-  if (shadow_) {  // no echo behind the first strong one (the noise stays)
-    int b = 0;
-    while (b < e.nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b)))
-      ++b;
-    for (++b; b < e.nbins; ++b) {
-      energy_[b] = 0.0;
-      shadowed[b] = 1;
-    }
+void MsisSensor::shadowBins(Ping& ping) {
+  const int nbins = echo_.params().nbins;
+  ping.shadowed.assign(nbins, 0);
+  if (!shadow_)
+    return;
+  // No echo behind the first strong one (the noise stays).
+  int b = 0;
+  while (b < nbins && !(energy_[b] > 0.0 && energy_[b] >= echo_.codePower(shadow_code_, b)))
+    ++b;
+  for (++b; b < nbins; ++b) {
+    energy_[b] = 0.0;
+    ping.shadowed[b] = 1;
   }
-  // Receiver noise: speckle (Rayleigh amplitude: exponential power) on the echoes, the noise floor (Rayleigh),
-  // then the occasional spike near the noise level (salt) or dropped bin (pepper). The same draws whatever the
-  // geometry; a logarithm only where the draw can change the code (noise_visible_: below it the floor stays 0).
-  for (int b = 0; b < e.nbins; ++b) {
+}
+
+void MsisSensor::addReceiverNoise() {
+  // Speckle (Rayleigh amplitude: exponential power) on the echoes, the noise floor (Rayleigh), then the occasional
+  // spike near the noise level (salt) or dropped bin (pepper). The same draws whatever the geometry; a logarithm
+  // only where the draw can change the code (noise_visible_: below it the floor stays 0).
+  const int nbins = echo_.params().nbins;
+  for (int b = 0; b < nbins; ++b) {
     double& p = energy_[b];
     if (speckle_) {
       const double u = random().uniform();
@@ -294,13 +314,20 @@ void MsisSensor::sample(const sensors::SensorContext& ctx) {
     if (salt_pepper_ > 0.0 && random().uniform() < salt_pepper_)
       p = random().uniform() < 0.5 ? noise_power_ * std::pow(10.0, salt_level_ * random().uniform() / 10.0) : 0.0;
   }
+}
+
+void MsisSensor::writeLine(const sensors::SensorContext& ctx, const Ping& ping) {
+  const int nbins = echo_.params().nbins;
+  MsisLine& out = last_;
+  out.time = ctx.world.time();
+  out.angle = angle_;
   echo_.finish(energy_, out.intensity);
-  for (int b = 0; b < e.nbins; ++b) {
+  out.level.assign(nbins, EchoLevel::none);
+  for (int b = 0; b < nbins; ++b) {
     out.level[b] = level(out.intensity[b]);
-    if (shadowed[b] && out.level[b] == EchoLevel::none)
+    if (ping.shadowed[b] && out.level[b] == EchoLevel::none)
       out.level[b] = EchoLevel::shadow;
   }
-  advance();
 }
 
 void MsisSensor::describeSample(SampleWriter& out) const {

@@ -87,7 +87,27 @@ protected:
   void describeSample(SampleWriter& out) const override;
 
 private:
+  /// What one ping's stages pass along besides the sensor's buffers (rays_, hits_, energy_, ...).
+  struct Ping {
+    Eigen::Vector3d origin{0, 0, 0};  ///< head origin, world frame [m]
+    double surface_z = 0.0;           ///< world z of the free surface [m]
+    std::vector<char> shadowed;       ///< per bin: 1 behind the first strong echo (shadow on)
+  };
+  // The stages of sample(), in order (see the steps above):
+  /// 2, 3: the fan's rays from the head at angle_, each stopped at the free surface when it reaches it in range.
+  void aim(const sensors::SensorContext& ctx, Ping& ping);
+  /// 3: the reflected rays of those that reached the surface, cast; ghost_ maps each ray to its reflection.
+  void castReflections(const sensors::SensorContext& ctx, const Ping& ping);
+  /// 3: the echo power of the hits, the surface and the ghosts summed per bin into energy_ (range noise drawn).
+  void depositEchoes();
+  /// 3: no echo behind the first bin that reaches shadow_threshold (shadow on); flags those bins.
+  void shadowBins(Ping& ping);
+  /// 3: speckle, noise floor, salt and pepper on energy_ (each when on).
+  void addReceiverNoise();
+  /// 3, 4: last_ from energy_: intensities (EchoModel::finish) and levels.
+  void writeLine(const sensors::SensorContext& ctx, const Ping& ping);
   EchoLevel level(float intensity) const;
+  /// 1: the head angle of the next ping.
   void advance();
 
   EchoModel echo_{EchoParams()};

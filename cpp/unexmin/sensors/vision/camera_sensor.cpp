@@ -59,8 +59,6 @@ bool isLink(const sim::RobotDescription& d, const std::string& link) {
 
 }  // namespace
 
-const Eigen::Vector3d CameraSensor::kHullAlbedo{0.95, 0.75, 0.10};
-
 CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup)
     : Sensor(spec, setup), visual_(setup.visual) {
   SensorParams p(spec, setup.robot);
@@ -127,7 +125,7 @@ CameraSensor::CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup
   }
   if (sls)
     laser_ = std::make_unique<LaserLine>(std::make_unique<SlsSensor>(*sls, setup), spec.pose, model_, laser_power,
-                                         laser_width, laser_colour, clip_far_, kHullAlbedo.y());
+                                         laser_width, laser_colour, clip_far_, SurfaceMaterials::kHullAlbedo.y());
 }
 
 CameraSensor::~CameraSensor() = default;
@@ -144,7 +142,7 @@ void CameraSensor::sample(const SensorContext& ctx) {
   frame_.rendered = false;
   // One draw per sample, rendered or not: the stream does not depend on who watches.
   const auto seed = static_cast<std::uint64_t>(random().uniform() * 9007199254740992.0);
-  if (!visual_ || (demand_ && !demand_()))
+  if (!visual_ || !rendering_ || (demand_ && !demand_()))
     return;
   prepare(ctx);
   render(ctx, seed);
@@ -355,85 +353,123 @@ void CameraSensor::adjustExposure() {
   exposure_now_ = std::min(exposure_ * ae_range_, std::max(exposure_ / ae_range_, next));
 }
 
-void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
-                              std::uint64_t seed) {
-  const int w = model_.width();
-  const Eigen::Matrix3f rot = cam.linear().cast<float>();
-  const Eigen::Vector3f origin = cam.translation().cast<float>();
-  const float far = static_cast<float>(clip_far_);
+/// One tile on its way through renderTile's stages: its pixels and their rays and hits (castTile), which lights reach
+/// each pixel (shadowTile), the surface each sees as the shading kernels read it (surfaceTile, textureTile), its
+/// radiance (shadeTile).
+struct CameraSensor::Tile {
+  int u0 = 0, v0 = 0;                              ///< first pixel [px]
+  int n = 0;                                       ///< pixels in use
+  Eigen::Matrix3f rot;                             ///< optical frame -> world
+  Eigen::Vector3f origin;                          ///< the lens, world frame [m]
+  float far = 0.0f;                                ///< clip_far [m]
+  bool simd = false;                               ///< shade and sense in AVX2 lanes
+  std::size_t pixel[raycast::kBlock];              ///< index of each pixel in the image
+  float pu[raycast::kBlock], pv[raycast::kBlock];  ///< pixel coordinates [px]
   raycast::Ray rays[raycast::kBlock];
   raycast::Hit hits[raycast::kBlock];
-  std::size_t pixel[raycast::kBlock];
-  float pu[raycast::kBlock], pv[raycast::kBlock];  // pixel coordinates [px]
+  unsigned lit[raycast::kBlock];                         ///< bit k: light k reaches the pixel's surface point
+  static constexpr std::size_t kNone = ~std::size_t(0);  ///< material_of: no textured mesh
+  std::size_t material_of[raycast::kBlock];              ///< the textured mesh each pixel sees, or kNone
+  int textured = 0;                                      ///< pixels that see a textured mesh
+  bool one_mesh = true;                                  ///< all of them see the same one
+  PixelBatch batch;                                      ///< what the shading kernels read and write
+};
+
+void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
+                              std::uint64_t seed) {
+  Tile tile;
+  castTile(ctx, cam, u0, v0, u1, v1, tile);
+  shadowTile(ctx, tile);
+  surfaceTile(tile);
+  textureTile(tile);
+  shadeTile(tile);
+  if (scatter_on_) {  // the sensor comes after the whole image's forward scattering (encodeAll)
+    scatterTile(tile);
+    return;
+  }
+  float* const radiance[3] = {tile.batch.out[0], tile.batch.out[1], tile.batch.out[2]};
+  encode(tile.n, tile.pixel, radiance, seed, tile.simd);
+}
+
+void CameraSensor::castTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
+                            Tile& t) const {
+  const int w = model_.width();
+  t.u0 = u0;
+  t.v0 = v0;
+  t.rot = cam.linear().cast<float>();
+  t.origin = cam.translation().cast<float>();
+  t.far = static_cast<float>(clip_far_);
+  t.simd = simd_ && ImageFormation::simdAvailable();
   int n = 0;
   for (int v = v0; v < v1; ++v)
     for (int u = u0; u < u1; ++u, ++n) {
-      pixel[n] = static_cast<std::size_t>(v) * w + u;
-      pu[n] = static_cast<float>(u);
-      pv[n] = static_cast<float>(v);
-      rays[n].origin = origin;
-      rays[n].direction = rot * dirs_[pixel[n]];
-      rays[n].max_range = far;
+      t.pixel[n] = static_cast<std::size_t>(v) * w + u;
+      t.pu[n] = static_cast<float>(u);
+      t.pv[n] = static_cast<float>(v);
+      t.rays[n].origin = t.origin;
+      t.rays[n].direction = t.rot * dirs_[t.pixel[n]];
+      t.rays[n].max_range = t.far;
     }
+  t.n = n;
   // Shading uses the normal, not the angle.
   if (ctx.rays)
-    ctx.rays->cast(rays, hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip,
+    ctx.rays->cast(t.rays, t.hits, static_cast<std::size_t>(n), ctx.robot_index, raycast::Incidence::skip,
                    raycast::SeenBy::cameras);
+}
 
-  unsigned lit[raycast::kBlock];
-  std::fill(lit, lit + n, ~0u);
-  if (shadows_) {
-    // One ray from each light towards every surface point it would light; a hit before the point shadows it.
-    thread_local std::vector<raycast::Ray> shadow_rays;
-    thread_local std::vector<raycast::Hit> shadow_hits;
-    thread_local std::vector<std::pair<int, int>> pairs;  // (pixel of the tile, light)
-    shadow_rays.clear();
-    pairs.clear();
-    for (int i = 0; i < n; ++i) {
-      if (!hits[i].hit())
+void CameraSensor::shadowTile(const SensorContext& ctx, Tile& t) const {
+  std::fill(t.lit, t.lit + t.n, ~0u);
+  if (!shadows_)
+    return;
+  // One ray from each light towards every surface point it would light; a hit before the point shadows it.
+  thread_local std::vector<raycast::Ray> shadow_rays;
+  thread_local std::vector<raycast::Hit> shadow_hits;
+  thread_local std::vector<std::pair<int, int>> pairs;  // (pixel of the tile, light)
+  shadow_rays.clear();
+  pairs.clear();
+  for (int i = 0; i < t.n; ++i) {
+    if (!t.hits[i].hit())
+      continue;
+    const Eigen::Vector3f p = t.hits[i].range * dirs_[t.pixel[i]];
+    const Eigen::Vector3f nrm = t.rot.transpose() * t.hits[i].normal;
+    for (int k : formation_->activeLights()) {
+      if (!formation_->canLight(k, p, nrm))
         continue;
-      const Eigen::Vector3f p = hits[i].range * dirs_[pixel[i]];
-      const Eigen::Vector3f nrm = rot.transpose() * hits[i].normal;
-      for (int k : formation_->activeLights()) {
-        if (!formation_->canLight(k, p, nrm))
-          continue;
-        const Eigen::Vector3f from = rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + origin;
-        const Eigen::Vector3f to = hits[i].point(rays[i]) - from;
-        const float len = to.norm();
-        if (!(len > 2e-3f))
-          continue;
-        raycast::Ray r;
-        r.origin = from;
-        r.direction = to / len;
-        r.max_range = len * 0.999f - 1e-3f;
-        shadow_rays.push_back(r);
-        pairs.emplace_back(i, k);
-      }
-    }
-    if (ctx.rays && !shadow_rays.empty()) {
-      ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip, raycast::SeenBy::cameras);
-      for (std::size_t s = 0; s < pairs.size(); ++s)
-        if (shadow_hits[s].hit())
-          lit[pairs[s].first] &= ~(1u << pairs[s].second);
+      const Eigen::Vector3f from = t.rot * lights_[static_cast<std::size_t>(k)].position.cast<float>() + t.origin;
+      const Eigen::Vector3f to = t.hits[i].point(t.rays[i]) - from;
+      const float len = to.norm();
+      if (!(len > 2e-3f))
+        continue;
+      raycast::Ray r;
+      r.origin = from;
+      r.direction = to / len;
+      r.max_range = len * 0.999f - 1e-3f;
+      shadow_rays.push_back(r);
+      pairs.emplace_back(i, k);
     }
   }
+  if (ctx.rays && !shadow_rays.empty()) {
+    ctx.rays->cast(shadow_rays, shadow_hits, ctx.robot_index, raycast::Incidence::skip, raycast::SeenBy::cameras);
+    for (std::size_t s = 0; s < pairs.size(); ++s)
+      if (shadow_hits[s].hit())
+        t.lit[pairs[s].first] &= ~(1u << pairs[s].second);
+  }
+}
 
-  const Eigen::Matrix3f to_camera = rot.transpose();
-  const float hull[3] = {static_cast<float>(kHullAlbedo.x()), static_cast<float>(kHullAlbedo.y()),
-                         static_cast<float>(kHullAlbedo.z())};
-  const bool simd = simd_ && ImageFormation::simdAvailable();
-  // Every pixel as if plain (the hull's or the mesh's one albedo, the face's normal), then the textured ones: albedo
-  // and shading normal evaluated into the batch itself, one textured mesh at a time (eight pixels in lanes).
-  PixelBatch batch;
-  batch.n = n;
-  batch.keep_direct = scatter_on_;
-  constexpr std::size_t kNone = ~std::size_t(0);
-  std::size_t material_of[raycast::kBlock];  // the textured mesh hit, or kNone
-  int textured = 0;                          // pixels on a textured mesh
-  bool one_mesh = true;                      // all on the same one
-  for (int i = 0; i < n; ++i) {
-    const raycast::Hit& hit = hits[i];
-    material_of[i] = kNone;
+void CameraSensor::surfaceTile(Tile& t) {
+  // Every pixel as if plain (the hull's or the mesh's one albedo, the face's normal); textureTile then the textured.
+  const Eigen::Matrix3f to_camera = t.rot.transpose();
+  const float hull[3] = {static_cast<float>(SurfaceMaterials::kHullAlbedo.x()),
+                         static_cast<float>(SurfaceMaterials::kHullAlbedo.y()),
+                         static_cast<float>(SurfaceMaterials::kHullAlbedo.z())};
+  PixelBatch& batch = t.batch;
+  batch.n = t.n;
+  batch.keep_direct = scatter_on_ || silt_on_;  // read by scatterTile and by the silt (shadeTile)
+  t.textured = 0;
+  t.one_mesh = true;
+  for (int i = 0; i < t.n; ++i) {
+    const raycast::Hit& hit = t.hits[i];
+    t.material_of[i] = Tile::kNone;
     if (hit.hit()) {
       const auto mesh = static_cast<std::size_t>(hit.index);
       const bool is_mesh = hit.kind == raycast::HitKind::mesh;
@@ -441,68 +477,82 @@ void CameraSensor::renderTile(const SensorContext& ctx, const Eigen::Isometry3d&
       const float* albedo = !is_mesh                   ? hull
                             : materials_->mapped(mesh) ? materials_->mappedAlbedo(hit, mapped)
                                                        : materials_->meanAlbedo(mesh).data();
-      batch.set(i, pu[i], pv[i], hit.range, hit.range * dirs_[pixel[i]], to_camera * hit.normal, albedo, lit[i]);
-      frame_.range[pixel[i]] = hit.range;
+      batch.set(i, t.pu[i], t.pv[i], hit.range, hit.range * dirs_[t.pixel[i]], to_camera * hit.normal, albedo,
+                t.lit[i]);
+      frame_.range[t.pixel[i]] = hit.range;
       if (is_mesh && materials_->textured(mesh)) {
-        material_of[i] = mesh;
-        one_mesh = one_mesh && mesh == material_of[0];
-        ++textured;
+        t.material_of[i] = mesh;
+        t.one_mesh = t.one_mesh && mesh == t.material_of[0];
+        ++t.textured;
       }
     } else {
-      batch.setWater(i, pu[i], pv[i], far);
-      frame_.range[pixel[i]] = std::numeric_limits<float>::infinity();
+      batch.setWater(i, t.pu[i], t.pv[i], t.far);
+      frame_.range[t.pixel[i]] = std::numeric_limits<float>::infinity();
     }
   }
-  if (textured == n && one_mesh) {  // the usual tile: one textured wall
+}
+
+void CameraSensor::textureTile(Tile& t) const {
+  // Albedo and shading normal of the textured pixels evaluated into the batch itself, one textured mesh at a time
+  // (eight pixels in lanes).
+  PixelBatch& batch = t.batch;
+  const int n = t.n;
+  if (t.textured == n && t.one_mesh) {  // the usual tile: one textured wall
     float* const albedo[3] = {batch.albedo[0], batch.albedo[1], batch.albedo[2]};
-    materials_->shadeMany(material_of[0], rot, origin, n, batch.px, batch.py, batch.pz, batch.nx, batch.ny, batch.nz,
-                          albedo, simd);
-  } else if (textured > 0) {
-    for (int first = 0; first < n; ++first) {
-      const std::size_t mesh = material_of[first];
-      if (mesh == kNone || std::find(material_of, material_of + first, mesh) != material_of + first)
-        continue;  // not textured, or this mesh is done
-      // The pixels of this mesh, gathered, evaluated and put back.
-      alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
-      int which[raycast::kBlock], count = 0;
-      for (int i = first; i < n; ++i)
-        if (material_of[i] == mesh) {
-          x[0][count] = batch.px[i], x[1][count] = batch.py[i], x[2][count] = batch.pz[i];
-          nrm[0][count] = batch.nx[i], nrm[1][count] = batch.ny[i], nrm[2][count] = batch.nz[i];
-          which[count++] = i;
-        }
-      float* const out[3] = {albedo[0], albedo[1], albedo[2]};
-      materials_->shadeMany(mesh, rot, origin, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, simd);
-      for (int j = 0; j < count; ++j) {
-        const int i = which[j];
-        batch.nx[i] = nrm[0][j], batch.ny[i] = nrm[1][j], batch.nz[i] = nrm[2][j];
-        for (int c = 0; c < 3; ++c)
-          batch.albedo[c][i] = albedo[c][j];
-      }
-    }
-  }
-  formation_->radiance(batch, simd, silt_on_ ? silt_.get() : nullptr);
-  for (int i = 0; i < n; ++i) {
-    float* out = &frame_.radiance[3 * pixel[i]];
-    for (int c = 0; c < 3; ++c)
-      out[c] = batch.out[c][i];
-  }
-  if (scatter_on_) {  // the sensor comes after the whole image's forward scattering (encodeAll)
-    const float* const direct[3] = {batch.direct[0], batch.direct[1], batch.direct[2]};
-    if (silt_on_) {
-      // The silt on the camera leg scatters forward as the water does: its forward scatterings eta tau(R).
-      float silt[raycast::kBlock];
-      const float eta = static_cast<float>(scatter_->eta());
-      for (int i = 0; i < n; ++i)
-        silt[i] = eta * static_cast<float>(silt_->opticalDepth(batch.u[i], batch.v[i], batch.range[i]));
-      scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range, silt);
-    } else {
-      scatter_->accumulate(u0 / kTile, v0 / kTile, n, direct, batch.range);
-    }
+    materials_->shadeMany(t.material_of[0], t.rot, t.origin, n, batch.px, batch.py, batch.pz, batch.nx, batch.ny,
+                          batch.nz, albedo, t.simd);
     return;
   }
-  float* const radiance[3] = {batch.out[0], batch.out[1], batch.out[2]};
-  encode(n, pixel, radiance, seed, simd);
+  if (t.textured == 0)
+    return;
+  for (int first = 0; first < n; ++first) {
+    const std::size_t mesh = t.material_of[first];
+    if (mesh == Tile::kNone || std::find(t.material_of, t.material_of + first, mesh) != t.material_of + first)
+      continue;  // not textured, or this mesh is done
+    // The pixels of this mesh, gathered, evaluated and put back.
+    alignas(32) float x[3][raycast::kBlock], nrm[3][raycast::kBlock], albedo[3][raycast::kBlock];
+    int which[raycast::kBlock], count = 0;
+    for (int i = first; i < n; ++i)
+      if (t.material_of[i] == mesh) {
+        x[0][count] = batch.px[i], x[1][count] = batch.py[i], x[2][count] = batch.pz[i];
+        nrm[0][count] = batch.nx[i], nrm[1][count] = batch.ny[i], nrm[2][count] = batch.nz[i];
+        which[count++] = i;
+      }
+    float* const out[3] = {albedo[0], albedo[1], albedo[2]};
+    materials_->shadeMany(mesh, t.rot, t.origin, count, x[0], x[1], x[2], nrm[0], nrm[1], nrm[2], out, t.simd);
+    for (int j = 0; j < count; ++j) {
+      const int i = which[j];
+      batch.nx[i] = nrm[0][j], batch.ny[i] = nrm[1][j], batch.nz[i] = nrm[2][j];
+      for (int c = 0; c < 3; ++c)
+        batch.albedo[c][i] = albedo[c][j];
+    }
+  }
+}
+
+void CameraSensor::shadeTile(Tile& t) {
+  formation_->radiance(t.batch, t.simd);
+  if (silt_on_)
+    silt_->apply(t.batch, t.batch.direct);
+  for (int i = 0; i < t.n; ++i) {
+    float* out = &frame_.radiance[3 * t.pixel[i]];
+    for (int c = 0; c < 3; ++c)
+      out[c] = t.batch.out[c][i];
+  }
+}
+
+void CameraSensor::scatterTile(const Tile& t) {
+  const PixelBatch& batch = t.batch;
+  const float* const direct[3] = {batch.direct[0], batch.direct[1], batch.direct[2]};
+  if (!silt_on_) {
+    scatter_->accumulate(t.u0 / kTile, t.v0 / kTile, t.n, direct, batch.range);
+    return;
+  }
+  // The silt on the camera leg scatters forward as the water does: its forward scatterings eta tau(R).
+  float silt[raycast::kBlock];
+  const float eta = static_cast<float>(scatter_->eta());
+  for (int i = 0; i < t.n; ++i)
+    silt[i] = eta * static_cast<float>(silt_->opticalDepth(batch.u[i], batch.v[i], batch.range[i]));
+  scatter_->accumulate(t.u0 / kTile, t.v0 / kTile, t.n, direct, batch.range, silt);
 }
 
 void CameraSensor::describeSample(SampleWriter& out) const {

@@ -10,10 +10,10 @@
 //
 // Per pixel: the ray of the pixel centre (CameraModel::ray, distortion undone exactly), cast up to clip_far; the
 // radiance at the lens L = direct + backscatter (ImageFormation; albedo and shading normal of the hit mesh from its
-// material in the world file (SurfaceMaterials), of a robot hull kHullAlbedo); the laser line added; then the sensor:
-// signal s = min(1, exposure L) in fractions of full well, shot noise sqrt(s / full_well) and read noise read_noise /
-// full_well (Gaussian, seeded), times gain, clamped to [0, 1], gamma-encoded v^(1/gamma) and rounded to 8 bits per
-// channel.
+// material in the world file (SurfaceMaterials), of a robot hull SurfaceMaterials::kHullAlbedo); the laser line
+// added; then the sensor: signal s = min(1, exposure L) in fractions of full well, shot noise sqrt(s / full_well)
+// and read noise read_noise / full_well (Gaussian, seeded), times gain, clamped to [0, 1], gamma-encoded
+// v^(1/gamma) and rounded to 8 bits per channel.
 //
 // Parameters (units; default):
 //   width, height [px] (2054 x 1544), hfov [rad] (80 deg), distortion k1 k2 p1 p2 k3 (0), render_scale (1):
@@ -74,9 +74,6 @@ struct CameraFrame {
 
 class CameraSensor : public Sensor {
 public:
-  /// Albedo (R, G, B) of a robot hull seen by a camera [assumed: the UX-1's yellow paint, urdf hull_rgba].
-  static const Eigen::Vector3d kHullAlbedo;
-
   CameraSensor(const sim::SensorSpec& spec, const SensorSetup& setup);
   ~CameraSensor() override;
 
@@ -87,6 +84,8 @@ public:
   const CameraFrame& last() const { return frame_; }
   /// Renders only at samples where `wanted()` is true (e.g. the image topic has a subscriber); null: always.
   void setDemand(std::function<bool()> wanted) { demand_ = std::move(wanted); }
+  /// Off: renders no frame whatever setDemand says (on by default; kept across reset()).
+  void setRendering(bool on) override { rendering_ = on; }
 
   double clipFar() const { return clip_far_; }   ///< [m]
   double exposure() const { return exposure_; }  ///< [m^2 sr / W] (the parameter; the start of auto-exposure)
@@ -123,9 +122,24 @@ private:
   /// Renders frame_ (noise of frame seed `seed`).
   void render(const SensorContext& ctx, std::uint64_t seed);
   /// Radiance, range and rgb of the pixels [u0, u1) x [v0, v1) (at most one tile) of the camera at `cam` (world
-  /// frame): their rays, cast on the calling thread, shadow rays if on, shading and sensor.
+  /// frame), on the calling thread, in stages passing one Tile along: castTile, shadowTile, surfaceTile,
+  /// textureTile, shadeTile, then encode (or scatterTile when forward scattering runs: the sensor comes after it).
   void renderTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1,
                   std::uint64_t seed);
+  struct Tile;
+  /// The tile's pixels and their rays from the lens at `cam`, cast up to clip_far.
+  void castTile(const SensorContext& ctx, const Eigen::Isometry3d& cam, int u0, int v0, int u1, int v1, Tile& t) const;
+  /// Which lights reach each pixel's surface point: all, or (shadows on) those whose shadow ray meets nothing.
+  void shadowTile(const SensorContext& ctx, Tile& t) const;
+  /// The batch from the hits: each pixel's surface (point, face normal, one albedo: the hull's, the mesh's mean or
+  /// mapped one) or open water; frame_.range; which pixels see a textured mesh.
+  void surfaceTile(Tile& t);
+  /// Albedo and shading normal of the pixels on textured meshes (SurfaceMaterials::shadeMany), into the batch.
+  void textureTile(Tile& t) const;
+  /// The batch's radiance at the lens (ImageFormation::radiance, the silt in view), into frame_.radiance.
+  void shadeTile(Tile& t);
+  /// The tile's direct light (and the silt's optical depth on its rays) into the forward scattering's buffer.
+  void scatterTile(const Tile& t);
   /// The sensor at the n <= raycast::kBlock pixels `pixel` whose radiance per channel is radiance[c][0..n): noise,
   /// gain, gamma, 8 bits per channel into the image. `simd`: in AVX2 lanes (then radiance[c] holds n rounded up to
   /// a multiple of 8 finite values).
@@ -152,6 +166,7 @@ private:
   std::vector<LedLight> lights_;
   std::unique_ptr<LaserLine> laser_;
   std::function<bool()> demand_;
+  bool rendering_ = true;  ///< setRendering
 
   // Built at the first render (visual mode only).
   std::unique_ptr<ImageFormation> formation_;

@@ -3,7 +3,6 @@
 #include <unexmin/core/error.h>
 #include <unexmin/sensors/vision/parallel_rows.h>
 #include <unexmin/sensors/vision/shading_kernels.h>
-#include <unexmin/sensors/vision/silt_view.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,9 +20,9 @@ constexpr int kMaxNodesU = 65;                      ///< backscatter table: pixe
 constexpr int kMaxNodesV = 49;                      ///< ... and down
 constexpr double kConeMargin = 5.0 * M_PI / 180.0;  ///< [rad] a light is kept if a grid ray passes this close
 
-/// Copies the direct term (batch.out after the direct kernel) into batch.direct when the batch or the silt needs it.
-void keepDirect(PixelBatch& batch, const SiltView* silt) {
-  if (!batch.keep_direct && !silt)
+/// Copies the direct term (batch.out after the direct kernel) into batch.direct when the batch asks for it.
+void keepDirect(PixelBatch& batch) {
+  if (!batch.keep_direct)
     return;
   for (int c = 0; c < 3; ++c)
     std::copy(batch.out[c], batch.out[c] + batch.n, batch.direct[c]);
@@ -134,7 +133,7 @@ bool ImageFormation::simdAvailable() {
 #endif
 }
 
-void ImageFormation::radiance(PixelBatch& batch, bool simd, const SiltView* silt) const {
+void ImageFormation::radiance(PixelBatch& batch, bool simd) const {
   const int count = static_cast<int>(kernel_lights_.size());
   if (simd && simdAvailable()) {
     // Whole groups of 8 lanes: the padding is open water at range 0 (its results are never read).
@@ -142,15 +141,13 @@ void ImageFormation::radiance(PixelBatch& batch, bool simd, const SiltView* silt
     for (int i = batch.n; i < padded; ++i)
       batch.setWater(i, 0.0f, 0.0f, 0.0f);
     shading::directAvx2(batch, padded, kernel_lights_.data(), count, tables_);
-    keepDirect(batch, silt);
+    keepDirect(batch);
     shading::backscatterAvx2(batch, padded, backscatter_);
   } else {
     shading::direct<lanes::F1>(batch, batch.n, kernel_lights_.data(), count, tables_);
-    keepDirect(batch, silt);
+    keepDirect(batch);
     shading::backscatter<lanes::F1>(batch, batch.n, backscatter_);
   }
-  if (silt)
-    silt->apply(batch, batch.direct);
 }
 
 Eigen::Array3f ImageFormation::direct(const Eigen::Vector3f& p, float range, const Eigen::Vector3f& n,

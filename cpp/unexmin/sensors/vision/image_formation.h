@@ -78,11 +78,10 @@ struct PixelBatch : shading::Pixels {
     set(i, pu, pv, max_range, Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), zero, 0u);
   }
 
-  bool keep_direct = false;  ///< radiance() also writes the direct term alone into `direct` (forward scattering)
+  /// radiance() also writes the direct term alone into `direct` (forward scattering and silt read it)
+  bool keep_direct = false;
   alignas(32) float direct[3][raycast::kBlock];  ///< the direct term per channel [W m^-2 sr^-1] (if keep_direct)
 };
-
-class SiltView;
 
 class ImageFormation {
 public:
@@ -114,8 +113,8 @@ public:
   /// also into batch.direct when batch.keep_direct). `simd` (and
   /// simdAvailable()): eight pixels side by side in AVX2 lanes; else one at a time. Same kernels either way
   /// (shading_kernels.h); the results differ only by rounding (FMA), about 1e-7 relative.
-  /// `silt` (null: none): the silt the thrusters raised, as this frame's camera sees it (SiltView::apply).
-  void radiance(PixelBatch& batch, bool simd = true, const SiltView* silt = nullptr) const;
+  /// The silt the thrusters raised is the camera's to add afterwards (SiltView::apply, with keep_direct set).
+  void radiance(PixelBatch& batch, bool simd = true) const;
   /// Whether this build and this CPU run the eight-lane kernels (x86-64 with AVX2 and FMA).
   static bool simdAvailable();
   /// Whether light `k` can light point `p` (camera frame) from the front of a surface of normal `n`: inside its

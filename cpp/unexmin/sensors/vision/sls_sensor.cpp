@@ -1,6 +1,5 @@
 #include <unexmin/sensors/vision/sls_sensor.h>
 
-#include <unexmin/sensors/vision/camera_sensor.h>
 #include <unexmin/sensors/vision/water_optics.h>
 
 #include <algorithm>
@@ -161,7 +160,7 @@ void SlsSensor::sample(const SensorContext& ctx) {
     const raycast::Hit& h = hits_[j];
     const double rl = h.range;
     const double rc = sight_[k].max_range + kSightSlack;
-    double albedo = CameraSensor::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
+    double albedo = SurfaceMaterials::kHullAlbedo.y();  // the hull's green, as camera i sees the 532 nm line
     if (h.kind == raycast::HitKind::mesh)
       albedo = SurfaceMaterials::of(ctx.world, materials_).albedo(h, h.point(rays_[j])).y();
     double strength = albedo * std::cos(static_cast<double>(raycast::RayCaster::incidence(rays_[j], h))) *

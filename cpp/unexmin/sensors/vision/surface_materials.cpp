@@ -4,6 +4,8 @@ namespace unexmin {
 namespace sensors {
 namespace vision {
 
+const Eigen::Vector3d SurfaceMaterials::kHullAlbedo{0.95, 0.75, 0.10};
+
 SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config) : SurfaceMaterials(config, nullptr) {}
 
 SurfaceMaterials::SurfaceMaterials(const sim::World& world) : SurfaceMaterials(world.config(), &world) {}

@@ -20,6 +20,10 @@ namespace vision {
 
 class SurfaceMaterials {
 public:
+  /// Albedo (R, G, B) of a robot hull as the cameras and the SLS lasers see it [assumed: the UX-1's yellow paint,
+  /// urdf hull_rgba].
+  static const Eigen::Vector3d kHullAlbedo;
+
   /// One entry per mesh of `config` (the index of a raycast::Hit of kind mesh). Throws ConfigError naming the key of
   /// a material of kind image or vertex_colours: those need the world's meshes (the constructor below).
   explicit SurfaceMaterials(const sim::WorldConfig& config);

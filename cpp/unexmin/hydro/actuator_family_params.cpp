@@ -1,22 +1,22 @@
-#include <unexmin/hydro/thruster_family_params.h>
+#include <unexmin/hydro/actuator_family_params.h>
 
 namespace unexmin {
 namespace hydro {
 
-ThrusterFamilyParams::ThrusterFamilyParams(std::string family, ParamMap params)
+ActuatorFamilyParams::ActuatorFamilyParams(std::string family, ParamMap params)
     : family_(std::move(family)), params_(std::move(params)) {}
 
-bool ThrusterFamilyParams::has(const std::string& key) {
+bool ActuatorFamilyParams::has(const std::string& key) {
   read_.insert(key);
   return params_.count(key) > 0;
 }
 
-double ThrusterFamilyParams::scalar(const std::string& key) {
+double ActuatorFamilyParams::scalar(const std::string& key) {
   read_.insert(key);
   return requireScalar(params_, key, family_);
 }
 
-double ThrusterFamilyParams::scalar(const std::string& key, double min, double max, const std::string& unit) {
+double ActuatorFamilyParams::scalar(const std::string& key, double min, double max, const std::string& unit) {
   const double value = scalar(key);
   if (value < min || value > max) {
     throw ParameterError(family_ + ": parameter '" + key + "' = " + formatNumber(value) + " must be in [" +
@@ -25,7 +25,7 @@ double ThrusterFamilyParams::scalar(const std::string& key, double min, double m
   return value;
 }
 
-const std::vector<double>& ThrusterFamilyParams::list(const std::string& key) {
+const std::vector<double>& ActuatorFamilyParams::list(const std::string& key) {
   read_.insert(key);
   const auto it = params_.find(key);
   if (it == params_.end()) {
@@ -34,7 +34,7 @@ const std::vector<double>& ThrusterFamilyParams::list(const std::string& key) {
   return it->second;
 }
 
-void ThrusterFamilyParams::finish() const {
+void ActuatorFamilyParams::finish() const {
   for (const auto& kv : params_) {
     if (read_.count(kv.first))
       continue;

@@ -1,6 +1,7 @@
-// The numeric parameters a thruster family reads from the robot description (<param name="..." value="..."/>
-// inside <dynamics> or <conversion>), with the wording of every error: it names the family, the parameter, its
-// value and what is accepted. The factory (thruster_factory.h) rejects a parameter the family did not read.
+// The numeric parameters an actuator family reads from the robot description (<param name="..." value="..."/>
+// inside a thruster's <dynamics> or <conversion>, or a fin's <model>), with the wording of every error: it names the
+// family, the parameter, its value and what is accepted. The factory (actuator_family_factory.h) rejects a parameter
+// the family did not read.
 #pragma once
 
 #include <unexmin/hydro/types.h>
@@ -12,10 +13,10 @@
 namespace unexmin {
 namespace hydro {
 
-class ThrusterFamilyParams {
+class ActuatorFamilyParams {
 public:
   /// `family` names the model in messages, e.g. "thruster dynamics 'first_order'".
-  ThrusterFamilyParams(std::string family, ParamMap params);
+  ActuatorFamilyParams(std::string family, ParamMap params);
 
   const std::string& family() const { return family_; }
 

@@ -1,4 +1,4 @@
-#include <unexmin/sensors/noise_model.h>
+#include <unexmin/sensors/noise_factory.h>
 
 #include <unexmin/sensors/gaussian_noise.h>
 
