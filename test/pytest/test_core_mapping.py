@@ -1,0 +1,174 @@
+"""The mapper in-process (unexmin.core.World(mapping=...), docs/mapping.md "In-process") against the mapper node.
+
+The same tank, seed and commands run twice: over ROS in lockstep (`Simulation.launch(mapping=True)`: the simulator,
+robot_state_publisher and the mapper node, which places each M3 scan through /tf and /tf_static), and in-process.
+UX_1 turns and moves for 8 s with only its M3 running (a fixed mount: the M3 link 0.27 m ahead of and 0.13 m below
+the body origin), each step call 10 physics steps (one /tf sample at the 50 Hz odometry rate per call, so that the
+sample the simulator adds at the end of each call is one of the regular ones). Both saved .bt files must be the same
+bytes: the same occupied and free leaves, the same tree (a .bt holds no log-odds: each leaf is free or occupied).
+
+Also, in-process only: every occupied voxel lies on the tank's walls or its anchor (closed form: the tank's inner
+box, 6 x 4 m, floor at -3 m); parameter errors name the parameter; the core back end of Simulation saves the map at
+close.
+"""
+
+import os
+
+import numpy as np
+import pytest
+from lockstep_pairs import ros_environment_kept
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")  # rospy's own
+SEED = 3
+CHUNK = 10  # physics steps per step call: 500 Hz / 50 Hz (the simulator's odom_rate, the mapper's tf_rate)
+SECONDS = 8
+ROBOT = "UX_1"
+
+
+def commands(second):
+    """Thrusts [N] for M0..M7 during second `second`: turn in place one way, drive, turn the other way."""
+    turn = [3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0]
+    schedule = [turn, turn, [4.0, 0.0, -4.0, 0.0, 4.0, 0.0, -4.0, 0.0], [-3.0] * 8]
+    return schedule[second % len(schedule)]
+
+
+def drive(step, robot_thrusts, physics_rate):
+    """The command schedule through `step(n)` in calls of CHUNK steps."""
+    for second in range(SECONDS):
+        robot_thrusts(commands(second))
+        for _ in range(round(physics_rate) // CHUNK):
+            step(CHUNK)
+
+
+def run_core(path):
+    from unexmin.core import World
+
+    w = World("tank", robots=1, seed=SEED, sensors="m3", mapping=True)
+    drive(w.step, w.robot(ROBOT).thrusts, 1.0 / w.dt)
+    w.save_map(path)
+    return w
+
+
+def mapper_connected(master):
+    """True once the simulator has live connections to the mapper on the M3's scans and /tf (a publisher drops
+    messages for a subscriber that is registered but not yet connected)."""
+    from xmlrpc.client import ServerProxy
+
+    bus = ServerProxy(master.lookupNode("/simulator")).getBusInfo(master.caller_id)[2]
+    connected = {c[4] for c in bus if c[1].startswith("/mapper") and c[2] == "o" and c[5]}
+    return {f"/{ROBOT}/m3/scan", "/tf"} <= connected
+
+
+def run_ros(path, log_dir, core_stats):
+    """The node's map of the same run, saved to `path` once it holds every cloud the core inserted; its stats."""
+    from unexmin import Simulation
+    from unexmin.scripting.launcher import wait_for
+
+    with ros_environment_kept():
+        with Simulation.launch("tank", robots=1, seed=SEED, sensors="m3", mapping=True, log_dir=log_dir) as sim:
+            import rosgraph
+            import rospy
+
+            from unexmin.msg import MapperStats
+            from unexmin.srv import SaveMap
+
+            stats = {}
+            sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
+            master = rosgraph.Master(rospy.get_name())
+            wait_for(lambda: mapper_connected(master), 60.0, "the mapper to connect to the simulator")
+            ux = sim.robot(ROBOT, streams="none")
+            drive(sim.step, ux.thrusts, sim.physics_rate)
+            expected = (core_stats["clouds_received"], core_stats["clouds_inserted"])
+
+            def caught_up():
+                last = stats.get("last")
+                return last is not None and (last.clouds_received, last.clouds_inserted) == expected
+
+            wait_for(caught_up, 120.0, f"the mapper to receive and insert {expected} clouds")
+            rospy.wait_for_service("/mapper/save_map", 30.0)
+            answer = rospy.ServiceProxy("/mapper/save_map", SaveMap)(path=str(path), robot="")
+            assert answer.success, answer.message
+            sub.unregister()
+            return stats["last"], answer.occupied_leaves
+
+
+@pytest.fixture(scope="module")
+def maps(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("maps")
+    paths = {k: folder / f"{k}.bt" for k in ("core", "ros")}
+    core = run_core(paths["core"])
+    ros_stats, ros_leaves = run_ros(paths["ros"], str(folder / "logs"), core.map_stats())
+    return paths, core, ros_stats, ros_leaves
+
+
+def test_the_in_process_map_is_the_mapper_nodes(maps):
+    from unexmin.map_quality.io import read_bt
+
+    paths, core, ros_stats, ros_leaves = maps
+    stats = core.map_stats()
+    assert stats["sources"] == [f"{ROBOT}/m3"]
+    # 40 Hz M3 over 8 s: 320 scans, every one placed (none waits past the last tf sample, at 8 s)
+    assert stats["clouds_received"] == 320 and stats["clouds_inserted"] == 320 and stats["clouds_dropped"] == 0
+    assert ros_stats.clouds_dropped == 0 and ros_stats.points_inserted == stats["points_inserted"]
+    assert ros_leaves == stats["occupied_leaves"] > 500
+    core_centres, core_sizes = read_bt(paths["core"])
+    ros_centres, ros_sizes = read_bt(paths["ros"])
+    assert len(core_centres) == len(ros_centres) == stats["occupied_leaves"]
+    np.testing.assert_array_equal(core_centres, ros_centres)
+    np.testing.assert_array_equal(core_sizes, ros_sizes)
+    assert paths["core"].read_bytes() == paths["ros"].read_bytes(), "the two trees differ in their free leaves"
+
+
+def test_every_occupied_voxel_is_on_the_tank(maps):
+    core = maps[1]
+    v = core.occupied_voxels()
+    assert v.shape[1] == 4 and len(v) == core.map_stats()["occupied_leaves"]
+    centre, half = v[:, :3], v[:, 3] / 2
+    # the tank's inner box: walls at x = +-3, y = +-2, the floor at z = -3 (worlds/meshes/tank.stl, 0.05 m thick)
+    wall = np.min(
+        np.stack(
+            [
+                np.abs(np.abs(centre[:, 0]) - 3.0),
+                np.abs(np.abs(centre[:, 1]) - 2.0),
+                np.abs(centre[:, 2] + 3.0),
+            ]
+        ),
+        axis=0,
+    )
+    # the anchor lies on the floor at the centre (worlds/tank.world), below 1.5 m
+    anchor = (np.abs(centre[:, 0]) < 1.0) & (np.abs(centre[:, 1]) < 1.0) & (centre[:, 2] < -1.5)
+    on_rock = (wall <= half + 0.1) | anchor  # within a voxel of the surface (the M3's 3 deg beam, range noise)
+    assert on_rock.mean() > 0.97, f"{(~on_rock).sum()} of {len(v)} voxels off the tank"
+
+
+def test_mapper_parameters_are_checked_by_name():
+    from unexmin.core import ConfigError, World
+
+    with pytest.raises(ConfigError, match="parameter 'resolution' = 0: expected \\[0.001, 10\\] m"):
+        World("tank", sensors="m3", mapping={"resolution": 0.0})
+    with pytest.raises(ConfigError, match="m3_max_range' = 20: expected \\(0, max_range = 10\\] m"):
+        World("tank", sensors="m3", mapping={"m3_max_range": 20.0})
+    with pytest.raises(ConfigError, match="unknown parameter 'per_robot': expected one of .*resolution"):
+        World("tank", sensors="m3", mapping={"per_robot": True})
+    with pytest.raises(ConfigError, match="parameter 'm3' = 1: expected true or false"):
+        World("tank", sensors="m3", mapping={"m3": 1})
+    with pytest.raises(RuntimeError, match="maps nothing"):
+        World("tank", sensors="m3").map_stats()
+
+
+def test_simulation_core_backend_saves_the_map_at_close(tmp_path):
+    from unexmin import Simulation
+    from unexmin.map_quality.io import read_bt
+
+    path = tmp_path / "map.bt"
+    with Simulation.launch("tank", seed=SEED, sensors="m3", backend="core", mapping=True, map_file=str(path)) as sim:
+        sim.robot(ROBOT).thrusts(commands(0))
+        sim.run_for(2.0)
+        leaves = sim.world.map_stats()["occupied_leaves"]
+        settings = sim.world.map_settings()
+        assert not path.exists()
+    assert settings["sonar_max_range"] == 8.0 and settings["dvl"] is False  # as launch/simulation.launch
+    centres, _ = read_bt(str(path))
+    assert len(centres) == leaves > 100
+    with pytest.raises(ValueError, match="map_file .* only made with mapping=True"):
+        Simulation.launch("tank", sensors="m3", backend="core", map_file=os.fspath(tmp_path / "x.bt"))
