@@ -1,10 +1,11 @@
 """The mapper in-process (unexmin.core.World(mapping=...), docs/mapping.md "In-process") against the mapper node.
 
-The same tank, seed and commands run twice: over ROS in lockstep (`Simulation.launch(mapping=True)`: the simulator,
-robot_state_publisher and the mapper node, which places each M3 scan through /tf and /tf_static), and in-process.
-UX_1 turns and moves for 8 s with only its M3 running (a fixed mount: the M3 link 0.27 m ahead of and 0.13 m below
-the body origin), each step call 10 physics steps (one /tf sample at the 50 Hz odometry rate per call, so that the
-sample the simulator adds at the end of each call is one of the regular ones). Both saved .bt files must be the same
+The same tank, seed and commands run twice: over ROS in lockstep (the simulator, robot_state_publisher and the
+mapper node, which places each cloud through /tf and /tf_static), and in-process. UX_1 yaws both ways and drives for
+8 s, each step call 10 physics steps (one /tf sample at the 50 Hz odometry rate per call, so that the sample the
+simulator adds at the end of each call is one of the regular ones). Twice: with its M3 alone (a fixed mount: the M3
+link 0.27 m ahead of and 0.13 m below the body origin), and with the M3 and the DVL's four beam ranges (rotated
+mounts: the DVL link upside down, each beam 65 deg off its axis). Each time both saved .bt files must be the same
 bytes: the same occupied and free leaves, the same tree (a .bt holds no log-odds: each leaf is free or occupied).
 
 Also, in-process only: every occupied voxel lies on the tank's walls or its anchor (closed form: the tank's inner
@@ -13,6 +14,7 @@ close.
 """
 
 import os
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,12 +25,14 @@ SEED = 3
 CHUNK = 10  # physics steps per step call: 500 Hz / 50 Hz (the simulator's odom_rate, the mapper's tf_rate)
 SECONDS = 8
 ROBOT = "UX_1"
+HERE = Path(__file__).resolve().parent
 
 
 def commands(second):
-    """Thrusts [N] for M0..M7 during second `second`: turn in place one way, drive, turn the other way."""
-    turn = [3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0]
-    schedule = [turn, turn, [4.0, 0.0, -4.0, 0.0, 4.0, 0.0, -4.0, 0.0], [-3.0] * 8]
+    """Thrusts [N] for M0..M7 during second `second`: yaw one way (the horizontal thrusters M0, M2, M4, M6 in a pure
+    moment), drive forward, yaw the other way."""
+    turn = [-4.0, 0.0, 4.0, 0.0, 4.0, 0.0, -4.0, 0.0]
+    schedule = [turn, turn, [4.0, 0.0, -4.0, 0.0, 4.0, 0.0, -4.0, 0.0], [-t for t in turn]]
     return schedule[second % len(schedule)]
 
 
@@ -40,32 +44,38 @@ def drive(step, robot_thrusts, physics_rate):
             step(CHUNK)
 
 
-def run_core(path):
+def run_core(path, sensors="m3", mapping=True):
     from unexmin.core import World
 
-    w = World("tank", robots=1, seed=SEED, sensors="m3", mapping=True)
+    w = World("tank", robots=1, seed=SEED, sensors=sensors, mapping=mapping)
     drive(w.step, w.robot(ROBOT).thrusts, 1.0 / w.dt)
     w.save_map(path)
     return w
 
 
-def mapper_connected(master):
-    """True once the simulator has live connections to the mapper on the M3's scans and /tf (a publisher drops
-    messages for a subscriber that is registered but not yet connected)."""
+def mapper_connected(master, topics):
+    """True once the simulator has live connections to the mapper on `topics` (a publisher drops messages for a
+    subscriber that is registered but not yet connected)."""
     from xmlrpc.client import ServerProxy
 
     bus = ServerProxy(master.lookupNode("/simulator")).getBusInfo(master.caller_id)[2]
     connected = {c[4] for c in bus if c[1].startswith("/mapper") and c[2] == "o" and c[5]}
-    return {f"/{ROBOT}/m3/scan", "/tf"} <= connected
+    return set(topics) <= connected
 
 
-def run_ros(path, log_dir, core_stats):
+def run_ros(path, log_dir, core_stats, dvl=False):
     """The node's map of the same run, saved to `path` once it holds every cloud the core inserted; its stats."""
     from unexmin import Simulation
     from unexmin.scripting.launcher import wait_for
 
+    topics = [f"/{ROBOT}/m3/scan", "/tf"]
+    if dvl:
+        arguments = {"launch_file": str(HERE / "clients" / "tank_mapper_dvl.launch")}
+        topics += [f"/{ROBOT}/dvl_sonar{i}" for i in range(4)]
+    else:
+        arguments = {"robots": 1, "seed": SEED, "sensors": "m3", "mapping": True}
     with ros_environment_kept():
-        with Simulation.launch("tank", robots=1, seed=SEED, sensors="m3", mapping=True, log_dir=log_dir) as sim:
+        with Simulation.launch("tank", log_dir=log_dir, **arguments) as sim:
             import rosgraph
             import rospy
 
@@ -75,7 +85,7 @@ def run_ros(path, log_dir, core_stats):
             stats = {}
             sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
             master = rosgraph.Master(rospy.get_name())
-            wait_for(lambda: mapper_connected(master), 60.0, "the mapper to connect to the simulator")
+            wait_for(lambda: mapper_connected(master, topics), 60.0, "the mapper to connect to the simulator")
             ux = sim.robot(ROBOT, streams="none")
             drive(sim.step, ux.thrusts, sim.physics_rate)
             expected = (core_stats["clouds_received"], core_stats["clouds_inserted"])
@@ -110,13 +120,37 @@ def test_the_in_process_map_is_the_mapper_nodes(maps):
     # 40 Hz M3 over 8 s: 320 scans, every one placed (none waits past the last tf sample, at 8 s)
     assert stats["clouds_received"] == 320 and stats["clouds_inserted"] == 320 and stats["clouds_dropped"] == 0
     assert ros_stats.clouds_dropped == 0 and ros_stats.points_inserted == stats["points_inserted"]
-    assert ros_leaves == stats["occupied_leaves"] > 500
+    assert ros_leaves == stats["occupied_leaves"] > 300
     core_centres, core_sizes = read_bt(paths["core"])
     ros_centres, ros_sizes = read_bt(paths["ros"])
     assert len(core_centres) == len(ros_centres) == stats["occupied_leaves"]
     np.testing.assert_array_equal(core_centres, ros_centres)
     np.testing.assert_array_equal(core_sizes, ros_sizes)
     assert paths["core"].read_bytes() == paths["ros"].read_bytes(), "the two trees differ in their free leaves"
+
+
+@pytest.fixture(scope="module")
+def dvl_maps(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("dvl_maps")
+    paths = {k: folder / f"{k}.bt" for k in ("core", "ros")}
+    core = run_core(paths["core"], sensors="m3,dvl", mapping={"dvl": True, "sonar_max_range": 8.0})
+    ros_stats, ros_leaves = run_ros(paths["ros"], str(folder / "logs"), core.map_stats(), dvl=True)
+    return paths, core, ros_stats, ros_leaves
+
+
+def test_the_in_process_map_of_two_sources_on_rotated_mounts_is_the_nodes(dvl_maps):
+    """The DVL's four beams (dvl_link upside down, each beam 65 deg off its axis: rotated mounts) beside the M3."""
+    from unexmin.map_quality.io import read_bt
+
+    paths, core, ros_stats, ros_leaves = dvl_maps
+    stats = core.map_stats()
+    assert stats["sources"] == [f"{ROBOT}/dvl", f"{ROBOT}/m3"]  # in the description's order
+    assert stats["clouds_received"] == 320 + 4 * 64 and stats["clouds_dropped"] == 0
+    assert ros_stats.points_inserted == stats["points_inserted"] and ros_leaves == stats["occupied_leaves"]
+    core_centres, _ = read_bt(paths["core"])
+    ros_centres, _ = read_bt(paths["ros"])
+    np.testing.assert_array_equal(core_centres, ros_centres)
+    assert paths["core"].read_bytes() == paths["ros"].read_bytes()
 
 
 def test_every_occupied_voxel_is_on_the_tank(maps):

@@ -67,8 +67,8 @@ struct MapperStats {
 class Mapper {
 public:
   /// Picks every robot's mapped sensors among those `engine` runs (as the mapper node subscribes their topics) and
-  /// puts every robot's fixed mounts on the tf history. `engine` must outlive this. Throws ParameterError for a
-  /// tf_rate that is not a whole divisor of the physics rate's steps (see MapperSettings::tf_rate).
+  /// puts every robot's fixed mounts on the tf history. `engine` must outlive this. Throws ConfigError for a mapped
+  /// sensor whose frame is not connected to its robot's base link.
   Mapper(const Engine& engine, const MapperSettings& settings);
 
   /// After each Engine::step(): the robots' poses when a tf sample is due, then the clouds of the sensors that
