@@ -4,8 +4,9 @@ The same tank, seed and commands run twice: over ROS in lockstep (the simulator,
 mapper node, which places each cloud through /tf and /tf_static), and in-process. UX_1 yaws both ways and drives for
 8 s, each step call 10 physics steps (one /tf sample at the 50 Hz odometry rate per call, so that the sample the
 simulator adds at the end of each call is one of the regular ones). Twice: with its M3 alone (a fixed mount: the M3
-link 0.27 m ahead of and 0.13 m below the body origin), and with the M3 and the DVL's four beam ranges (rotated
-mounts: the DVL link upside down, each beam 65 deg off its axis). Each time both saved .bt files must be the same
+link 0.27 m ahead of and 0.13 m below the body origin), and with the M3, the DVL's four beam ranges and the four SLS
+units' clouds (rotated mounts: the DVL link upside down, each beam 65 deg off its axis, the cameras' optical frames;
+nine topics, whose clouds of one step reach the node in any order). Each time both saved .bt files must be the same
 bytes: the same occupied and free leaves, the same tree (a .bt holds no log-odds: each leaf is free or occupied).
 
 Also, in-process only: every occupied voxel lies on the tank's walls or its anchor (closed form: the tank's inner
@@ -63,15 +64,15 @@ def mapper_connected(master, topics):
     return set(topics) <= connected
 
 
-def run_ros(path, log_dir, core_stats, dvl=False):
+def run_ros(path, log_dir, core_stats, sources=False):
     """The node's map of the same run, saved to `path` once it holds every cloud the core inserted; its stats."""
     from unexmin import Simulation
     from unexmin.scripting.launcher import wait_for
 
     topics = [f"/{ROBOT}/m3/scan", "/tf"]
-    if dvl:
-        arguments = {"launch_file": str(HERE / "clients" / "tank_mapper_dvl.launch")}
-        topics += [f"/{ROBOT}/dvl_sonar{i}" for i in range(4)]
+    if sources:
+        arguments = {"launch_file": str(HERE / "clients" / "tank_mapper_sources.launch")}
+        topics += [f"/{ROBOT}/dvl_sonar{i}" for i in range(4)] + [f"/{ROBOT}/sls_{i}/points" for i in range(4)]
     else:
         arguments = {"robots": 1, "seed": SEED, "sensors": "m3", "mapping": True}
     with ros_environment_kept():
@@ -130,22 +131,24 @@ def test_the_in_process_map_is_the_mapper_nodes(maps):
 
 
 @pytest.fixture(scope="module")
-def dvl_maps(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("dvl_maps")
+def source_maps(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("source_maps")
     paths = {k: folder / f"{k}.bt" for k in ("core", "ros")}
-    core = run_core(paths["core"], sensors="m3,dvl", mapping={"dvl": True, "sonar_max_range": 8.0})
-    ros_stats, ros_leaves = run_ros(paths["ros"], str(folder / "logs"), core.map_stats(), dvl=True)
+    core = run_core(paths["core"], sensors="m3,dvl,sls", mapping={"dvl": True, "sonar_max_range": 8.0})
+    ros_stats, ros_leaves = run_ros(paths["ros"], str(folder / "logs"), core.map_stats(), sources=True)
     return paths, core, ros_stats, ros_leaves
 
 
-def test_the_in_process_map_of_two_sources_on_rotated_mounts_is_the_nodes(dvl_maps):
-    """The DVL's four beams (dvl_link upside down, each beam 65 deg off its axis: rotated mounts) beside the M3."""
+def test_the_in_process_map_of_every_source_on_rotated_mounts_is_the_nodes(source_maps):
+    """The DVL's four beams (dvl_link upside down, each beam 65 deg off its axis) and the four SLS units' clouds (in
+    their cameras' optical frames, turned 90 deg twice) beside the M3: rotated mounts, nine topics."""
     from unexmin.map_quality.io import read_bt
 
-    paths, core, ros_stats, ros_leaves = dvl_maps
+    paths, core, ros_stats, ros_leaves = source_maps
     stats = core.map_stats()
-    assert stats["sources"] == [f"{ROBOT}/dvl", f"{ROBOT}/m3"]  # in the description's order
-    assert stats["clouds_received"] == 320 + 4 * 64 and stats["clouds_dropped"] == 0
+    sls = [f"{ROBOT}/sls_{i}" for i in range(4)]
+    assert stats["sources"] == [f"{ROBOT}/dvl", f"{ROBOT}/m3", *sls]  # in the description's order
+    assert stats["clouds_received"] == 320 + 4 * 64 + 4 * 80 and stats["clouds_dropped"] == 0
     assert ros_stats.points_inserted == stats["points_inserted"] and ros_leaves == stats["occupied_leaves"]
     core_centres, _ = read_bt(paths["core"])
     ros_centres, _ = read_bt(paths["ros"])
