@@ -1,12 +1,13 @@
 """The mapper in-process (unexmin.core.World(mapping=...), docs/mapping.md "In-process") against the mapper node.
 
-The same tank, seed and commands run twice: over ROS in lockstep (the simulator, robot_state_publisher and the
+The same tank, seed and commands run two ways: over ROS in lockstep (the simulator, robot_state_publisher and the
 mapper node, which places each cloud through /tf and /tf_static), and in-process. UX_1 yaws both ways and drives for
 8 s, each step call 10 physics steps (one /tf sample at the 50 Hz odometry rate per call, so that the sample the
 simulator adds at the end of each call is one of the regular ones). Twice: with its M3 alone (a fixed mount: the M3
 link 0.27 m ahead of and 0.13 m below the body origin), and with the M3, the DVL's four beam ranges and the four SLS
 units' clouds (rotated mounts: the DVL link upside down, each beam 65 deg off its axis, the cameras' optical frames;
-nine topics, whose clouds of one step reach the node in any order). Each time both saved .bt files must be the same
+nine topics, whose clouds of one step reach the node in any order); and, in the team tank, a BlueROV2 Heavy yawing
+with its imaging sonar (pitched 10 deg down). Each time both saved .bt files must be the same
 bytes: the same occupied and free leaves, the same tree (a .bt holds no log-odds: each leaf is free or occupied).
 
 Also, in-process only: every occupied voxel lies on the tank's walls or its anchor (closed form: the tank's inner
@@ -37,19 +38,36 @@ def commands(second):
     return schedule[second % len(schedule)]
 
 
-def drive(step, robot_thrusts, physics_rate):
+def rov_commands(second):
+    """Thrusts [N] for the BlueROV2 Heavy's T0..T7 during second `second`: yaw one way (the four horizontal
+    thrusters), then the other."""
+    turn = [-4.0, 4.0, 4.0, -4.0, 0.0, 0.0, 0.0, 0.0]
+    return turn if second % 4 < 2 else [-t for t in turn]
+
+
+def drive(step, robot_thrusts, physics_rate, schedule=commands):
     """The command schedule through `step(n)` in calls of CHUNK steps."""
     for second in range(SECONDS):
-        robot_thrusts(commands(second))
+        robot_thrusts(schedule(second))
         for _ in range(round(physics_rate) // CHUNK):
             step(CHUNK)
 
 
-def run_core(path, sensors="m3", mapping=True):
+def run_core(path, sensors="m3", mapping=True, rov=False):
     from unexmin.core import World
 
-    w = World("tank", robots=1, seed=SEED, sensors=sensors, mapping=mapping)
-    drive(w.step, w.robot(ROBOT).thrusts, 1.0 / w.dt)
+    if rov:
+        w = World(
+            str(HERE.parents[1] / "worlds" / "tank_team.world"),
+            vehicles=["bluerov2_heavy"],
+            seed=SEED,
+            sensors=sensors,
+            mapping=mapping,
+        )
+        drive(w.step, w.robot("ROV_1").thrusts, 1.0 / w.dt, rov_commands)
+    else:
+        w = World("tank", robots=1, seed=SEED, sensors=sensors, mapping=mapping)
+        drive(w.step, w.robot(ROBOT).thrusts, 1.0 / w.dt)
     w.save_map(path)
     return w
 
@@ -64,15 +82,20 @@ def mapper_connected(master, topics):
     return set(topics) <= connected
 
 
-def run_ros(path, log_dir, core_stats, sources=False):
+def run_ros(path, log_dir, core_stats, sources=False, rov=False):
     """The node's map of the same run, saved to `path` once it holds every cloud the core inserted; its stats."""
     from unexmin import Simulation
     from unexmin.scripting.launcher import wait_for
 
+    robot, schedule = ROBOT, commands
     topics = [f"/{ROBOT}/m3/scan", "/tf"]
     if sources:
         arguments = {"launch_file": str(HERE / "clients" / "tank_mapper_sources.launch")}
         topics += [f"/{ROBOT}/dvl_sonar{i}" for i in range(4)] + [f"/{ROBOT}/sls_{i}/points" for i in range(4)]
+    elif rov:
+        arguments = {"launch_file": str(HERE / "clients" / "tank_team_rov_mapper.launch")}
+        robot, schedule = "ROV_1", rov_commands
+        topics = ["/ROV_1/imaging_sonar/points", "/tf"]
     else:
         arguments = {"robots": 1, "seed": SEED, "sensors": "m3", "mapping": True}
     with ros_environment_kept():
@@ -87,8 +110,8 @@ def run_ros(path, log_dir, core_stats, sources=False):
             sub = rospy.Subscriber("/mapper/stats", MapperStats, lambda m: stats.update(last=m), queue_size=10)
             master = rosgraph.Master(rospy.get_name())
             wait_for(lambda: mapper_connected(master, topics), 60.0, "the mapper to connect to the simulator")
-            ux = sim.robot(ROBOT, streams="none")
-            drive(sim.step, ux.thrusts, sim.physics_rate)
+            r = sim.robot(robot, streams="none")
+            drive(sim.step, r.thrusts, sim.physics_rate, schedule)
             expected = (core_stats["clouds_received"], core_stats["clouds_inserted"])
 
             def caught_up():
@@ -150,6 +173,31 @@ def test_the_in_process_map_of_every_source_on_rotated_mounts_is_the_nodes(sourc
     assert stats["sources"] == [f"{ROBOT}/dvl", f"{ROBOT}/m3", *sls]  # in the description's order
     assert stats["clouds_received"] == 320 + 4 * 64 + 4 * 80 and stats["clouds_dropped"] == 0
     assert ros_stats.points_inserted == stats["points_inserted"] and ros_leaves == stats["occupied_leaves"]
+    core_centres, _ = read_bt(paths["core"])
+    ros_centres, _ = read_bt(paths["ros"])
+    np.testing.assert_array_equal(core_centres, ros_centres)
+    assert paths["core"].read_bytes() == paths["ros"].read_bytes()
+
+
+@pytest.fixture(scope="module")
+def sonar_maps(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sonar_maps")
+    paths = {k: folder / f"{k}.bt" for k in ("core", "ros")}
+    core = run_core(paths["core"], sensors="imaging_sonar", mapping={"sonar_max_range": 8.0}, rov=True)
+    ros_stats, ros_leaves = run_ros(paths["ros"], str(folder / "logs"), core.map_stats(), rov=True)
+    return paths, core, ros_stats, ros_leaves
+
+
+def test_the_in_process_map_of_an_imaging_sonar_is_the_nodes(sonar_maps):
+    """A BlueROV2 Heavy's imaging sonar (its link pitched 10 deg down) yawing in the team tank: the sonar's detections
+    as the simulator's points topic makes them (cloud threshold 15 dB), within the launch files' 8 m."""
+    from unexmin.map_quality.io import read_bt
+
+    paths, core, ros_stats, ros_leaves = sonar_maps
+    stats = core.map_stats()
+    assert stats["sources"] == ["ROV_1/imaging_sonar"]
+    assert stats["clouds_received"] == 10 * SECONDS and stats["clouds_dropped"] == 0
+    assert ros_stats.points_inserted == stats["points_inserted"] and ros_leaves == stats["occupied_leaves"] > 100
     core_centres, _ = read_bt(paths["core"])
     ros_centres, _ = read_bt(paths["ros"])
     np.testing.assert_array_equal(core_centres, ros_centres)
