@@ -106,15 +106,9 @@ const std::map<std::string, Setter>& setters() {
   return all;
 }
 
-/// `topic` under /<robot>/ unless it is absolute (SensorPublisher::resolve's rule).
+/// `topic` under /<robot>/ unless it is absolute (the simulator's publishers' rule).
 std::string resolved(const std::string& robot, const std::string& topic) {
-  return !topic.empty() && topic[0] == '/' ? topic : "/" + robot + "/" + topic;
-}
-
-/// A sensor's text parameter (a topic or frame), `fallback` when absent (SensorPublisher::topicParam's rule).
-std::string textParam(const sensors::Sensor& s, const std::string& key, const std::string& fallback) {
-  const auto it = s.spec().text.find(key);
-  return it == s.spec().text.end() ? fallback : it->second;
+  return sensors::resolveTopic("/" + robot + "/", topic);
 }
 
 }  // namespace
@@ -191,14 +185,14 @@ Mapper::Mapper(const Engine& engine, const MapperSettings& settings)
       const std::string& robot_name = robot.name();
       Source source{i, Source::Kind::kM3, 0.0, {}, nullptr};
       if (s.type() == "m3" && src.m3 &&
-          resolved(robot_name, textParam(s, "topic", "m3/scan")) == resolved(robot_name, "m3/scan")) {
+          resolved(robot_name, sensors::textParam(s, "topic", "m3/scan")) == resolved(robot_name, "m3/scan")) {
         source.kind = Source::Kind::kM3;
         source.max_range = src.m3_max_range;
         source.frames = {s.frame()};
       } else if (s.type() == "sls") {
         bool subscribed = false;
         for (int k = 0; k < src.sls_units; ++k)
-          subscribed |= resolved(robot_name, textParam(s, "topic", name + "/points")) ==
+          subscribed |= resolved(robot_name, sensors::textParam(s, "topic", name + "/points")) ==
                         resolved(robot_name, "sls_" + std::to_string(k) + "/points");
         if (!subscribed)
           continue;
@@ -206,7 +200,7 @@ Mapper::Mapper(const Engine& engine, const MapperSettings& settings)
         source.max_range = src.sls_max_range;
         source.frames = {dynamic_cast<const sensors::vision::SlsSensor&>(s).cameraFrame()};
       } else if (s.type() == "imaging_sonar" && src.sonar &&
-                 resolved(robot_name, textParam(s, "points_topic", name + "/points")) ==
+                 resolved(robot_name, sensors::textParam(s, "points_topic", name + "/points")) ==
                      resolved(robot_name, src.sonar_topic)) {
         const auto& sonar = dynamic_cast<const sensors::sonar::ImagingSonarSensor&>(s);
         source.kind = Source::Kind::kSonar;
@@ -214,11 +208,11 @@ Mapper::Mapper(const Engine& engine, const MapperSettings& settings)
         source.frames = {s.frame()};
         source.detector = std::make_unique<sensors::sonar::SonarCloud>(sonar, settings_.sonar_threshold);
       } else if (s.type() == "dvl" && src.dvl &&
-                 resolved(robot_name, textParam(s, "sonar_topic", name + "_sonar")) ==
+                 resolved(robot_name, sensors::textParam(s, "sonar_topic", name + "_sonar")) ==
                      resolved(robot_name, "dvl_sonar")) {
         source.kind = Source::Kind::kDvl;
         source.max_range = src.dvl_max_range;
-        std::istringstream frames(textParam(s, "beam_frames", ""));
+        std::istringstream frames(sensors::textParam(s, "beam_frames", ""));
         for (std::size_t k = 0; k < 4; ++k) {
           std::string frame;
           source.frames.push_back(frames >> frame ? frame : s.frame());
