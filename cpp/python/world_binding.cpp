@@ -6,6 +6,7 @@
 
 #include <unexmin/engine/engine.h>
 #include <unexmin/engine/engine_settings.h>
+#include <unexmin/engine/mapper.h>
 #include <unexmin/sim/contacts.h>
 #include <unexmin/sim/world_schema.h>
 
@@ -18,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -75,9 +77,14 @@ public:
   /// As the simulator node with ~world_file, ~robots, ~spawns, ~seed, ~sensors, ~visibility, ~physics_rate,
   /// ~ray_caster_threads and /sim/mode (checked by engine::planEngine); `descriptions`: robot name -> URDF text
   /// (xacro expanded) of every robot that runs; `families`: the sensor families.
+  /// `mapping`: the in-process mapper's settings (engine::mapperSettings' names; none: no mapper).
   CoreWorld(const engine::EngineSettings& settings, const std::map<std::string, std::string>& descriptions,
-            sensors::SensorFactory families)
+            sensors::SensorFactory families,
+            const std::optional<std::map<std::string, engine::MapperValue>>& mapping = std::nullopt)
       : families_(std::move(families)) {
+    // The mapper's settings first: a bad one raises before the world is built.
+    const std::optional<engine::MapperSettings> mapper_settings =
+        mapping ? std::optional<engine::MapperSettings>(engine::mapperSettings(*mapping)) : std::nullopt;
     const engine::EnginePlan plan = engine::planEngine(settings, families_);
     std::map<std::string, sim::RobotDescription> parsed;
     for (const std::string& name : plan.robots) {
@@ -88,20 +95,36 @@ public:
     }
     engine_ = std::make_unique<engine::Engine>(plan.config, parsed, static_cast<int>(plan.robots.size()), families_,
                                                plan.options, settings.world_file);
+    if (mapper_settings)
+      mapper_ = std::make_unique<engine::Mapper>(*engine_, *mapper_settings);
   }
 
   /// `n` physics steps, each as the simulator's lockstep step (Engine::step): commands held (the watchdog does not
   /// expire them) when `hold`, then the world, the caster, every robot's sensors.
   void step(std::uint64_t n, bool hold) {
     const Busy busy(*this);
-    for (std::uint64_t i = 0; i < n; ++i)
+    for (std::uint64_t i = 0; i < n; ++i) {
       engine_->step(hold);
+      if (mapper_)
+        mapper_->afterStep();
+    }
   }
 
   void reset(std::uint64_t seed) {
     const Busy busy(*this);
     engine_->reset(seed);
+    if (mapper_)
+      mapper_->afterReset();
   }
+
+  /// The in-process mapper; RuntimeError when the World was made without `mapping`.
+  engine::Mapper& mapper() {
+    idle();
+    if (!mapper_)
+      throw std::runtime_error("this World maps nothing: make it with mapping=True (or a dict of mapper parameters)");
+    return *mapper_;
+  }
+  bool mapping() const { return mapper_ != nullptr; }
 
   /// True while step() or reset() runs (in another thread: they release the GIL).
   bool busy() const { return busy_; }
@@ -162,6 +185,7 @@ private:
   std::atomic<bool> busy_{false};
   sensors::SensorFactory families_;
   std::unique_ptr<engine::Engine> engine_;
+  std::unique_ptr<engine::Mapper> mapper_;  ///< on engine_, stepped after it (null: no mapping)
 };
 
 /// A finite command or a ValueError naming it.
@@ -320,6 +344,58 @@ py::dict contacts(CoreWorld& w, const std::string& robot) {
   return d;
 }
 
+/// The in-process map's counters (the mapper node's ~stats).
+py::dict mapStats(CoreWorld& w) {
+  engine::Mapper& m = w.mapper();
+  const engine::MapperStats s = m.stats();
+  py::dict d;
+  d["clouds_received"] = s.clouds_received;
+  d["clouds_inserted"] = s.clouds_inserted;
+  d["clouds_dropped"] = s.clouds_dropped;
+  d["pending"] = s.pending;
+  d["points_inserted"] = s.points_inserted;
+  d["occupied_leaves"] = m.map().occupiedLeafCount();
+  d["memory_bytes"] = m.map().memoryUsage();
+  d["sources"] = m.sources();
+  return d;
+}
+
+/// The settings in force, by the names mapperSettings() takes.
+py::dict mapSettings(CoreWorld& w) {
+  const engine::MapperSettings& s = w.mapper().settings();
+  py::dict d;
+  d["resolution"] = s.params.resolution;
+  d["max_range"] = s.params.max_range;
+  d["prob_hit"] = s.params.prob_hit;
+  d["prob_miss"] = s.params.prob_miss;
+  d["clamp_min"] = s.params.clamp_min;
+  d["clamp_max"] = s.params.clamp_max;
+  d["m3"] = s.sources.m3;
+  d["sls_units"] = s.sources.sls_units;
+  d["sonar"] = s.sources.sonar;
+  d["sonar_topic"] = s.sources.sonar_topic;
+  d["dvl"] = s.sources.dvl;
+  d["m3_max_range"] = s.sources.m3_max_range;
+  d["sls_max_range"] = s.sources.sls_max_range;
+  d["sonar_max_range"] = s.sources.sonar_max_range;
+  d["dvl_max_range"] = s.sources.dvl_max_range;
+  d["frame_id"] = s.frame_id;
+  d["tf_max_gap"] = s.tf_max_gap;
+  d["tf_rate"] = s.tf_rate;
+  d["sonar_threshold"] = s.sonar_threshold;
+  return d;
+}
+
+/// The occupied leaves of the map: centre x, y, z and edge, one row each (N x 4) [m, the map's frame].
+py::array_t<double> occupiedVoxels(CoreWorld& w) {
+  const std::vector<mapping::Voxel> voxels = w.mapper().map().occupiedVoxels();
+  std::vector<double> rows;
+  rows.reserve(4 * voxels.size());
+  for (const auto& v : voxels)
+    rows.insert(rows.end(), {v.x, v.y, v.z, v.size});
+  return copyOf(rows).reshape({static_cast<py::ssize_t>(voxels.size()), py::ssize_t(4)});
+}
+
 /// A sample's fields as a dict: scalars as Python numbers, arrays as numpy arrays of the field's type and shape
 /// (copies, except a field the model keeps: a view owned by `owner`, valid until the next step() or reset()).
 class DictWriter : public sensors::SampleWriter {
@@ -392,6 +468,7 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
   m.def("robot_names", &robotNames, py::arg("world_file"), "Robot names the world file spawns, in its order.");
   m.def("families", [families] { return families().types(); }, "The sensor families, sorted.");
   m.def("modes", [] { return engine::modes(); }, "The modes a world runs in.");
+  m.def("mapper_setting_names", [] { return engine::mapperSettingNames(); }, "The in-process mapper's settings.");
   m.def("visibility_levels", [] { return sim::visibilityLevels(); }, "The world schema's visibility levels.");
   m.def(
       "setting_rules", [families] { return engine::settingRules(families()); },
@@ -423,14 +500,27 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
       .def(py::init([families](const std::string& world_file, const std::map<std::string, std::string>& descriptions,
                                int robots, const std::vector<std::string>& spawns, std::int64_t seed,
                                const std::string& sensors, const std::string& visibility, double physics_rate,
-                               const std::string& mode, int ray_caster_threads) {
+                               const std::string& mode, int ray_caster_threads,
+                               const std::optional<std::map<std::string, engine::MapperValue>>& mapping) {
              return std::make_unique<CoreWorld>(settingsOf(world_file, robots, spawns, seed, sensors, visibility,
                                                            physics_rate, mode, ray_caster_threads),
-                                                descriptions, families());
+                                                descriptions, families(), mapping);
            }),
            py::arg("world_file"), py::arg("descriptions"), py::arg("robots"), py::arg("spawns"), py::arg("seed"),
            py::arg("sensors"), py::arg("visibility"), py::arg("physics_rate"), py::arg("mode"),
-           py::arg("ray_caster_threads"))
+           py::arg("ray_caster_threads"), py::arg("mapping") = py::none())
+      .def_property_readonly("mapping", &CoreWorld::mapping)
+      .def("map_stats", &mapStats)
+      .def("map_settings", &mapSettings)
+      .def("occupied_voxels", &occupiedVoxels)
+      .def(
+          "save_map",
+          [](CoreWorld& w, const std::string& path) {
+            w.mapper().map().save(path);
+            return w.mapper().map().occupiedLeafCount();
+          },
+          py::arg("path"))
+      .def("clear_map", [](CoreWorld& w) { w.mapper().clear(); })
       .def("step", &CoreWorld::step, py::arg("n"), py::arg("hold"), py::call_guard<py::gil_scoped_release>())
       .def("reset", &CoreWorld::reset, py::arg("seed"), py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("busy", &CoreWorld::busy)

@@ -39,6 +39,7 @@ RATES = {
     **{f"/UX_1/sls_{i}/points": 10 for i in range(4)},
     **{f"/UX_1/sls_{i}/scan": 10 for i in range(4)},
     "/UX_1/odom": 50,
+    "/UX_1/contacts": 50,
     **{f"/UX_1/thrusters/{i}/thrust": 50 for i in range(8)},
     "/current": 10,
 }

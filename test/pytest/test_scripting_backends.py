@@ -136,9 +136,9 @@ def test_core_wrench_is_the_thesis_allocation():
     "kwargs, match",
     [
         ({"backend": "gazebo"}, "backend = 'gazebo'"),
-        ({"backend": "core", "mapping": True}, "mapping = True: the core back end cannot"),
+        ({"backend": "core", "mapping": "yes"}, "mapping = 'yes'"),
         ({"backend": "core", "record": "/tmp/x.bag"}, "record = '/tmp/x.bag': the core back end cannot"),
-        ({"backend": "core", "map_file": "m.bt"}, "map_file = 'm.bt'"),
+        ({"backend": "core", "map_file": "m.bt"}, "map_file = 'm.bt': the map is only made with mapping=True"),
         ({"backend": "core", "launch_file": "x.launch"}, "launch_file = 'x.launch'"),
         ({"backend": "core", "log_dir": "/tmp"}, "log_dir = '/tmp'"),
         ({"backend": "core", "mode": "sonar"}, "mode = 'sonar'"),

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace unexmin {
 namespace mapping {
@@ -28,6 +29,26 @@ void MapperParams::validate() const {
         "(0, prob_miss = " + formatNumber(prob_miss) + "]");
   check("clamp_max", clamp_max, clamp_max >= prob_hit && clamp_max < 1.0,
         "[prob_hit = " + formatNumber(prob_hit) + ", 1)");
+}
+
+void MapperSources::resolve(double max_range) {
+  const bool limited = max_range > 0.0;
+  const std::string expected =
+      limited ? "(0, max_range = " + formatNumber(max_range) + "] m" : "a finite number of m (<= 0: no limit)";
+  const std::pair<const char*, double*> ranges[] = {{"m3_max_range", &m3_max_range},
+                                                    {"sls_max_range", &sls_max_range},
+                                                    {"sonar_max_range", &sonar_max_range},
+                                                    {"dvl_max_range", &dvl_max_range}};
+  for (const auto& [name, range] : ranges) {
+    if (std::isnan(*range))
+      *range = max_range;
+    // A source's range may only be shorter than max_range (its rays carve no farther than max_range anyway).
+    check(name, *range, !limited || (*range > 0.0 && *range <= max_range), expected);
+  }
+  check("sls_units", sls_units, sls_units >= 0 && sls_units <= 16, "0..16");
+  if (sonar && (sonar_topic.empty() || sonar_topic[0] == '/'))
+    throw ParameterError("mapper: parameter 'sonar_topic' = '" + sonar_topic +
+                         "': expected a topic relative to /<robot>/ (e.g. imaging_sonar/points)");
 }
 
 }  // namespace mapping

@@ -2,6 +2,9 @@
 // Knows no ROS.
 #pragma once
 
+#include <limits>
+#include <string>
+
 namespace unexmin {
 namespace mapping {
 
@@ -23,6 +26,25 @@ struct MapperParams {
 
   /// Throws ParameterError naming the first parameter out of its range, its value and the range.
   void validate() const;
+};
+
+/// Which sensors' clouds a mapper takes from each robot, and how far it trusts each source's points.
+struct MapperSources {
+  bool m3 = true;                                    ///< the M3's scans (m3/scan)
+  int sls_units = 4;                                 ///< the SLS units' clouds sls_<i>/points, i < sls_units, 0..16
+  bool sonar = true;                                 ///< the imaging sonar's cloud (sonar_topic)
+  std::string sonar_topic = "imaging_sonar/points";  ///< the sonar cloud's topic, relative to /<robot>/
+  bool dvl = false;                                  ///< the DVL's beam ranges (dvl_sonar0..3)
+  /// Each source's own range [m]: its points farther than this are not marked occupied and their rays carve free
+  /// space up to it only; in (0, max_range] (any finite value when max_range <= 0; <= 0: no limit). NaN: max_range.
+  double m3_max_range = std::numeric_limits<double>::quiet_NaN();
+  double sls_max_range = std::numeric_limits<double>::quiet_NaN();
+  double sonar_max_range = std::numeric_limits<double>::quiet_NaN();
+  double dvl_max_range = std::numeric_limits<double>::quiet_NaN();
+
+  /// Sets each range left NaN to max_range [m] (the map's MapperParams::max_range), then throws ParameterError
+  /// naming the first parameter out of its range, its value and the range.
+  void resolve(double max_range);
 };
 
 }  // namespace mapping

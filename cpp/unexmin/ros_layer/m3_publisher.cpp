@@ -1,3 +1,4 @@
+#include <unexmin/engine/mapper.h>
 #include <unexmin/ros_layer/m3_cloud.h>
 #include <unexmin/ros_layer/m3_publisher.h>
 
@@ -24,13 +25,14 @@ void M3Publisher::publish() {
   sensor_msgs::LaserScan m;
   m.header.stamp.fromSec(s.time);
   m.header.frame_id = sensor_.frame();
-  m.angle_min = static_cast<float>(sensor_.beamAngle(0));
+  const mapping::ScanGeometry g = engine::m3ScanGeometry(sensor_);  // the in-process mapper's numbers too
+  m.angle_min = g.angle_min;
   m.angle_max = static_cast<float>(sensor_.beamAngle(sensor_.beams() - 1));
-  m.angle_increment = static_cast<float>(sensor_.angleIncrement());
+  m.angle_increment = g.angle_increment;
   m.time_increment = 0.0f;
   m.scan_time = static_cast<float>(1.0 / sensor_.rate());
-  m.range_min = static_cast<float>(sensor_.rangeMin());
-  m.range_max = static_cast<float>(sensor_.rangeMax());
+  m.range_min = g.range_min;
+  m.range_max = g.range_max;
   m.ranges = s.ranges;
   m.intensities = s.intensities;
   if (wanted(pub_))

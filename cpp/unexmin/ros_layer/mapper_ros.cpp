@@ -80,11 +80,12 @@ MapperRos::MapperRos(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   tf_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &tf_queue_);
   tf_spinner_->start();
   ROS_INFO_STREAM("mapper: " << robots_.size() << " robot(s), resolution " << params_.resolution << " m, max range "
-                             << params_.max_range << " m (M3 " << m3_max_range_ << " m, SLS " << sls_max_range_
-                             << " m, sonar " << sonar_max_range_ << " m, DVL " << dvl_max_range_ << " m), M3 "
-                             << (use_m3_ ? "on" : "off") << ", " << sls_units_ << " SLS unit(s), sonar "
-                             << (use_sonar_ ? "/<robot>/" + sonar_topic_ : "off") << ", DVL "
-                             << (use_dvl_ ? "on" : "off") << (map_file_.empty() ? "" : ", saves to " + map_file_));
+                             << params_.max_range << " m (M3 " << sources_.m3_max_range << " m, SLS "
+                             << sources_.sls_max_range << " m, sonar " << sources_.sonar_max_range << " m, DVL "
+                             << sources_.dvl_max_range << " m), M3 " << (sources_.m3 ? "on" : "off") << ", "
+                             << sources_.sls_units << " SLS unit(s), sonar "
+                             << (sources_.sonar ? "/<robot>/" + sources_.sonar_topic : "off") << ", DVL "
+                             << (sources_.dvl ? "on" : "off") << (map_file_.empty() ? "" : ", saves to " + map_file_));
 }
 
 void MapperRos::loadParams() {
@@ -95,29 +96,17 @@ void MapperRos::loadParams() {
   pnh_.param("clamp_min", params_.clamp_min, params_.clamp_min);
   pnh_.param("clamp_max", params_.clamp_max, params_.clamp_max);
   params_.validate();
-  m3_max_range_ = sls_max_range_ = sonar_max_range_ = dvl_max_range_ = params_.max_range;
-  pnh_.param("m3_max_range", m3_max_range_, m3_max_range_);
-  pnh_.param("sls_max_range", sls_max_range_, sls_max_range_);
-  pnh_.param("sonar_max_range", sonar_max_range_, sonar_max_range_);
-  pnh_.param("dvl_max_range", dvl_max_range_, dvl_max_range_);
-  // A source's range may only be shorter than max_range (its rays carve no farther than max_range anyway).
-  const bool limited = params_.max_range > 0.0;
-  const std::string expected =
-      limited ? "(0, max_range = " + formatNumber(params_.max_range) + "] m" : "a finite number of m (<= 0: no limit)";
-  require(!limited || (m3_max_range_ > 0.0 && m3_max_range_ <= params_.max_range), "m3_max_range", m3_max_range_,
-          expected);
-  require(!limited || (sls_max_range_ > 0.0 && sls_max_range_ <= params_.max_range), "sls_max_range", sls_max_range_,
-          expected);
-  require(!limited || (sonar_max_range_ > 0.0 && sonar_max_range_ <= params_.max_range), "sonar_max_range",
-          sonar_max_range_, expected);
-  require(!limited || (dvl_max_range_ > 0.0 && dvl_max_range_ <= params_.max_range), "dvl_max_range", dvl_max_range_,
-          expected);
+  pnh_.param("m3", sources_.m3, sources_.m3);
+  pnh_.param("sls_units", sources_.sls_units, sources_.sls_units);
+  pnh_.param("sonar", sources_.sonar, sources_.sonar);
+  pnh_.param("sonar_topic", sources_.sonar_topic, sources_.sonar_topic);
+  pnh_.param("dvl", sources_.dvl, sources_.dvl);
+  pnh_.param("m3_max_range", sources_.m3_max_range, sources_.m3_max_range);
+  pnh_.param("sls_max_range", sources_.sls_max_range, sources_.sls_max_range);
+  pnh_.param("sonar_max_range", sources_.sonar_max_range, sources_.sonar_max_range);
+  pnh_.param("dvl_max_range", sources_.dvl_max_range, sources_.dvl_max_range);
+  sources_.resolve(params_.max_range);
   pnh_.param("frame_id", world_frame_, world_frame_);
-  pnh_.param("m3", use_m3_, use_m3_);
-  pnh_.param("sls_units", sls_units_, sls_units_);
-  pnh_.param("sonar", use_sonar_, use_sonar_);
-  pnh_.param("sonar_topic", sonar_topic_, sonar_topic_);
-  pnh_.param("dvl", use_dvl_, use_dvl_);
   pnh_.param("per_robot", per_robot_, per_robot_);
   pnh_.param("publish_rate", publish_rate_, publish_rate_);
   pnh_.param("tf_timeout", tf_timeout_, tf_timeout_);
@@ -126,15 +115,11 @@ void MapperRos::loadParams() {
   pnh_.param("map_file", map_file_, map_file_);
   double robots_timeout = 30.0;
   pnh_.param("robots_timeout", robots_timeout, robots_timeout);
-  require(sls_units_ >= 0 && sls_units_ <= 16, "sls_units", sls_units_, "0..16");
   require(publish_rate_ > 0.0 && publish_rate_ <= 100.0, "publish_rate", publish_rate_, "(0, 100] Hz");
   require(tf_timeout_ > 0.0, "tf_timeout", tf_timeout_, "> 0 s");
   require(tf_max_gap_ > 0.0, "tf_max_gap", tf_max_gap_, "> 0 s");
   require(queue_size_ >= 1, "queue_size", queue_size_, ">= 1");
   require(robots_timeout >= 0.0, "robots_timeout", robots_timeout, ">= 0 s");
-  if (use_sonar_ && (sonar_topic_.empty() || sonar_topic_[0] == '/'))
-    throw ParameterError("mapper: parameter '~sonar_topic' = '" + sonar_topic_ +
-                         "': expected a topic relative to /<robot>/ (e.g. imaging_sonar/points)");
   if (world_frame_.empty())
     throw ParameterError("mapper: parameter '~frame_id' is empty: expected a frame");
 
@@ -162,24 +147,24 @@ MapperRos::Output MapperRos::makeOutput(ros::NodeHandle nh) {
 
 void MapperRos::subscribe(const std::string& robot) {
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-  if (use_m3_) {
+  if (sources_.m3) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::LaserScan>(
         "/" + robot + "/m3/scan", queue_size_,
         [this, robot](const sensor_msgs::LaserScanConstPtr& m) { onScan(robot, m); }, ros::VoidConstPtr(), hints));
   }
-  for (int i = 0; i < sls_units_; ++i) {
+  for (int i = 0; i < sources_.sls_units; ++i) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::PointCloud2>(
         "/" + robot + "/sls_" + std::to_string(i) + "/points", queue_size_,
-        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sls_max_range_); },
+        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sources_.sls_max_range); },
         ros::VoidConstPtr(), hints));
   }
-  if (use_sonar_) {
+  if (sources_.sonar) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::PointCloud2>(
-        "/" + robot + "/" + sonar_topic_, queue_size_,
-        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sonar_max_range_); },
+        "/" + robot + "/" + sources_.sonar_topic, queue_size_,
+        [this, robot](const sensor_msgs::PointCloud2ConstPtr& m) { onCloud(robot, m, sources_.sonar_max_range); },
         ros::VoidConstPtr(), hints));
   }
-  for (int i = 0; use_dvl_ && i < 4; ++i) {
+  for (int i = 0; sources_.dvl && i < 4; ++i) {
     subscribers_.push_back(nh_.subscribe<sensor_msgs::Range>(
         "/" + robot + "/dvl_sonar" + std::to_string(i), queue_size_,
         [this, robot](const sensor_msgs::RangeConstPtr& m) { onRange(robot, m); }, ros::VoidConstPtr(), hints));
@@ -187,7 +172,7 @@ void MapperRos::subscribe(const std::string& robot) {
 }
 
 void MapperRos::onScan(const std::string& robot, const sensor_msgs::LaserScanConstPtr& scan) {
-  enqueue(robot, scan->header, m3_max_range_,
+  enqueue(robot, scan->header, sources_.m3_max_range,
           mapping::scanPoints(
               mapping::ScanGeometry{scan->angle_min, scan->angle_increment, scan->range_min, scan->range_max},
               scan->ranges));
@@ -208,7 +193,7 @@ void MapperRos::onRange(const std::string& robot, const sensor_msgs::RangeConstP
   std::vector<octomap::point3d> points;
   if (std::isfinite(msg->range) && msg->range >= msg->min_range && msg->range <= msg->max_range)
     points.emplace_back(msg->range, 0.0f, 0.0f);
-  enqueue(robot, msg->header, dvl_max_range_, std::move(points));
+  enqueue(robot, msg->header, sources_.dvl_max_range, std::move(points));
 }
 
 void MapperRos::onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {

@@ -72,19 +72,11 @@ private:
   mapping::MapperParams params_;
   std::string world_frame_ = "world";
   std::vector<std::string> robots_;
-  bool use_m3_ = true;
-  int sls_units_ = 4;
+  mapping::MapperSources sources_;  ///< the sources and their ranges (m3, sls_units, sonar, dvl, *_max_range)
   bool per_robot_ = false;
-  double m3_max_range_ = 10.0;                        ///< [m] the M3's points beyond it are not marked occupied
-  double sls_max_range_ = 10.0;                       ///< [m] the SLS units' points beyond it are not marked occupied
-  bool use_sonar_ = true;                             ///< each robot's imaging sonar cloud (if it has one)
-  std::string sonar_topic_ = "imaging_sonar/points";  ///< relative to /<robot>/
-  double sonar_max_range_ = 10.0;                     ///< [m] the sonar's points beyond it are not marked occupied
-  bool use_dvl_ = false;                              ///< each robot's DVL beam ranges (dvl_sonar0..3)
-  double dvl_max_range_ = 10.0;                       ///< [m] the DVL's points beyond it are not marked occupied
-  double publish_rate_ = 1.0;                         ///< [Hz, wall]
-  double tf_timeout_ = 10.0;                          ///< [s, wall]
-  double tf_max_gap_ = 0.5;                           ///< [s, sim]
+  double publish_rate_ = 1.0;  ///< [Hz, wall]
+  double tf_timeout_ = 10.0;   ///< [s, wall]
+  double tf_max_gap_ = 0.5;    ///< [s, sim]
   int queue_size_ = 5000;
   std::string map_file_;
 

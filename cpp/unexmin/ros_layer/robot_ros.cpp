@@ -1,9 +1,12 @@
 #include <unexmin/ros_layer/robot_ros.h>
 
+#include <unexmin/sim/contacts.h>
+
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_msgs/TFMessage.h>
+#include <unexmin/Contacts.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,11 +24,11 @@ ros::Subscriber subscribeCommand(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-RobotRos::RobotRos(const sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
+RobotRos::RobotRos(sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
                    ros::NodeHandle& nh, const PublishRates& rates, double physics_rate,
                    std::map<std::string, std::uint64_t>& received, const SensorRegistry& registry,
                    const sensors::SensorSelection& selection)
-    : robot_(robot), received_(received) {
+    : world_(world), robot_(robot), received_(received) {
   const std::string ns = "/" + robot.name() + "/";
   for (std::size_t i = 0; i < robot.thrusterCount(); ++i) {
     const std::string base = ns + "thrusters/" + std::to_string(i) + "/";
@@ -40,12 +43,14 @@ RobotRos::RobotRos(const sim::World& world, sim::Robot& robot, sensors::SensorSu
   subs_.push_back(subscribeCommand(command_nh, ns + "vbs", [this](const Float64Event& e) { onVbs(e); }));
   odom_pub_ = nh.advertise<nav_msgs::Odometry>(ns + "odom", queueSize(rates.odom));
   joint_pub_ = nh.advertise<sensor_msgs::JointState>(ns + "joint_states", queueSize(rates.joint_states));
+  contacts_pub_ = nh.advertise<unexmin::Contacts>(ns + "contacts", queueSize(rates.contacts));
   // One publication per topic and node, its queue set by the first robot: room for every robot's (up to 8)
   // samples of 20 s of simulated time, like a sensor stream's queue.
   tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 8 * queueSize(rates.odom));
   odom_every_ = every(physics_rate, rates.odom);
   joint_every_ = every(physics_rate, rates.joint_states);
   thrust_every_ = every(physics_rate, rates.thrust);
+  contacts_every_ = every(physics_rate, rates.contacts);
   joint_names_ = robot.description().movableJoints();
   sensors_ = std::make_unique<SensorsRos>(world, robot, suite, registry, selection, nh);
 }
@@ -143,6 +148,28 @@ nav_msgs::Odometry RobotRos::odometry(const ros::Time& stamp) const {
   return o;
 }
 
+void RobotRos::publishContacts(const ros::Time& stamp) {
+  const std::vector<sim::Contact> found = sim::contacts(world_, robot_);
+  unexmin::Contacts m;
+  m.header.stamp = stamp;
+  m.header.frame_id = "world";
+  m.position.resize(found.size());
+  m.normal.resize(found.size());
+  m.depth.resize(found.size());
+  m.impulse.resize(found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    m.position[i].x = found[i].position.x();
+    m.position[i].y = found[i].position.y();
+    m.position[i].z = found[i].position.z();
+    m.normal[i].x = found[i].normal.x();
+    m.normal[i].y = found[i].normal.y();
+    m.normal[i].z = found[i].normal.z();
+    m.depth[i] = found[i].depth;
+    m.impulse[i] = found[i].impulse;
+  }
+  publishRecorded(contacts_pub_, recorder_, m);
+}
+
 void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all) {
   now_ = stamp.toSec();
   sensors_->publish(step);  // the samples of this step (nothing extra when `all`)
@@ -183,6 +210,8 @@ void RobotRos::publish(std::uint64_t step, const ros::Time& stamp, bool all) {
       publishRecorded(thrust_pubs_[i], recorder_, m);
     }
   }
+  if (due(contacts_every_, last_contacts_) && wanted(contacts_pub_, recorder_))
+    publishContacts(stamp);
   const bool joint_wall_ok = all || (wall_now_ - last_joint_wall_).toSec() >= min_wall_period_;
   if (joint_wall_ok && due(joint_every_, last_joint_) && joint_pub_.subscribers() > 0) {
     last_joint_wall_ = wall_now_;

@@ -24,6 +24,7 @@ struct PublishRates {
   double odom = 50.0;          ///< nav_msgs/Odometry and tf [Hz of sim time]
   double joint_states = 50.0;  ///< sensor_msgs/JointState [Hz of sim time]
   double thrust = 50.0;        ///< achieved thrust per thruster [Hz of sim time]
+  double contacts = 50.0;      ///< unexmin/Contacts of the hull [Hz of sim time]
 };
 
 class RobotRos {
@@ -32,7 +33,7 @@ public:
   /// `received` counts the command messages applied, per publishing node (shared by all robots).
   /// `suite`: the robot's sensors (of the `selection`'s families) that the engine runs in `world`; their samples go
   /// out through SensorsRos. `world` and `suite` must outlive this.
-  RobotRos(const sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
+  RobotRos(sim::World& world, sim::Robot& robot, sensors::SensorSuite& suite, ros::NodeHandle& command_nh,
            ros::NodeHandle& nh, const PublishRates& rates, double physics_rate,
            std::map<std::string, std::uint64_t>& received, const SensorRegistry& registry,
            const sensors::SensorSelection& selection);
@@ -60,7 +61,7 @@ public:
 
   /// Forget what was published (the world was reset to step 0).
   void restart() {
-    last_odom_ = last_joint_ = last_thrust_ = UINT64_MAX;
+    last_odom_ = last_joint_ = last_thrust_ = last_contacts_ = UINT64_MAX;
     sensors_->restart();
   }
 
@@ -79,6 +80,10 @@ private:
   /// Shared edge check: rejects (warns, returns false) a non-finite command.
   bool finite(const std::string& topic, double value) const;
 
+  /// /<robot>/contacts: sim::contacts of the robot at this step, stamped with its time.
+  void publishContacts(const ros::Time& stamp);
+
+  sim::World& world_;
   sim::Robot& robot_;
   std::map<std::string, std::uint64_t>& received_;
   double now_ = 0.0;  ///< sim time of the last publish call [s]
@@ -86,6 +91,7 @@ private:
   std::vector<Stream> thrust_pubs_;
   Stream odom_pub_;
   Stream joint_pub_;
+  Stream contacts_pub_;
   /// /tf (world -> base_link at the odometry rate). Not tf2_ros's TransformBroadcaster: its queue of 100
   /// messages overflowed in lockstep when a subscriber (the mapper) read late, and the dropped samples left gaps
   /// that tf2 interpolated over.
@@ -96,10 +102,12 @@ private:
   std::uint64_t odom_every_ = 1;
   std::uint64_t joint_every_ = 1;
   std::uint64_t thrust_every_ = 1;
+  std::uint64_t contacts_every_ = 1;
   // Step of the last publication of each stream (none yet: max).
   std::uint64_t last_odom_ = UINT64_MAX;
   std::uint64_t last_joint_ = UINT64_MAX;
   std::uint64_t last_thrust_ = UINT64_MAX;
+  std::uint64_t last_contacts_ = UINT64_MAX;
   std::vector<std::string> joint_names_;
   std::unique_ptr<SensorsRos> sensors_;
   BagRecorder* recorder_ = nullptr;

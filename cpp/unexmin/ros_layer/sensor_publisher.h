@@ -36,7 +36,7 @@ public:
 
   /// `topic` relative to the robot's namespace `ns` ("/UX_1/"), unless it is absolute.
   static std::string resolve(const std::string& ns, const std::string& topic) {
-    return !topic.empty() && topic[0] == '/' ? topic : ns + topic;
+    return sensors::resolveTopic(ns, topic);
   }
 
   /// Sets `cloud`'s fields to FLOAT32 `names` at offsets 0, 4, 8, ... (point_step = 4 per name), one row of
@@ -62,8 +62,7 @@ public:
 
   /// The sensor's text parameter `key` (a topic name), `fallback` when absent.
   static std::string topicParam(const sensors::Sensor& s, const std::string& key, const std::string& fallback) {
-    const auto it = s.spec().text.find(key);
-    return it == s.spec().text.end() ? fallback : it->second;
+    return sensors::textParam(s, key, fallback);
   }
 
 protected:

@@ -127,6 +127,7 @@ void SimulatorRos::loadParams() {
   rate("odom_rate", rates_.odom, 50.0);
   rate("joint_state_rate", rates_.joint_states, 50.0);
   rate("thrust_rate", rates_.thrust, 50.0);
+  rate("contacts_rate", rates_.contacts, 50.0);
   pnh_.param<std::string>("record", record_path_, "");
   std::string topics_text;
   pnh_.param<std::string>("record_topics", topics_text, "");

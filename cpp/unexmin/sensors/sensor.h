@@ -113,5 +113,17 @@ private:
   double tolerance_ = 1e-9;  ///< [s] rounding slack of the schedule
 };
 
+/// The sensor's text parameter `key` (a topic or frame name), `fallback` when absent: how the simulator's
+/// publishers and the in-process mapper name a sensor's topics and frames.
+inline std::string textParam(const Sensor& s, const std::string& key, const std::string& fallback) {
+  const auto it = s.spec().text.find(key);
+  return it == s.spec().text.end() ? fallback : it->second;
+}
+
+/// `topic` relative to a robot's namespace `ns` ("/UX_1/"), unless it is absolute.
+inline std::string resolveTopic(const std::string& ns, const std::string& topic) {
+  return !topic.empty() && topic[0] == '/' ? topic : ns + topic;
+}
+
 }  // namespace sensors
 }  // namespace unexmin

@@ -22,6 +22,8 @@ struct JointInfo {
   std::string parent;                                        ///< Parent link.
   std::string child;                                         ///< Child link.
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< Child frame in parent frame.
+  Eigen::Vector3d xyz{0, 0, 0};                              ///< <origin xyz> as written [m].
+  Eigen::Vector3d rpy{0, 0, 0};                              ///< <origin rpy> as written [rad].
   Eigen::Vector3d axis{1, 0, 0};                             ///< In the joint frame.
 };
 

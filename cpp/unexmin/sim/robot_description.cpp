@@ -31,6 +31,8 @@ JointInfo readJoint(const DescriptionReader& r, const tinyxml2::XMLElement* j, c
       rpy = r.vector3(o, "rpy", where + "/origin");
   }
   info.origin = poseFromXyzRpy(xyz, rpy);
+  info.xyz = xyz;
+  info.rpy = rpy;
   if (const auto* a = j->FirstChildElement("axis")) {
     info.axis = r.vector3(a, "xyz", where + "/axis");
     if (info.axis.norm() < 1e-9)

@@ -112,6 +112,25 @@ class Robot:
         return self.world._core.sample(self.name, sensor)
 
 
+def _mapper_values(mapping):
+    """The `mapping` argument as the engine takes it: None (no mapper), or {name: float, bool or str}."""
+    if mapping is False or mapping is None:
+        return None
+    if mapping is True:
+        return {}
+    if not isinstance(mapping, dict):
+        raise ValueError(f"mapping = {mapping!r}: expected True, False or a dict of mapper parameters")
+    values = {}
+    for name, value in mapping.items():
+        if isinstance(value, (bool, str)):
+            values[str(name)] = value
+        elif isinstance(value, (int, float)):
+            values[str(name)] = float(value)
+        else:
+            raise ValueError(f"mapping['{name}'] = {value!r}: expected a number, True/False or a text")
+    return values
+
+
 class World:
     """A world file with its robots, in this process (see the module's documentation).
 
@@ -122,7 +141,9 @@ class World:
     overriding the world file's ("": keep it); mode: operational|visual (cameras render, lights and lasers on);
     physics_rate [Hz]; overrides: {robot name: xacro overrides file} (as ``UX_k_overrides:=``); descriptions:
     {robot name: URDF text} instead of expanding the description file the world file names for each robot (urdf/);
-    ray_caster_threads: 0 = every hardware thread. The engine checks every setting (ValueError naming it).
+    ray_caster_threads: 0 = every hardware thread; mapping: True (the mapper node's defaults) or a dict of mapper
+    parameters (docs/mapping.md "In-process") to build the mapper node's OctoMap in this process as the world steps.
+    The engine checks every setting (ValueError naming it).
     """
 
     def __init__(
@@ -138,6 +159,7 @@ class World:
         descriptions=None,
         ray_caster_threads=0,
         vehicles=None,
+        mapping=False,
     ):
         path = world_path(world)
         if isinstance(seed, bool) or int(seed) != seed:
@@ -173,6 +195,7 @@ class World:
             float(physics_rate),
             str(mode),
             int(ray_caster_threads),
+            _mapper_values(mapping),
         )
         self.world_file = path
         self._robots = {n: Robot(self, n) for n in self._core.robots}
@@ -230,6 +253,32 @@ class World:
         doc="The world file's sediment block in force (docs/worlds.md): enabled, settling_speed [m/s], raise "
         "[m^2/(N s)], reach [m], puff_size [m], diffusivity [m^2/s], interval [s], max_puffs.",
     )
+
+    mapping = property(lambda self: self._core.mapping, doc="Whether this World maps (made with mapping=...).")
+
+    def map_stats(self):
+        """The in-process map's counters, as the mapper node's ~stats: clouds_received, clouds_inserted,
+        clouds_dropped, pending (waiting for the next tf sample), points_inserted, occupied_leaves, memory_bytes,
+        and sources ("<robot>/<sensor>" of every mapped sensor). RuntimeError without mapping."""
+        return self._core.map_stats()
+
+    def map_settings(self):
+        """The mapper's parameters in force, by name (docs/mapping.md "In-process"); RuntimeError without mapping."""
+        return self._core.map_settings()
+
+    def occupied_voxels(self):
+        """The map's occupied leaves (pruned: a leaf may be larger than the resolution), N x 4 numpy: centre x, y, z
+        and edge [m] in the map's frame (the world's). RuntimeError without mapping."""
+        return self._core.occupied_voxels()
+
+    def save_map(self, path):
+        """Write the map as OctoMap's binary .bt to `path` (through a temporary file renamed into place), as the
+        mapper node's ~save_map; returns the occupied leaves. RuntimeError without mapping or when writing fails."""
+        return self._core.save_map(os.fspath(path))
+
+    def clear_map(self):
+        """Empty the map (the mapper node's ~reset); the world goes on. RuntimeError without mapping."""
+        self._core.clear_map()
 
     time = property(lambda self: self._core.time, doc="Simulation time [s].")
     step_count = property(lambda self: self._core.step_count, doc="Physics steps since t = 0.")

@@ -209,20 +209,22 @@ class CoreSimulation(SimulationApi):
 
     #: Launch arguments the core cannot honour, with why (a non-default value raises ValueError naming it).
     UNSUPPORTED = {
-        "mapping": "the mapper is a ROS node of its own",
-        "map_file": "the mapper is a ROS node of its own",
         "record": "the recorder writes ROS messages",
         "launch_file": "a launch file starts ROS nodes",
         "log_dir": "the core writes no node logs",
         "node_name": "the core runs no ROS node",
     }
 
-    def __init__(self, world="tank", timeout=60.0, **world_arguments):
+    def __init__(self, world="tank", timeout=60.0, map_file="", **world_arguments):
         """world_arguments: those of unexmin.core.World (robots, seed, sensors, visibility, mode, overrides,
-        descriptions, physics_rate, ray_caster_threads); timeout [s] is kept for the ROS back end's sake."""
+        descriptions, physics_rate, ray_caster_threads, vehicles, mapping); map_file: where close() saves the map
+        ("" for nowhere); timeout [s] is kept for the ROS back end's sake."""
         from unexmin.core import World
 
+        if map_file and not world_arguments.get("mapping"):
+            raise ValueError(f"map_file = {map_file!r}: the map is only made with mapping=True")
         self.world = World(world, **world_arguments)
+        self.map_file = map_file
         self.timeout = timeout
         self.physics_rate = 1.0 / self.world.dt
         self.robots = tuple(self.world.robots)
@@ -237,7 +239,7 @@ class CoreSimulation(SimulationApi):
         map_file = kwargs.pop("map_file", "")
         record = kwargs.pop("record", "")
         sensors = check_launch_arguments(mode, visibility, sensors, mapping, map_file, kwargs.get("overrides"), record)
-        given = {"mapping": mapping, "map_file": map_file, "record": record}
+        given = {"record": record}
         for name in ("launch_file", "log_dir", "node_name"):
             given[name] = kwargs.pop(name, None)
         for name, value in given.items():
@@ -246,7 +248,22 @@ class CoreSimulation(SimulationApi):
                     f"{name} = {value!r}: the core back end cannot honour it ({cls.UNSUPPORTED[name]}): "
                     'use backend="ros"'
                 )
-        return cls(world, robots=robots, seed=seed, mode=mode, visibility=visibility, sensors=sensors, **kwargs)
+        if mapping:
+            # The mapper as the launch files start it (launch/simulation.launch, launch/mapping.launch).
+            vehicles = kwargs.get("vehicles")
+            team = vehicles.split(",") if isinstance(vehicles, str) else list(vehicles or [])
+            mapping = {"sonar_max_range": 8.0, "dvl": "remus100" in team}
+        return cls(
+            world,
+            robots=robots,
+            seed=seed,
+            mode=mode,
+            visibility=visibility,
+            sensors=sensors,
+            mapping=mapping,
+            map_file=map_file,
+            **kwargs,
+        )
 
     @property
     def time(self):
@@ -298,6 +315,8 @@ class CoreSimulation(SimulationApi):
         """Release the world (idempotent)."""
         if not self._closed:
             self._closed = True
+            if self.map_file:
+                self.world.save_map(self.map_file)  # as the mapper node saves ~map_file at shutdown
             for r in self._robots.values():
                 for c in list(r._collectors):
                     c.stop()
