@@ -7,12 +7,16 @@
 #include "mesh_fixture.h"
 #include "sensor_fixture.h"
 
+#include <unexmin/water/seawater.h>
+#include <unexmin/water/water_column.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,6 +54,22 @@ inline Geometry plateTarget(const Eigen::Vector3d& sensor, double ahead, double 
                             double height = 0.2) {
   const Eigen::Vector3d c(sensor.x() + ahead, sensor.y(), -below_surface);
   return box(c + Eigen::Vector3d(0, -width / 2, -height / 2), c + Eigen::Vector3d(0.01, width / 2, height / 2));
+}
+
+/// `world` filled with fresh water (salinity 0) at `temperature` [degC] throughout (docs/worlds.md "Water column").
+inline void fillWithFreshWater(sim::WorldConfig& world, double temperature) {
+  water::Profile profile;
+  profile.rows.resize(1);
+  profile.rows[0].temperature = temperature;
+  water::checkProfile(profile, "water.profile");
+  world.water_column =
+      std::make_shared<const water::WaterColumn>(profile, std::vector<water::Region>{}, world.surface_z, world.gravity);
+}
+
+/// Sound speed of fresh water at `temperature` [degC] at `point` (world frame) of `world`, by the seawater functions
+/// (Chen & Millero) at the hydrostatic pressure of its depth, 1e-4 x 1000 kg/m^3 x g x depth [dbar] [m/s].
+inline double freshWaterSoundSpeed(const sim::WorldConfig& world, double temperature, const Eigen::Vector3d& point) {
+  return water::soundSpeed(0.0, temperature, 1e-4 * 1000.0 * world.gravity * (world.surface_z - point.z()));
 }
 
 /// The sonar tests' world: a SensorWorld (Embree caster).

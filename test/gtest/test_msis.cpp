@@ -1,5 +1,6 @@
 // MSIS model (cpp/unexmin/sensors/sonar/msis_sensor.h, echo_model.h) against closed-form answers computed here: bin
-// lines inside a sphere centred on the head and in a 4 m box, the cos^n law on a plate tilted at known angles, the
+// lines inside a sphere centred on the head and in a 4 m box (also of cold fresh water, the echoes timed at its
+// sound speed), the cos^n law on a plate tilted at known angles, the
 // head's step schedule, each noise model on and off, seeds, a 360 deg sweep in the shipped tank (walls and
 // anchor), and start-up errors naming the parameter.
 #include <unexmin/sensors/sonar/msis_sensor.h>
@@ -277,6 +278,46 @@ TEST(Msis, BoxWallsAtEveryHeadAngle) {
     if (k % 100 == 0) {
       const double perpendicular = 2.0 - std::abs(head.translation()[k % 200 == 0 ? 0 : 1]);
       EXPECT_LE(std::abs(static_cast<int>(argmax(line.intensity)) - echo.bin(perpendicular)), 1) << "ping " << k;
+    }
+  }
+}
+
+TEST(Msis, InColdFreshWaterAHeadSetToFifteenHundredPlacesEveryWallLong) {
+  // The 4 m box filled with fresh water at 8 degC (sound at ~1441 m/s there): a head that turns echo times into
+  // ranges at 1500 m/s bins each wall at 1500 / c times its distance (about 4 % farther: 12 bins at 2 m); set to the
+  // water's own speed, at the distance. A full turn; the first echo against the nearest wall of the fan's rays.
+  sim::WorldConfig box = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+  fillWithFreshWater(box, 8.0);
+  const double c = freshWaterSoundSpeed(box, 8.0, box.robots.at(0).pose.translation() + kHead);
+  ASSERT_NEAR(c, 1439.1 + 0.0163 * 99.6, 0.3);  // Chen & Millero's pure water plus ~0.016 m/s per dbar
+  for (const double assumed : {1500.0, c}) {
+    // 1500 m/s: the default
+    SonarWorld w(box, msisUrdf(clean(assumed == 1500.0 ? std::map<std::string, std::string>{}
+                                                       : std::map<std::string, std::string>{{"sound_speed", num(c)}})));
+    auto& msis = w.sensor<MsisSensor>("msis");
+    const auto& echo = msis.echo();
+    int long_by_10_bins = 0;
+    for (std::size_t k = 0; k < 400; ++k) {
+      w.samples(msis, 1);
+      const auto& line = msis.last();
+      const Eigen::Isometry3d head = w.robot().state().pose * msis.headPose(line.angle);
+      ASSERT_NEAR(freshWaterSoundSpeed(box, 8.0, head.translation()), c, 0.01);
+      double nearest = INFINITY;
+      for (const auto& d0 : msis.fan()) {
+        const Eigen::Vector3d d = head.linear() * d0, p = head.translation();
+        for (int a = 0; a < 3; ++a)
+          if (std::abs(d[a]) > 1e-12)
+            nearest = std::min(nearest, ((d[a] > 0 ? 2.0 : -2.0) - p[a]) / d[a]);
+      }
+      const int first = firstEcho(line.intensity);
+      EXPECT_LE(std::abs(first - echo.bin(nearest * assumed / c)), 1)
+          << "sound_speed " << assumed << " ping " << k << " truth " << nearest << " m";
+      long_by_10_bins += first - echo.bin(nearest) >= 10;
+    }
+    if (assumed == 1500.0) {
+      EXPECT_EQ(long_by_10_bins, 400);  // far beyond a bin: a model that ignores the water's speed fails
+    } else {
+      EXPECT_EQ(long_by_10_bins, 0);
     }
   }
 }

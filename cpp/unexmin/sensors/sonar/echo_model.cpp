@@ -157,8 +157,8 @@ float EchoModel::quantise(double level) const {
   return static_cast<float>(q / p_.levels);  // as finish(): code / levels
 }
 
-void EchoModel::deposit(const Echo& e, std::size_t rays, std::vector<double>& energy) const {
-  const int b = bin(e.range);
+void EchoModel::deposit(const Echo& e, std::size_t rays, std::vector<double>& energy, double scale) const {
+  const int b = bin(scale == 1.0 ? e.range : scale * e.range);
   if (b >= 0)
     energy[b] += strength(e, rays);
 }
@@ -184,8 +184,9 @@ void EchoModel::spreadOver(double a, double b, double amount, std::vector<double
   }
 }
 
-void EchoModel::spread(const std::vector<Echo>& column, std::size_t rays, double max_gap,
-                       std::vector<double>& energy) const {
+void EchoModel::spread(const std::vector<Echo>& column, std::size_t rays, double max_gap, std::vector<double>& energy,
+                       double scale) const {
+  const auto timed = [scale](double r) { return scale == 1.0 ? r : scale * r; };  // the range the sonar bins
   const std::size_t n = column.size();
   for (std::size_t k = 0; k < n; ++k) {
     const Echo& e = column[k];
@@ -198,9 +199,9 @@ void EchoModel::spread(const std::vector<Echo>& column, std::size_t rays, double
                           std::abs(column[j].range - e.range) <= max_gap;
       // Towards the neighbour: half the way (the neighbour fills the other half).
       if (paired)
-        spreadOver(e.range, 0.5 * (e.range + column[j].range), 0.5 * s, energy);
+        spreadOver(timed(e.range), timed(0.5 * (e.range + column[j].range)), 0.5 * s, energy);
       else {
-        const int b = bin(e.range);
+        const int b = bin(timed(e.range));
         if (b >= 0)
           energy[b] += 0.5 * s;
       }

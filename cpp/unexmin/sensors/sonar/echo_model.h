@@ -100,10 +100,13 @@ public:
   /// evenly over the bins between its range and each of its neighbours' (half towards each neighbour that
   /// hit within `max_gap` [m]; the half of a missing or farther neighbour stays in the ray's own bin). Total
   /// power is preserved. `column`: the echoes of one column of the fan in elevation order, a negative range
-  /// for a ray with no echo. Adds into `energy` (nbins) [uPa^2].
-  void spread(const std::vector<Echo>& column, std::size_t rays, double max_gap, std::vector<double>& energy) const;
-  /// Adds one echo's power to its bin of `energy` (nbins); nothing outside the window.
-  void deposit(const Echo& e, std::size_t rays, std::vector<double>& energy) const;
+  /// for a ray with no echo. Adds into `energy` (nbins) [uPa^2]. `scale` as deposit()'s.
+  void spread(const std::vector<Echo>& column, std::size_t rays, double max_gap, std::vector<double>& energy,
+              double scale = 1.0) const;
+  /// Adds one echo's power to its bin of `energy` (nbins); nothing outside the window. `scale` [-]: the echo's range
+  /// as the sonar times it is its range (the path, which sets its power) x scale, the configured over the water's
+  /// sound speed (sensors::apparentRangeFactor); the echo goes to the bin of that range.
+  void deposit(const Echo& e, std::size_t rays, std::vector<double>& energy, double scale = 1.0) const;
   /// Gain, TVG and quantisation: power per bin (nbins) [uPa^2] -> intensity line in [0, 1].
   void finish(const std::vector<double>& energy, std::vector<float>& line) const;
 

@@ -97,9 +97,9 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   e.beam_solid_angle = bw_h * 2.0 * std::sin(bw_v / 2.0);  // the azimuth x elevation rectangle on the sphere
   echo_ = EchoModel(e);
 
-  const double sound_speed = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
+  sound_speed_ = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
   // One ping at a time: the echo from range_max must be back before the next ping.
-  const double max_rate = sound_speed / (2.0 * e.range_max);
+  const double max_rate = sound_speed_ / (2.0 * e.range_max);
   if (rate() > max_rate * (1.0 + 1e-9)) {
     p.fail("rate", formatNumber(rate()),
            "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) +
@@ -193,7 +193,7 @@ void MsisSensor::sample(const sensors::SensorContext& ctx) {
   aim(ctx, ping);
   castRays(ctx, rays_, hits_);
   castReflections(ctx, ping);
-  depositEchoes();
+  depositEchoes(ping);
   shadowBins(ping);
   addReceiverNoise();
   writeLine(ctx, ping);
@@ -206,17 +206,21 @@ void MsisSensor::aim(const sensors::SensorContext& ctx, Ping& ping) {
   const EchoParams& e = echo_.params();
   ping.surface_z = ctx.world.water().surface_z;
   ping.origin = head.translation();
+  // ranges as the sonar times them: the path times sound_speed / c_water; in faster water it hears range_max from
+  // farther away
+  ping.scale = apparentRangeFactor(ctx.world, ping.origin, sound_speed_);
+  ping.reach = e.range_max / std::min(1.0, ping.scale);
   const bool submerged = ping.origin.z() < ping.surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
     const Eigen::Vector3d d = (R * dirs_[i]).normalized();
     rays_[i].origin = ping.origin.cast<float>();
     rays_[i].direction = d.cast<float>();
-    rays_[i].max_range = static_cast<float>(e.range_max);
+    rays_[i].max_range = static_cast<float>(ping.reach);
     // A ray that reaches the free surface within range stops there (the surface echo, and its reflection).
     surface_[i] = -1.0;
     if (reflector_.multipath && submerged && d.z() > 1e-9) {
       const double s = (ping.surface_z - ping.origin.z()) / d.z();
-      if (s < e.range_max) {
+      if (s < ping.reach) {
         surface_[i] = s;
         rays_[i].max_range = static_cast<float>(s);
       }
@@ -226,13 +230,12 @@ void MsisSensor::aim(const sensors::SensorContext& ctx, Ping& ping) {
 
 void MsisSensor::castReflections(const sensors::SensorContext& ctx, const Ping& ping) {
   // The reflected rays, only for the rays that reached the surface: mirrored about it, for the rest of the range.
-  const double range_max = echo_.params().range_max;
   mirrored_.clear();
   mirror_of_.clear();
   for (std::size_t i = 0; i < rays_.size(); ++i) {
     if (surface_[i] < 0.0 || hits_[i].hit())
       continue;
-    mirrored_.push_back(reflectedRay(rays_[i], ping.origin, surface_[i], ping.surface_z, range_max - surface_[i]));
+    mirrored_.push_back(reflectedRay(rays_[i], ping.origin, surface_[i], ping.surface_z, ping.reach - surface_[i]));
     mirror_of_.push_back(i);
   }
   if (!mirrored_.empty())
@@ -242,7 +245,7 @@ void MsisSensor::castReflections(const sensors::SensorContext& ctx, const Ping& 
     ghost_[mirror_of_[k]] = static_cast<long>(k);
 }
 
-void MsisSensor::depositEchoes() {
+void MsisSensor::depositEchoes(const Ping& ping) {
   energy_.assign(echo_.params().nbins, 0.0);
   const std::size_t n = rays_.size();
   const auto noisy = [&](double r) {
@@ -258,24 +261,24 @@ void MsisSensor::depositEchoes() {
         echo.range = noisy(hit.range);
         echo.cos_incidence = std::cos(static_cast<double>(hit.incidence));
         if (!artifacts_)
-          echo_.deposit(echo, n, energy_);
+          echo_.deposit(echo, n, energy_, ping.scale);
         continue;
       }
       if (surface_[i] < 0.0)
         continue;
       // The surface's own backscatter at its incidence (the vertical is its normal)...
       echo_.deposit(Echo{noisy(surface_[i]), static_cast<double>(rays_[i].direction.z()), reflector_.surface_extra}, n,
-                    energy_);
+                    energy_, ping.scale);
       // ...and the ghost: the echo of what the reflected ray meets, back the same way (two reflections).
       const long g = ghost_[i];
       if (g >= 0 && mirror_hits_[g].hit()) {
         const double cos_incidence = std::cos(static_cast<double>(mirror_hits_[g].incidence));
         echo_.deposit(Echo{noisy(surface_[i] + mirror_hits_[g].range), cos_incidence, reflector_.ghost_extra}, n,
-                      energy_);
+                      energy_, ping.scale);
       }
     }
     if (artifacts_)
-      echo_.spread(column_, n, artifacts_gap_, energy_);
+      echo_.spread(column_, n, artifacts_gap_, energy_, ping.scale);
   }
 }
 

@@ -6,11 +6,15 @@
 //      it keeps turning the same way, the angle wrapped to (-pi, pi];
 //   2. a fan of hpr x vpr rays covers the beam: horizontal angles h_i = -bw_h/2 + (i + 1/2) bw_h / hpr
 //      about the head's z, elevations v_j = -bw_v/2 + (j + 1/2) bw_v / vpr, direction
-//      (cos v cos h, cos v sin h, sin v) in the head frame, cast from the head origin up to range_max;
+//      (cos v cos h, cos v sin h, sin v) in the head frame, cast from the head origin up to range_max (range_max /
+//      scale where the water is faster than sound_speed);
 //   3. rays that reach the free surface within range stop there: the surface's own echo, and (multipath) a
 //      reflected ray cast from it for the rest of the range, whose hit is a ghost at the unfolded range;
-//      the hits become one line of nbins 8-bit intensities in [0, 1] (EchoModel: the sonar equation per ray,
-//      power summed per bin, gain, TVG, quantisation), with the noise models on the bins' power, each switchable:
+//      the hits become one line of nbins 8-bit intensities in [0, 1] (EchoModel: the sonar equation per ray at its
+//      path, power summed per bin, gain, TVG, quantisation), with the noise models on the bins' power, each
+//      switchable. An echo is binned at its range as the sonar times it: the path x scale, scale = sound_speed /
+//      c_water, c_water the world's water column's sound speed at the head (docs/worlds.md "Water column"; 1
+//      without a column):
 //        range_noise  [m]  Gaussian noise on every ray's range (0: off)
 //        speckle           exponential (Rayleigh amplitude) factor on each bin's echo power
 //        noise_floor       + the noise power 10^(noise_level / 10) x an exponential draw per bin
@@ -91,6 +95,8 @@ private:
   struct Ping {
     Eigen::Vector3d origin{0, 0, 0};  ///< head origin, world frame [m]
     double surface_z = 0.0;           ///< world z of the free surface [m]
+    double scale = 1.0;               ///< timed range / path: sound_speed / c_water at the head [-]
+    double reach = 0.0;               ///< longest path heard within range_max: range_max / min(1, scale) [m]
     std::vector<char> shadowed;       ///< per bin: 1 behind the first strong echo (shadow on)
   };
   // The stages of sample(), in order (see the steps above):
@@ -99,7 +105,7 @@ private:
   /// 3: the reflected rays of those that reached the surface, cast; ghost_ maps each ray to its reflection.
   void castReflections(const sensors::SensorContext& ctx, const Ping& ping);
   /// 3: the echo power of the hits, the surface and the ghosts summed per bin into energy_ (range noise drawn).
-  void depositEchoes();
+  void depositEchoes(const Ping& ping);
   /// 3: no echo behind the first bin that reaches shadow_threshold (shadow on); flags those bins.
   void shadowBins(Ping& ping);
   /// 3: speckle, noise floor, salt and pepper on energy_ (each when on).
@@ -119,6 +125,7 @@ private:
   double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
   bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false;
   double salt_level_ = 10.0;           ///< [dB] above the noise level: the highest spike
+  double sound_speed_ = 1500.0;        ///< [m/s] the speed it turns echo times into ranges with
   double noise_power_ = 0.0;           ///< 10^(noise_level / 10) [uPa^2]
   SurfaceParams reflector_;            ///< the free surface: multipath on/off, its echoes' extra levels
   int shadow_code_ = 1;                ///< least code of a shadowing echo
