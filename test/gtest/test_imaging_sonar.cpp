@@ -1,5 +1,6 @@
 // The imaging sonar (cpp/unexmin/sensors/sonar/imaging_sonar_sensor.h) against closed forms: a sphere at a known
-// range and bearing in its bin and beam, the acoustic shadow of a box on a flat floor by similar triangles, the echo
+// range and bearing in its bin and beam, the walls of a box of cold fresh water 1500 / c farther (the echoes timed at
+// its sound speed), the acoustic shadow of a box on a flat floor by similar triangles, the echo
 // level against the sonar equation's spreading and absorption at two ranges, seeded speckle, the noise floor's codes
 // against an exponential power's, pings built only on demand, the same image for any number of caster threads,
 // parameter errors.
@@ -10,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace unexmin {
@@ -241,6 +244,53 @@ TEST(ImagingSonar, TheImageDoesNotDependOnTheCastersThreads) {
   EXPECT_EQ(one.size(), 500u * 512u);
   EXPECT_TRUE(one == three);
   EXPECT_GT(std::count_if(one.begin(), one.end(), [](std::uint8_t q) { return q > 0; }), 10000);  // noise beyond 8 m
+}
+
+TEST(ImagingSonar, InColdFreshWaterASonarSetToFifteenHundredPlacesEveryWallLong) {
+  // The 4 m box (walls at +-2 m) filled with fresh water at 8 degC (sound at ~1441 m/s there), the sonar level at its
+  // centre, 300 bins over 0.1..3 m (9.7 mm): a sonar that turns echo times into ranges at 1500 m/s puts every beam's
+  // first echo at 1500 / c times the nearest wall of its rays (about 4 %: 8 to 12 bins farther); set to the water's
+  // own speed, at the wall. Beam k's rays: azimuth a_k = fov_h/2 - (k + 1/2) fov_h / beams, elevations e_j = -fov_v/2
+  // + (j + 1/2) fov_v / rays_per_beam, direction (cos e cos a, cos e sin a, sin e) (the defaults 512, 130 deg, 16,
+  // 20 deg).
+  sim::WorldConfig box = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+  fillWithFreshWater(box, 8.0);
+  const double c = freshWaterSoundSpeed(box, 8.0, box.robots.at(0).pose.translation());
+  ASSERT_NEAR(c, 1439.1 + 0.0163 * 100.0, 0.3);  // Chen & Millero's pure water plus ~0.016 m/s per dbar
+  for (const double assumed : {1500.0, c}) {
+    std::map<std::string, std::string> params = {{"noise", "none"}, {"range_max", "3"}, {"nbins", "300"}};
+    if (assumed != 1500.0)
+      params["sound_speed"] = num(assumed);  // else the default
+    SonarWorld w(box,
+                 sensorUrdf(SphereSpec(), mountLink("T/sonar_link", Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+                            sensorXml("sonar", "imaging_sonar", "T/sonar_link", 10.0, params)));
+    const ImagingSonarSensor& s = sonar(w);
+    const auto& image = ping(w);
+    const Eigen::Isometry3d pose = w.robot().state().pose;  // the sonar link's
+    ASSERT_NEAR(freshWaterSoundSpeed(box, 8.0, pose.translation()), c, 0.01);
+    ASSERT_NEAR(s.rangeResolution(), 2.9 / 300, 1e-12);
+    int long_by_5_bins = 0;
+    for (std::size_t k = 0; k < image.beams; ++k) {
+      const double a = 65.0 * kDegree - (k + 0.5) * 130.0 * kDegree / 512.0;
+      double truth = INFINITY;
+      for (int j = 0; j < 16; ++j) {
+        const double e = -10.0 * kDegree + (j + 0.5) * 20.0 * kDegree / 16.0;
+        const Eigen::Vector3d d =
+            pose.linear() * Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+        for (int axis = 0; axis < 3; ++axis)
+          if (std::abs(d[axis]) > 1e-12)
+            truth = std::min(truth, ((d[axis] > 0 ? 2.0 : -2.0) - pose.translation()[axis]) / d[axis]);
+      }
+      std::size_t first = 0;
+      while (first < image.bins && image.at(first, k) == 0)
+        ++first;
+      ASSERT_LT(first, image.bins) << "beam " << k << ": no echo";
+      EXPECT_NEAR(s.binCenter(first), truth * assumed / c, s.rangeResolution())
+          << "sound_speed " << assumed << " beam " << k << " truth " << truth << " m";
+      long_by_5_bins += s.binCenter(first) - truth > 5.0 * s.rangeResolution();
+    }
+    EXPECT_EQ(long_by_5_bins, assumed == 1500.0 ? 512 : 0);  // a model that ignores the water's speed fails
+  }
 }
 
 TEST(ImagingSonar, BadParametersNameTheSensorAndTheParameter) {

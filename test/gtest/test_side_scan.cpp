@@ -1,6 +1,7 @@
 // The side-scan sonar (cpp/unexmin/sensors/sonar/side_scan_sensor.h) against closed forms: the nadir gap at the
 // slant range of the fan's steepest ray over a flat floor (the altitude itself for a fan reaching the vertical), the
-// acoustic shadow of a box on the floor by similar triangles, the waterfall's layout, seeded lines, pings built only on
+// acoustic shadow of a box on the floor by similar triangles, the walls of a box of cold fresh water 1500 / c farther
+// (the echoes timed at its sound speed), the waterfall's layout, seeded lines, pings built only on
 // demand, parameter errors.
 #include "expect_error.h"
 #include "sonar_image_fixture.h"
@@ -11,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
 
 namespace unexmin {
 namespace test {
@@ -146,6 +149,50 @@ TEST(SideScan, APingNotWantedIsNotBuiltLeavesABlankWaterfallRowAndTheNextDoesNot
   EXPECT_EQ(row(skipped.second, 1), std::vector<std::uint8_t>(400, 0));
   EXPECT_GT(std::count_if(built.second.begin() + 400, built.second.begin() + 800, [](std::uint8_t q) { return q > 0; }),
             100);  // the floor's echoes
+}
+
+TEST(SideScan, InColdFreshWaterASonarSetToFifteenHundredPlacesTheWallsLong) {
+  // The 4 m box (walls at +-2 m, floor at -2 m) filled with fresh water at 8 degC (sound at ~1441 m/s there), the
+  // sonar level at its centre, 300 bins over 0.1..3 m (9.7 mm): a sonar that turns echo times into ranges at 1500 m/s
+  // puts each side's first echo at 1500 / c times the nearest wall of its rays (about 4 %: 8 bins farther); set to the
+  // water's own speed, at the wall. Ray j of a side at depression tilt + fov_v/2 - (j + 1/2) fov_v / rays below the
+  // horizontal, across the track: port (0, cos, -sin), starboard (0, -cos, -sin) (the defaults 30 deg, 60 deg, 256).
+  sim::WorldConfig box = sim::loadWorldConfig(std::string(UNEXMIN_SOURCE_DIR) + "/worlds/test_box.world");
+  fillWithFreshWater(box, 8.0);
+  const double c = freshWaterSoundSpeed(box, 8.0, box.robots.at(0).pose.translation());
+  ASSERT_NEAR(c, 1439.1 + 0.0163 * 100.0, 0.3);  // Chen & Millero's pure water plus ~0.016 m/s per dbar
+  for (const double assumed : {1500.0, c}) {
+    std::map<std::string, std::string> params = {{"noise", "none"}, {"range_max", "3"}, {"nbins", "300"}};
+    if (assumed != 1500.0)
+      params["sound_speed"] = num(assumed);  // else the default
+    SonarWorld w(box,
+                 sensorUrdf(SphereSpec(), mountLink("T/sonar_link", Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+                            sensorXml("sonar", "side_scan", "T/sonar_link", 10.0, params)));
+    const SideScanSensor& s = sonar(w);
+    w.samples(s, 1);
+    const Eigen::Isometry3d pose = w.robot().state().pose;  // the sonar link's
+    ASSERT_NEAR(freshWaterSoundSpeed(box, 8.0, pose.translation()), c, 0.01);
+    ASSERT_NEAR(s.rangeResolution(), 2.9 / 300, 1e-12);
+    for (const double side : {1.0, -1.0}) {  // port, starboard
+      double truth = INFINITY;
+      for (int j = 0; j < 256; ++j) {
+        const double depression = (30.0 + 30.0 - (j + 0.5) * 60.0 / 256.0) * kDegree;
+        const Eigen::Vector3d d =
+            pose.linear() * Eigen::Vector3d(0.0, side * std::cos(depression), -std::sin(depression));
+        for (int axis = 0; axis < 3; ++axis)
+          if (std::abs(d[axis]) > 1e-12)
+            truth = std::min(truth, ((d[axis] > 0 ? 2.0 : -2.0) - pose.translation()[axis]) / d[axis]);
+      }
+      const auto& line = side > 0 ? s.last().port : s.last().starboard;
+      const int first = firstEcho(line);
+      ASSERT_LT(first, 300) << "side " << side << ": no echo";
+      EXPECT_NEAR(s.binCenter(first), truth * assumed / c, s.rangeResolution())
+          << "sound_speed " << assumed << " side " << side << " truth " << truth << " m";
+      if (assumed == 1500.0) {
+        EXPECT_GT(s.binCenter(first) - truth, 5.0 * s.rangeResolution());  // a model that ignores it fails
+      }
+    }
+  }
 }
 
 TEST(SideScan, BadParametersNameTheSensorAndTheParameter) {

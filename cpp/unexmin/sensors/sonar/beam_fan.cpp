@@ -54,7 +54,7 @@ void BeamFan::aim(const Eigen::Isometry3d& sensor, double range_max, double surf
 }
 
 void BeamFan::listen(const Eigen::Matrix3d& rotation, const raycast::Hit* hits, const BeamReceiver& receiver,
-                     std::vector<double>& energy) const {
+                     double scale, std::vector<double>& energy) const {
   const std::size_t n = dirs_.size();
   for (std::size_t j = 0; j < n; ++j) {
     const raycast::Hit& hit = hits[j];
@@ -71,7 +71,7 @@ void BeamFan::listen(const Eigen::Matrix3d& rotation, const raycast::Hit* hits, 
     if (!(j > 0 && hits[j - 1].hit()) && !(j + 1 < n && hits[j + 1].hit()))
       bound = r * (ray_angle_ + width_);
     const Echo echo{r, std::min(1.0, std::abs(dirs_[j].dot(normal)))};
-    receiver.add(echo, std::min(extent(j, r, normal), bound), n, energy);
+    receiver.add(echo, std::min(extent(j, r, normal), bound), n, scale, energy);
   }
 }
 

@@ -46,12 +46,13 @@ public:
   double solidAngle() const;
 
   /// Writes the size() rays of the fan of a sensor at `sensor` (world frame) to out[0 .. size()): from its origin,
-  /// up to range_max [m] or to the free surface at height surface_z [m] (sound does not leave the water: a ray
-  /// stops there with no echo; a sensor above the surface hears nothing).
+  /// up to `range_max` [m] (the longest path cast) or to the free surface at height surface_z [m] (sound does not leave
+  /// the water: a ray stops there with no echo; a sensor above the surface hears nothing).
   void aim(const Eigen::Isometry3d& sensor, double range_max, double surface_z, raycast::Ray* out) const;
   /// Adds the echo of every hit of hits[0 .. size()) (the answers to aim()'s rays; `rotation`: sensor frame ->
-  /// world) to `energy` through `receiver`: range, incidence from the hit's normal, spread over its footprint.
-  void listen(const Eigen::Matrix3d& rotation, const raycast::Hit* hits, const BeamReceiver& receiver,
+  /// world) to `energy` through `receiver`: range, incidence from the hit's normal, spread over its footprint, binned
+  /// at the ranges the sonar times (x scale, BeamReceiver::add).
+  void listen(const Eigen::Matrix3d& rotation, const raycast::Hit* hits, const BeamReceiver& receiver, double scale,
               std::vector<double>& energy) const;
 
 private:

@@ -66,7 +66,9 @@ BeamReceiver BeamReceiver::read(SensorParams& p, const ReceiverDefaults& default
   const double max_rate = sound_speed / (2.0 * e.range_max);  // the echo from range_max is back before the next ping
   if (rate > max_rate * (1.0 + 1e-9))
     p.fail("rate", formatNumber(rate), "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) + " Hz");
-  return BeamReceiver(e, noise);
+  BeamReceiver receiver(e, noise);
+  receiver.sound_speed_ = sound_speed;
+  return receiver;
 }
 
 BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
@@ -91,22 +93,26 @@ BeamReceiver::BeamReceiver(EchoParams params, const ReceiverNoise& noise)
                                     echo_.step());
 }
 
-void BeamReceiver::add(const Echo& e, double extent, std::size_t rays, std::vector<double>& energy) const {
-  const double power = echo_.strength(e, rays);
+void BeamReceiver::add(const Echo& e, double extent, std::size_t rays, double scale,
+                       std::vector<double>& energy) const {
+  const double power = echo_.strength(e, rays);  // at the path
   if (!(power > 0.0))
     return;
   const EchoParams& p = echo_.params();
   const double w = echo_.binWidth();
-  if (!(extent > 1e-9 * w)) {
-    const int b = echo_.bin(e.range);
+  // the ranges the sonar times (no arithmetic at scale 1: without a water column the bins are the paths')
+  const double range = scale == 1.0 ? e.range : scale * e.range;
+  const double span = scale == 1.0 ? extent : scale * extent;
+  if (!(span > 1e-9 * w)) {
+    const int b = echo_.bin(range);
     if (b >= 0)
       energy[b] += power;
     return;
   }
   // In bin units: the footprint covers [x0, x1); bin i covers [i, i + 1).
-  const double x0 = (e.range - 0.5 * extent - p.range_min) / w;
-  const double x1 = x0 + extent / w;
-  const double per_bin = power * w / extent;
+  const double x0 = (range - 0.5 * span - p.range_min) / w;
+  const double x1 = x0 + span / w;
+  const double per_bin = power * w / span;
   const int first = std::max(0, static_cast<int>(std::floor(x0)));
   const int last = std::min(p.nbins, static_cast<int>(std::ceil(x1)));
   for (int i = first; i < last; ++i) {

@@ -45,8 +45,9 @@ int wholeNumber(SensorParams& p, const std::string& key, double fallback, double
 class BeamReceiver {
 public:
   /// Reads range_min (0.1 m), range_max, nbins, gain (0.5), the sonar equation's parameters (equation_params.h),
-  /// noise (gaussian|none), speckle (true), noise_floor (true), noise_level and sound_speed (1500 m/s), and checks
-  /// that a ping at `rate` [Hz] hears range_max (rate <= sound_speed / (2 range_max)). `beam_solid_angle` [sr]: the
+  /// noise (gaussian|none), speckle (true), noise_floor (true), noise_level and sound_speed (1500 m/s, the speed it
+  /// turns echo times into ranges with), and checks that a ping at `rate` [Hz] hears range_max (rate <= sound_speed /
+  /// (2 range_max)). `beam_solid_angle` [sr]: the
   /// beam's (BeamFan::solidAngle()).
   static BeamReceiver read(SensorParams& p, const ReceiverDefaults& defaults, double rate, double beam_solid_angle);
 
@@ -55,9 +56,13 @@ public:
 
   const EchoModel& echo() const { return echo_; }
   const ReceiverNoise& noise() const { return noise_; }
-  /// Adds the power of `e` (one of `rays` rays of the beam) spread evenly over [r - extent/2, r + extent/2] [m]
-  /// to `energy` (nbins) [uPa^2]; what falls outside the range window is lost.
-  void add(const Echo& e, double extent, std::size_t rays, std::vector<double>& energy) const;
+  /// The speed it turns echo times into ranges with [m/s] (read(): the parameter sound_speed; else 1500).
+  double soundSpeed() const { return sound_speed_; }
+  /// Adds the power of `e` (one of `rays` rays of the beam; its range r is the path, which sets the power) spread
+  /// evenly over the ranges the sonar times, [r - extent/2, r + extent/2] x scale [m] (scale: the configured over the
+  /// water's sound speed, sensors::apparentRangeFactor), to `energy` (nbins) [uPa^2]; what falls outside the range
+  /// window is lost.
+  void add(const Echo& e, double extent, std::size_t rays, double scale, std::vector<double>& energy) const;
   /// Speckle and noise floor on the echo power `energy` (nbins) [uPa^2], drawn from `random` (the beam's stream of
   /// this ping), then the codes: bin i to codes[i * stride]. `energy` is left all zeros, ready for the next beam.
   void receive(std::vector<double>& energy, const CounterRandom& random, std::uint8_t* codes, std::size_t stride) const;
@@ -71,6 +76,7 @@ private:
 
   EchoModel echo_;
   ReceiverNoise noise_;
+  double sound_speed_ = 1500.0;         ///< [m/s]
   double noise_power_ = 0.0;            ///< 10^(noise_level / 10) [uPa^2]
   std::vector<float> visible_;          ///< per bin: the probability that the noise alone makes code >= 1
   std::vector<double> block_visible_;   ///< per block of kBlock bins: the largest visible_

@@ -13,11 +13,12 @@ BeamSet::BeamSet(std::vector<BeamFan> fans, BeamReceiver receiver)
       rays_(fans_.size() * (fans_.empty() ? 0 : fans_.front().size())),
       energy_(static_cast<std::size_t>(receiver_.echo().params().nbins), 0.0) {}
 
-const std::vector<raycast::Ray>& BeamSet::aim(const Eigen::Isometry3d& pose, double surface_z) {
+const std::vector<raycast::Ray>& BeamSet::aim(const Eigen::Isometry3d& pose, double surface_z, double scale) {
   const std::size_t n = fans_.front().size();
-  const double range_max = receiver_.echo().params().range_max;
+  scale_ = scale;
+  const double reach = receiver_.echo().params().range_max / std::min(1.0, scale);  // range_max itself at scale >= 1
   for (std::size_t k = 0; k < fans_.size(); ++k)
-    fans_[k].aim(pose, range_max, surface_z, &rays_[k * n]);
+    fans_[k].aim(pose, reach, surface_z, &rays_[k * n]);
   return rays_;
 }
 
@@ -29,7 +30,7 @@ void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::ve
 void BeamSet::listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
                      const CounterRandom& random, std::uint8_t* codes, std::size_t stride,
                      std::vector<double>& energy) const {
-  fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, energy);
+  fans_[k].listen(pose.linear(), &hits[k * fans_[k].size()], receiver_, scale_, energy);
   receiver_.receive(energy, random, codes, stride);
 }
 

@@ -29,10 +29,13 @@ public:
   const BeamReceiver& receiver() const { return receiver_; }
   std::size_t raysPerPing() const { return rays_.size(); }
   /// The rays of every beam of a sensor at `pose` (world frame; beam k's at [k n, (k + 1) n), n rays per fan), up to
-  /// range_max or the free surface at height surface_z [m] (BeamFan::aim).
-  const std::vector<raycast::Ray>& aim(const Eigen::Isometry3d& pose, double surface_z);
-  /// Beam k's line from `hits` (the answers to aim()'s rays, the sensor at `pose`): echoes, receiver noise from
-  /// `random` (the beam's stream of this ping), codes[i * stride] = the code of bin i.
+  /// range_max / min(1, scale) (the farthest path heard within range_max) or the free surface at height surface_z
+  /// [m] (BeamFan::aim). `scale` [-]: the ping's timed range per metre of path, the receiver's sound speed over the
+  /// water's at the sonar (sensors::apparentRangeFactor; 1 without a water column), used by the listen()s after it.
+  const std::vector<raycast::Ray>& aim(const Eigen::Isometry3d& pose, double surface_z, double scale);
+  /// Beam k's line from `hits` (the answers to aim()'s rays, the sensor at `pose`): echoes binned at the ranges the
+  /// sonar times (path x aim()'s scale), receiver noise from `random` (the beam's stream of this ping), codes[i *
+  /// stride] = the code of bin i.
   void listen(std::size_t k, const Eigen::Isometry3d& pose, const std::vector<raycast::Hit>& hits,
               const CounterRandom& random, std::uint8_t* codes, std::size_t stride);
 
@@ -52,6 +55,7 @@ private:
   std::vector<BeamFan> fans_;
   BeamReceiver receiver_{EchoParams(), ReceiverNoise()};
   std::vector<raycast::Ray> rays_;
+  double scale_ = 1.0;                         ///< aim()'s scale [-]
   std::vector<double> energy_;                 ///< listen()'s scratch
   std::vector<std::vector<double>> energies_;  ///< listenAll()'s scratch, one per group
 };

@@ -51,7 +51,9 @@ void ImagingSonarSensor::sample(const SensorContext& ctx) {
   if (demand_ && !demand_())
     return;
   const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
-  const auto& rays = beams_.aim(pose, ctx.world.water().surface_z);
+  // echoes timed at the water's sound speed, turned into ranges with the receiver's sound_speed
+  const double scale = apparentRangeFactor(ctx.world, pose.translation(), beams_.receiver().soundSpeed());
+  const auto& rays = beams_.aim(pose, ctx.world.water().surface_z, scale);
   castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
 
   out.beams = beams();

@@ -6,7 +6,9 @@
 //     about the link's y), cast from the link origin up to range_max; they stop at the free surface;
 //   - every hit echoes by the sonar equation (echo_model.h; the beam's solid angle fov_h / beams x 2 sin(fov_v / 2)
 //     shared by its rays), spread over its footprint's ranges; rays stop at the first surface they meet, so what
-//     lies behind an object is in its acoustic shadow;
+//     lies behind an object is in its acoustic shadow. The ranges are the echoes' as the sonar times them: the path x
+//     sound_speed / c_water, c_water the world's water column's sound speed at the sonar (docs/worlds.md "Water
+//     column"; 1 without a column), the rays cast up to range_max / min(1, that factor);
 //   - the beam's nbins range bins from range_min to range_max become 8-bit codes (BeamReceiver: speckle, noise
 //     floor, gain, TVG, quantisation);
 //   - the polar image: row i = range bin i (centre range_min + (i + 1/2) (range_max - range_min) / nbins), column

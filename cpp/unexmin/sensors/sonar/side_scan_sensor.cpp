@@ -48,7 +48,9 @@ void SideScanSensor::sample(const SensorContext& ctx) {
     return;
   }
   const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
-  const auto& rays = beams_.aim(pose, ctx.world.water().surface_z);
+  // echoes timed at the water's sound speed, turned into ranges with the receiver's sound_speed
+  const double scale = apparentRangeFactor(ctx.world, pose.translation(), beams_.receiver().soundSpeed());
+  const auto& rays = beams_.aim(pose, ctx.world.water().surface_z, scale);
   castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
 
   const CounterRandom ping(seed);  // side s draws from its stream s

@@ -6,7 +6,9 @@
 //     (BeamFan), from the steepest at depression tilt + fov_v/2 to the shallowest at tilt - fov_v/2, cast from the
 //     link origin up to range_max; they stop at the free surface and at the first surface they meet (shadows);
 //   - each side's echoes (sonar equation, spread over their footprints) become one line of nbins 8-bit codes by slant
-//     range (BeamReceiver: speckle, noise floor, gain, TVG); bin 0 the nearest. The water column before the first
+//     range as the sonar times it, the path x sound_speed / c_water (c_water the world's water column's sound speed
+//     at the sonar, docs/worlds.md "Water column"; 1 without a column; the rays cast up to range_max / min(1, that
+//     factor)) (BeamReceiver: speckle, noise floor, gain, TVG); bin 0 the nearest. The water column before the first
 //     bottom return carries only noise: the nadir gap, at the slant range altitude / sin(tilt + fov_v/2) of the
 //     steepest ray over a flat floor (the altitude itself for a fan that reaches the vertical);
 //   - the waterfall (waterfall.h) keeps the latest waterfall_lines pings.
