@@ -20,6 +20,8 @@ apt_packages=(
   libstd-srvs-dev python3-std-srvs librosbag-storage-dev
   # C++ core
   libbullet-dev libeigen3-dev liboctomap-dev libembree-dev libassimp-dev libyaml-cpp-dev libtinyxml2-dev
+  # KDL: test_joint_transform checks the mounts against robot_state_publisher's arithmetic (urdfdom + KDL)
+  liborocos-kdl-dev
   # image textures of world meshes (sim/texture_image.h)
   libpng-dev libjpeg-dev
   # OctoMap's bt2vrml and binvox2bt (map_quality, its tests); urdfdom (test_urdf.py checks the description with it)

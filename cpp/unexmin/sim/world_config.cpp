@@ -28,6 +28,27 @@ std::string dirOf(const std::string& path) {
 
 namespace {
 
+/// A mesh's `seen_by:` list (docs/worlds.md) into e.seen_by_cameras / e.seen_by_sonars; absent: from its
+/// visual / collision flags.
+void readSeenBy(const WorldReader& r, const YAML::Node& mesh, const std::string& where, MeshEntry& e) {
+  e.seen_by_cameras = e.visual;
+  e.seen_by_sonars = e.collision;
+  const YAML::Node v = mesh["seen_by"];
+  if (!v)
+    return;
+  const std::string expected = "a list of cameras|sonars, each at most once (e.g. [cameras, sonars] or [])";
+  if (!v.IsSequence())
+    r.fail("'" + where + "seen_by' must be " + expected);
+  e.seen_by_cameras = e.seen_by_sonars = false;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string who = v[k].IsScalar() ? v[k].Scalar() : "(not a name)";
+    bool& seen = who == "cameras" ? e.seen_by_cameras : e.seen_by_sonars;
+    if ((who != "cameras" && who != "sonars") || seen)
+      r.fail("'" + where + "seen_by[" + formatNumber(k) + "]' is '" + who + "': expected " + expected);
+    seen = true;
+  }
+}
+
 // The stages of loadWorldConfig, one per block of the world file, each reading `root` into `w` (errors through `r`).
 
 /// The parsed file, checked against the schema.
@@ -156,7 +177,7 @@ void readMeshes(Reader& r, const YAML::Node& root, const std::string& path, Worl
                               r.vec3(m, "rpy", where, Eigen::Vector3d::Zero()));
       e.collision = r.flag(m, "collision", where, true);
       e.visual = r.flag(m, "visual", where, true);
-      r.seenBy(m, where, e);
+      readSeenBy(r, m, where, e);
       e.albedo = r.vec3(m, "albedo", where, e.albedo);
       if ((e.albedo.array() < 0.0).any() || (e.albedo.array() > 1.0).any())
         r.fail("'" + where + "albedo' must be three numbers in [0, 1]");

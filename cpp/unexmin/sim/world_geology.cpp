@@ -1,5 +1,6 @@
 #include <unexmin/sim/world_geology.h>
 
+#include <unexmin/sim/pose.h>
 #include <unexmin/sim/world_schema.h>
 
 #include <algorithm>

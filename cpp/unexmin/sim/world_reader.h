@@ -1,10 +1,10 @@
-// Reads the values of a parsed world file (world_config.h) with one wording for every key: a wrong value throws
+// Reads the values of a parsed world file (docs/worlds.md) with one wording for every key: a wrong value throws
 // ConfigError("<file>: '<key>' ...") naming the key's path. Shared by the readers of each block of the file.
 #pragma once
 
 #include <unexmin/core/error.h>
 #include <unexmin/hydro/current.h>
-#include <unexmin/sim/world_config.h>
+#include <unexmin/sim/material.h>
 
 #include <yaml-cpp/yaml.h>
 
@@ -100,27 +100,6 @@ public:
       fail("'" + key + "' " + file + " is not inside the world file's folder " + base +
            ": expected a relative path to a file in it or below it (no '..' out of it)");
     return base + "/" + norm.string();
-  }
-
-  /// A mesh's `seen_by:` list (docs/worlds.md) into e.seen_by_cameras / e.seen_by_sonars; absent: from its
-  /// visual / collision flags.
-  void seenBy(const YAML::Node& mesh, const std::string& where, MeshEntry& e) const {
-    e.seen_by_cameras = e.visual;
-    e.seen_by_sonars = e.collision;
-    const YAML::Node v = mesh["seen_by"];
-    if (!v)
-      return;
-    const std::string expected = "a list of cameras|sonars, each at most once (e.g. [cameras, sonars] or [])";
-    if (!v.IsSequence())
-      fail("'" + where + "seen_by' must be " + expected);
-    e.seen_by_cameras = e.seen_by_sonars = false;
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      const std::string who = v[k].IsScalar() ? v[k].Scalar() : "(not a name)";
-      bool& seen = who == "cameras" ? e.seen_by_cameras : e.seen_by_sonars;
-      if ((who != "cameras" && who != "sonars") || seen)
-        fail("'" + where + "seen_by[" + formatNumber(k) + "]' is '" + who + "': expected " + expected);
-      seen = true;
-    }
   }
 
   hydro::GaussMarkovParams channel(const YAML::Node& node, const std::string& key,
