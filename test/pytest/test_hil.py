@@ -208,6 +208,7 @@ def test_every_process_of_both_hosts_listens_on_its_link_address_only(rig):
     assert any(p == 11399 and "python" in who for _, p, who in rig.listening(rig.robot_ns))  # the time server
 
 
+@pytest.mark.alone  # latencies and rates of wall-clock time across the link
 def test_robot_commands_cross_the_link_and_the_simulator_thrust_follows(rig):
     from unexmin.scripting.launcher import wait_for
 
