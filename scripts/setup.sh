@@ -41,7 +41,7 @@ apt_packages=(
   # test/pytest/test_camera_rectify.py; docs/vision.md "Tests")
   ros-camera-calibration python3-camera-calibration python3-cv-bridge ros-image-proc python3-image-geometry
 )
-pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 pytest-xdist==3.6.1 numpy==1.26.4 matplotlib==3.9.2
+pip_packages=(rosbags==0.11.9 xacro==1.13.3 pytest==8.3.4 pytest-xdist==3.6.1 pytest-timeout==2.4.0 numpy==1.26.4 matplotlib==3.9.2
   trimesh==4.5.3 tqdm==4.67.1 manifold3d==3.5.4 rtree==1.4.1 scipy==1.15.3
   open3d-cpu==0.20.0 laspy==2.5.4 lazrs==0.6.2)
 # OpenCV judges the cameras' images (test/pytest/test_camera_orb.py, docs/vision.md "Tests")

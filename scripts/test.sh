@@ -20,8 +20,12 @@ catkin_make -j2 tests >"$tmp/build_tests.log" 2>&1 || { tail -n 60 "$tmp/build_t
 # The catkin tests (gtest, rostest: each rostest its own master on a port of its own) run beside pytest's workers:
 # most of the time of either is spent waiting on start-ups. run_tests exits 0 even when a test fails: the verdict
 # comes from catkin_test_results below.
+# A test that hangs fails with its stack instead of holding the run: each pytest test has a time limit
+# (UNEXMIN_TEST_TIMEOUT seconds, pytest-timeout), the catkin tests one for the lot (rostest's own time-limits per test).
+test_timeout=${UNEXMIN_TEST_TIMEOUT:-900}
+catkin_budget=${UNEXMIN_CATKIN_BUDGET:-2400}
 echo "[test] gtest + rostest (catkin_make run_tests), beside pytest"
-(ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true) &
+(ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" timeout --kill-after=30 "$catkin_budget" catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true) &
 catkin_pid=$!
 # pytest: files in parallel, one worker each (--dist loadfile keeps a file's module fixtures in one process);
 # files with a `long` test are handed out first. The `alone` tests assert a wall-clock speed: they run after
@@ -30,7 +34,7 @@ workers=${UNEXMIN_TEST_WORKERS:-3}
 echo "[test] pytest ($workers workers)"
 set +e
 (cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -n "$workers" --dist loadfile -m "not alone" \
-  --junitxml="$results/pytest/pytest-unexmin.xml")
+  --timeout "$test_timeout" --durations=15 --junitxml="$results/pytest/pytest-unexmin.xml")
 pytest_rc=$?
 set -e
 wait "$catkin_pid"
@@ -38,7 +42,7 @@ grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/
 echo "[test] pytest, the tests that run alone"
 set +e
 (cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -m alone \
-  --junitxml="$results/pytest/pytest-unexmin-alone.xml")
+  --timeout "$test_timeout" --junitxml="$results/pytest/pytest-unexmin-alone.xml")
 alone_rc=$?
 set -e
 for rc in "$pytest_rc" "$alone_rc"; do
