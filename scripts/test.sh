@@ -24,6 +24,7 @@ catkin_make -j2 tests >"$tmp/build_tests.log" 2>&1 || { tail -n 60 "$tmp/build_t
 # (UNEXMIN_TEST_TIMEOUT seconds, pytest-timeout), the catkin tests one for the lot (rostest's own time-limits per test).
 test_timeout=${UNEXMIN_TEST_TIMEOUT:-900}
 catkin_budget=${UNEXMIN_CATKIN_BUDGET:-2400}
+pytest_budget=${UNEXMIN_PYTEST_BUDGET:-2400}  # [s] for all of the parallel pytest run, should a time limit itself not end a test
 echo "[test] gtest + rostest (catkin_make run_tests), beside pytest"
 (ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" timeout --kill-after=30 "$catkin_budget" catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true) &
 catkin_pid=$!
@@ -33,7 +34,7 @@ catkin_pid=$!
 workers=${UNEXMIN_TEST_WORKERS:-3}
 echo "[test] pytest ($workers workers)"
 set +e
-(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -n "$workers" --dist loadfile -m "not alone" \
+(cd "$repo" && timeout --kill-after=30 "$pytest_budget" python -m pytest test/pytest -q -p no:cacheprovider -n "$workers" --dist loadfile -m "not alone" \
   --timeout "$test_timeout" --durations=15 --junitxml="$results/pytest/pytest-unexmin.xml")
 pytest_rc=$?
 set -e
@@ -41,7 +42,7 @@ wait "$catkin_pid"
 grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/run_tests.log" | grep -v "^\[       OK \]" || true
 echo "[test] pytest, the tests that run alone"
 set +e
-(cd "$repo" && python -m pytest test/pytest -q -p no:cacheprovider -m alone \
+(cd "$repo" && timeout --kill-after=30 "$pytest_budget" python -m pytest test/pytest -q -p no:cacheprovider -m alone \
   --timeout "$test_timeout" --junitxml="$results/pytest/pytest-unexmin-alone.xml")
 alone_rc=$?
 set -e
