@@ -26,7 +26,10 @@ test_timeout=${UNEXMIN_TEST_TIMEOUT:-900}
 catkin_budget=${UNEXMIN_CATKIN_BUDGET:-2400}
 pytest_budget=${UNEXMIN_PYTEST_BUDGET:-2400}  # [s] for all of the parallel pytest run, should a time limit itself not end a test
 echo "[test] gtest + rostest (catkin_make run_tests), beside pytest"
-(ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" timeout --kill-after=30 "$catkin_budget" catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || true) &
+(rc=0
+  ROS_HOME="$tmp/ros_home_catkin" ROS_LOG_DIR="$tmp/ros_log_catkin" timeout --kill-after=30 "$catkin_budget" \
+    catkin_make run_tests -j1 >"$tmp/run_tests.log" 2>&1 || rc=$?
+  echo "$rc" >"$tmp/run_tests.rc") &
 catkin_pid=$!
 # pytest: files in parallel, one worker each (--dist loadfile keeps a file's module fixtures in one process);
 # files with a `long` test are handed out first. The `alone` tests assert a wall-clock speed: they run after
@@ -34,16 +37,29 @@ catkin_pid=$!
 workers=${UNEXMIN_TEST_WORKERS:-3}
 echo "[test] pytest ($workers workers)"
 set +e
-(cd "$repo" && timeout --kill-after=30 "$pytest_budget" python -m pytest test/pytest -q -p no:cacheprovider -n "$workers" --dist loadfile -m "not alone" \
-  --timeout "$test_timeout" --durations=15 --junitxml="$results/pytest/pytest-unexmin.xml")
+# run_pytest JUNIT_NAME ARGS...: the pytest tests under the time limits above
+run_pytest() {
+  local junit=$1
+  shift
+  (cd "$repo" && timeout --kill-after=30 "$pytest_budget" python -m pytest test/pytest -q -p no:cacheprovider \
+    --timeout "$test_timeout" --junitxml="$results/pytest/$junit.xml" "$@")
+}
+run_pytest pytest-unexmin -n "$workers" --dist loadfile -m "not alone" --durations=15
 pytest_rc=$?
 set -e
 wait "$catkin_pid"
+catkin_rc=$(cat "$tmp/run_tests.rc")
+# run_tests' own exit says nothing (0 on a failed test); its time budget running out does: the tests after it never ran
+if [ "$catkin_rc" -eq 124 ] || [ "$catkin_rc" -eq 137 ]; then
+  echo "[test] the catkin tests ran out of their ${catkin_budget} s (UNEXMIN_CATKIN_BUDGET)" >&2
+  catkin_rc=1
+else
+  catkin_rc=0
+fi
 grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|FAILURE|ERROR" "$tmp/run_tests.log" | grep -v "^\[       OK \]" || true
 echo "[test] pytest, the tests that run alone"
 set +e
-(cd "$repo" && timeout --kill-after=30 "$pytest_budget" python -m pytest test/pytest -q -p no:cacheprovider -m alone \
-  --timeout "$test_timeout" --junitxml="$results/pytest/pytest-unexmin-alone.xml")
+run_pytest pytest-unexmin-alone -m alone
 alone_rc=$?
 set -e
 for rc in "$pytest_rc" "$alone_rc"; do
@@ -60,4 +76,4 @@ set -e
 grep -vE "^(Skipping|$)" "$tmp/results.txt" | tail -n 40
 python "$repo/scripts/summarize_junit.py" "$results"
 summary_rc=$?
-[ "$results_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$alone_rc" -eq 0 ] && [ "$summary_rc" -eq 0 ]
+[ "$catkin_rc" -eq 0 ] && [ "$results_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$alone_rc" -eq 0 ] && [ "$summary_rc" -eq 0 ]
