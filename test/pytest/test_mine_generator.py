@@ -323,3 +323,68 @@ def test_shipped_mine_other_vehicles_are_in_water_with_clearance(shipped):
     inside, distance = spawn_clearances(as_solid(SHIPPED / shipped["collision"]["file"]), [r["xyz"] for r in others])
     assert inside.all()
     assert (distance >= [HALF_SIZE[r["description"]] + CLEARANCE for r in others]).all(), distance
+
+
+def test_world_file_holds_the_water_and_geology_of_its_seed():
+    """worlds/mine.world's `water:` and `geology:` are what the generator draws from the mine's seed."""
+    from unexmin.worlds.generator import science
+
+    world = yaml.safe_load(MINE_WORLD.read_text())
+    assert world["water"] == science.water(SETUP_SEED)
+    assert world["geology"] == science.geology(SETUP_SEED)
+    assert yaml.safe_load(science.world_blocks(SETUP_SEED)) == {
+        "water": science.water(SETUP_SEED),
+        "geology": science.geology(SETUP_SEED),
+    }
+
+
+@pytest.mark.parametrize("seed, preset", [(SETUP_SEED, "full"), (SEED, "small"), (11, "small")])
+def test_science_of_a_seed_is_stratified_water_and_ore_where_a_dive_reaches(seed, preset):
+    """The column: a warm, fresher, neutral layer over a chemocline below level 0 with acid, conductive water; the
+    ore bodies: every one crossing or touching level 0's gallery or the entry shaft within its first 150 m."""
+    from unexmin.worlds.generator import science
+
+    P = mg.PRESETS[preset]
+    w, g = science.water(seed, preset), science.geology(seed, preset)
+    assert science.water(seed, preset) == w and science.geology(seed, preset) == g  # deterministic
+    rows = w["profile"]
+    depths = [r["depth"] for r in rows]
+    assert depths == sorted(depths) and depths[0] == 0.0
+    assert depths[-1] == pytest.approx(P.surface_z - (P.first_level_z - (P.levels - 1) * P.level_spacing - 2.0))
+    upper, lower = rows[1], rows[2]
+    level0 = P.surface_z - P.first_level_z
+    assert level0 < upper["depth"] < lower["depth"] < level0 + P.level_spacing
+    assert upper["temperature"] > lower["temperature"]
+    assert lower["conductivity"] > 4 * upper["conductivity"]
+    assert lower["ph"] < 5.0 < 7.0 <= upper["ph"]
+    assert upper["depth"] < w["boundary"]["depth"] < lower["depth"]
+    names = [b["name"] for b in g["bodies"]]
+    for body in ("sulphide_vein", "magnetite_lens", "gossan", "uranium_fractures"):
+        assert body in names
+    assert sum(n.startswith("calcite_vein") for n in names) == 2
+    for body in [g["host"]] + [b["minerals"] for b in g["bodies"]]:
+        assert sum(m["fraction"] for m in body) == pytest.approx(1.0, abs=1e-6)
+    layout = mg.make_layout(P, seed)
+    gallery = [t for t in layout.tunnels if t.kind == "gallery"][0]
+    for b in g["bodies"]:
+        x = np.array(b["xyz"])
+        if b["name"].startswith("calcite"):
+            assert np.hypot(*(x[:2] - np.array(layout.shaft_xy))) < 1e-3
+            assert P.first_level_z < x[2] < P.surface_z
+            continue
+        assert 0.0 < x[0] < 160.0
+        centre = mg.point_on(gallery.points, x[0])
+        if b["kind"] == "vein":  # through the gallery's centreline
+            assert np.linalg.norm(x - centre) < 1e-3
+        elif b["kind"] == "ellipsoid":  # beside the gallery: 1 m of host rock between it and the smooth wall
+            assert abs(x[1] - centre[1]) - b["radii"][1] == pytest.approx(gallery.a + 1.0, abs=1e-2)
+
+
+def test_bad_science_seed_is_rejected():
+    from unexmin.worlds.generator import science
+
+    for bad in (-1, 1.5, "7"):
+        with pytest.raises(ValueError, match="seed"):
+            science.geology(bad)
+        with pytest.raises(ValueError, match="seed"):
+            science.water(bad)
