@@ -424,3 +424,80 @@ TEST(RockTexture, ATileGivenInAnotherFrameIsTheMeshFramesTexture) {
   EXPECT_LT(worst_normal, 1e-3);
   std::printf("a tile in another frame: albedo off by <= %.2g, normal by <= %.2g\n", worst_albedo, worst_normal);
 }
+
+TEST(WorldFileMaterial, RockMeshTakesItsColourFromTheGeology) {
+  // The same rock wall with and without a geology (a granite host, a malachite-quartz box at x > 1): at every point
+  // the albedo with it is the one without times the rock's albedo over the material's, per channel (clamped at 1),
+  // through albedo(), shade() and shadeMany(); a plain mesh stays plain.
+  const std::string dir = unexmin::test::testTempDir();
+  std::ofstream(dir + "tri.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+  const std::string mesh =
+      "  - {name: wall, file: tri.stl, material: {kind: rock, albedo: [0.3, 0.25, 0.2], seed: 4}}\n"
+      "  - {name: sign, file: tri.stl, albedo: [0.5, 0.5, 0.5]}\n";
+  std::ofstream(dir + "plain.world") << "name: w\nmeshes:\n" << mesh << "robots:\n  - {name: UX_1}\n";
+  std::ofstream(dir + "geo.world") << "name: w\nmeshes:\n"
+                                   << mesh
+                                   << "geology:\n  host: [{mineral: granite, fraction: 1.0}]\n  bodies:\n"
+                                      "    - {name: stain, kind: box, xyz: [3, 0, 0], size: [4, 10, 10],\n"
+                                      "       minerals: [{mineral: malachite, fraction: 0.5}, {mineral: quartz, "
+                                      "fraction: 0.5}]}\nrobots:\n  - {name: UX_1}\n";
+  const auto plain = unexmin::sim::loadWorldConfig(dir + "plain.world");
+  const auto geo = unexmin::sim::loadWorldConfig(dir + "geo.world");
+  ASSERT_TRUE(geo.geology);
+  const unexmin::sensors::vision::SurfaceMaterials a(plain), b(geo);
+  EXPECT_FALSE(a.geological(0));
+  EXPECT_TRUE(b.geological(0));
+  EXPECT_FALSE(b.geological(1));
+  const Eigen::Vector3d material(0.3, 0.25, 0.2);
+  const Eigen::Vector3d host = geo.geology->host().albedo, stain = geo.geology->rock(1).albedo;
+  EXPECT_GT(stain.y(), stain.x());  // malachite's green
+  EXPECT_GT(stain.y(), stain.z());
+  const auto pts = points(400, 4.0f, Eigen::Vector3f(1, 0, 0));
+  std::vector<float> px, py, pz, nx, ny, nz, out[3];
+  int inside = 0;
+  for (const auto& p : pts) {
+    const Eigen::Vector3d rock = p.x() >= 1.0f ? stain : host;
+    inside += p.x() >= 1.0f;
+    const Eigen::Array3f without = a.albedo(0, p), with = b.albedo(0, p);
+    float shaded[3];
+    Eigen::Vector3f normal;
+    b.shade(0, p, Eigen::Vector3f::UnitZ(), shaded, normal);
+    for (int k = 0; k < 3; ++k) {
+      const double expected = std::min(1.0, without[k] * rock[k] / material[k]);
+      EXPECT_NEAR(with[k], expected, 1e-5 * std::max(1.0, expected));
+      EXPECT_NEAR(shaded[k], expected, 1e-5 * std::max(1.0, expected));
+    }
+    EXPECT_FLOAT_EQ(b.albedo(1, p)[1], 0.5f);
+    px.push_back(p.x() - 2.0f);  // in a frame A at (2, 0, 0) turned by a half turn about z
+    py.push_back(p.y());
+    pz.push_back(p.z());
+    nx.push_back(0.0f);
+    ny.push_back(0.0f);
+    nz.push_back(1.0f);
+  }
+  EXPECT_GT(inside, 50);
+  EXPECT_LT(inside, 350);
+  // shadeMany from a frame A: world = R p_A + t with R a half turn about z and t = (2, 0, 0) gives p = (2 - x_A, -y_A).
+  const int n = static_cast<int>(pts.size());
+  for (auto& x : px)
+    x = -x;
+  for (auto& y : py)
+    y = -y;
+  for (auto& o : out)
+    o.resize(pts.size());
+  float* const albedo[3] = {out[0].data(), out[1].data(), out[2].data()};
+  const Eigen::Matrix3f half = Eigen::AngleAxisf(static_cast<float>(M_PI), Eigen::Vector3f::UnitZ()).toRotationMatrix();
+  b.shadeMany(0, half, Eigen::Vector3f(2, 0, 0), n, px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(),
+              albedo, false);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f& p = pts[static_cast<std::size_t>(i)];
+    if (std::abs(p.x() - 1.0f) < 1e-3f)
+      continue;  // on the face: float rounding of the frame change may put it either side
+    float shaded[3];
+    Eigen::Vector3f normal;
+    b.shade(0, p, Eigen::Vector3f::UnitZ(), shaded, normal);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(out[k][static_cast<std::size_t>(i)], shaded[k], 2e-3f) << "point " << i << " channel " << k;
+  }
+}

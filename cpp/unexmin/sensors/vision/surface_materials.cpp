@@ -1,5 +1,7 @@
 #include <unexmin/sensors/vision/surface_materials.h>
 
+#include <algorithm>
+
 namespace unexmin {
 namespace sensors {
 namespace vision {
@@ -25,6 +27,16 @@ SurfaceMaterials::SurfaceMaterials(const sim::WorldConfig& config, const sim::Wo
       sim::Material material = e.material;
       material.albedo = e.albedo;  // the mesh's albedo is its material's mean
       m.texture = std::make_unique<RockTexture>(material, "meshes[" + formatNumber(i) + "].material.");
+      if (config.geology && e.material.kind == "rock") {
+        const geo::Geology& g = *config.geology;
+        for (std::size_t id = 0; id <= g.bodies().size(); ++id) {
+          const Eigen::Vector3d rock = g.rock(static_cast<int>(id)).albedo;
+          Eigen::Array3f t;
+          for (int k = 0; k < 3; ++k)
+            t[k] = static_cast<float>(rock[k] / std::max(1e-3, e.albedo[k]));
+          m.tint.push_back(t);
+        }
+      }
     }
     m.to_mesh = e.pose.linear().transpose().cast<float>();
     m.origin = e.pose.translation().cast<float>();
@@ -48,6 +60,12 @@ const SurfaceMaterials& SurfaceMaterials::of(const sim::World& world, std::uniqu
   if (!cache || cache->world_ != &world || cache->size() != world.config().meshes.size())
     cache = std::make_unique<SurfaceMaterials>(world);
   return *cache;
+}
+
+Eigen::Array3f SurfaceMaterials::tintAt(const Mesh& m, const Eigen::Vector3f& p) const {
+  if (m.tint.empty())
+    return Eigen::Array3f::Ones();
+  return m.tint[static_cast<std::size_t>(config_->geology->bodyAt(p.cast<double>()))];
 }
 
 Eigen::Array3f SurfaceMaterials::albedo(const raycast::Hit& hit, const Eigen::Vector3f& p) const {
@@ -85,7 +103,7 @@ Eigen::Array3f SurfaceMaterials::albedo(std::size_t mesh, const Eigen::Vector3f&
     return sim::checkerboardAlbedo(*m.board, m.to_mesh * (p - m.origin)).array();
   if (!m.texture)
     return m.albedo.head<3>();
-  return m.texture->albedo(m.to_mesh * (p - m.origin));
+  return (m.texture->albedo(m.to_mesh * (p - m.origin)) * tintAt(m, p)).min(1.0f);
 }
 
 void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float* albedo,
@@ -107,6 +125,9 @@ void SurfaceMaterials::shade(std::size_t mesh, const Eigen::Vector3f& p, const E
   Eigen::Vector3f local;
   m.texture->shade(m.to_mesh * (p - m.origin), m.to_mesh * n, albedo, local);
   shading = m.to_mesh.transpose() * local;
+  const Eigen::Array3f tint = tintAt(m, p);
+  for (int k = 0; k < 3; ++k)
+    albedo[k] = std::min(1.0f, albedo[k] * tint[k]);  // a pale rock's texture peaks stay physical
 }
 
 void SurfaceMaterials::shadeMany(std::size_t mesh, const Eigen::Matrix3f& rotation, const Eigen::Vector3f& translation,
@@ -126,6 +147,13 @@ void SurfaceMaterials::shadeMany(std::size_t mesh, const Eigen::Matrix3f& rotati
   // frame A -> world -> mesh frame, as one rotation and translation
   m.texture->shadeManyFrom(m.to_mesh * rotation, m.to_mesh * (translation - m.origin), n, px, py, pz, nx, ny, nz,
                            albedo, simd);
+  if (m.tint.empty())
+    return;
+  for (int i = 0; i < n; ++i) {  // the rock behind the wall at each point (frame A -> world)
+    const Eigen::Array3f tint = tintAt(m, rotation * Eigen::Vector3f(px[i], py[i], pz[i]) + translation);
+    for (int k = 0; k < 3; ++k)
+      albedo[k][i] = std::min(1.0f, albedo[k][i] * tint[k]);
+  }
 }
 
 }  // namespace vision

@@ -1,7 +1,9 @@
 // The materials of a world's meshes as the cameras and the SLS lasers see them: per mesh of the world file, its
 // RockTexture (textured kinds) and the mesh frame, so that a hit point in the world frame gives the albedo and the
 // shading normal there (docs/vision.md "Materials"). A plain mesh gives its one albedo and the face's normal, a
-// checkerboard its square's albedo and the face's normal.
+// checkerboard its square's albedo and the face's normal. Where the world has a geology, a rock-kind mesh takes its
+// colour from the rock behind the wall at each point (the texture's pattern about that rock's albedo instead of the
+// material's), so a vein reads as a vein and a malachite stain as green.
 // Knows no ROS.
 #pragma once
 
@@ -44,6 +46,8 @@ public:
   }
   /// The mesh's mean albedo (R, G, B, 0) [-].
   const Eigen::Array4f& meanAlbedo(std::size_t mesh) const { return meshes_[mesh].albedo; }
+  /// Whether mesh `mesh` takes its colour from the world's geology (a rock-kind mesh of a world with a geology).
+  bool geological(std::size_t mesh) const { return !meshes_.at(mesh).tint.empty(); }
   /// Albedo (R, G, B) of mesh `mesh` at world point `p` [m] (its mean where it is mapped: albedo(hit, p) below).
   Eigen::Array3f albedo(std::size_t mesh, const Eigen::Vector3f& p) const;
   /// Albedo (R, G, B) at `hit`, a hit of kind mesh at world point `p` [m]: from its triangle and barycentric
@@ -77,7 +81,12 @@ private:
     Eigen::Vector3f origin;                    ///< the mesh frame's origin in the world [m]
     const sim::TriangleMesh* data = nullptr;   ///< mapped: the mesh's texture coordinates or vertex colours
     const sim::TextureImage* image = nullptr;  ///< kind image: its texture
+    /// Per geology body id (0: the host), the rock's albedo over the material's, per channel: the factor that turns
+    /// the texture's albedo about the material's mean into one about the rock's. Empty: not from the geology.
+    std::vector<Eigen::Array3f> tint;
   };
+  /// The tint of mesh `m` at world point `p` (1 where it has none).
+  Eigen::Array3f tintAt(const Mesh& m, const Eigen::Vector3f& p) const;
   SurfaceMaterials(const sim::WorldConfig& config, const sim::World* world);
   std::vector<Mesh> meshes_;
   const sim::WorldConfig* config_;  ///< the world configuration they were built from
