@@ -542,6 +542,15 @@ TEST(M3, InColdFreshWaterASonarSetToFifteenHundredReadsEveryRangeLong) {
   tuned.samples(right, 1);
   for (int k = 0; k < 256; ++k)
     EXPECT_NEAR(right.last().ranges[k], analytic(sonar, k), 0.01) << "beam " << k;
+  // sound_speed = probe: the head's sound velocity probe gives the water's speed, so the ranges are true there too
+  SonarWorld probed(box, m3Urdf({{"sound_speed", "probe"}}));
+  auto& probe = probed.sensor<M3Sensor>("m3");
+  probed.place(pose);
+  probed.samples(probe, 1);
+  for (int k = 0; k < 256; ++k)
+    EXPECT_NEAR(probe.last().ranges[k], analytic(sonar, k), 0.01) << "beam " << k;
+  // a text other than probe names the parameter
+  EXPECT_THROW(SonarWorld(box, m3Urdf({{"sound_speed", "auto"}})), ConfigError);
 }
 
 }  // namespace

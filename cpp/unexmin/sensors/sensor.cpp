@@ -50,6 +50,16 @@ double apparentRangeFactor(const sim::World& world, const Eigen::Vector3d& point
   return column ? configured / column->soundSpeedAt(point, world.time()) : 1.0;
 }
 
+SoundSpeed SoundSpeed::read(SensorParams& p) {
+  SoundSpeed s;
+  if (p.text("sound_speed", "1500") == "probe") {
+    s.probe = true;
+    return s;
+  }
+  s.configured = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s (or probe)");
+  return s;
+}
+
 void Sensor::setRendering(bool /*on*/) {
   throw ParameterError(robot_ + "/" + name() + " (family " + type() +
                        ") renders no images: expected a sensor that renders images (a camera)");

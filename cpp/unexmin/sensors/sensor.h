@@ -6,6 +6,7 @@
 #include <unexmin/raycast/ray_caster.h>
 #include <unexmin/sensors/random.h>
 #include <unexmin/sensors/sample_fields.h>
+#include <unexmin/sensors/sensor_params.h>
 #include <unexmin/sim/robot.h>
 #include <unexmin/sim/robot_description.h>
 #include <unexmin/sim/world.h>
@@ -31,6 +32,21 @@ struct SensorContext {
 /// the water's sound but turns the time into a range with its own configured speed `configured` [m/s], so it reports
 /// factor x the true range. 1 in a world without a water column (its water is at every sensor's configured speed).
 double apparentRangeFactor(const sim::World& world, const Eigen::Vector3d& point, double configured);
+
+/// A sonar's `sound_speed` setting (docs/sonars.md): the speed it turns echo times into ranges with, configured
+/// (a number [m/s] in [1300, 1700], default 1500, as on the sonar's settings page), or `probe`: a sound velocity
+/// probe at the head measures the water's speed there at every ping (as a multibeam's SV sensor feeds its
+/// beamformer; its error is not modelled), so its ranges are the true ones.
+struct SoundSpeed {
+  double configured = 1500.0;  ///< [m/s] the configured speed; with the probe, the nominal one for rate limits
+  bool probe = false;
+  /// The apparent-range factor at `point` (world frame [m]): 1 with the probe, else apparentRangeFactor().
+  double rangeFactor(const sim::World& world, const Eigen::Vector3d& point) const {
+    return probe ? 1.0 : apparentRangeFactor(world, point, configured);
+  }
+  /// Reads parameter `sound_speed` of `p` (ConfigError naming it on another text or a number out of range).
+  static SoundSpeed read(SensorParams& p);
+};
 
 /// A joint a sensor moves (the MSIS head, an SLS motor), as joint_states reports it.
 struct MovedJoint {

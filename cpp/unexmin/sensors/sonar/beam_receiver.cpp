@@ -62,8 +62,9 @@ BeamReceiver BeamReceiver::read(SensorParams& p, const ReceiverDefaults& default
   noise.speckle = p.flag("speckle", true) && noisy;
   noise.noise_floor = p.flag("noise_floor", true) && noisy;
   noise.noise_level = p.number("noise_level", defaults.noise_level, 0.0, 300.0, "dB re 1 uPa");
-  const double sound_speed = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
-  const double max_rate = sound_speed / (2.0 * e.range_max);  // the echo from range_max is back before the next ping
+  const SoundSpeed sound_speed = SoundSpeed::read(p);
+  const double max_rate =
+      sound_speed.configured / (2.0 * e.range_max);  // the echo from range_max is back before the next ping
   if (rate > max_rate * (1.0 + 1e-9))
     p.fail("rate", formatNumber(rate), "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) + " Hz");
   BeamReceiver receiver(e, noise);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <unexmin/sensors/counter_random.h>
+#include <unexmin/sensors/sensor.h>
 #include <unexmin/sensors/sensor_params.h>
 #include <unexmin/sensors/sonar/echo_model.h>
 #include <unexmin/sensors/sonar/equation_params.h>
@@ -57,7 +58,7 @@ public:
   const EchoModel& echo() const { return echo_; }
   const ReceiverNoise& noise() const { return noise_; }
   /// The speed it turns echo times into ranges with [m/s] (read(): the parameter sound_speed; else 1500).
-  double soundSpeed() const { return sound_speed_; }
+  const SoundSpeed& soundSpeed() const { return sound_speed_; }
   /// Adds the power of `e` (one of `rays` rays of the beam; its range r is the path, which sets the power) spread
   /// evenly over the ranges the sonar times, [r - extent/2, r + extent/2] x scale [m] (scale: the configured over the
   /// water's sound speed, sensors::apparentRangeFactor), to `energy` (nbins) [uPa^2]; what falls outside the range
@@ -76,7 +77,7 @@ private:
 
   EchoModel echo_;
   ReceiverNoise noise_;
-  double sound_speed_ = 1500.0;         ///< [m/s]
+  SoundSpeed sound_speed_;
   double noise_power_ = 0.0;            ///< 10^(noise_level / 10) [uPa^2]
   std::vector<float> visible_;          ///< per bin: the probability that the noise alone makes code >= 1
   std::vector<double> block_visible_;   ///< per block of kBlock bins: the largest visible_

@@ -36,7 +36,7 @@ M3Sensor::M3Sensor(const sim::SensorSpec& spec, const sensors::SensorSetup& setu
   if (!(range_max_ > range_min_))
     p.fail("range_max", formatNumber(range_max_), "more than range_min");
   resolution_ = p.number("range_resolution", 0.01, 1e-6, 10.0, "m");
-  sound_speed_ = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
+  sound_speed_ = SoundSpeed::read(p);
   range_noise_ = p.number("range_noise", 0.0, 0.0, 10.0, "m");
   if (!noise)
     range_noise_ = 0.0;
@@ -85,7 +85,7 @@ void M3Sensor::sample(const sensors::SensorContext& ctx) {
   const bool multipath = reflector_.multipath && origin.z() < surface_z;
   // ranges as the sonar reports them: the path in the water times c_configured / c_water; in faster water it hears
   // range_max from farther away
-  scale_ = apparentRangeFactor(ctx.world, origin, sound_speed_);
+  scale_ = sound_speed_.rangeFactor(ctx.world, origin);
   reach_ = range_max_ / std::min(1.0, scale_);
   for (std::size_t i = 0; i < dirs_.size(); ++i) {
     const Eigen::Vector3d d = (R * dirs_[i]).normalized();

@@ -82,9 +82,9 @@ protected:
 private:
   int beams_ = 256, rays_per_beam_ = 4;
   double fov_h_ = 0.0, fov_v_ = 0.0, range_min_ = 0.0, range_max_ = 0.0, resolution_ = 0.0;
-  double sound_speed_ = 1500.0;  ///< [m/s] the speed it turns echo times into ranges with
-  double scale_ = 1.0;           ///< this ping's apparent-range factor (sensor.h)
-  double reach_ = 0.0;           ///< [m] this ping's farthest path in the water it can report
+  SoundSpeed sound_speed_;  ///< the speed it turns echo times into ranges with
+  double scale_ = 1.0;      ///< this ping's apparent-range factor (sensor.h)
+  double reach_ = 0.0;      ///< [m] this ping's farthest path in the water it can report
   double range_noise_ = 0.0;
   /// One echo that a beam may report: where from, and its echo for the level.
   struct Return {

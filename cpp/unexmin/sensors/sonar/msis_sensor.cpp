@@ -97,9 +97,9 @@ MsisSensor::MsisSensor(const sim::SensorSpec& spec, const sensors::SensorSetup& 
   e.beam_solid_angle = bw_h * 2.0 * std::sin(bw_v / 2.0);  // the azimuth x elevation rectangle on the sphere
   echo_ = EchoModel(e);
 
-  sound_speed_ = p.number("sound_speed", 1500.0, 1300.0, 1700.0, "m/s");
+  sound_speed_ = SoundSpeed::read(p);
   // One ping at a time: the echo from range_max must be back before the next ping.
-  const double max_rate = sound_speed_ / (2.0 * e.range_max);
+  const double max_rate = sound_speed_.configured / (2.0 * e.range_max);
   if (rate() > max_rate * (1.0 + 1e-9)) {
     p.fail("rate", formatNumber(rate()),
            "at most sound_speed / (2 range_max) = " + formatNumber(max_rate) +
@@ -208,7 +208,7 @@ void MsisSensor::aim(const sensors::SensorContext& ctx, Ping& ping) {
   ping.origin = head.translation();
   // ranges as the sonar times them: the path times sound_speed / c_water; in faster water it hears range_max from
   // farther away
-  ping.scale = apparentRangeFactor(ctx.world, ping.origin, sound_speed_);
+  ping.scale = sound_speed_.rangeFactor(ctx.world, ping.origin);
   ping.reach = e.range_max / std::min(1.0, ping.scale);
   const bool submerged = ping.origin.z() < ping.surface_z;
   for (std::size_t i = 0; i < dirs_.size(); ++i) {

@@ -125,7 +125,7 @@ private:
   double range_noise_ = 0.0, salt_pepper_ = 0.0, shadow_threshold_ = 0.5, artifacts_gap_ = 0.5;
   bool shadow_ = false, artifacts_ = false, speckle_ = false, noise_floor_ = false;
   double salt_level_ = 10.0;           ///< [dB] above the noise level: the highest spike
-  double sound_speed_ = 1500.0;        ///< [m/s] the speed it turns echo times into ranges with
+  SoundSpeed sound_speed_;             ///< the speed it turns echo times into ranges with
   double noise_power_ = 0.0;           ///< 10^(noise_level / 10) [uPa^2]
   SurfaceParams reflector_;            ///< the free surface: multipath on/off, its echoes' extra levels
   int shadow_code_ = 1;                ///< least code of a shadowing echo

@@ -49,7 +49,7 @@ void SideScanSensor::sample(const SensorContext& ctx) {
   }
   const Eigen::Isometry3d pose = ctx.state.pose * spec().pose;
   // echoes timed at the water's sound speed, turned into ranges with the receiver's sound_speed
-  const double scale = apparentRangeFactor(ctx.world, pose.translation(), beams_.receiver().soundSpeed());
+  const double scale = beams_.receiver().soundSpeed().rangeFactor(ctx.world, pose.translation());
   const auto& rays = beams_.aim(pose, ctx.world.water().surface_z, scale);
   castRays(ctx, rays, hits_, raycast::Incidence::skip);  // the incidence comes from the normals
 
