@@ -662,6 +662,56 @@ TEST(Camera, BadParametersStopStartUpNamingThem) {
             "(camera_frame T/cam); expected at most one");
 }
 
+TEST(Camera, LevelWaterTakesTheWaterColumnsTurbidityWhereTheCameraIs) {
+  // Clear water plus particles per NTU (water_optics.h): c = 0.151 + 0.7 T in green, b = 0.037 + 0.6 T.
+  const Eigen::Vector3d colour = sim::WorldConfig().visibility_colour;
+  for (const double t : {0.0, 1.5, 5.5}) {
+    const WaterOptics w = WaterOptics::fromTurbidity(t, colour);
+    EXPECT_NEAR(w.c().y(), 0.151 + 0.7 * t, 1e-12);
+    EXPECT_NEAR(w.b.y(), 0.037 + 0.6 * t, 1e-12);
+    EXPECT_NEAR(w.a.x(), (0.114 + 0.1 * t) * colour.y() / colour.x(), 1e-12);
+  }
+  EXPECT_THROW(WaterOptics::fromTurbidity(-1.0, colour), ConfigError);
+  // A column whose turbidity steps from 1 to 4 NTU at 99 m: the test box (surface 100 m above its centre) holds the
+  // camera at 100 m, in the 4 NTU water; a point 2 m higher sees the 1 NTU water.
+  sim::WorldConfig config = box("water", 0.5);
+  water::Profile profile;
+  for (const auto& [depth, ntu] : std::vector<std::pair<double, double>>{{0, 1}, {99, 1}, {99, 4}, {200, 4}}) {
+    water::WaterRow row;
+    row.depth = depth;
+    row.turbidity = ntu;
+    profile.rows.push_back(row);
+  }
+  config.water_column = std::make_shared<water::WaterColumn>(profile, std::vector<water::Region>{}, 100.0, 9.81);
+  EXPECT_DOUBLE_EQ(sensors::vision::opticalTurbidity(config, Eigen::Vector3d(0, 0, 0), 0.0), 4.0);
+  EXPECT_DOUBLE_EQ(sensors::vision::opticalTurbidity(config, Eigen::Vector3d(0, 0, 2), 0.0), 1.0);
+  sim::WorldConfig other = config;
+  other.visibility = "medium";
+  EXPECT_EQ(sensors::vision::opticalTurbidity(other, Eigen::Vector3d::Zero(), 0.0), -1.0);
+  // The rendered wall against the closed form of the 4 NTU water, as the test above does for the levels.
+  const WaterOptics water = WaterOptics::fromTurbidity(4.0, colour);
+  const double f = 50.5 / std::tan(30 * kDeg), cx = 50.0, cy = 40.0;
+  const std::vector<Eigen::Vector2i> pixels{{50, 40}, {10, 10}, {90, 70}};
+  double brightest = 0.0;
+  for (const auto& uv : pixels) {
+    const Expected e = closedForm(pixelRay(uv.x(), uv.y(), f, cx, cy), 0.5, water);
+    brightest = std::max(brightest, (e.direct + e.backscatter).maxCoeff());
+  }
+  CameraWorld w(config, cameraUrdf(cameraParams({{"exposure", num(0.8 / brightest)}})));
+  const auto& frame = w.frame();
+  ASSERT_TRUE(frame.rendered);
+  for (const auto& uv : pixels) {
+    const Expected e = closedForm(pixelRay(uv.x(), uv.y(), f, cx, cy), 0.5, water);
+    const Expected one = closedForm(pixelRay(uv.x(), uv.y(), f, cx, cy), 0.5, WaterOptics::fromTurbidity(1.0, colour));
+    const std::size_t i = static_cast<std::size_t>(uv.y()) * 101 + uv.x();
+    for (int k = 0; k < 3; ++k) {
+      const double total = e.direct[k] + e.backscatter[k], total1 = one.direct[k] + one.backscatter[k];
+      EXPECT_NEAR(frame.radiance[3 * i + k], total, 0.05 * total) << "pixel " << uv.transpose() << " channel " << k;
+      EXPECT_GT(std::abs(total1 - total), 0.2 * total);  // the 1 NTU water would be told apart
+    }
+  }
+}
+
 }  // namespace
 }  // namespace test
 }  // namespace unexmin

@@ -92,6 +92,9 @@ EnginePlan planEngine(const EngineSettings& s, const sensors::SensorFactory& mod
   plan.config = sim::loadWorldConfig(s.world_file);
   if (!s.visibility.empty())
     plan.config.visibility = s.visibility;  // before the world (and every sensor) sees it
+  if (plan.config.visibility == "water" && !plan.config.water_column)
+    throw bad("visibility", "'water'",
+              "a world whose water has a profile (its turbidity by depth): " + s.world_file + " has none");
   int count = s.robots;
   if (!s.spawns.empty()) {
     sim::selectRobots(plan.config, s.spawns);

@@ -101,6 +101,8 @@ void readEnvironment(Reader& r, const YAML::Node& root, WorldConfig& w) {
         choices += (choices.empty() ? "" : "|") + l;
       r.fail("'visibility.level' is '" + w.visibility + "', expected " + choices);
     }
+    if (w.visibility == "water" && !w.water_column)
+      r.fail("'visibility.level' is 'water': expected a 'water.profile' (the turbidity by depth it reads)");
     w.visibility_colour = r.vec3(vis, "colour", "visibility.", w.visibility_colour);
     if ((w.visibility_colour.array() <= 0.0).any() || (w.visibility_colour.array() > 1.0).any())
       r.fail("'visibility.colour' must be three numbers in (0, 1]");

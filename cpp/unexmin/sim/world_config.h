@@ -53,7 +53,7 @@ struct WorldConfig {
   std::shared_ptr<const geo::Geology> geology;
   double surface_z = 0.0;                             ///< World z of the free surface [m].
   double atmospheric_pressure = 101325.0;             ///< [Pa]
-  std::string visibility = "none";                    ///< none|low|medium|high
+  std::string visibility = "none";                    ///< none|low|medium|high|water (the column's turbidity)
   Eigen::Vector3d visibility_colour{0.25, 0.3, 0.2};  ///< RGB of the murk, each in (0, 1]
   /// Earth magnetic field, world frame (ENU) [mG]; default: about the UNEXMIN Kaatiala site
   /// (63.5 N, 23 E: 526 mG, inclination 75 deg, declination 10 deg E). Read by magnetometers.

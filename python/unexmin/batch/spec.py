@@ -18,7 +18,7 @@ import yaml
 
 from unexmin.vehicles import parse_vehicles
 from unexmin.worlds.files import PACKAGE_DIR, link_meshes, world_path
-from unexmin.worlds.schema import WorldFileError, read_world
+from unexmin.worlds.schema import WorldFileError, read_world, visibility_levels
 
 #: Parameters that change the simulated world or robot rather than (only) the mission function.
 WORLD_PARAMS = {
@@ -51,7 +51,7 @@ KEYS = {
     "vehicles",
     "backend",
 }
-VISIBILITY = ("none", "low", "medium", "high")
+VISIBILITY = visibility_levels()
 
 
 class SpecError(ValueError):

@@ -9,16 +9,18 @@ A spec maps a parameter to a fixed value, a [low, high] pair (uniform) or, for `
 import math
 import xml.etree.ElementTree as ET
 
+from unexmin.worlds.schema import visibility_levels
+
 #: Parameter -> meaning (unit); the batch spec's names where the batch has one.
 PARAMETERS = {
     "current_speed": "mean speed of the water current [m/s] (>= 0)",
     "current_angle": "horizontal angle of the current [rad, from +x towards +y]",
     "current_vertical_angle": "vertical angle of the current [rad, up positive]",
-    "visibility": "water visibility level: none | low | medium | high",
+    "visibility": "water visibility level: " + " | ".join(visibility_levels()),
     "buoyancy_offset": "buoyancy minus weight of the robot [kg]: > 0 floats (its mass becomes mass - offset)",
     "damping_scale": "factor on the robot's linear and quadratic damping [-] (> 0)",
 }
-VISIBILITY = ("none", "low", "medium", "high")
+VISIBILITY = visibility_levels()
 #: Parameters that change the world or the robot's description: the engine's World is rebuilt when they change.
 REBUILD = ("visibility", "buoyancy_offset", "damping_scale")
 

@@ -43,6 +43,11 @@ def schema():
     return _load(str(schema_path()))
 
 
+def visibility_levels():
+    """The visibility levels a world file and the `visibility` setting accept, as the schema lists them (tuple)."""
+    return tuple(schema()["keys"]["visibility"]["keys"]["level"]["choices"])
+
+
 def key_paths(node=None, prefix=""):
     """Every key path of the schema, depth first in the schema's order: `name`, `water`, `water.density`, ...,
     `meshes[]`, `meshes[].material.kind`, ..."""

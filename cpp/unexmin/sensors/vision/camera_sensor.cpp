@@ -151,11 +151,14 @@ void CameraSensor::sample(const SensorContext& ctx) {
 
 void CameraSensor::prepare(const SensorContext& ctx) {
   const sim::WorldConfig& config = ctx.world.config();
+  const Eigen::Vector3d lens = (ctx.state.pose * spec().pose).translation();
+  const double turbidity = opticalTurbidity(config, lens, ctx.world.time());  // -1 but for level "water"
   const std::string key = config.visibility + " " + formatNumber(config.visibility_colour.x()) + " " +
-                          formatNumber(config.visibility_colour.y()) + " " + formatNumber(config.visibility_colour.z());
+                          formatNumber(config.visibility_colour.y()) + " " +
+                          formatNumber(config.visibility_colour.z()) + " " + formatNumber(turbidity);
   if (!formation_ || key != water_key_) {
-    formation_ = std::make_unique<ImageFormation>(
-        model_, lights_, WaterOptics::fromVisibility(config.visibility, config.visibility_colour), clip_far_);
+    formation_ =
+        std::make_unique<ImageFormation>(model_, lights_, WaterOptics::fromWorld(config, turbidity), clip_far_);
     water_key_ = key;
     scatter_.reset();
     snow_.reset();
@@ -196,8 +199,7 @@ void CameraSensor::prepare(const SensorContext& ctx) {
     response_.encode = encode_.data();
     response_.encode_last = static_cast<float>(kEncodeEntries);
   }
-  const Eigen::Vector3d lens = (ctx.state.pose * spec().pose).translation();
-  const double density = marine_snow_ ? MarineSnow::density(config.visibility) : 0.0;
+  const double density = marine_snow_ ? MarineSnow::density(config.visibility, turbidity) : 0.0;
   if (snow_) {
     snow_->advance(lens, ctx.world.water().current, ctx.world.time() - snow_time_);
   } else if (density > 0.0) {

@@ -176,7 +176,7 @@ private:
   std::unique_ptr<SiltView> silt_;               ///< made when the world first holds silt
   bool silt_on_ = false;                         ///< this frame sees silt
   double snow_time_ = 0.0;                       ///< sim time the particles were last moved to [s]
-  std::string water_key_;                        ///< visibility level and colour the formation was built for
+  std::string water_key_;                        ///< visibility level, colour and turbidity the formation was built for
   std::vector<Eigen::Vector3f> dirs_;            ///< per pixel: unit ray direction in the optical frame
   std::unique_ptr<SurfaceMaterials> materials_;  ///< per world mesh: albedo, texture (docs/vision.md)
   std::vector<std::int32_t> encode_;             ///< gamma table: signal in [0, 1] -> 8 bits

@@ -21,6 +21,12 @@ double MarineSnow::density(const std::string& level) {
   throw ConfigError("visibility level '" + level + "': expected none|low|medium|high");
 }
 
+double MarineSnow::density(const std::string& level, double turbidity) {
+  if (level == "water")
+    return std::min(1000.0, 130.0 * std::max(0.0, turbidity));
+  return density(level);
+}
+
 MarineSnow::MarineSnow(double density, std::uint64_t seed, const Eigen::Vector3d& lens) : rng_(seed) {
   if (!(density >= 0.0) || !std::isfinite(density))
     throw ParameterError("marine snow: density " + formatNumber(density) + " 1/m^3: expected a finite number >= 0");

@@ -45,6 +45,9 @@ public:
   /// Number density of the particles at visibility `level` [1/m^3]: none 0, low 50, medium 200, high 500 (0, 0.05,
   /// 0.2, 0.5 per litre) [assumed]. Throws ConfigError on another level.
   static double density(const std::string& level);
+  /// The same for `level`, or for level "water" 130 per NTU of `turbidity` (opticalTurbidity(), water_optics.h),
+  /// at most 1000: 1.5 NTU gives about medium's 200 (assumed, as the optics per NTU).
+  static double density(const std::string& level, double turbidity);
 
   /// Particles at `density` [1/m^3] >= 0 around the lens at `lens` (world frame [m]), from `seed`.
   MarineSnow(double density, std::uint64_t seed, const Eigen::Vector3d& lens);

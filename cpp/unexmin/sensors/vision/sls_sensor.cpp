@@ -113,9 +113,11 @@ void SlsSensor::sample(const SensorContext& ctx) {
   // Laser light lands on what the cameras see; the incidence is needed only for the points the camera sees.
   castRays(ctx, rays_, hits_, raycast::Incidence::skip, raycast::SeenBy::cameras);
 
-  if (water_world_ != &ctx.world) {  // the water is the world's, fixed while it lives: derive it once
-    water_ = WaterOptics::fromVisibility(ctx.world.config().visibility, ctx.world.config().visibility_colour);
+  const double turbidity = opticalTurbidity(ctx.world.config(), head.translation(), ctx.world.time());
+  if (water_world_ != &ctx.world || turbidity != water_turbidity_) {  // the world's water, or the column's here
+    water_ = WaterOptics::fromWorld(ctx.world.config(), turbidity);
     water_world_ = &ctx.world;
+    water_turbidity_ = turbidity;
   }
   const double c = water_.c().y(), b = water_.b.y();
   const double level = threshold_ * (1.0 + b * backscatter_length_);

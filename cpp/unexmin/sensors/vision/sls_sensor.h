@@ -111,6 +111,7 @@ private:
   double now_ = 0.0;
   WaterOptics water_;  ///< the world's water, derived at the first sample in it
   const sim::World* water_world_ = nullptr;
+  double water_turbidity_ = -1.0;  ///< [NTU] water_ was derived for (-1: the level's)
   std::vector<Eigen::Vector3d> dirs_;
   std::vector<raycast::Ray> rays_, sight_;
   std::vector<raycast::Hit> hits_, sight_hits_;

@@ -12,7 +12,12 @@
 // Colour: scattering by suspended particles is about equal per channel; absorption of channel k is the green
 // one times colour_g / colour_k (the murk transmits best the colour it shows) [assumed model].
 // g = 0.924 (Petzold's average particle phase function fitted by Henyey-Greenstein; Mobley 1994).
+// Level "water": the water column's turbidity T [NTU] where the sensor is, as the clear water ("none") plus particles
+// scattering 0.6 T and absorbing 0.1 T [1/m] in green (c = 0.151 + 0.7 T: 1.5 NTU is about "medium", 5.5 NTU
+// about "high"; the factor per NTU is assumed, of the order Davies-Colley & Smith 2001 report for mineral silt).
 #pragma once
+
+#include <unexmin/sim/world_config.h>
 
 #include <Eigen/Core>
 
@@ -38,7 +43,16 @@ struct WaterOptics {
   /// The water of a visibility `level` (none|low|medium|high) and murk `colour` (RGB, each in (0, 1]). Throws
   /// ConfigError naming the level or colour otherwise.
   static WaterOptics fromVisibility(const std::string& level, const Eigen::Vector3d& colour);
+  /// Clear water plus the particles of turbidity `ntu` [NTU] >= 0 (above), murk `colour` as fromVisibility's.
+  static WaterOptics fromTurbidity(double ntu, const Eigen::Vector3d& colour);
+  /// The water of `config`'s visibility: its level's, or for level "water" that of `turbidity` (opticalTurbidity()).
+  static WaterOptics fromWorld(const sim::WorldConfig& config, double turbidity);
 };
+
+/// The turbidity [NTU] the optics use at world point `p` at sim time `time`: for level "water" the water column's
+/// there, rounded to steps of 2 % (and to 0.01 NTU), so that a sensor rebuilds its water only where it changes; -1
+/// for the other levels (the level holds everywhere).
+double opticalTurbidity(const sim::WorldConfig& config, const Eigen::Vector3d& p, double time);
 
 }  // namespace vision
 }  // namespace sensors

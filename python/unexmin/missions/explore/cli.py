@@ -11,6 +11,7 @@ import sys
 from unexmin.missions.explore.budget import Budget
 from unexmin.missions.explore.plan import PlanOptions
 from unexmin.missions.explore.runner import ExploreOptions, Explorer
+from unexmin.worlds.schema import visibility_levels
 
 
 def parser():
@@ -30,7 +31,7 @@ def parser():
         help="the box explored [m] (default: 40 m along x and 15 m along y either way of the start, "
         "25 m down, clipped to the world and the water surface)",
     )
-    p.add_argument("--visibility", choices=("none", "low", "medium", "high"), help="default: the world file's")
+    p.add_argument("--visibility", choices=visibility_levels(), help="default: the world file's")
     p.add_argument("--speed", type=float, default=0.3, help="[m/s] along the path (default 0.3)")
     p.add_argument("--yaw-rate", type=float, default=0.2, help="[rad/s] the continuous turn (default 0.2)")
     p.add_argument("--margin", type=float, default=0.3, help="[m] water kept between hull and mapped rock (0.3)")

@@ -13,6 +13,7 @@ from unexmin.missions.common import mission_parser
 from unexmin.missions.mine.plan import make_plan
 from unexmin.missions.mine.runner import MineRunner
 from unexmin.missions.mine.scoring import score
+from unexmin.worlds.schema import visibility_levels
 
 
 def run(
@@ -29,7 +30,7 @@ def main(argv=None):
     parser.add_argument("--gallery", type=float, default=40.0, help="metres flown along the gallery (default 40)")
     parser.add_argument("--resolution", type=float, default=0.1, help="map voxel edge [m] (default 0.1)")
     parser.add_argument(
-        "--visibility", choices=("none", "low", "medium", "high"), help="water visibility (default: the world file's)"
+        "--visibility", choices=visibility_levels(), help="water visibility (default: the world file's)"
     )
     parser.add_argument("--world-file", help="a generated mine's world file (default: the shipped mine)")
     parser.add_argument(

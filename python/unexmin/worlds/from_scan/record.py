@@ -8,8 +8,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from unexmin.worlds.from_scan.errors import ScanError
+from unexmin.worlds.schema import visibility_levels
 
-VISIBILITY = ("none", "low", "medium", "high")
+VISIBILITY = visibility_levels()
 
 
 @dataclass
