@@ -82,9 +82,9 @@ public:
   /// point's x, y from the free surface down to it [Pa, gauge] (0 at or above the surface). The vertical is cut at
   /// the faces of the regions it crosses and, inside each, at the depths where the rows of the profile holding
   /// there lie now (heaved by its boundary) and at the moved boundary; each piece is integrated by 3-point
-  /// Gauss-Legendre. Exact for layers whose density is constant (EOS-80's own rise with pressure is integrated to
-  /// well below 1e-9 relative); within 1e-9 relative of the exact integral for linear profiles of the shipped
-  /// worlds' kind (test/gtest/test_water_pressure.cpp; docs/water_probe.md, "Pressure through the column").
+  /// Gauss-Legendre (exact to degree 5). Exact for layers (EOS-80's own rise with pressure, quadratic in depth, is
+  /// integrated exactly); within 1e-8 relative for linear profiles, measured 1.5e-9 over 150 m
+  /// (test/gtest/test_water_pressure.cpp; docs/water_probe.md, "Pressure through the column").
   double hydrostaticPressure(const Eigen::Vector3d& point, double time) const;
   /// The profile that holds at `point`: the last region containing it, else the world's.
   const Profile& profileAt(const Eigen::Vector3d& point) const;
