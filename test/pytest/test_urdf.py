@@ -245,7 +245,7 @@ def test_sensor_and_actuator_frames_exist():
     for i in range(5):
         assert name + "/camera_%d_link" % i in links
         assert name + "/camera_%d_optical_frame" % i in links
-    for link in ("msis_head_link", "m3_link", "dvl_link", "imu_link", "pressure_link"):
+    for link in ("msis_head_link", "m3_link", "dvl_link", "imu_link", "pressure_link", "water_probe_link"):
         assert name + "/" + link in links
     # Sensors on the hull must sit on (or inside) it.
     for link in links:

@@ -3,6 +3,7 @@
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/sensors/science/water_probe_sensor.h>
 #include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
@@ -24,6 +25,7 @@ sensors::SensorFactory sensorFamilies() {
   f.add<sensors::sonar::SideScanSensor>("side_scan");          // docs/sonars.md
   f.add<sensors::vision::SlsSensor>("sls");                    // docs/sls.md
   f.add<sensors::vision::CameraSensor>("camera");              // docs/vision.md
+  f.add<sensors::science::WaterProbeSensor>("water_probe");    // docs/water_probe.md
   return f;
 }
 

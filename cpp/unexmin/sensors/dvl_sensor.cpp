@@ -185,7 +185,7 @@ void DvlSensor::sample(const SensorContext& ctx) {
 
   out.sound_speed = assumed;
   out.temperature = temperature_noise_->apply(temperature, random());
-  out.pressure = std::max(0.0, pressure_noise_->apply(hydrostaticPressure(ctx.world, origin.z()), random()));
+  out.pressure = std::max(0.0, pressure_noise_->apply(hydrostaticPressure(ctx.world, origin), random()));
 }
 
 void DvlSensor::describeSample(SampleWriter& out) const {

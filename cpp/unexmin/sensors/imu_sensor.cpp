@@ -84,7 +84,7 @@ void ImuSensor::sample(const SensorContext& ctx) {
   last_.angular_velocity = corrupt(gyro_, to_imu * w, gyro_range_);
   last_.magnetic_field = corrupt(mag_, to_imu * ctx.world.config().magnetic_field, mag_range_);
   last_.temperature = temperature_noise_->apply(temperature_, random());
-  const double p = hydrostaticPressure(ctx.world, (s.pose.translation() + r).z());
+  const double p = hydrostaticPressure(ctx.world, s.pose.translation() + r);
   last_.pressure = std::clamp(pressure_noise_->apply(p, random()), 0.0, pressure_range_);
   last_.pressure_temperature = pressure_temperature_noise_->apply(water_temperature_, random());
   auto var = [](const std::unique_ptr<NoiseModel>& m) { return m->whiteStd() * m->whiteStd(); };

@@ -9,9 +9,12 @@
 namespace unexmin {
 namespace sensors {
 
-double hydrostaticPressure(const sim::World& world, double z) {
+double hydrostaticPressure(const sim::World& world, const Eigen::Vector3d& point) {
+  const sim::WorldConfig& config = world.config();
+  if (config.water_column)
+    return config.atmospheric_pressure + config.water_column->hydrostaticPressure(point, world.time());
   const sim::WaterState& w = world.water();
-  return world.config().atmospheric_pressure + w.density * w.gravity * std::max(0.0, w.surface_z - z);
+  return config.atmospheric_pressure + w.density * w.gravity * std::max(0.0, w.surface_z - point.z());
 }
 
 PressureSensor::PressureSensor(const sim::SensorSpec& spec, const SensorSetup& setup) : Sensor(spec, setup) {
@@ -33,7 +36,7 @@ void PressureSensor::onReset() {
 
 void PressureSensor::sample(const SensorContext& ctx) {
   const Eigen::Vector3d origin = ctx.state.pose * spec().pose.translation();
-  const double truth = hydrostaticPressure(ctx.world, origin.z());
+  const double truth = hydrostaticPressure(ctx.world, origin);
   last_.time = ctx.world.time();
   last_.pressure = std::clamp(noise_->apply(truth, random()), 0.0, range_);
   last_.variance = noise_->whiteStd() * noise_->whiteStd();

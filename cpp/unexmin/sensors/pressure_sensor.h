@@ -1,5 +1,6 @@
-// Absolute pressure at the sensor link's origin: atmospheric + rho g depth below the world's free
-// surface (atmospheric above it), with noise and a full-scale clamp. Type name "pressure".
+// Absolute pressure at the sensor link's origin: atmospheric + the weight of the water above it (rho g depth below
+// the world's free surface in water of one density; the water column's density integrated from the surface down
+// in a world with one), atmospheric above the surface, with noise and a full-scale clamp. Type name "pressure".
 //
 // Parameters (<param name=... value=.../>, all optional; defaults give an ideal sensor):
 //   noise           gaussian | none                    (gaussian)
@@ -16,8 +17,11 @@
 namespace unexmin {
 namespace sensors {
 
-/// True absolute pressure at world height z [Pa]: p_atm + rho g max(0, surface_z - z).
-double hydrostaticPressure(const sim::World& world, double z);
+/// True absolute pressure at `point` (world frame [m]) now [Pa]: p_atm + g times the density integrated along the
+/// vertical from the free surface down to the point (water::WaterColumn::hydrostaticPressure, at the point's x, y and
+/// the world's time); in a world without a water column p_atm + rho g max(0, surface_z - z) with the world's one
+/// density. Every reader of the pressure (pressure, imu, dvl, water_probe) calls this one function.
+double hydrostaticPressure(const sim::World& world, const Eigen::Vector3d& point);
 
 struct PressureSample {
   double time = 0.0;      ///< [s]

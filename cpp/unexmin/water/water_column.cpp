@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace unexmin {
 namespace water {
@@ -150,6 +151,74 @@ Eigen::Vector3d WaterColumn::stp(const Eigen::Vector3d& point, double time) cons
   const WaterRow r = interpolate(p, restDepth(p, depth, time));
   const double s = p.conductivity ? practicalSalinity(r.conductivity, r.temperature, pressure) : r.salinity;
   return Eigen::Vector3d(s, r.temperature, pressure);
+}
+
+double WaterColumn::densityIn(const Profile& p, double depth, double time) const {
+  const double pressure = 1e-4 * 1000.0 * gravity_ * depth;
+  const WaterRow r = interpolate(p, restDepth(p, depth, time));
+  const double s = p.conductivity ? practicalSalinity(r.conductivity, r.temperature, pressure) : r.salinity;
+  return density(s, r.temperature, pressure);
+}
+
+double WaterColumn::hydrostaticPressure(const Eigen::Vector3d& point, double time) const {
+  const double bottom = surface_z_ - point.z();  // [m] depth of the point
+  if (!(bottom > 0.0))
+    return 0.0;
+  // Where the profile changes along the vertical: the faces of the regions whose footprint holds x, y.
+  std::vector<double> cuts{0.0, bottom};
+  for (const Region& region : regions_) {
+    const Eigen::Vector3d& lo = region.box.min();
+    const Eigen::Vector3d& hi = region.box.max();
+    if (point.x() < lo.x() || point.x() > hi.x() || point.y() < lo.y() || point.y() > hi.y())
+      continue;
+    for (const double z : {lo.z(), hi.z()}) {
+      const double d = surface_z_ - z;
+      if (d > 0.0 && d < bottom)
+        cuts.push_back(d);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+
+  // 3-point Gauss-Legendre on [-1, 1]: exact for polynomials up to degree 5.
+  constexpr double kNode = 0.77459666924148337704;  // sqrt(3/5)
+  constexpr double kOuter = 5.0 / 9.0, kInner = 8.0 / 9.0;
+  double weight = 0.0;  // integral of the density [kg/m^2]
+  std::vector<double> pieces;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double a = cuts[i], b = cuts[i + 1];
+    const Eigen::Vector3d middle(point.x(), point.y(), surface_z_ - 0.5 * (a + b));
+    const Profile& p = profileAt(middle);
+    // where the profile's rows (and its boundary) are now: the density's kinks and steps
+    pieces.assign({a, b});
+    const Boundary& heave = p.boundary;
+    const double last = p.rows.back().depth;
+    const double moved =
+        heave.enabled ? heave.depth + heave.amplitude * std::sin(2.0 * M_PI * time / heave.period + heave.phase) : 0.0;
+    auto now = [&](double rest) {  // restDepth() inverted
+      if (!heave.enabled || rest <= 0.0 || rest >= last)
+        return rest;
+      if (rest <= heave.depth)
+        return rest * moved / heave.depth;
+      return moved + (rest - heave.depth) * (last - moved) / (last - heave.depth);
+    };
+    for (const WaterRow& r : p.rows) {
+      const double d = now(r.depth);
+      if (d > a && d < b)
+        pieces.push_back(d);
+    }
+    if (heave.enabled && moved > a && moved < b)
+      pieces.push_back(moved);
+    std::sort(pieces.begin(), pieces.end());
+    for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
+      const double c = 0.5 * (pieces[k] + pieces[k + 1]), h = 0.5 * (pieces[k + 1] - pieces[k]);
+      if (!(h > 0.0))
+        continue;
+      weight += h * (kOuter * densityIn(p, c - kNode * h, time) + kInner * densityIn(p, c, time) +
+                     kOuter * densityIn(p, c + kNode * h, time));
+    }
+  }
+  return gravity_ * weight;
 }
 
 double WaterColumn::densityAt(const Eigen::Vector3d& point, double time) const {
