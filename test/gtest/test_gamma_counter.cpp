@@ -100,8 +100,8 @@ Eigen::Vector3d detector(SensorWorld& w, const Eigen::Vector3d& mount) {
 
 TEST(GammaCounter, EmissionPerGramFollowsHalfLivesAbundancesAndYields) {
   // IAEA-TECDOC-1363 (2003) conversion factors: 1 % K = 313 Bq/kg of 40K, 1 ppm U = 12.35 Bq/kg of 238U,
-  // 1 ppm Th = 4.06 Bq/kg of 232Th. Our half-life of 40K (1.248e9 y) is shorter than the one behind 313 (1.277e9 y):
-  // 1.3 % more.
+  // 1 ppm Th = 4.06 Bq/kg of 232Th. Ours for 40K (half-life 1.248e9 y) is 1.3 % more than 313, which rests on older
+  // constants.
   EXPECT_NEAR(kBqPerGramK * 10.0, 313.0, 0.025 * 313.0);
   EXPECT_NEAR(kBqPerGramU * 1e-3, 12.35, 0.005 * 12.35);
   EXPECT_NEAR(kBqPerGramTh * 1e-3, 4.06, 0.005 * 4.06);
