@@ -4,6 +4,7 @@
 
 #include <unexmin/ros_layer/camera_publisher.h>
 #include <unexmin/ros_layer/dvl_publisher.h>
+#include <unexmin/ros_layer/gamma_counter_publisher.h>
 #include <unexmin/ros_layer/imaging_sonar_publisher.h>
 #include <unexmin/ros_layer/imu_publisher.h>
 #include <unexmin/ros_layer/m3_publisher.h>
@@ -28,6 +29,8 @@ SensorRegistry SensorRegistry::builtin() {
   r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
   r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
   r.addPublisher<sensors::science::WaterProbeSensor, WaterProbePublisher>("water_probe");      // docs/water_probe.md
+  // the science payload: docs/gamma_counter.md
+  r.addPublisher<sensors::science::GammaCounterSensor, GammaCounterPublisher>("gamma_counter");
   return r;
 }
 
