@@ -7,6 +7,7 @@
 #include <unexmin/ros_layer/imaging_sonar_publisher.h>
 #include <unexmin/ros_layer/imu_publisher.h>
 #include <unexmin/ros_layer/m3_publisher.h>
+#include <unexmin/ros_layer/magnetometer_publisher.h>
 #include <unexmin/ros_layer/msis_publisher.h>
 #include <unexmin/ros_layer/pressure_publisher.h>
 #include <unexmin/ros_layer/side_scan_publisher.h>
@@ -26,6 +27,8 @@ SensorRegistry SensorRegistry::builtin() {
   r.addPublisher<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
   r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
   r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
+
+  r.addPublisher<sensors::science::MagnetometerSensor, MagnetometerPublisher>("magnetometer");  // docs/magnetometer.md
   return r;
 }
 
