@@ -10,7 +10,7 @@
 //   field_bias   turn-on bias, 1 sigma per axis [nT] in [0, 1e5]            (5, assumed)
 //   resolution   quantisation step [nT] in [0, 1e3]; 0: none                (0.01, assumed)
 //   field_range  full scale per axis [nT] in [1e3, 1e7]                     (1e5, assumed)
-// The rate (the <sensor> rate) must be in [1, 1000] Hz.
+// The rate (the <sensor> rate) must be in [1, 1000] Hz (and, as for every sensor, at most the physics rate).
 #pragma once
 
 #include <unexmin/sensors/noise_model.h>
