@@ -187,6 +187,8 @@ void withContext(YAML::Node& w, const std::string& path) {
               ? "[{min: [-1, -1, -1], max: [1, 1, 1], profile: [{depth: 0}, {depth: 50}], boundary: " + boundary + "}]"
               : "[{min: [-1, -1, -1], max: [1, 1, 1], profile: [{depth: 0}]}]");
   }
+  if (starts("magnetic_field."))  // the map form, its three keys required
+    w["magnetic_field"] = YAML::Load("{intensity: 50000, inclination: 60, declination: 0}");
   if (starts("geology")) {
     const std::string kind = starts("geology.bodies[0].size") ? "box"
                              : starts("geology.bodies[0].thickness") || starts("geology.bodies[0].extent")
@@ -252,6 +254,6 @@ TEST(WorldSchema, TheReaderRefusesEveryValueOutsideTheSchemasBounds) {
   // gravity, density, pressure, level, colour x2, noise and mu x3, scale, seen_by, albedo x2, the seven sediment
   // numbers x2; the water column's (a profile row's depth and seven fields x2, the interpolation, the boundary's
   // depth and period, the same again in a region) and the geology's (fractions x2 twice, kind, radii, size,
-  // thickness, extent)
-  EXPECT_EQ(checked, 75);
+  // thickness, extent); the magnetic field's map form (intensity, inclination and declination x2)
+  EXPECT_EQ(checked, 81);
 }

@@ -130,6 +130,13 @@ def as_dict(robot):
             "max_angle": robot.pendulum.max_angle,
         },
         "vbs": {"min_mass": robot.vbs.min_mass, "max_mass": robot.vbs.max_mass, "position": list(robot.vbs.position)},
+        "magnetics": {
+            "hard_iron": list(robot.magnetics.hard_iron),
+            "soft_iron": list(np.asarray(robot.magnetics.soft_iron).ravel()),
+            "thruster_field": [list(v) for v in robot.magnetics.thruster_field],
+            "current_coefficient": robot.magnetics.current_coefficient,
+            "current_exponent": robot.magnetics.current_exponent,
+        },
         "sensors": [
             {"name": s.name, "type": s.type, "link": s.link}
             | _pose(s.position, s.rotation)
@@ -202,6 +209,11 @@ def _no_pendulum_nor_ballast(root):
     ext.remove(ext.find("vbs"))
 
 
+def _no_magnetic(root):
+    ext = root.find("unexmin")
+    ext.remove(ext.find("magnetic"))
+
+
 def _fins_without_timeout(root):
     for f in root.find("unexmin").findall("fin"):
         if f.find("timeout") is not None:
@@ -213,9 +225,10 @@ def _fins_without_timeout(root):
     [
         ("ux1.urdf.xacro", _defaults),
         ("ux1.urdf.xacro", _no_pendulum_nor_ballast),
+        ("ux1.urdf.xacro", _no_magnetic),
         ("remus100.urdf.xacro", _fins_without_timeout),
     ],
-    ids=["defaults", "no-pendulum-nor-ballast", "fin-defaults"],
+    ids=["defaults", "no-pendulum-nor-ballast", "no-magnetic", "fin-defaults"],
 )
 def test_the_defaults_are_the_same_in_python_and_cpp(tmp_path, vehicle, edit):
     path = written(tmp_path, "robot.urdf", edited(vehicle, edit))
@@ -284,6 +297,10 @@ MALFORMED = {
     "sensor-twice": ("ux1.urdf.xacro", _duplicate_sensor),
     "sensor-on-a-detached-link": ("ux1.urdf.xacro", _detached_sensor),
     "sensor-param-inf": ("ux1.urdf.xacro", _set("unexmin/sensor/param", "value", "1 inf")),
+    "magnetic-unknown-thruster": ("ux1.urdf.xacro", _set("unexmin/magnetic/thruster", "id", "8")),
+    "magnetic-unknown-element": ("ux1.urdf.xacro", lambda r: ElementTree.SubElement(r.find("unexmin/magnetic"), "x")),
+    "magnetic-exponent": ("ux1.urdf.xacro", _set("unexmin/magnetic/thruster_current", "exponent", "4")),
+    "magnetic-hard-iron-2": ("ux1.urdf.xacro", _set("unexmin/magnetic/hard_iron", "value", "1 2")),
     "fin-no-rate": ("remus100.urdf.xacro", _remove("unexmin/fin", "rate")),
     "fin-no-model": ("remus100.urdf.xacro", _remove("unexmin/fin", "model")),
     "bounding-box-zero": ("remus100.urdf.xacro", _set("unexmin/hydrodynamics/bounding_box", "size", "1 0 1")),

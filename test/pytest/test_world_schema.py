@@ -84,7 +84,18 @@ BAD_VALUES = [  # (text of the good world, its replacement, the message)
     ("albedo: [0.1, 0.1, 0.1]", "albedo: [0.1, 2]", "'meshes[1].albedo' = [0.1, 2]: expected a list of 3 finite"),
     ("seed: 7", "seed: x", "'meshes[1].material.seed' = 'x': expected an integer, >= 0"),
     ("name: UX_1, ", "", "missing 'robots[0].name' (a string)"),
+    (
+        "gravity: 9.81",
+        "gravity: 9.81\nmagnetic_field: {intensity: 50000, inclination: 95, declination: 0}",
+        "'magnetic_field.inclination' = 95: expected a finite number, >= -90 and <= 90 [deg]",
+    ),
+    ("gravity: 9.81", "gravity: 9.81\nmagnetic_field: [24, 134]", "'magnetic_field' = [24, 134]: expected a list of 3"),
 ]
+
+
+def test_the_magnetic_field_takes_either_form():
+    for form in ("[24.0, 134.0, -508.0]", "{intensity: 52750, inclination: 75, declination: 10}"):
+        check_world(yaml.safe_load(world().replace("gravity: 9.81", f"gravity: 9.81\nmagnetic_field: {form}", 1)), "w")
 
 
 @pytest.mark.parametrize("good,bad,message", BAD_VALUES, ids=[b[0] for b in BAD_VALUES])

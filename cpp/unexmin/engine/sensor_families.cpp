@@ -3,8 +3,9 @@
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
-#include <unexmin/sensors/science/water_probe_sensor.h>
 #include <unexmin/sensors/science/gamma_counter_sensor.h>
+#include <unexmin/sensors/science/magnetometer_sensor.h>
+#include <unexmin/sensors/science/water_probe_sensor.h>
 #include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
@@ -26,8 +27,9 @@ sensors::SensorFactory sensorFamilies() {
   f.add<sensors::sonar::SideScanSensor>("side_scan");          // docs/sonars.md
   f.add<sensors::vision::SlsSensor>("sls");                    // docs/sls.md
   f.add<sensors::vision::CameraSensor>("camera");              // docs/vision.md
-  f.add<sensors::science::WaterProbeSensor>("water_probe");    // docs/water_probe.md
   // the science payload
+  f.add<sensors::science::WaterProbeSensor>("water_probe");      // docs/water_probe.md
+  f.add<sensors::science::MagnetometerSensor>("magnetometer");   // docs/magnetometer.md
   f.add<sensors::science::GammaCounterSensor>("gamma_counter");  // docs/gamma_counter.md
   return f;
 }

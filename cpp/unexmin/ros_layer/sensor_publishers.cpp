@@ -8,6 +8,7 @@
 #include <unexmin/ros_layer/imaging_sonar_publisher.h>
 #include <unexmin/ros_layer/imu_publisher.h>
 #include <unexmin/ros_layer/m3_publisher.h>
+#include <unexmin/ros_layer/magnetometer_publisher.h>
 #include <unexmin/ros_layer/msis_publisher.h>
 #include <unexmin/ros_layer/pressure_publisher.h>
 #include <unexmin/ros_layer/side_scan_publisher.h>
@@ -28,8 +29,9 @@ SensorRegistry SensorRegistry::builtin() {
   r.addPublisher<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
   r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
   r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
-  r.addPublisher<sensors::science::WaterProbeSensor, WaterProbePublisher>("water_probe");      // docs/water_probe.md
-  // the science payload: docs/gamma_counter.md
+  // the science payload: docs/water_probe.md, docs/magnetometer.md, docs/gamma_counter.md
+  r.addPublisher<sensors::science::WaterProbeSensor, WaterProbePublisher>("water_probe");
+  r.addPublisher<sensors::science::MagnetometerSensor, MagnetometerPublisher>("magnetometer");
   r.addPublisher<sensors::science::GammaCounterSensor, GammaCounterPublisher>("gamma_counter");
   return r;
 }

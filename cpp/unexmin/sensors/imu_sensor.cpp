@@ -1,5 +1,7 @@
 #include <unexmin/sensors/imu_sensor.h>
 
+#include <unexmin/geo/magnetics.h>
+#include <unexmin/sensors/magnetic_field.h>
 #include <unexmin/sensors/noise_factory.h>
 #include <unexmin/sensors/pressure_sensor.h>
 #include <unexmin/sensors/sensor_params.h>
@@ -82,7 +84,9 @@ void ImuSensor::sample(const SensorContext& ctx) {
   last_.time = ctx.world.time();
   last_.specific_force = corrupt(accel_, to_imu * (a_point - g), accel_range_);
   last_.angular_velocity = corrupt(gyro_, to_imu * w, gyro_range_);
-  last_.magnetic_field = corrupt(mag_, to_imu * ctx.world.config().magnetic_field, mag_range_);
+  // the world's total field and the robot's own at the IMU (sensors/magnetic_field.h), [nT] -> [mG]
+  const Eigen::Vector3d field = magnetometerField(ctx, spec().pose) / geo::kNanoteslaPerMilligauss;
+  last_.magnetic_field = corrupt(mag_, field, mag_range_);
   last_.temperature = temperature_noise_->apply(temperature_, random());
   const double p = hydrostaticPressure(ctx.world, s.pose.translation() + r);
   last_.pressure = std::clamp(pressure_noise_->apply(p, random()), 0.0, pressure_range_);

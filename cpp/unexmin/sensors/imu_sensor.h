@@ -2,7 +2,9 @@
 // and its depth cell). Type name "imu". From the IMU link's true motion:
 //   specific force  f = R_s^T (a_P - g),  a_P = a_O + alpha x r + w x (w x r)
 //   angular rate    R_s^T w
-//   magnetic field  R_s^T B_world (the world file's magnetic_field, [mG])
+//   magnetic field  R_s^T B_world, B_world the world's total field at the IMU origin (the world file's
+//                   magnetic_field and the geology's anomalies) through the robot's own field, [mG]
+//                   (sensors/magnetic_field.h, docs/magnetometer.md)
 // with a_O the base link origin's acceleration over the last physics step, alpha the angular
 // acceleration from the difference of the last two angular velocities, r the IMU origin's offset
 // from the base link origin (world axes), R_s the IMU link's orientation in the world and g = (0, 0, -g).

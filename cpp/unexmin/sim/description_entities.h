@@ -1,7 +1,7 @@
 // The parsers of the entities of a robot description (docs/robot_description.md), one per file of this folder:
-// the joint tree (robot_description.cpp), <hydrodynamics>, <thruster>, <fin>, <pendulum>, <vbs> (the ballast) and
-// <sensor>. parseRobotDescription (sim/robot_description.h) calls them in that order on one RobotDescription; each
-// fills its part and throws ConfigError("<source>: <problem>") naming the element.
+// the joint tree (robot_description.cpp), <hydrodynamics>, <thruster>, <fin>, <pendulum>, <vbs> (the ballast),
+// <magnetic> and <sensor>. parseRobotDescription (sim/robot_description.h) calls them in that order on one
+// RobotDescription; each fills its part and throws ConfigError("<source>: <problem>") naming the element.
 #pragma once
 
 #include <unexmin/sim/description_reader.h>
@@ -37,6 +37,8 @@ void parseFins(const DescriptionReader& r, const tinyxml2::XMLElement* ext, Robo
 void parsePendulum(const DescriptionReader& r, const tinyxml2::XMLElement* ext, RobotDescription& d);
 /// The optional <vbs> of `ext`, the variable ballast; none: a range of 0 kg.
 void parseBallast(const DescriptionReader& r, const tinyxml2::XMLElement* ext, RobotDescription& d);
+/// The optional <magnetic> of `ext` (after the thrusters): the robot's own field at its magnetometers; none: zero.
+void parseMagnetics(const DescriptionReader& r, const tinyxml2::XMLElement* ext, RobotDescription& d);
 /// The <sensor>s of `ext` into d.sensors, in document order; their links must be in `links`.
 void parseSensors(const DescriptionReader& r, const tinyxml2::XMLElement* ext, const LinkNames& links,
                   RobotDescription& d);

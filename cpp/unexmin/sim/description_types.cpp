@@ -4,6 +4,7 @@
 #include <unexmin/core/error.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace unexmin {
 namespace sim {
@@ -29,6 +30,17 @@ std::vector<std::string> RobotDescription::movableJoints() const {
     if (j.type != "fixed")
       out.push_back(j.name);
   return out;
+}
+
+double RobotMagnetics::current(double thrust) const {
+  return current_coefficient * std::pow(std::abs(thrust), current_exponent);
+}
+
+Eigen::Vector3d RobotMagnetics::read(const Eigen::Vector3d& external, const std::vector<double>& thrust) const {
+  Eigen::Vector3d b = soft_iron * external + hard_iron;
+  for (std::size_t i = 0; i < thruster_field.size() && i < thrust.size(); ++i)
+    b += thruster_field[i] * current(thrust[i]);
+  return b;
 }
 
 }  // namespace sim

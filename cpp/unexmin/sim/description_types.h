@@ -42,6 +42,23 @@ struct SensorSpec {
   std::map<std::string, std::string> text;                 ///< non-numeric parameters (model names, ...)
 };
 
+/// The robot's own magnetic field at its magnetometers (<magnetic> of <unexmin>, docs/magnetometer.md), one for
+/// every magnetometer of the robot (the IMU's and the fluxgate's), body frame: what a magnetometer reads is
+///   B_read = S B_ext + h + sum_i v_i I_i,   I_i = k |T_i|^n
+/// with B_ext the external field, S the soft iron, h the hard iron, v_i the field of thruster i per ampere of its
+/// current I_i, T_i its thrust [N] (an assumed electrical law: no thruster current model exists). None: zero field.
+struct RobotMagnetics {
+  Eigen::Vector3d hard_iron{0, 0, 0};                       ///< h [nT]
+  Eigen::Matrix3d soft_iron = Eigen::Matrix3d::Identity();  ///< S, applied to the external field
+  std::vector<Eigen::Vector3d> thruster_field;              ///< v_i [nT/A] by thruster id (empty: none)
+  double current_coefficient = 0.0;                         ///< k [A / N^n]
+  double current_exponent = 1.5;                            ///< n
+  /// The thrusters' currents [A] of thrusts `thrust` [N] (by id): k |T_i|^n.
+  double current(double thrust) const;
+  /// B_read [nT, body] of the external field `external` [nT, body] and the thrusts `thrust` [N] (by id).
+  Eigen::Vector3d read(const Eigen::Vector3d& external, const std::vector<double>& thrust) const;
+};
+
 struct RobotDescription {
   std::string source;     ///< File or parameter it came from (for messages).
   std::string name;       ///< <robot name="...">
@@ -63,6 +80,7 @@ struct RobotDescription {
   hydro::VbsParams vbs;
   std::vector<JointInfo> joints;
   std::vector<SensorSpec> sensors;
+  RobotMagnetics magnetics;  ///< the robot's own field (zero without a <magnetic> element)
 
   /// Pose of `link` in the base link's frame, through fixed joint origins (moving joints at zero).
   Eigen::Isometry3d linkPose(const std::string& link) const;

@@ -89,6 +89,7 @@ RobotDescription parseRobotDescription(const std::string& xml, const std::string
   parseFins(r, ext, d);
   parsePendulum(r, ext, d);
   parseBallast(r, ext, d);
+  parseMagnetics(r, ext, d);
   parseSensors(r, ext, links, d);
   return d;
 }

@@ -26,7 +26,12 @@ struct World::StaticBody {
 
 World::World(const WorldConfig& config, const std::map<std::string, RobotDescription>& descriptions, int robot_count,
              double dt, std::uint64_t seed)
-    : config_(config), dt_(dt), seed_(seed), current_(config.current, seed), sediment_(config.sediment) {
+    : config_(config),
+      dt_(dt),
+      seed_(seed),
+      current_(config.current, seed),
+      sediment_(config.sediment),
+      magnetics_(config.magnetic_field * geo::kNanoteslaPerMilligauss, config.geology) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw ConfigError(config.file + ": physics step " + formatNumber(dt) + " s must be > 0");
   const int available = static_cast<int>(config.robots.size());

@@ -2,6 +2,7 @@
 // Steps at a fixed physics step; deterministic for a given seed and command sequence.
 #pragma once
 
+#include <unexmin/geo/magnetics.h>
 #include <unexmin/hydro/current.h>
 #include <unexmin/sim/mesh.h>
 #include <unexmin/sim/robot.h>
@@ -50,6 +51,10 @@ public:
   /// The silt the thrusters raised (empty when the world's sediment is off).
   const SedimentField& sediment() const { return sediment_; }
   SedimentField& sediment() { return sediment_; }
+  /// The Earth field (config().magnetic_field) and the geology's anomalies (docs/magnetometer.md).
+  const geo::MagneticAnomalies& magnetics() const { return magnetics_; }
+  /// The total magnetic field at world point `p` [m]: ambient + the geology's anomalies, world frame (ENU) [nT].
+  Eigen::Vector3d magneticField(const Eigen::Vector3d& p) const { return magnetics_.field(p); }
 
   std::size_t robotCount() const { return robots_.size(); }
   Robot& robot(std::size_t i) { return *robots_.at(i); }
@@ -86,6 +91,7 @@ private:
   hydro::CurrentModel current_;
   WaterState water_;
   SedimentField sediment_;
+  geo::MagneticAnomalies magnetics_;
 
   std::unique_ptr<btCollisionConfiguration> collision_config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;

@@ -1,5 +1,6 @@
 #include <unexmin/sim/world_config.h>
 
+#include <unexmin/geo/magnetics.h>
 #include <unexmin/sim/world_geology.h>
 #include <unexmin/sim/world_reader.h>
 #include <unexmin/sim/world_schema.h>
@@ -69,6 +70,28 @@ YAML::Node readRoot(Reader& r, const std::string& path, const std::string& schem
   return root;
 }
 
+/// magnetic_field: [x, y, z] in mG (ENU), or {intensity [nT], inclination [deg], declination [deg]}.
+void readMagneticField(Reader& r, const YAML::Node& root, WorldConfig& w) {
+  const YAML::Node field = root["magnetic_field"];
+  if (!field || !field.IsMap()) {
+    w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+    return;
+  }
+  const std::string at = "magnetic_field.";
+  const double intensity = r.number(field, "intensity", at, 0.0, true);
+  const double inclination = r.number(field, "inclination", at, 0.0, true);
+  const double declination = r.number(field, "declination", at, 0.0, true);
+  if (!(intensity >= 1000.0 && intensity <= 100000.0))
+    r.fail("'magnetic_field.intensity' = " + formatNumber(intensity) +
+           ": expected [1000, 100000] nT (the Earth's field is about 22 000 to 67 000 nT)");
+  if (!(inclination >= -90.0 && inclination <= 90.0))
+    r.fail("'magnetic_field.inclination' = " + formatNumber(inclination) + ": expected [-90, 90] deg (down positive)");
+  if (!(declination >= -180.0 && declination <= 180.0))
+    r.fail("'magnetic_field.declination' = " + formatNumber(declination) +
+           ": expected [-180, 180] deg (east of north positive)");
+  w.magnetic_field = geo::fieldFromAngles(intensity, inclination, declination) / geo::kNanoteslaPerMilligauss;
+}
+
 /// name, gravity, water, atmospheric_pressure, ray_caster, visibility, magnetic_field.
 void readEnvironment(Reader& r, const YAML::Node& root, WorldConfig& w) {
   w.name = r.text(root, "name", "", "world");
@@ -108,7 +131,7 @@ void readEnvironment(Reader& r, const YAML::Node& root, WorldConfig& w) {
       r.fail("'visibility.colour' must be three numbers in (0, 1]");
   }
 
-  w.magnetic_field = r.vec3(root, "magnetic_field", "", w.magnetic_field);  // [mG], ENU
+  readMagneticField(r, root, w);
 }
 
 /// sediment (off unless given).

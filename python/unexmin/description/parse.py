@@ -1,6 +1,6 @@
 """One parse of an expanded robot description (URDF text) into a RobotDescription, by the simulator's rules
 (cpp/unexmin/sim/description_*.cpp, docs/robot_description.md): the links and the joint tree, then one stage per
-entity (hydrodynamics, thrusters, fins, pendulum, ballast, sensors), in the simulator's order.
+entity (hydrodynamics, thrusters, fins, pendulum, ballast, magnetic, sensors), in the simulator's order.
 
 The parser's own rules are the simulator's: which elements and attributes are required, their defaults and number
 counts, joints and links that must exist, actuator ids 0..n-1, actuators inside the hull, unique sensor names with a
@@ -19,6 +19,7 @@ from unexmin.description.records import (
     Fin,
     Hydrodynamics,
     Joint,
+    Magnetics,
     Pendulum,
     RobotDescription,
     Sensor,
@@ -61,6 +62,7 @@ def parse(xml, source="robot_description"):
     d.fins = _by_id(r, [_fin(r, f, d) for f in ext.findall("fin")], "fin")
     d.pendulum = _pendulum(r, ext.find("pendulum"), d)
     d.vbs = _ballast(r, ext.find("vbs"))
+    d.magnetics = _magnetics(r, ext, d)
     for s in ext.findall("sensor"):
         d.sensors.append(_sensor(r, s, links, d))
     return d
@@ -270,6 +272,69 @@ def _ballast(r, vbs):
     if vbs.get("xyz") is not None:
         v.position = r.vector3(vbs, "xyz", vw)
     return v
+
+
+# ------------------------------------------------------------------------------------------------ the robot's field
+_MAGNETIC_TAGS = ("hard_iron", "soft_iron", "thruster_current", "thruster")
+
+
+def _at_most(r, v, limit, where, unit):
+    if np.linalg.norm(v) > limit:
+        size = number_text(np.linalg.norm(v))
+        r.fail(f"{where} has magnitude {size} {unit}, expected at most {number_text(limit)} {unit}")
+
+
+def _magnetics(r, ext, d):
+    """<magnetic> (cpp/unexmin/sim/description_magnetic.cpp); none: a zero field."""
+    found = ext.findall("magnetic")
+    m = Magnetics()
+    if not found:
+        return m
+    if len(found) > 1:
+        r.fail("<magnetic> given twice: expected one <magnetic> element")
+    mag = found[0]
+    for e in mag:
+        if isinstance(e.tag, str) and e.tag not in _MAGNETIC_TAGS:
+            r.fail(f"<magnetic>: unknown element <{e.tag}> (expected hard_iron, soft_iron, thruster_current, thruster)")
+    h = mag.find("hard_iron")
+    if h is not None:
+        m.hard_iron = r.vector3(h, "value", "<magnetic><hard_iron>")
+        _at_most(r, m.hard_iron, 1e6, "<magnetic><hard_iron>@value", "nT")
+    s = mag.find("soft_iron")
+    if s is not None:
+        m.soft_iron = np.array(r.attr_numbers(s, "value", 9, "<magnetic><soft_iron>")).reshape(3, 3)
+        sv = np.linalg.svd(m.soft_iron, compute_uv=False)
+        det = np.linalg.det(m.soft_iron)
+        if det <= 0.0 or sv.min() < 0.5 or sv.max() > 2.0:
+            r.fail(
+                f"<magnetic><soft_iron>@value has singular values {number_text(sv.min())} .. {number_text(sv.max())}"
+                f" and determinant {number_text(det)}: expected a rotation-preserving matrix (determinant > 0) with"
+                " singular values in [0.5, 2]"
+            )
+    c = mag.find("thruster_current")
+    if c is not None:
+        cw = "<magnetic><thruster_current>"
+        m.current_coefficient = r.attr_or(c, "coefficient", cw, m.current_coefficient)
+        m.current_exponent = r.attr_or(c, "exponent", cw, m.current_exponent)
+        if not 0.0 <= m.current_coefficient <= 1000.0:
+            r.fail(f"{cw}@coefficient = {number_text(m.current_coefficient)}: expected [0, 1000] A/N^n")
+        if not 0.5 <= m.current_exponent <= 3.0:
+            r.fail(f"{cw}@exponent = {number_text(m.current_exponent)}: expected [0.5, 3]")
+    n = len(d.thrusters)
+    seen = [False] * n
+    for t in mag.findall("thruster"):
+        tid = _actuator_id(r, t, "magnetic><thruster")
+        tw = f'<magnetic><thruster id="{tid}">'
+        if tid >= n:
+            r.fail(f"{tw}: the robot has no thruster {tid} (ids 0 .. {number_text(n - 1.0)})")
+        if seen[tid]:
+            r.fail(f"{tw} given twice")
+        seen[tid] = True
+        if not m.thruster_field:
+            m.thruster_field = [np.zeros(3) for _ in range(n)]
+        m.thruster_field[tid] = r.vector3(t, "field", tw)
+        _at_most(r, m.thruster_field[tid], 1e5, f"{tw}@field", "nT/A")
+    return m
 
 
 # ------------------------------------------------------------------------------------------------ sensors

@@ -108,6 +108,18 @@ class Vbs:
 
 
 @dataclass
+class Magnetics:
+    """<magnetic>: the robot's own field at its magnetometers (zero when there is none), body frame:
+    B_read = soft_iron B_ext + hard_iron + sum_i thruster_field[i] current_coefficient |T_i|^current_exponent."""
+
+    hard_iron: np.ndarray = field(default_factory=lambda: np.zeros(3))  # [nT]
+    soft_iron: np.ndarray = field(default_factory=lambda: np.eye(3))  # 3 x 3, on the external field
+    thruster_field: list = field(default_factory=list)  # [np.ndarray(3)] [nT/A] by thruster id (empty: none)
+    current_coefficient: float = 0.0  # [A / N^n]
+    current_exponent: float = 1.5
+
+
+@dataclass
 class Sensor:
     """<sensor>: its link's pose in the body frame; numeric <param>s in `params`, the others in `text`."""
 
@@ -135,6 +147,7 @@ class RobotDescription:
     pendulum: Pendulum
     vbs: Vbs
     sensors: list  # [Sensor], document order
+    magnetics: Magnetics = field(default_factory=Magnetics)
 
     def link_pose(self, link):
         """(position [m], rotation 3 x 3) of `link` in the base link's frame through the joint origins, every joint

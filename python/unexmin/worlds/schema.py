@@ -85,7 +85,8 @@ def markdown_table():
             path = f"{prefix}.{key}" if prefix else key
             shown = path + ("[]" if sub["type"] == "list" else "")
             doc = sub.get("doc", "") + (" (required)" if sub.get("required") else "")
-            rows.append(f"| `{shown}` | {sub['type']} | {sub.get('unit', '')} | {_range(sub)} | {doc} |")
+            kind = sub["type"] + (f" or {sub['or']['type']} [{sub['or'].get('unit', '')}]" if sub.get("or") else "")
+            rows.append(f"| `{shown}` | {kind} | {sub.get('unit', '')} | {_range(sub)} | {doc} |")
             walk(sub, path)
 
     walk(schema(), "")
@@ -132,6 +133,8 @@ def _in_range(spec, x):
 def _check(spec, value, path, fail, keys_only=False):
     """Checks `value` at `path` against `spec`; with keys_only, only that every key of every map is known."""
     kind = spec["type"]
+    if spec.get("or") and kind == "map" and not isinstance(value, dict):  # the key's second form (e.g. a vec3)
+        return _check(spec["or"], value, path, fail, keys_only)
     if keys_only and kind not in ("map", "list"):
         return
     bad = lambda: fail(f"'{path}' = {value!r}: expected {_expected(spec)}")  # noqa: E731

@@ -116,6 +116,16 @@ std::string actuators(const RobotDescription& d) {
          ", \"max_mass\": " + number(d.vbs.max_mass) + ", \"position\": " + array(d.vbs.position) + "}";
 }
 
+std::string magnetics(const RobotDescription& d) {
+  const auto& m = d.magnetics;
+  std::string fields = "[";
+  for (std::size_t i = 0; i < m.thruster_field.size(); ++i)
+    fields += (i ? ", " : "") + array(m.thruster_field[i]);
+  return "{\"hard_iron\": " + array(m.hard_iron) + ", \"soft_iron\": " + matrix(m.soft_iron) +
+         ", \"thruster_field\": " + fields + "], \"current_coefficient\": " + number(m.current_coefficient) +
+         ", \"current_exponent\": " + number(m.current_exponent) + "}";
+}
+
 std::string joints(const RobotDescription& d) {
   return list(d.joints, [&](std::size_t i) {
     const auto& j = d.joints[i];
@@ -152,7 +162,7 @@ int main(int argc, char** argv) {
     std::cout << "{\"name\": " << quoted(d.name) << ", \"base_link\": " << quoted(d.base_link)
               << ", \"hydrodynamics\": " << hydrodynamics(d) << ", \"joints\": " << joints(d)
               << ", \"thrusters\": " << thrusters(d) << ", \"fins\": " << fins(d) << ", " << actuators(d)
-              << ", \"sensors\": " << sensors(d) << "}\n";
+              << ", \"magnetics\": " << magnetics(d) << ", \"sensors\": " << sensors(d) << "}\n";
   } catch (const unexmin::ConfigError& e) {
     std::cerr << e.what() << "\n";
     return 1;
