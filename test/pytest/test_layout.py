@@ -1,6 +1,6 @@
 """Layering of the C++ code (CMakeLists.txt, docs/adding_a_sensor.md): one library per folder of cpp/unexmin,
 in the order core -> mapping (needs only core and OctoMap) -> hydro -> water -> geo -> sim -> raycast -> sensors (-> its
-sub-folders sonar, vision) -> engine -> ros_layer. No folder includes a folder above it (the sub-folders of
+sub-folders sonar, vision, science) -> engine -> ros_layer. No folder includes a folder above it (the sub-folders of
 sensors stand side by side: neither includes the other), no core folder includes a ROS header or links a ROS
 library, and every project header is included with its package prefix (<unexmin/<folder>/...>) so nothing
 collides with roscpp's <ros/...>.
@@ -35,10 +35,11 @@ LAYERS = [
     "sensors",
     "sensors/sonar",
     "sensors/vision",
+    "sensors/science",
     "engine",
     "ros_layer",
 ]
-SIBLINGS = {"sensors/sonar", "sensors/vision"}  # same rank
+SIBLINGS = {"sensors/sonar", "sensors/vision", "sensors/science"}  # same rank
 # First path components of headers that come from ROS (roscpp, tf2, message and service packages).
 ROS_ROOTS = {
     "ros",

@@ -3,6 +3,7 @@
 #include <unexmin/sensors/dvl_sensor.h>
 #include <unexmin/sensors/imu_sensor.h>
 #include <unexmin/sensors/pressure_sensor.h>
+#include <unexmin/sensors/science/water_sampler_sensor.h>
 #include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
@@ -24,6 +25,8 @@ sensors::SensorFactory sensorFamilies() {
   f.add<sensors::sonar::SideScanSensor>("side_scan");          // docs/sonars.md
   f.add<sensors::vision::SlsSensor>("sls");                    // docs/sls.md
   f.add<sensors::vision::CameraSensor>("camera");              // docs/vision.md
+  // docs/water_sampler.md
+  f.add<sensors::science::WaterSamplerSensor>("water_sampler");
   return f;
 }
 
