@@ -11,6 +11,7 @@
 #include <unexmin/ros_layer/pressure_publisher.h>
 #include <unexmin/ros_layer/side_scan_publisher.h>
 #include <unexmin/ros_layer/sls_publisher.h>
+#include <unexmin/ros_layer/water_sampler_publisher.h>
 
 namespace unexmin {
 namespace ros_layer {
@@ -26,6 +27,8 @@ SensorRegistry SensorRegistry::builtin() {
   r.addPublisher<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
   r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
   r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
+  // docs/water_sampler.md
+  r.addPublisher<sensors::science::WaterSamplerSensor, WaterSamplerPublisher>("water_sampler");
   return r;
 }
 
