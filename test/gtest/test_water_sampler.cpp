@@ -136,7 +136,7 @@ TEST(WaterSampler, ADepthTriggerFiresAtTheFirstCheckAtOrBelowItsDepth) {
   EXPECT_EQ(r.trigger, SampleTrigger::depth);
   EXPECT_NEAR(r.start_time, first, 1e-9);  // checked at the end of that step; filled from the next one
   // No water column: the world's uniform water, its chemistry unknown.
-  EXPECT_NEAR(r.density, config.water_density, 1e-9);
+  EXPECT_DOUBLE_EQ(r.density, config.water_density);
   EXPECT_TRUE(std::isnan(r.temperature));
   EXPECT_TRUE(std::isnan(r.ph));
 }

@@ -173,12 +173,16 @@ void WaterSamplerSensor::track(const SensorContext& ctx) {
   const double share = now - filled_;
   filled_ = now;
   const Water w = waterAt(ctx);
+  if (fill_steps_ == 1)
+    first_ = w;
+  // Sums of share x (value - the fill's first value): the mean of uniform water is that value exactly.
   for (int i = 0; i < kValues; ++i)
-    sums_[i] += share * w.values[i];
-  position_sum_ += share * w.point;
-  depth_sum_ += share * w.depth;
+    sums_[i] += share * (w.values[i] - first_.values[i]);
+  position_sum_ += share * (w.point - first_.point);
+  depth_sum_ += share * (w.depth - first_.depth);
   const double volume_m3 = 1e-3 * volume_l_;
-  carried_mass_ = full_mass_ + sums_[7] * volume_m3;  // sum of share * rho: the water taken so far
+  // The water taken so far: volume x sum of share x rho.
+  carried_mass_ = full_mass_ + (first_.values[7] * filled_ + sums_[7]) * volume_m3;
   if (filled_ < 1.0 - 1e-12)
     return;
   BottleResult r;
@@ -186,12 +190,12 @@ void WaterSamplerSensor::track(const SensorContext& ctx) {
   r.trigger = trigger_;
   r.start_time = start_time_;
   r.end_time = time_;
-  r.position = position_sum_ / filled_;
-  r.depth = depth_sum_ / filled_;
+  r.position = first_.point + position_sum_ / filled_;
+  r.depth = first_.depth + depth_sum_ / filled_;
   double* out[kValues] = {&r.temperature, &r.salinity, &r.conductivity, &r.ph,
                           &r.redox,       &r.oxygen,   &r.turbidity,    &r.density};
   for (int i = 0; i < kValues; ++i)
-    *out[i] = sums_[i] / filled_;
+    *out[i] = first_.values[i] + sums_[i] / filled_;
   r.volume = volume_l_;
   r.mass = r.density * volume_m3;
   results_.push_back(r);

@@ -117,6 +117,7 @@ private:
   double start_time_ = 0.0;
   std::uint64_t fill_steps_ = 0;
   double filled_ = 0.0;  ///< fraction of the filling bottle
+  Water first_;          ///< the water at the fill's first step
   double sums_[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   Eigen::Vector3d position_sum_{0, 0, 0};
   double depth_sum_ = 0.0;
