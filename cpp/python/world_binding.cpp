@@ -580,6 +580,9 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
             w.sensor(r, name).setRendering(on);
           },
           py::arg("robot"), py::arg("sensor"), py::arg("on"))
+      .def(
+          "fire", [](CoreWorld& w, const std::string& r, const std::string& name) { return w.sensor(r, name).fire(); },
+          py::arg("robot"), py::arg("sensor"))
       .def("contacts", &contacts, py::arg("robot"))
       .def("sensor_names",
            [](CoreWorld& w, const std::string& r) {

@@ -6,6 +6,7 @@
 #include <unexmin/sensors/science/gamma_counter_sensor.h>
 #include <unexmin/sensors/science/magnetometer_sensor.h>
 #include <unexmin/sensors/science/water_probe_sensor.h>
+#include <unexmin/sensors/science/water_sampler_sensor.h>
 #include <unexmin/sensors/sonar/imaging_sonar_sensor.h>
 #include <unexmin/sensors/sonar/m3_sensor.h>
 #include <unexmin/sensors/sonar/msis_sensor.h>
@@ -31,6 +32,7 @@ sensors::SensorFactory sensorFamilies() {
   f.add<sensors::science::WaterProbeSensor>("water_probe");      // docs/water_probe.md
   f.add<sensors::science::MagnetometerSensor>("magnetometer");   // docs/magnetometer.md
   f.add<sensors::science::GammaCounterSensor>("gamma_counter");  // docs/gamma_counter.md
+  f.add<sensors::science::WaterSamplerSensor>("water_sampler");  // docs/water_sampler.md
   return f;
 }
 

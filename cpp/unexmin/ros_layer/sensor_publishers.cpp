@@ -14,6 +14,7 @@
 #include <unexmin/ros_layer/side_scan_publisher.h>
 #include <unexmin/ros_layer/sls_publisher.h>
 #include <unexmin/ros_layer/water_probe_publisher.h>
+#include <unexmin/ros_layer/water_sampler_publisher.h>
 
 namespace unexmin {
 namespace ros_layer {
@@ -29,10 +30,11 @@ SensorRegistry SensorRegistry::builtin() {
   r.addPublisher<sensors::sonar::SideScanSensor, SideScanPublisher>("side_scan");              // docs/sonars.md
   r.addPublisher<sensors::vision::SlsSensor, SlsPublisher>("sls");                             // docs/sls.md
   r.addPublisher<sensors::vision::CameraSensor, CameraPublisher>("camera");                    // docs/vision.md
-  // the science payload: docs/water_probe.md, docs/magnetometer.md, docs/gamma_counter.md
+  // the science payload: docs/water_probe.md, docs/magnetometer.md, docs/gamma_counter.md, docs/water_sampler.md
   r.addPublisher<sensors::science::WaterProbeSensor, WaterProbePublisher>("water_probe");
   r.addPublisher<sensors::science::MagnetometerSensor, MagnetometerPublisher>("magnetometer");
   r.addPublisher<sensors::science::GammaCounterSensor, GammaCounterPublisher>("gamma_counter");
+  r.addPublisher<sensors::science::WaterSamplerSensor, WaterSamplerPublisher>("water_sampler");
   return r;
 }
 

@@ -65,6 +65,11 @@ void Sensor::setRendering(bool /*on*/) {
                        ") renders no images: expected a sensor that renders images (a camera)");
 }
 
+std::string Sensor::fire() {
+  throw ParameterError(robot_ + "/" + name() + " (family " + type() +
+                       ") has nothing to fire: expected a sensor that fires (a water_sampler)");
+}
+
 void Sensor::castRays(const SensorContext& ctx, const std::vector<raycast::Ray>& rays, std::vector<raycast::Hit>& hits,
                       raycast::Incidence incidence, raycast::SeenBy seen_by) {
   if (ctx.rays)

@@ -98,6 +98,14 @@ public:
   /// sample only moves its schedule, as when nobody wants its images. A family that renders images (the camera)
   /// overrides it; the others throw ParameterError naming the robot, the sensor and its family.
   virtual void setRendering(bool on);
+  /// The family's one action, fired by a caller between physics steps (never during one): a water sampler starts
+  /// filling its next bottle. Returns what it did, in one line. A family that fires (the water sampler) overrides it
+  /// and throws ParameterError naming the robot and the sensor when it cannot now; the others throw ParameterError
+  /// naming the robot, the sensor and its family.
+  virtual std::string fire();
+  /// Mass the sensor carries besides the robot's description [kg] >= 0 (the water a sampler has taken), at its mount
+  /// (spec().pose); 0 by default. The suite adds every sensor's to the robot after each step (SensorSuite::update).
+  virtual double carriedMass() const { return 0.0; }
 
 protected:
   /// Reset the model's state (turn-on biases are drawn here from random()).

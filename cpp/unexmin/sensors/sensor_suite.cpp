@@ -3,7 +3,7 @@
 namespace unexmin {
 namespace sensors {
 
-SensorSuite::SensorSuite(const sim::World& world, const sim::Robot& robot, const raycast::RayCaster* rays,
+SensorSuite::SensorSuite(const sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays,
                          const SensorFactory& factory, const SensorSelection& selection, bool visual)
     : world_(world), robot_(robot), rays_(rays) {
   for (std::size_t i = 0; i < world.robotCount(); ++i)
@@ -29,6 +29,7 @@ void SensorSuite::reset(std::uint64_t seed) {
   for (auto& s : sensors_)
     s->reset(seed);
   fresh_.assign(sensors_.size(), 0);
+  applyCarriedMass();
 }
 
 void SensorSuite::update() {
@@ -36,6 +37,18 @@ void SensorSuite::update() {
   const SensorContext ctx{world_, robot_, state, rays_, robot_index_};
   for (std::size_t i = 0; i < sensors_.size(); ++i)
     fresh_[i] = sensors_[i]->update(ctx) ? 1 : 0;
+  applyCarriedMass();
+}
+
+void SensorSuite::applyCarriedMass() {
+  double mass = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const auto& s : sensors_) {
+    const double m = s->carriedMass();
+    mass += m;
+    moment += m * s->spec().pose.translation();
+  }
+  robot_.setPayloadMass(mass, mass > 0.0 ? Eigen::Vector3d(moment / mass) : Eigen::Vector3d::Zero());
 }
 
 Sensor* SensorSuite::find(const std::string& name) {

@@ -20,12 +20,13 @@ public:
   /// whether selected or not) and on a bad sensor parameter. Sensors of families `selection` leaves out are
   /// not built (listed by skipped()). Resets every sensor with world.seed().
   /// `visual`: the simulator's visual mode (SensorSetup::visual).
-  SensorSuite(const sim::World& world, const sim::Robot& robot, const raycast::RayCaster* rays,
-              const SensorFactory& factory, const SensorSelection& selection = SensorSelection(), bool visual = false);
+  SensorSuite(const sim::World& world, sim::Robot& robot, const raycast::RayCaster* rays, const SensorFactory& factory,
+              const SensorSelection& selection = SensorSelection(), bool visual = false);
 
   /// Back to t = 0 with the world's seed `seed` (after World::reset).
   void reset(std::uint64_t seed);
-  /// After every physics step; fresh(i) then tells whether sensor i took a sample at this step.
+  /// After every physics step; fresh(i) then tells whether sensor i took a sample at this step. Then the robot
+  /// carries what its sensors carry (Sensor::carriedMass, each at its mount): sim::Robot::setPayloadMass.
   void update();
 
   std::size_t size() const { return sensors_.size(); }
@@ -38,10 +39,12 @@ public:
   const std::vector<std::string>& skipped() const { return skipped_; }
   /// Every joint the sensors move, with its state now.
   std::vector<MovedJoint> movedJoints() const;
+  /// Hands the robot the mass its sensors carry now (after update(), reset()).
+  void applyCarriedMass();
 
 private:
   const sim::World& world_;
-  const sim::Robot& robot_;
+  sim::Robot& robot_;
   const raycast::RayCaster* rays_;
   int robot_index_ = -1;
   std::vector<std::unique_ptr<Sensor>> sensors_;

@@ -62,7 +62,7 @@ Robot::Robot(const RobotDescription& description, const RobotSpawn& spawn)
 Robot::~Robot() = default;
 
 double Robot::totalMass() const {
-  return description_.hydro.mass + vbs_.mass();
+  return description_.hydro.mass + vbs_.mass() + payload_mass_;
 }
 
 Eigen::Vector3d Robot::centerOfGravity() const {
@@ -75,6 +75,7 @@ Eigen::Vector3d Robot::centerOfGravity() const {
   }
   moment += (h.mass - pend_mass) * h.center_of_gravity;
   moment += vbs_.mass() * vbs_.params().position;
+  moment += payload_mass_ * payload_centre_;
   return moment / totalMass();
 }
 
@@ -82,8 +83,14 @@ double Robot::engineMass() const {
   return totalMass() + model_.foldedMass();
 }
 
+void Robot::setPayloadMass(double mass, const Eigen::Vector3d& centre) {
+  payload_mass_ = std::isfinite(mass) && mass > 0.0 ? mass : 0.0;
+  payload_centre_ = centre;
+}
+
 void Robot::updateMassProperties() {
   engine_vbs_mass_ = vbs_.mass();
+  engine_payload_mass_ = payload_mass_;
   const Eigen::Vector3d inertia = description_.hydro.inertia + model_.foldedInertia();
   body_->setMassProps(static_cast<btScalar>(engineMass()), toBt(inertia));
   body_->updateInertiaTensor();
@@ -91,7 +98,7 @@ void Robot::updateMassProperties() {
 }
 
 void Robot::applyForces(double t, double dt, const WaterState& water) {
-  if (vbs_.mass() != engine_vbs_mass_)
+  if (vbs_.mass() != engine_vbs_mass_ || payload_mass_ != engine_payload_mass_)
     updateMassProperties();
 
   const btTransform& tf = body_->getCenterOfMassTransform();
@@ -189,6 +196,8 @@ void Robot::reset() {
   if (pendulum_)
     pendulum_->reset();
   vbs_.reset();
+  payload_mass_ = 0.0;
+  payload_centre_.setZero();
   updateMassProperties();
   setPose(spawn_pose_);
 }

@@ -79,8 +79,13 @@ public:
   /// Total mass, pendulum and ballast included [kg], and its centre in the body frame [m].
   double totalMass() const;
   Eigen::Vector3d centerOfGravity() const;
-  /// Mass and inertia the engine integrates (rigid body + folded added mass + ballast).
+  /// Mass and inertia the engine integrates (rigid body + folded added mass + ballast + payload).
   double engineMass() const;
+  /// Mass the robot's payload carries besides its description [kg] >= 0 (the water its samplers took), centred at
+  /// `centre` (body frame [m]): part of totalMass() and centerOfGravity() from the next applyForces on (its weight, its
+  /// inertia along the translations; the rotational inertia keeps the description's). Zero after reset().
+  void setPayloadMass(double mass, const Eigen::Vector3d& centre);
+  double payloadMass() const { return payload_mass_; }  ///< [kg]
 
   /// Back to the spawn pose at rest, actuators zeroed.
   void reset();
@@ -102,6 +107,9 @@ private:
   std::unique_ptr<hydro::Pendulum> pendulum_;
   hydro::Vbs vbs_;
   double engine_vbs_mass_ = 0.0;
+  double payload_mass_ = 0.0;                ///< [kg]
+  Eigen::Vector3d payload_centre_{0, 0, 0};  ///< body frame [m]
+  double engine_payload_mass_ = 0.0;         ///< the payload mass the rigid body has
 
   std::unique_ptr<btCollisionShape> shape_;
   std::unique_ptr<btDefaultMotionState> motion_state_;

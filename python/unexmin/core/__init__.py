@@ -80,6 +80,12 @@ class Robot:
         unknown sensor, ValueError for one that is not a camera."""
         self.world._core.set_rendering(self.name, camera, bool(on))
 
+    def fire(self, sensor):
+        """Fire sensor `sensor` now, between steps (a water sampler starts filling its next bottle over its fill time:
+        docs/water_sampler.md); returns what it did ("filling bottle 1 of 4"). KeyError for an unknown sensor,
+        ValueError for one whose family does not fire or that cannot now (every bottle full, one filling)."""
+        return self.world._core.fire(self.name, sensor)
+
     def contacts(self):
         """Where the hull touches the world's meshes or another robot after the last step: dict of numpy arrays,
         one row per contact point: ``position`` (N x 3) on the obstacle's surface [m] and ``normal`` (N x 3, unit)
