@@ -30,15 +30,16 @@ def waypoints(gallery_length):
     return path
 
 
-def controller(pose, twist, target, yaw_target=0.0):
+def controller(pose, twist, target, yaw_target=0.0, speed=SPEED):
     """Body wrench [X Y Z K M N] (allocation units) towards target: a velocity command along the error
-    (SPEED at most), feed-forward for the quadratic drag, proportional on the velocity error; yaw held."""
+    (`speed` [m/s] at most, SPEED by default), feed-forward for the quadratic drag, proportional on the velocity
+    error; yaw held."""
     p = np.array([pose.position.x, pose.position.y, pose.position.z])
     yaw = yaw_of(pose.orientation)
     c, s = math.cos(yaw), math.sin(yaw)
     err = np.array(target) - p
     dist = float(np.linalg.norm(err))
-    v_des = err / dist * min(SPEED, 0.5 * dist) if dist > 1e-6 else np.zeros(3)
+    v_des = err / dist * min(speed, 0.5 * dist) if dist > 1e-6 else np.zeros(3)
     # to the body frame (yaw only; the UX-1 is kept level by its pendulum)
     v_des_b = np.array([c * v_des[0] + s * v_des[1], -s * v_des[0] + c * v_des[1], v_des[2]])
     v_b = np.array([twist.linear.x, twist.linear.y, twist.linear.z])  # odometry twist: child (body) frame
