@@ -88,7 +88,19 @@ def test_every_builtin_family_lists_the_fields_its_samples_hold():
             else:
                 assert value.dtype == np.dtype(dtype) and value.shape == shape, f"{name}.{key}"
         seen.add(family)
-    assert {"imu", "dvl", "pressure", "msis", "m3", "sls", "camera", "water_probe", "magnetometer", "gamma_counter", "water_sampler"} <= seen
+    assert {
+        "imu",
+        "dvl",
+        "pressure",
+        "msis",
+        "m3",
+        "sls",
+        "camera",
+        "water_probe",
+        "magnetometer",
+        "gamma_counter",
+        "water_sampler",
+    } <= seen
 
 
 def test_the_imaging_sonar_and_the_side_scan_give_their_images_in_process():

@@ -15,7 +15,19 @@ from unexmin.scripting.launcher import free_port, start_private_master, stop_pro
 
 REPO = Path(__file__).resolve().parents[2]
 TANK = REPO / "worlds" / "tank.world"
-BUILTIN = {"camera", "dvl", "gamma_counter", "imu", "m3", "magnetometer", "msis", "pressure", "sls", "water_probe", "water_sampler"}  # families every simulator knows
+BUILTIN = {
+    "camera",
+    "dvl",
+    "gamma_counter",
+    "imu",
+    "m3",
+    "magnetometer",
+    "msis",
+    "pressure",
+    "sls",
+    "water_probe",
+    "water_sampler",
+}  # families every simulator knows
 
 
 @pytest.fixture(scope="module")
