@@ -9,7 +9,7 @@ The mine as shipped (worlds/mine.world: its rock, `medium` water, its `sediment:
   view in seconds, and the test is about settling;
 - UX_1 carries 1 kg of ballast (``vbs(1.0)``), so that holding its altitude takes a steady vertical thrust (9.8 N in
   all, 3.5 N per vertical thruster; neutrally trimmed it would need none);
-- camera 4 (55 deg down) renders 320 x 240 with exposure 2 (the description's 20 saturates the LED's spot on the
+- camera 4 (55 deg down) renders 320 x 240 with exposure 1 (the description's 20 saturates the LED's spot on the
   floor 0.4 m away); the other cameras render nothing (``set_rendering``), and camera 4 only the frames judged.
 Altitude is the robot's own DVL's; the hold is a PID on it whose heave force goes through the thesis allocation
 (docs/thruster_allocator.md) to the four vertical thrusters, for 60 s. While the silt settles the robot is parked
@@ -52,7 +52,7 @@ PATCH = (96, 64, 182)  # [px] width, height and centre row of the judged patch (
 # the LED's spot on the floor, the lower half)
 SEED = 5
 SIZE = (320, 240)  # [px] camera 4's image
-EXPOSURE = 2.0  # [m^2 sr / W] camera 4 (see the module docstring)
+EXPOSURE = 1.0  # [m^2 sr / W] camera 4 (see the module docstring)
 
 
 def patch(image):
