@@ -123,7 +123,8 @@ def test_an_unknown_visibility_level_stops_start_up(master, description):
     lines = fatal_lines(output)
     assert len(lines) == 1, output
     assert (
-        "parameter ~visibility = 'murky': expected none|low|medium|high|water (or empty: the world file's level)" in lines[0]
+        "parameter ~visibility = 'murky': expected none|low|medium|high|water (or empty: the world file's level)"
+        in lines[0]
     ), lines[0]
 
 
