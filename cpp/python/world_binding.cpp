@@ -286,6 +286,28 @@ py::dict sediment(CoreWorld& w) {
 }
 
 /// The world's `sediment:` block in force.
+/// The world's water column at `point` now (water::WaterColumn::at); None in a world without one.
+py::object waterAt(CoreWorld& w, const std::vector<double>& point) {
+  if (point.size() != 3 || !std::all_of(point.begin(), point.end(), [](double v) { return std::isfinite(v); }))
+    throw py::value_error("point: expected 3 finite numbers [m], world frame");
+  const auto& column = w.world().config().water_column;
+  if (!column)
+    return py::none();
+  const water::WaterSample s = column->at(Eigen::Vector3d(point[0], point[1], point[2]), w.world().time());
+  py::dict d;
+  d["depth"] = s.depth;
+  d["temperature"] = s.temperature;
+  d["salinity"] = s.salinity;
+  d["conductivity"] = s.conductivity;
+  d["ph"] = s.ph;
+  d["redox"] = s.redox;
+  d["oxygen"] = s.oxygen;
+  d["turbidity"] = s.turbidity;
+  d["density"] = s.density;
+  d["sound_speed"] = s.sound_speed;
+  return std::move(d);
+}
+
 py::dict sedimentParams(CoreWorld& w) {
   const sim::SedimentParams& p = w.world().sediment().params();
   py::dict d;
@@ -534,6 +556,7 @@ void bindWorld(py::module_& m, std::function<sensors::SensorFactory()> families)
       .def("set_current", &setCurrent, py::arg("speed"), py::arg("horizontal_angle"), py::arg("vertical_angle"),
            py::arg("steady"))
       .def("sediment", &sediment)
+      .def("water", &waterAt, py::arg("point"))
       .def_property_readonly("sediment_params", &sedimentParams)
       .def_property_readonly("robots",
                              [](CoreWorld& w) {

@@ -247,6 +247,13 @@ class World:
         reset(). ValueError naming a bad value."""
         self._core.set_current(float(speed), float(horizontal_angle), float(vertical_angle), bool(steady))
 
+    def water(self, point):
+        """The water column at world `point` [m] now, as every instrument reads it: dict of ``depth`` [m],
+        ``temperature`` [degC], ``salinity`` [PSU], ``conductivity`` [uS/cm], ``ph``, ``redox`` [mV], ``oxygen``
+        [mg/L], ``turbidity`` [NTU], ``density`` [kg/m^3] and ``sound_speed`` [m/s]; None in a world without a
+        ``water.profile`` (docs/worlds.md). ValueError for a point that is not 3 finite numbers."""
+        return self._core.water([float(v) for v in point])
+
     def sediment(self):
         """The silt the robots' thrusters raised now (docs/vision.md "Silt-out"), one row per puff: ``centre`` (N x 3)
         world frame [m], ``sigma`` (N) its spread [m], ``strength`` (N) Q, the integral of its extra scattering

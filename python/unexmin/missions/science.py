@@ -6,7 +6,8 @@ UX_1 descends the entry shaft logging its water probe, fires its water sampler a
 climbs back to the first level and flies its gallery close to the wall on the side of the magnetite lens, then
 returns to the shaft and surfaces. It leaves in DIR:
 
-- water_profile.csv / .png: every probe channel against depth on the descent, beside the world's own profile there;
+- water_profile.csv / .png: every probe channel against depth on the descent, beside the world's own water there
+  (World.water at the hull's centre at each sample);
 - samples.csv: the sampler's laboratory results (position, time, the water averaged over each fill);
 - magnetic_profile.png, magnetic_map.png: the total-field anomaly (|B| minus its median on the gallery) along the
   path and in plan view;
@@ -65,22 +66,6 @@ def world_water(world):
     if not rows:
         raise ValueError("the world has no water.profile: the science survey measures a water column")
     return float(water.get("surface_z", 0.0)), rows
-
-
-def true_channel(rows, depth, channel):
-    """The profile's `channel` at `depth` [m], linear between rows (of two rows at one depth the deeper holds there),
-    as the simulator's water column without its boundary's heave (a few cm over a survey of minutes)."""
-    depths = np.array([r["depth"] for r in rows], dtype=float)
-    values = np.array([r.get(channel, np.nan) for r in rows], dtype=float)
-    k = int(np.searchsorted(depths, depth, side="right"))
-    if k == 0:
-        return float(values[0])
-    if k == len(rows):
-        return float(values[-1])
-    d0, d1 = depths[k - 1], depths[k]
-    if d1 <= d0:
-        return float(values[k])
-    return float(values[k - 1] + (values[k] - values[k - 1]) * (depth - d0) / (d1 - d0))
 
 
 def slab_interval(body, y, z):
@@ -143,7 +128,8 @@ def plan_route(world, layout, gallery_end=None):
 class Log:
     """Every new sample of the science sensors, kept as it arrives (the counts checked against rate x time)."""
 
-    def __init__(self, robot):
+    def __init__(self, world, robot):
+        self.world = world
         self.robot = robot
         self.counts = {s: 0 for s in robot.sensors}
         self.samples = {s: [] for s in robot.sensors}
@@ -158,6 +144,8 @@ class Log:
                 sample = self.robot.sample(s)
                 sample["leg"] = leg
                 sample["position"] = self.robot.state()["position"].copy()
+                if s == "water_probe":  # the world's own water there and then (at the hull's centre)
+                    sample["truth"] = self.world.water(sample["position"])
                 self.samples[s].append(sample)
 
 
@@ -225,7 +213,7 @@ def score(world, route, log, out):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    surface, rows = world_water(world)
+    surface, _ = world_water(world)
     bodies = {b["name"]: b for b in world["geology"]["bodies"]}
     summary = {"route": {k: route[k] for k in ("side", "offset", "chemocline_depth", "sample_depths")}}
     # the water profile on the descent
@@ -235,11 +223,11 @@ def score(world, route, log, out):
         w = csv.writer(f)
         w.writerow(["time_s", "depth_m"] + [f"{c}" for c in CHANNELS] + [f"true_{c}" for c in CHANNELS])
         for s, d in zip(probe, depth):
-            w.writerow([s["time"], d] + [s[c] for c in CHANNELS] + [true_channel(rows, d, c) for c in CHANNELS])
+            w.writerow([s["time"], d] + [s[c] for c in CHANNELS] + [s["truth"][c] for c in CHANNELS])
     fig, axes = plt.subplots(1, len(CHANNELS), figsize=(3.2 * len(CHANNELS), 5), sharey=True)
     errors = {}
     for ax, c in zip(axes, CHANNELS):
-        truth = np.array([true_channel(rows, d, c) for d in depth])
+        truth = np.array([s["truth"][c] for s in probe])
         measured = np.array([s[c] for s in probe])
         errors[c] = {
             "rms": float(np.sqrt(np.mean((measured - truth) ** 2))),
@@ -384,7 +372,7 @@ def run(out, world_name="mine", seed=0, gallery_end=None, max_time=3600.0):
     wall0 = time.monotonic()
     world = World(path, robots=[ROBOT], seed=seed, sensors=SENSORS)
     robot = world.robot(ROBOT)
-    log = Log(robot)
+    log = Log(world, robot)
     track = fly(world, robot, route, log, max_time)
     sim_time = robot.state()["time"]
     wall = time.monotonic() - wall0
